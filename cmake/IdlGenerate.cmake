@@ -1,0 +1,40 @@
+# robodds_generate_idl(TARGET_NAME IDL_FILE)
+# Runs fastddsgen at build time into the build tree and builds two libraries:
+#   ${TARGET_NAME}            the plain C++ types (Fast CDR only; safe to include anywhere)
+#   ${TARGET_NAME}_typesupport the TopicDataType classes (Fast DDS; linked by runtime/ only)
+# plus ${TARGET_NAME}_visit.hpp: generated field visitors (printing, CSV, finiteness checks).
+find_program(FASTDDSGEN_EXECUTABLE fastddsgen REQUIRED)
+find_package(Python3 REQUIRED COMPONENTS Interpreter)
+
+function(robodds_generate_idl target idl_file)
+  get_filename_component(idl_abs ${idl_file} ABSOLUTE)
+  get_filename_component(stem ${idl_file} NAME_WE)
+  set(out_dir ${CMAKE_CURRENT_BINARY_DIR}/generated/robodds/idl)
+  set(gen_sources ${out_dir}/${stem}.cxx ${out_dir}/${stem}.h)
+  set(gen_typesupport ${out_dir}/${stem}PubSubTypes.cxx ${out_dir}/${stem}PubSubTypes.h)
+  set(gen_visit ${out_dir}/${stem}_visit.hpp)
+  add_custom_command(
+    OUTPUT ${gen_sources} ${gen_typesupport}
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${out_dir}
+    # No -typeobject: the type support announces no TypeObject (XCDR1 interop with other vendors).
+    COMMAND ${FASTDDSGEN_EXECUTABLE} -replace -d ${out_dir} ${idl_abs}
+    DEPENDS ${idl_abs}
+    COMMENT "fastddsgen ${stem}.idl"
+    VERBATIM)
+  add_custom_command(
+    OUTPUT ${gen_visit}
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${out_dir}
+    COMMAND Python3::Interpreter ${PROJECT_SOURCE_DIR}/cmake/idl_visitors.py ${idl_abs} ${gen_visit}
+    DEPENDS ${idl_abs} ${PROJECT_SOURCE_DIR}/cmake/idl_visitors.py
+    COMMENT "field visitors for ${stem}.idl"
+    VERBATIM)
+
+  add_library(${target} STATIC ${gen_sources} ${gen_visit})
+  target_include_directories(${target} SYSTEM PUBLIC ${CMAKE_CURRENT_BINARY_DIR}/generated)
+  target_link_libraries(${target} PUBLIC fastcdr)
+  # fixed_size_string.hpp (header only) comes from the Fast RTPS include directory.
+  target_include_directories(${target} SYSTEM PUBLIC $<TARGET_PROPERTY:fastrtps,INTERFACE_INCLUDE_DIRECTORIES>)
+
+  add_library(${target}_typesupport STATIC ${gen_typesupport})
+  target_link_libraries(${target}_typesupport PUBLIC ${target} fastrtps)
+endfunction()

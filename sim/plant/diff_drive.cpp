@@ -1,0 +1,40 @@
+#include "sim/plant/diff_drive.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/angle.hpp"
+
+namespace robodds::plant {
+
+Twist twist_from_wheel_speeds(double v_left, double v_right, double wheel_base_m) {
+  return Twist{0.5 * (v_left + v_right), (v_right - v_left) / wheel_base_m};
+}
+
+Twist saturate(const Twist& twist, const TwistLimits& limits) {
+  Twist out = twist;
+  if (limits.max_speed_mps > 0.0) {
+    out.v = std::clamp(out.v, -limits.max_speed_mps, limits.max_speed_mps);
+  }
+  if (limits.max_turn_rate_radps > 0.0) {
+    out.omega = std::clamp(out.omega, -limits.max_turn_rate_radps, limits.max_turn_rate_radps);
+  }
+  return out;
+}
+
+Pose2 integrate_exact(const Pose2& start, const Twist& twist, double dt_s) {
+  const double dtheta = twist.omega * dt_s;
+  // Chord length factor sin(dtheta/2)/(dtheta/2): exact arc, and its series near 0 avoids the
+  // 0/0 of the textbook v/omega (sin(theta + omega dt) - sin(theta)) form.
+  const double half = 0.5 * dtheta;
+  const double sinc_half = std::abs(half) < 1e-6 ? 1.0 - half * half / 6.0 : std::sin(half) / half;
+  const double chord = twist.v * dt_s * sinc_half;
+  const double mid_heading = start.theta + half;
+  Pose2 end;
+  end.x = start.x + chord * std::cos(mid_heading);
+  end.y = start.y + chord * std::sin(mid_heading);
+  end.theta = wrap_angle(start.theta + dtheta);
+  return end;
+}
+
+}  // namespace robodds::plant

@@ -1,0 +1,71 @@
+#include "sim/plant/diff_drive.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/angle.hpp"
+
+namespace robodds::plant {
+namespace {
+
+TEST(DiffDrive, WheelSpeedsToTwist) {
+  const Twist t = twist_from_wheel_speeds(1.0, 3.0, 0.5);
+  EXPECT_DOUBLE_EQ(t.v, 2.0);
+  EXPECT_DOUBLE_EQ(t.omega, 4.0);  // faster right wheel turns counter-clockwise
+}
+
+TEST(DiffDrive, StraightLineWhenOmegaIsZero) {
+  const Pose2 end = integrate_exact({1.0, 2.0, kPi / 3.0}, {2.0, 0.0}, 1.5);
+  EXPECT_NEAR(end.x, 1.0 + 3.0 * std::cos(kPi / 3.0), 1e-12);
+  EXPECT_NEAR(end.y, 2.0 + 3.0 * std::sin(kPi / 3.0), 1e-12);
+  EXPECT_NEAR(end.theta, kPi / 3.0, 1e-15);
+}
+
+TEST(DiffDrive, MatchesClosedFormArc) {
+  const Pose2 start{0.5, -1.0, 0.3};
+  const Twist twist{1.2, 0.7};
+  const double dt = 0.9;
+  const double r = twist.v / twist.omega;
+  const Pose2 end = integrate_exact(start, twist, dt);
+  EXPECT_NEAR(end.x, start.x + r * (std::sin(start.theta + twist.omega * dt) - std::sin(start.theta)), 1e-12);
+  EXPECT_NEAR(end.y, start.y + r * (std::cos(start.theta) - std::cos(start.theta + twist.omega * dt)), 1e-12);
+  EXPECT_NEAR(end.theta, start.theta + twist.omega * dt, 1e-12);
+}
+
+TEST(DiffDrive, TinyOmegaIsContinuousWithTheStraightLine) {
+  const Pose2 straight = integrate_exact({0, 0, 0.2}, {1.0, 0.0}, 0.01);
+  const Pose2 almost = integrate_exact({0, 0, 0.2}, {1.0, 1e-9}, 0.01);
+  EXPECT_NEAR(straight.x, almost.x, 1e-12);
+  EXPECT_NEAR(straight.y, almost.y, 1e-12);
+}
+
+TEST(DiffDrive, FullCircleReturnsToStart) {
+  Pose2 pose{3.0, 4.0, 0.0};
+  const int n = 1000;
+  for (int i = 0; i < n; ++i) {
+    pose = integrate_exact(pose, {1.0, 2.0 * kPi}, 1.0 / n);
+  }
+  EXPECT_NEAR(pose.x, 3.0, 1e-9);
+  EXPECT_NEAR(pose.y, 4.0, 1e-9);
+  EXPECT_NEAR(wrap_angle(pose.theta), 0.0, 1e-9);
+}
+
+TEST(DiffDrive, TurnInPlace) {
+  const Pose2 end = integrate_exact({1.0, 1.0, 0.0}, {0.0, 1.0}, 0.5);
+  EXPECT_DOUBLE_EQ(end.x, 1.0);
+  EXPECT_DOUBLE_EQ(end.y, 1.0);
+  EXPECT_NEAR(end.theta, 0.5, 1e-15);
+}
+
+TEST(DiffDrive, SaturateClampsEachAxisAndZeroMeansUnlimited) {
+  const Twist t = saturate({-5.0, 3.0}, {1.0, 0.5});
+  EXPECT_DOUBLE_EQ(t.v, -1.0);
+  EXPECT_DOUBLE_EQ(t.omega, 0.5);
+  const Twist free = saturate({-5.0, 3.0}, {});
+  EXPECT_DOUBLE_EQ(free.v, -5.0);
+  EXPECT_DOUBLE_EQ(free.omega, 3.0);
+}
+
+}  // namespace
+}  // namespace robodds::plant
