@@ -1,0 +1,76 @@
+#include "components/odometry_sensor/node/odometry_sensor_node.hpp"
+
+#include <map>
+
+#include "common/random.hpp"
+#include "components/odometry_sensor/odometry_model.hpp"
+#include "robodds/idl/robodds.h"
+
+namespace robodds::odometry_sensor {
+namespace {
+
+class OdometrySensorNode : public Component {
+ public:
+  void configure(ComponentContext& ctx) override {
+    auto& p = ctx.params();
+    params_.rate_hz = p.get_double("rate_hz");
+    params_.wheel_base_m = p.get_double("wheel_base_m");
+    params_.wheel_speed_noise_std_mps = p.get_double("wheel_speed_noise_std_mps");
+    params_.left_slip = p.get_double("left_slip");
+    params_.right_slip = p.get_double("right_slip");
+    p.validate(params_);
+    ctx.set_rate_hz(params_.rate_hz, "rate_hz");
+    for (const RobotSpec& robot : ctx.robots()) {
+      robots_.emplace(robot.id, Robot{RandomEngine(ctx.seed_for("robot" + std::to_string(robot.id))), 0.0, 0.0, 0.0});
+    }
+    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", InputOptions{ctx.robot_keys(), 0, false, "", {}});
+    out_ = &ctx.advertise<idl::Odometry>("sensor/odometry");
+    step_s_ = ctx.step_s();
+    realtime_ = ctx.mode() == TimeMode::kRealtime;
+  }
+
+  void on_step(const StepInfo& info) override {
+    for (auto& [id, robot] : robots_) {
+      // Each state carries the twist applied over its own step: sum them into wheel travel.
+      for (const idl::RobotState& state : truth_->take_new(id)) {
+        const double dt = realtime_ ? info.dt_s : step_s_;
+        robot.distance += state.v() * dt;
+        robot.turn += state.omega() * dt;
+        robot.elapsed += dt;
+      }
+      const double interval = realtime_ ? info.dt_s : robot.elapsed;
+      const plant::Twist mean = interval > 0.0 ? plant::Twist{robot.distance / interval, robot.turn / interval} : plant::Twist{};
+      const OdometryReading reading = measure_odometry(mean, interval, params_, robot.engine);
+      robot.distance = robot.turn = robot.elapsed = 0.0;
+      idl::Odometry m;
+      m.robot_id(id);
+      m.v(reading.v);
+      m.omega(reading.omega);
+      m.dt_s(reading.dt_s);
+      m.var_v(reading.var_v);
+      m.var_omega(reading.var_omega);
+      out_->publish(m);
+    }
+  }
+
+ private:
+  struct Robot {
+    RandomEngine engine;
+    double distance;  // m travelled since the last reading
+    double turn;      // rad turned since the last reading
+    double elapsed;   // s covered by the summed states
+  };
+
+  OdometryParams params_;
+  std::map<std::uint32_t, Robot> robots_;
+  Input<idl::RobotState>* truth_ = nullptr;
+  Output<idl::Odometry>* out_ = nullptr;
+  double step_s_ = 0.01;
+  bool realtime_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Component> make_odometry_sensor_node() { return std::make_unique<OdometrySensorNode>(); }
+
+}  // namespace robodds::odometry_sensor

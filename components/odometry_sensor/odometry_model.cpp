@@ -1,0 +1,31 @@
+#include "components/odometry_sensor/odometry_model.hpp"
+
+#include "components/odometry_sensor/wheel_speeds.hpp"
+
+namespace robodds::odometry_sensor {
+
+OdometryReading measure_odometry(const plant::Twist& true_twist, double dt_s,
+                                 const OdometryParams& params, RandomEngine& engine) {
+  const WheelSpeeds truth = wheel_speeds_from_twist(true_twist, params.wheel_base_m);
+  // Named locals fix the draw order (left, then right) regardless of argument evaluation order.
+  const double unit_noise_left = standard_normal(engine);
+  const double unit_noise_right = standard_normal(engine);
+  const double std_mps = params.wheel_speed_noise_std_mps;
+  const double measured_left = (1.0 + params.left_slip) * truth.left + std_mps * unit_noise_left;
+  const double measured_right =
+      (1.0 + params.right_slip) * truth.right + std_mps * unit_noise_right;
+
+  const plant::Twist measured =
+      plant::twist_from_wheel_speeds(measured_left, measured_right, params.wheel_base_m);
+  // v = (l + r)/2 and omega = (r - l)/D of two independent wheel errors of variance std^2.
+  const double wheel_var = std_mps * std_mps;
+  OdometryReading reading;
+  reading.v = measured.v;
+  reading.omega = measured.omega;
+  reading.dt_s = dt_s;
+  reading.var_v = 0.5 * wheel_var;
+  reading.var_omega = 2.0 * wheel_var / (params.wheel_base_m * params.wheel_base_m);
+  return reading;
+}
+
+}  // namespace robodds::odometry_sensor

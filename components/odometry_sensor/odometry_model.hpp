@@ -1,0 +1,29 @@
+#pragma once
+// Measurement model of wheel odometry: the true body twist is split into wheel rim speeds, each
+// wheel's speed gets its scale error (slip) and independent white Gaussian noise, and the
+// result is turned back into a body twist.
+
+#include "common/random.hpp"
+#include "components/odometry_sensor/odometry_params.hpp"
+#include "sim/plant/diff_drive.hpp"
+
+namespace robodds::odometry_sensor {
+
+/// One odometry reading: the measured body twist over the last dt_s seconds.
+struct OdometryReading {
+  double v = 0.0;          // m/s, measured forward speed
+  double omega = 0.0;      // rad/s, measured turn rate (counter-clockwise positive)
+  double dt_s = 0.0;       // s, interval the reading covers (passed through)
+  double var_v = 0.0;      // (m/s)^2, claimed variance of v from the white noise: std^2 / 2
+  double var_omega = 0.0;  // (rad/s)^2, claimed variance of omega: 2 std^2 / D^2
+};
+
+/// Samples one reading of `true_twist`. The claimed variances describe the white wheel noise
+/// only (v and omega errors from it are uncorrelated); the slip bias is deliberately not
+/// included, as a real odometry does not know its own calibration error. Always draws exactly
+/// two standard normals from `engine` (left wheel first, then right). `params` must have
+/// passed validate().
+OdometryReading measure_odometry(const plant::Twist& true_twist, double dt_s,
+                                 const OdometryParams& params, RandomEngine& engine);
+
+}  // namespace robodds::odometry_sensor

@@ -1,0 +1,187 @@
+#include "components/odometry_sensor/odometry_model.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace robodds::odometry_sensor {
+namespace {
+
+constexpr int kSamples = 100000;
+
+/// Sample moments of the reading error (reading - truth) over many readings of one twist.
+struct ErrorMoments {
+  double mean_v = 0.0;
+  double mean_omega = 0.0;
+  double var_v = 0.0;
+  double var_omega = 0.0;
+  double correlation = 0.0;
+};
+
+ErrorMoments error_moments(const plant::Twist& truth, const OdometryParams& params,
+                           RandomEngine& engine, int samples) {
+  double sum_v = 0.0, sum_w = 0.0, sum_vv = 0.0, sum_ww = 0.0, sum_vw = 0.0;
+  for (int i = 0; i < samples; ++i) {
+    const OdometryReading reading = measure_odometry(truth, 0.02, params, engine);
+    const double ev = reading.v - truth.v;
+    const double ew = reading.omega - truth.omega;
+    sum_v += ev;
+    sum_w += ew;
+    sum_vv += ev * ev;
+    sum_ww += ew * ew;
+    sum_vw += ev * ew;
+  }
+  ErrorMoments m;
+  m.mean_v = sum_v / samples;
+  m.mean_omega = sum_w / samples;
+  m.var_v = sum_vv / samples - m.mean_v * m.mean_v;
+  m.var_omega = sum_ww / samples - m.mean_omega * m.mean_omega;
+  m.correlation = (sum_vw / samples - m.mean_v * m.mean_omega) / std::sqrt(m.var_v * m.var_omega);
+  return m;
+}
+
+OdometryParams noiseless() {
+  OdometryParams params;
+  params.wheel_speed_noise_std_mps = 0.0;
+  return params;
+}
+
+TEST(OdometryModel, ClaimedVariancesFollowFromWheelNoise) {
+  OdometryParams params;
+  params.wheel_speed_noise_std_mps = 0.04;
+  params.wheel_base_m = 0.4;
+  RandomEngine engine(1);
+  const OdometryReading reading = measure_odometry(plant::Twist{1.0, 0.5}, 0.02, params, engine);
+  EXPECT_DOUBLE_EQ(reading.var_v, 0.04 * 0.04 / 2.0);
+  EXPECT_DOUBLE_EQ(reading.var_omega, 2.0 * 0.04 * 0.04 / (0.4 * 0.4));
+  EXPECT_EQ(reading.dt_s, 0.02);
+}
+
+TEST(OdometryModel, EmpiricalNoiseMatchesClaimedVariancesWithZeroMean) {
+  OdometryParams params;
+  params.wheel_speed_noise_std_mps = 0.05;
+  params.wheel_base_m = 0.5;
+  RandomEngine engine(derive_seed(1, "odometry_sensor/statistics"));
+  const plant::Twist truth{0.8, -0.6};
+  const ErrorMoments m = error_moments(truth, params, engine, kSamples);
+
+  RandomEngine claim_engine(0);
+  const OdometryReading claim = measure_odometry(truth, 0.02, params, claim_engine);
+  // Tolerances: 5 standard errors. Mean: sigma/sqrt(n). Variance: var*sqrt(2/n).
+  // Correlation: 1/sqrt(n) (the v and omega errors of independent wheels are uncorrelated).
+  const double n = kSamples;
+  EXPECT_NEAR(m.mean_v, 0.0, 5.0 * std::sqrt(claim.var_v / n));
+  EXPECT_NEAR(m.mean_omega, 0.0, 5.0 * std::sqrt(claim.var_omega / n));
+  EXPECT_NEAR(m.var_v, claim.var_v, 5.0 * claim.var_v * std::sqrt(2.0 / n));
+  EXPECT_NEAR(m.var_omega, claim.var_omega, 5.0 * claim.var_omega * std::sqrt(2.0 / n));
+  EXPECT_NEAR(m.correlation, 0.0, 5.0 / std::sqrt(n));
+}
+
+TEST(OdometryModel, ZeroNoiseAndSlipGiveTruth) {
+  const OdometryParams params = noiseless();
+  RandomEngine engine(derive_seed(2, "odometry_sensor/zero_noise"));
+  for (const plant::Twist truth : {plant::Twist{0.0, 0.0}, plant::Twist{1.0, 0.0},
+                                   plant::Twist{0.0, -1.0}, plant::Twist{0.37, 0.91}}) {
+    const OdometryReading reading = measure_odometry(truth, 0.02, params, engine);
+    // Exact up to the rounding of the wheel-speed round trip.
+    EXPECT_NEAR(reading.v, truth.v, 1e-15);
+    EXPECT_NEAR(reading.omega, truth.omega, 1e-14);
+    EXPECT_EQ(reading.var_v, 0.0);
+    EXPECT_EQ(reading.var_omega, 0.0);
+  }
+}
+
+TEST(OdometryModel, SameSeedGivesIdenticalSequence) {
+  const OdometryParams params;
+  RandomEngine a(derive_seed(42, "odometry_sensor/robot1"));
+  RandomEngine b(derive_seed(42, "odometry_sensor/robot1"));
+  const plant::Twist truth{0.5, 0.2};
+  for (int i = 0; i < 1000; ++i) {
+    const OdometryReading ra = measure_odometry(truth, 0.02, params, a);
+    const OdometryReading rb = measure_odometry(truth, 0.02, params, b);
+    ASSERT_EQ(ra.v, rb.v);
+    ASSERT_EQ(ra.omega, rb.omega);
+  }
+}
+
+TEST(OdometryModel, DifferentSeedGivesDifferentReadings) {
+  const OdometryParams params;
+  RandomEngine a(derive_seed(42, "odometry_sensor/robot1"));
+  RandomEngine b(derive_seed(42, "odometry_sensor/robot2"));
+  const OdometryReading ra = measure_odometry(plant::Twist{}, 0.02, params, a);
+  const OdometryReading rb = measure_odometry(plant::Twist{}, 0.02, params, b);
+  EXPECT_NE(ra.v, rb.v);
+  EXPECT_NE(ra.omega, rb.omega);
+}
+
+TEST(OdometryModel, DrawsTwoNormalsPerReadingWhateverTheNoise) {
+  RandomEngine a(9);
+  RandomEngine b(9);
+  measure_odometry(plant::Twist{}, 0.02, OdometryParams{}, a);
+  measure_odometry(plant::Twist{}, 0.02, noiseless(), b);
+  EXPECT_EQ(a, b);
+}
+
+// Slip, straight line at v = 1 m/s, D = 0.5 m: a wheel reading fast by s adds s/2 m/s to v and
+// turns omega toward the other wheel's side by s * 1 / D rad/s.
+
+TEST(OdometryModel, FastRightWheelReadsFasterAndTurningLeft) {
+  OdometryParams params = noiseless();
+  params.right_slip = 0.01;
+  RandomEngine engine(3);
+  const OdometryReading reading = measure_odometry(plant::Twist{1.0, 0.0}, 0.02, params, engine);
+  EXPECT_NEAR(reading.v, 1.005, 1e-12);
+  EXPECT_NEAR(reading.omega, 0.02, 1e-12);  // counter-clockwise
+}
+
+TEST(OdometryModel, FastLeftWheelReadsFasterAndTurningRight) {
+  OdometryParams params = noiseless();
+  params.left_slip = 0.01;
+  RandomEngine engine(3);
+  const OdometryReading reading = measure_odometry(plant::Twist{1.0, 0.0}, 0.02, params, engine);
+  EXPECT_NEAR(reading.v, 1.005, 1e-12);
+  EXPECT_NEAR(reading.omega, -0.02, 1e-12);  // clockwise
+}
+
+TEST(OdometryModel, EqualSlipScalesTheWholeTwist) {
+  OdometryParams params = noiseless();
+  params.left_slip = -0.03;
+  params.right_slip = -0.03;
+  RandomEngine engine(3);
+  const OdometryReading reading = measure_odometry(plant::Twist{0.8, -0.4}, 0.02, params, engine);
+  EXPECT_NEAR(reading.v, 0.97 * 0.8, 1e-12);
+  EXPECT_NEAR(reading.omega, 0.97 * -0.4, 1e-12);
+}
+
+TEST(OdometryModel, SlipBiasMatchesPredictionUnderNoise) {
+  // General prediction: v_m = v + (sl v_l + sr v_r)/2, omega_m = omega + (sr v_r - sl v_l)/D.
+  OdometryParams params;
+  params.left_slip = -0.02;
+  params.right_slip = 0.015;
+  const plant::Twist truth{0.6, 0.8};
+  const double v_left = truth.v - 0.5 * truth.omega * params.wheel_base_m;
+  const double v_right = truth.v + 0.5 * truth.omega * params.wheel_base_m;
+  const double predicted_v_bias = 0.5 * (params.left_slip * v_left + params.right_slip * v_right);
+  const double predicted_omega_bias =
+      (params.right_slip * v_right - params.left_slip * v_left) / params.wheel_base_m;
+
+  RandomEngine engine(derive_seed(4, "odometry_sensor/slip"));
+  const ErrorMoments m = error_moments(truth, params, engine, kSamples);
+  // The noise is added after the scale error, so it still has the white-noise variances.
+  const double noise_std = params.wheel_speed_noise_std_mps;
+  const double var_v = noise_std * noise_std / 2.0;
+  const double var_omega =
+      2.0 * noise_std * noise_std / (params.wheel_base_m * params.wheel_base_m);
+  const double n = kSamples;
+  EXPECT_NEAR(m.mean_v, predicted_v_bias, 5.0 * std::sqrt(var_v / n));
+  EXPECT_NEAR(m.mean_omega, predicted_omega_bias, 5.0 * std::sqrt(var_omega / n));
+  EXPECT_NEAR(m.var_v, var_v, 5.0 * var_v * std::sqrt(2.0 / n));
+  EXPECT_NEAR(m.var_omega, var_omega, 5.0 * var_omega * std::sqrt(2.0 / n));
+  // Sanity of the prediction's direction: left slow and right fast both turn left and the
+  // faster-moving right wheel dominates v.
+  EXPECT_GT(predicted_omega_bias, 0.0);
+  EXPECT_GT(predicted_v_bias, 0.0);
+}
+
+}  // namespace
+}  // namespace robodds::odometry_sensor

@@ -1,0 +1,56 @@
+#include "components/position_sensor/node/position_sensor_node.hpp"
+
+#include <map>
+
+#include "common/random.hpp"
+#include "components/position_sensor/position_model.hpp"
+#include "robodds/idl/robodds.h"
+
+namespace robodds::position_sensor {
+namespace {
+
+class PositionSensorNode : public Component {
+ public:
+  void configure(ComponentContext& ctx) override {
+    auto& p = ctx.params();
+    params_.rate_hz = p.get_double("rate_hz");
+    params_.noise_var_x_m2 = p.get_double("noise_var_x_m2");
+    params_.noise_var_y_m2 = p.get_double("noise_var_y_m2");
+    p.validate(params_);
+    ctx.set_rate_hz(params_.rate_hz, "rate_hz");
+    for (const RobotSpec& robot : ctx.robots()) {
+      engines_.emplace(robot.id, RandomEngine(ctx.seed_for("robot" + std::to_string(robot.id))));
+    }
+    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", InputOptions{ctx.robot_keys(), 0, false, "", {}});
+    out_ = &ctx.advertise<idl::PositionMeasurement>("sensor/position");
+  }
+
+  void on_step(const StepInfo&) override {
+    for (auto& [id, engine] : engines_) {
+      const idl::RobotState* state = truth_->latest(id);
+      if (state == nullptr) {
+        continue;  // real time before the plant's first sample
+      }
+      const PositionFix fix = measure_position(plant::Pose2{state->x(), state->y(), state->theta()}, params_, engine);
+      idl::PositionMeasurement m;
+      m.robot_id(id);
+      m.x(fix.x);
+      m.y(fix.y);
+      m.var_x(fix.var_x);
+      m.var_y(fix.var_y);
+      out_->publish(m);
+    }
+  }
+
+ private:
+  PositionSensorParams params_;
+  std::map<std::uint32_t, RandomEngine> engines_;
+  Input<idl::RobotState>* truth_ = nullptr;
+  Output<idl::PositionMeasurement>* out_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Component> make_position_sensor_node() { return std::make_unique<PositionSensorNode>(); }
+
+}  // namespace robodds::position_sensor

@@ -1,0 +1,21 @@
+#include "components/position_sensor/position_model.hpp"
+
+#include <cmath>
+
+namespace robodds::position_sensor {
+
+PositionFix measure_position(const plant::Pose2& truth, const PositionSensorParams& params,
+                             RandomEngine& engine) {
+  // Draw into named locals: the order of evaluation of function arguments is unspecified,
+  // and a fixed x-then-y order keeps the output reproducible across compilers.
+  const double unit_noise_x = standard_normal(engine);
+  const double unit_noise_y = standard_normal(engine);
+  PositionFix fix;
+  fix.x = truth.x + std::sqrt(params.noise_var_x_m2) * unit_noise_x;
+  fix.y = truth.y + std::sqrt(params.noise_var_y_m2) * unit_noise_y;
+  fix.var_x = params.noise_var_x_m2;
+  fix.var_y = params.noise_var_y_m2;
+  return fix;
+}
+
+}  // namespace robodds::position_sensor

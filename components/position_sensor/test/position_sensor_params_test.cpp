@@ -1,0 +1,81 @@
+#include "components/position_sensor/position_sensor_params.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+namespace robodds::position_sensor {
+namespace {
+
+constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// The validate() message, or "" if it did not throw std::invalid_argument.
+std::string validation_error(const PositionSensorParams& params) {
+  try {
+    params.validate();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool starts_with(const std::string& text, const std::string& prefix) {
+  return text.rfind(prefix, 0) == 0;
+}
+
+TEST(PositionSensorParams, DefaultsAreValidAndMatchPaper) {
+  const PositionSensorParams params;
+  EXPECT_NO_THROW(params.validate());
+  EXPECT_EQ(params.rate_hz, 10.0);
+  EXPECT_EQ(params.noise_var_x_m2, 2.28);
+  EXPECT_EQ(params.noise_var_y_m2, 2.28);
+}
+
+TEST(PositionSensorParams, ZeroVarianceIsValid) {
+  PositionSensorParams params;
+  params.noise_var_x_m2 = 0.0;
+  params.noise_var_y_m2 = 0.0;
+  EXPECT_NO_THROW(params.validate());
+}
+
+TEST(PositionSensorParams, RejectsBadRateNamingKeyAndValue) {
+  for (double bad : {0.0, -1.0, kNan, kInf}) {
+    PositionSensorParams params;
+    params.rate_hz = bad;
+    const std::string message = validation_error(params);
+    EXPECT_TRUE(starts_with(message, "rate_hz: must be > 0 and finite")) << message;
+  }
+  PositionSensorParams params;
+  params.rate_hz = -1.0;
+  EXPECT_EQ(validation_error(params), "rate_hz: must be > 0 and finite (got -1)");
+}
+
+TEST(PositionSensorParams, RejectsBadVarianceX) {
+  for (double bad : {-1e-9, -2.28, kNan, kInf, -kInf}) {
+    PositionSensorParams params;
+    params.noise_var_x_m2 = bad;
+    const std::string message = validation_error(params);
+    EXPECT_TRUE(starts_with(message, "noise_var_x_m2: must be >= 0 and finite (got ")) << message;
+  }
+}
+
+TEST(PositionSensorParams, RejectsBadVarianceY) {
+  for (double bad : {-1e-9, -2.28, kNan, kInf, -kInf}) {
+    PositionSensorParams params;
+    params.noise_var_y_m2 = bad;
+    const std::string message = validation_error(params);
+    EXPECT_TRUE(starts_with(message, "noise_var_y_m2: must be >= 0 and finite (got ")) << message;
+  }
+}
+
+TEST(PositionSensorParams, NanIsReportedAsNan) {
+  PositionSensorParams params;
+  params.noise_var_y_m2 = kNan;
+  EXPECT_EQ(validation_error(params), "noise_var_y_m2: must be >= 0 and finite (got nan)");
+}
+
+}  // namespace
+}  // namespace robodds::position_sensor

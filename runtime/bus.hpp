@@ -1,0 +1,47 @@
+#pragma once
+// The runtime's view of DDS, free of Fast DDS headers: typed I/O (io.hpp) and the host talk
+// to these interfaces; runtime/dds_bus.cpp implements them with Fast DDS. Samples cross this
+// boundary as `const void*` pointing at the generated C++ type named by `type_name`.
+
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <string>
+
+namespace robodds {
+
+enum class TimeMode { kLockstep, kRealtime };
+
+class WriterHandle {
+ public:
+  virtual ~WriterHandle() = default;
+  virtual void write(const void* sample) = 0;
+  virtual const std::string& topic() const = 0;
+};
+
+/// Called for each valid sample, on a DDS thread or, for a writer in the same process, inside
+/// that writer's write(): it must only store the sample and return.
+using SampleCallback = std::function<void(const void* sample)>;
+/// Called for QoS events on a reader (deadline missed, liveliness lost, incompatible QoS).
+using ReaderEventCallback = std::function<void(const std::string& event)>;
+
+class ReaderHandle {
+ public:
+  virtual ~ReaderHandle() = default;
+};
+
+class Bus {
+ public:
+  virtual ~Bus() = default;
+  /// One writer per (topic, profile) per process: repeated calls return the same writer.
+  virtual std::shared_ptr<WriterHandle> writer(const std::string& topic, const std::string& type_name,
+                                               const std::string& profile) = 0;
+  /// One DDS reader per (topic, profile) per process; each call adds a callback to it.
+  virtual std::shared_ptr<ReaderHandle> reader(const std::string& topic, const std::string& type_name,
+                                               const std::string& profile, SampleCallback on_sample,
+                                               ReaderEventCallback on_event) = 0;
+  /// Waits until every reliable writer's samples are acknowledged (before a process exits).
+  virtual void flush(std::chrono::milliseconds timeout) = 0;
+};
+
+}  // namespace robodds

@@ -1,0 +1,49 @@
+#include "runtime/component.hpp"
+
+#include <cmath>
+
+#include "common/random.hpp"
+#include "runtime/registry.hpp"
+
+namespace robodds {
+
+std::vector<RobotSpec> ComponentContext::robots() const {
+  std::vector<RobotSpec> out;
+  for (std::uint32_t id : spec_.robots) {
+    out.push_back(run_.scenario->robot(id));
+  }
+  return out;
+}
+
+std::vector<std::uint64_t> ComponentContext::robot_keys() const {
+  return std::vector<std::uint64_t>(spec_.robots.begin(), spec_.robots.end());
+}
+
+std::uint64_t ComponentContext::seed_for(const std::string& stream) const {
+  return derive_seed(run_.scenario->seed, spec_.name + "/" + stream);
+}
+
+void ComponentContext::set_rate_hz(double rate_hz, const std::string& key) {
+  const double steps = 1.0 / (rate_hz * step_s());
+  const double rounded = std::round(steps);
+  if (!(rate_hz > 0.0) || rounded < 1.0 || std::abs(steps - rounded) > 1e-6 * steps) {
+    params_.fail(key + ": " + std::to_string(rate_hz) + " Hz is not the simulation rate (" +
+                 std::to_string(1.0 / step_s()) + " Hz) divided by a whole number");
+  }
+  state_->period_steps = static_cast<std::uint64_t>(rounded);
+}
+
+void ComponentRegistry::add(ComponentType type) { types_.push_back(std::move(type)); }
+
+const ComponentType& ComponentRegistry::get(const std::string& name) const {
+  std::string known;
+  for (const ComponentType& type : types_) {
+    if (type.name == name) {
+      return type;
+    }
+    known += (known.empty() ? "" : ", ") + type.name;
+  }
+  throw ConfigError("unknown component type '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace robodds

@@ -1,0 +1,119 @@
+#pragma once
+// The component model. A component is a class registered by type name; it has no main and
+// does not know how it is deployed. The host configures it once (parameters, inputs, outputs,
+// rate) and then calls on_step() at each due step on the host's executor thread.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/bus.hpp"
+#include "runtime/error.hpp"
+#include "runtime/io.hpp"
+#include "runtime/params.hpp"
+#include "runtime/scenario.hpp"
+#include "runtime/topic_catalog.hpp"
+
+namespace robodds {
+
+struct StepInfo {
+  std::uint64_t step = 0;  // the due step
+  double time_s = 0.0;     // sim time (lockstep) or seconds since start (real-time)
+  double dt_s = 0.0;       // s since this component's previous step (its period in lockstep)
+  std::int64_t stamp_ns = 0;  // the stamp its samples get: sim time (lockstep) or wall clock (real time)
+};
+
+class ComponentContext;
+
+class Component {
+ public:
+  virtual ~Component() = default;
+  /// Reads and validates parameters, declares inputs/outputs and the rate. Errors: ConfigError.
+  virtual void configure(ComponentContext& ctx) = 0;
+  /// Called at each due step once the inputs are ready (lockstep) or on the timer (real-time).
+  virtual void on_step(const StepInfo& info) = 0;
+  /// Called once after the last step (e.g. the evaluator writes its files).
+  virtual void on_finish(const StepInfo& /*info*/) {}
+};
+
+/// What the host knows about the run, shared by all components of a process.
+struct RunContext {
+  const Scenario* scenario = nullptr;
+  Bus* bus = nullptr;
+  Notifier* notifier = nullptr;
+  TimeMode mode = TimeMode::kLockstep;
+  std::string output_dir;   // where the evaluator writes CSVs and summary.json
+  std::string share_dir;    // repository root or install prefix (params defaults, QoS files)
+};
+
+class ComponentContext {
+ public:
+  ComponentContext(const RunContext& run, const ComponentSpec& spec, ParamReader params, StepState* state)
+      : run_(run), spec_(spec), params_(std::move(params)), state_(state) {}
+
+  const std::string& name() const { return spec_.name; }
+  const std::string& type() const { return spec_.type; }
+  ParamReader& params() { return params_; }
+  const Scenario& scenario() const { return *run_.scenario; }
+  /// Robots this component serves, with their initial poses.
+  std::vector<RobotSpec> robots() const;
+  /// Instance keys of those robots (for InputOptions::expected).
+  std::vector<std::uint64_t> robot_keys() const;
+  /// Seed of the random stream `stream` of this component (scenario seed + name + stream).
+  std::uint64_t seed_for(const std::string& stream) const;
+  double step_s() const { return run_.scenario->step_s; }
+  TimeMode mode() const { return run_.mode; }
+  const std::string& output_dir() const { return run_.output_dir; }
+
+  /// Runs the component every round(1 / (rate_hz * step_s)) steps; the rate must divide the
+  /// simulation rate (ConfigError naming `key` otherwise).
+  void set_rate_hz(double rate_hz, const std::string& key);
+  std::uint64_t period_steps() const { return state_->period_steps; }
+
+  template <class Msg>
+  Input<Msg>& subscribe(const std::string& topic, InputOptions options = {}) {
+    const TopicInfo& info = checked_topic<Msg>(topic);
+    options.key_names = info.key;
+    auto input = std::make_unique<Input<Msg>>(topic, spec_.name, state_, run_.notifier, std::move(options));
+    Input<Msg>* raw = input.get();
+    const std::string owner = spec_.name;
+    readers_.push_back(run_.bus->reader(
+        topic, info.type_name, qos_profile_for(info, run_.mode),
+        [raw](const void* sample) { raw->on_sample(*static_cast<const Msg*>(sample)); },
+        [owner, topic](const std::string& event) { log::warn(owner, topic + ": " + event); }));
+    inputs_.push_back(std::move(input));
+    return *raw;
+  }
+
+  template <class Msg>
+  Output<Msg>& advertise(const std::string& topic) {
+    const TopicInfo& info = checked_topic<Msg>(topic);
+    auto output = std::make_unique<Output<Msg>>(run_.bus->writer(topic, info.type_name, qos_profile_for(info, run_.mode)), state_);
+    Output<Msg>* raw = output.get();
+    outputs_.push_back(std::shared_ptr<void>(output.release(), [](void* p) { delete static_cast<Output<Msg>*>(p); }));
+    return *raw;
+  }
+
+  const std::vector<std::unique_ptr<InputBase>>& inputs() const { return inputs_; }
+
+ private:
+  template <class Msg>
+  const TopicInfo& checked_topic(const std::string& topic) const {
+    const TopicInfo& info = topic_info(topic);
+    if (info.type_name != idl::type_name<Msg>()) {
+      throw ConfigError(spec_.name + ": topic " + topic + " carries " + info.type_name + ", not " + idl::type_name<Msg>());
+    }
+    return info;
+  }
+
+  const RunContext& run_;
+  const ComponentSpec& spec_;
+  ParamReader params_;
+  StepState* state_;
+  std::vector<std::unique_ptr<InputBase>> inputs_;
+  std::vector<std::shared_ptr<void>> outputs_;
+  std::vector<std::shared_ptr<ReaderHandle>> readers_;
+};
+
+}  // namespace robodds

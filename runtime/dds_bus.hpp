@@ -1,0 +1,37 @@
+#pragma once
+// Creates the Fast DDS implementation of Bus. This header stays free of Fast DDS includes.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/bus.hpp"
+
+namespace robodds {
+
+struct DdsOptions {
+  int domain_id = 0;
+  std::vector<std::string> qos_files;  // loaded in order; the first must define the data profiles
+  std::string participant_profile = "robodds.participant";
+  std::string participant_name = "robodds";
+};
+
+class DdsBus : public Bus {
+ public:
+  /// Readers are created when start() runs, so that every local subscriber of a topic is
+  /// registered before the first (possibly transient-local) sample is delivered.
+  virtual void start() = 0;
+};
+
+/// Loads and validates the QoS files and creates one DomainParticipant. Throws ConfigError naming
+/// the file and the rejected element, or a missing profile, and RunError if DDS fails.
+std::unique_ptr<DdsBus> make_dds_bus(const DdsOptions& options);
+
+/// Loads the QoS files into the process-wide profile store (idempotent per file); ConfigError on
+/// a malformed file, naming the file and Fast DDS's reason.
+void load_qos_files(const std::vector<std::string>& files);
+
+/// Data-writer/reader profile names the runtime requires in the QoS files.
+const std::vector<std::string>& required_data_profiles();
+
+}  // namespace robodds

@@ -1,0 +1,94 @@
+#include "runtime/discovery.hpp"
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
+
+#include <chrono>
+#include <map>
+#include <mutex>
+#include <thread>
+
+#include "runtime/error.hpp"
+
+namespace robodds {
+namespace dds = eprosima::fastdds::dds;
+namespace rtps = eprosima::fastrtps::rtps;
+
+namespace {
+
+std::string qos_text(bool reliable, bool transient_local) {
+  return std::string(reliable ? "RELIABLE" : "BEST_EFFORT") + "/" + (transient_local ? "TRANSIENT_LOCAL" : "VOLATILE");
+}
+
+class DiscoveryListener : public dds::DomainParticipantListener {
+ public:
+  void on_publisher_discovery(dds::DomainParticipant*, rtps::WriterDiscoveryInfo&& info) override {
+    if (info.status != rtps::WriterDiscoveryInfo::DISCOVERED_WRITER) {
+      return;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    DiscoveredTopic& t = entry(info.info.topicName().to_string(), info.info.typeName().to_string());
+    ++t.writers;
+    if (t.writer_qos.empty()) {
+      t.writer_qos = qos_text(info.info.m_qos.m_reliability.kind == dds::RELIABLE_RELIABILITY_QOS,
+                              info.info.m_qos.m_durability.kind == dds::TRANSIENT_LOCAL_DURABILITY_QOS);
+    }
+  }
+  void on_subscriber_discovery(dds::DomainParticipant*, rtps::ReaderDiscoveryInfo&& info) override {
+    if (info.status != rtps::ReaderDiscoveryInfo::DISCOVERED_READER) {
+      return;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    DiscoveredTopic& t = entry(info.info.topicName().to_string(), info.info.typeName().to_string());
+    ++t.readers;
+    if (t.reader_qos.empty()) {
+      t.reader_qos = qos_text(info.info.m_qos.m_reliability.kind == dds::RELIABLE_RELIABILITY_QOS,
+                              info.info.m_qos.m_durability.kind == dds::TRANSIENT_LOCAL_DURABILITY_QOS);
+    }
+  }
+  std::vector<DiscoveredTopic> topics() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<DiscoveredTopic> out;
+    for (auto& [name, t] : topics_) {
+      out.push_back(t);
+    }
+    return out;
+  }
+
+ private:
+  DiscoveredTopic& entry(const std::string& name, const std::string& type) {
+    DiscoveredTopic& t = topics_[name];
+    t.name = name;
+    t.type_name = type;
+    return t;
+  }
+  std::mutex mutex_;
+  std::map<std::string, DiscoveredTopic> topics_;
+};
+
+}  // namespace
+
+std::vector<DiscoveredTopic> discover_topics(const DdsOptions& options, double seconds) {
+  load_qos_files(options.qos_files);
+  auto* factory = dds::DomainParticipantFactory::get_instance();
+  dds::DomainParticipantQos qos;
+  if (factory->get_participant_qos_from_profile(options.participant_profile, qos) != eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+    throw ConfigError("participant profile '" + options.participant_profile + "' not found in the loaded QoS files");
+  }
+  qos.name("robodds-topics");
+  DiscoveryListener listener;
+  // Only discovery callbacks: leave data_on_readers out of the mask (it would swallow data).
+  dds::StatusMask mask = dds::StatusMask::none();
+  dds::DomainParticipant* participant = factory->create_participant(options.domain_id, qos, &listener, mask);
+  if (participant == nullptr) {
+    throw RunError("could not create a DDS participant on domain " + std::to_string(options.domain_id));
+  }
+  std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
+  participant->set_listener(nullptr);
+  auto topics = listener.topics();
+  factory->delete_participant(participant);
+  return topics;
+}
+
+}  // namespace robodds

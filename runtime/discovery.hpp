@@ -1,0 +1,23 @@
+#pragma once
+// Topic discovery for `robodds topics`: which topics exist on a domain, with type and QoS.
+
+#include <string>
+#include <vector>
+
+#include "runtime/dds_bus.hpp"
+
+namespace robodds {
+
+struct DiscoveredTopic {
+  std::string name;
+  std::string type_name;
+  int writers = 0;
+  int readers = 0;
+  std::string writer_qos;  // e.g. "RELIABLE/TRANSIENT_LOCAL" (first writer seen)
+  std::string reader_qos;
+};
+
+/// Listens on the domain for `seconds` and returns the topics seen, sorted by name.
+std::vector<DiscoveredTopic> discover_topics(const DdsOptions& options, double seconds);
+
+}  // namespace robodds

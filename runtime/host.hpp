@@ -1,0 +1,54 @@
+#pragma once
+// The generic host: runs a set of components in one process on one executor thread, in
+// lockstep (optionally also acting as the coordinator that publishes ticks) or in real time.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/component.hpp"
+#include "runtime/registry.hpp"
+
+namespace robodds {
+
+struct HostOptions {
+  std::string member = "host";              // this host's group name (its acknowledgements)
+  std::vector<std::string> components;      // component instances to run here
+  std::uint64_t run_id = 1;                 // ticks of other runs are ignored
+  bool coordinator = false;                 // also publish ticks and collect acknowledgements
+  std::vector<std::string> members;         // groups the coordinator waits for
+  double input_timeout_s = 10.0;            // max wait for a component's inputs at one step
+  double start_timeout_s = 30.0;            // max wait for the first tick / first acknowledgements
+  double tick_timeout_s = 30.0;             // max wait between ticks (host) or for acks (coordinator)
+  std::int64_t realtime_epoch_ns = 0;       // real time: wall clock of step 0 (0 = now)
+  std::function<void()> poll;               // called every loop iteration; may throw (child died)
+  std::function<void(std::uint64_t step, std::uint64_t last_step)> progress;
+  const std::atomic<bool>* stop = nullptr;  // set by a signal handler
+};
+
+struct RunStats {
+  std::uint64_t steps = 0;  // ticks completed
+  double wall_s = 0.0;
+};
+
+class Host {
+ public:
+  Host(const ComponentRegistry& registry, RunContext run, HostOptions options);
+  ~Host();
+  Host(const Host&) = delete;
+  Host& operator=(const Host&) = delete;
+
+  /// Creates and configures the components (ConfigError on bad parameters or topics).
+  void configure();
+  /// Runs to the end of the scenario; RunError on a timeout, a failed peer or a signal.
+  RunStats run();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace robodds

@@ -1,0 +1,250 @@
+#pragma once
+// Typed inputs and outputs of components. Free of Fast DDS headers.
+//
+// Lockstep rule (docs/architecture.md): every sample carries its `step` and its producer's
+// `next_step`. A consumer due at step m with input delay d waits, per expected instance,
+// until the newest sample has next_step > m - d: then every sample with step <= m - d has
+// arrived, whatever the delivery order across topics and processes. It then reads only
+// samples with step <= m - d. The result is the same co-located, across processes or hosts.
+
+#include <cstdint>
+#include <deque>
+#include <limits>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "runtime/bus.hpp"
+#include "runtime/log.hpp"
+#include "runtime/notifier.hpp"
+#include "runtime/sample_fields.hpp"
+
+namespace robodds {
+
+inline constexpr std::uint64_t kNeverAgain = std::numeric_limits<std::uint64_t>::max();
+
+/// Where a component is in time; shared by its inputs and outputs.
+struct StepState {
+  std::uint64_t step = 0;          // the step being processed
+  std::uint64_t period_steps = 1;  // the component runs every period_steps steps
+  std::int64_t stamp_ns = 0;       // sim time (lockstep) or wall time (real-time) of `step`
+  TimeMode mode = TimeMode::kLockstep;
+};
+
+struct InputOptions {
+  /// Instances (instance_key values, e.g. robot ids) the consumer needs at every due step.
+  /// Samples of other instances are ignored. Empty: take every instance, gate on none.
+  std::vector<std::uint64_t> expected;
+  /// Read samples of step <= m - delay_steps (1 closes a loop: the plant reads the command of
+  /// the previous step).
+  std::uint64_t delay_steps = 0;
+  /// Host-level inputs (ticks, acks) see every sample regardless of the component's step.
+  bool ignore_step = false;
+  /// The topic's key field names (from the topic catalog), used in error messages.
+  std::string key_names;
+  /// Labels for instances whose key cannot be spelled from key_names (e.g. hashed strings).
+  std::map<std::uint64_t, std::string> labels;
+};
+
+class InputBase {
+ public:
+  InputBase(std::string topic, std::string owner, const StepState* state, Notifier* notifier, InputOptions options)
+      : topic_(std::move(topic)), owner_(std::move(owner)), state_(state), notifier_(notifier), options_(std::move(options)) {}
+  virtual ~InputBase() = default;
+
+  const std::string& topic() const { return topic_; }
+  std::uint64_t rejected_count() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return rejected_;
+  }
+
+  /// Lockstep: true when every expected instance has delivered all samples with
+  /// step <= step - delay. Otherwise names the first missing instance in *missing.
+  bool ready(std::uint64_t step, std::string* missing) const {
+    if (state_->mode == TimeMode::kRealtime || step < options_.delay_steps) {
+      return true;  // real time reads whatever is there; before `delay` steps nothing is due
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    for (std::uint64_t key : options_.expected) {
+      auto it = progress_.find(key);
+      // next_step > step - delay, written without unsigned underflow.
+      if (it == progress_.end() || it->second.next_step + options_.delay_steps <= step) {
+        if (missing != nullptr) {
+          *missing = it == progress_.end() ? label_of(key) + " (nothing received yet)"
+                                           : label_of(key) + " (newest sample: step " +
+                                                 std::to_string(it->second.step) + ")";
+        }
+        return false;
+      }
+    }
+    return true;
+  }
+
+ protected:
+  struct Progress {
+    std::uint64_t step = 0;
+    std::uint64_t next_step = 0;
+  };
+
+  std::string label_of(std::uint64_t key) const {
+    auto it = labels_.find(key);
+    if (it != labels_.end()) {
+      return it->second;
+    }
+    // Not seen yet: spell the key with the topic's key field names ("robot_id, target_id").
+    const std::string& names = options_.key_names;
+    const std::size_t comma = names.find(',');
+    if (names.empty()) {
+      return "instance " + std::to_string(key);
+    }
+    if (comma == std::string::npos) {
+      return names + "=" + std::to_string(key);
+    }
+    std::string second = names.substr(comma + 1);
+    second.erase(0, second.find_first_not_of(' '));
+    return names.substr(0, comma) + "=" + std::to_string(key >> 32) + " " + second + "=" + std::to_string(key & 0xffffffffULL);
+  }
+  bool wanted(std::uint64_t key) const {
+    return options_.expected.empty() || expected_set_.count(key) != 0;
+  }
+  /// Highest step a consumer may read now.
+  std::uint64_t readable_limit() const {
+    if (options_.ignore_step || state_->mode == TimeMode::kRealtime) {
+      return kNeverAgain;
+    }
+    return state_->step >= options_.delay_steps ? state_->step - options_.delay_steps : 0;
+  }
+  bool nothing_readable() const {
+    return !options_.ignore_step && state_->mode == TimeMode::kLockstep && state_->step < options_.delay_steps;
+  }
+
+  std::string topic_;
+  std::string owner_;
+  const StepState* state_;
+  Notifier* notifier_;
+  InputOptions options_;
+  std::set<std::uint64_t> expected_set_{options_.expected.begin(), options_.expected.end()};
+  mutable std::mutex mutex_;
+  std::map<std::uint64_t, Progress> progress_;
+  std::map<std::uint64_t, std::string> labels_{options_.labels};
+  std::uint64_t rejected_ = 0;
+  bool rejection_logged_ = false;
+};
+
+template <class Msg>
+class Input : public InputBase {
+ public:
+  using InputBase::InputBase;
+
+  /// Stores a sample; called by the bus (listener thread or inside a local writer's write()).
+  void on_sample(const Msg& sample) {
+    const std::uint64_t key = idl::instance_key(sample);
+    if (!wanted(key)) {
+      return;
+    }
+    const std::string bad_field = first_non_finite_field(sample);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      Progress& p = progress_[key];
+      p.step = sample.header().step();
+      p.next_step = sample.header().next_step();
+      if (labels_.count(key) == 0) {
+        labels_[key] = idl::instance_label(sample);
+      }
+      if (bad_field.empty()) {
+        slots_[key].pending.push_back(sample);
+      } else {
+        ++rejected_;
+        if (!rejection_logged_) {
+          rejection_logged_ = true;
+          log::warn(owner_, "rejected a sample on " + topic_ + " (" + idl::instance_label(sample) + ", step " +
+                                std::to_string(sample.header().step()) + "): field '" + bad_field +
+                                "' is not finite; such samples are counted and dropped (logged once)");
+        }
+      }
+    }
+    notifier_->notify();
+  }
+
+  /// Readable samples of `key` not taken before, in step order.
+  std::vector<Msg> take_new(std::uint64_t key) {
+    std::vector<Msg> out;
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = slots_.find(key);
+    if (it == slots_.end() || nothing_readable()) {
+      return out;
+    }
+    const std::uint64_t limit = readable_limit();
+    Slot& slot = it->second;
+    while (!slot.pending.empty() && slot.pending.front().header().step() <= limit) {
+      out.push_back(std::move(slot.pending.front()));
+      slot.pending.pop_front();
+    }
+    if (!out.empty()) {
+      slot.latest = out.back();
+    }
+    return out;
+  }
+
+  /// The newest readable sample of `key` (older unread ones are skipped), or nullptr.
+  const Msg* latest(std::uint64_t key) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = slots_.find(key);
+    if (it == slots_.end() || nothing_readable()) {
+      return nullptr;
+    }
+    const std::uint64_t limit = readable_limit();
+    Slot& slot = it->second;
+    while (!slot.pending.empty() && slot.pending.front().header().step() <= limit) {
+      slot.latest = std::move(slot.pending.front());
+      slot.pending.pop_front();
+    }
+    return slot.latest ? &*slot.latest : nullptr;
+  }
+
+  /// Instances that have delivered at least one valid sample, in key order.
+  std::vector<std::uint64_t> instances() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<std::uint64_t> keys;
+    for (const auto& [key, slot] : slots_) {
+      keys.push_back(key);
+    }
+    return keys;
+  }
+
+ private:
+  struct Slot {
+    std::deque<Msg> pending;
+    std::optional<Msg> latest;
+  };
+  std::map<std::uint64_t, Slot> slots_;
+};
+
+template <class Msg>
+class Output {
+ public:
+  Output(std::shared_ptr<WriterHandle> writer, const StepState* state) : writer_(std::move(writer)), state_(state) {}
+
+  /// Stamps the header (step, next_step = the component's next due step, time) and writes.
+  void publish(Msg& sample) { publish_with_next(sample, state_->step + state_->period_steps); }
+  /// For samples that will not be followed by another (e.g. a mission): next_step = never.
+  void publish_final(Msg& sample) { publish_with_next(sample, kNeverAgain); }
+  const std::string& topic() const { return writer_->topic(); }
+
+ private:
+  void publish_with_next(Msg& sample, std::uint64_t next_step) {
+    sample.header().step(state_->step);
+    sample.header().next_step(next_step);
+    sample.header().stamp_ns(state_->stamp_ns);
+    writer_->write(&sample);
+  }
+
+  std::shared_ptr<WriterHandle> writer_;
+  const StepState* state_;
+};
+
+}  // namespace robodds

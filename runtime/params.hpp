@@ -1,0 +1,75 @@
+#pragma once
+// Component parameters. Values come from the component's documented defaults file
+// (components/<name>/config/<name>.params.yaml) with scenario overrides on top. Every key
+// remembers the file it came from, so each error names file, key and reason.
+//
+// A component reads each key once into its plain parameter struct and calls validate();
+// afterwards the runtime checks that every key of the defaults file was read (catches typos).
+
+#include <array>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace robodds {
+
+/// One parameter value: its YAML text (scalar or flow sequence) and the file it came from.
+struct ParamEntry {
+  std::string yaml;
+  std::string file;
+};
+
+/// Flattened parameter tree: nested maps become dotted keys ("gains.kd"); sequences are leaves.
+using FlatParams = std::map<std::string, ParamEntry>;
+
+/// Reads a YAML file's top-level map into FlatParams (throws ConfigError naming the file).
+FlatParams load_param_file(const std::string& path);
+
+/// Applies overrides; an override of a key the defaults do not have is a ConfigError naming
+/// the override's file, the key and the known keys.
+FlatParams merge_params(const FlatParams& defaults, const FlatParams& overrides);
+
+class ParamReader {
+ public:
+  ParamReader() = default;
+  ParamReader(std::string owner, FlatParams params);
+
+  double get_double(const std::string& key);
+  std::int64_t get_int(const std::string& key);
+  std::uint64_t get_uint(const std::string& key);
+  bool get_bool(const std::string& key);
+  std::string get_string(const std::string& key);
+  std::vector<double> get_double_list(const std::string& key);
+  std::vector<std::string> get_string_list(const std::string& key);
+  /// A list of [x, y] pairs, e.g. way-points.
+  std::vector<std::array<double, 2>> get_point_list(const std::string& key);
+  bool has(const std::string& key) const;
+
+  /// Turns a validate() message "key: reason" into a ConfigError naming the key's file.
+  [[noreturn]] void fail(const std::string& message) const;
+
+  /// Runs params.validate() and reports a failure through fail().
+  template <class Params>
+  void validate(const Params& params) const {
+    try {
+      params.validate();
+    } catch (const std::exception& e) {
+      fail(e.what());
+    }
+  }
+
+  /// Throws ConfigError if a key was never read (a typo or a stale key in a params file).
+  void check_all_read() const;
+  const std::string& owner() const { return owner_; }
+
+ private:
+  const ParamEntry& entry(const std::string& key);
+
+  std::string owner_;
+  FlatParams params_;
+  std::set<std::string> read_;
+};
+
+}  // namespace robodds

@@ -1,0 +1,105 @@
+#pragma once
+// Text forms of IDL samples, built on the generated visit_fields(): CSV rows for the evaluator
+// (exact: doubles with 17 significant digits, so outputs can be compared byte for byte) and
+// readable "field: value" text for `robodds echo`.
+
+#include <cstdio>
+#include <string>
+#include <type_traits>
+
+#include "runtime/sample_fields.hpp"
+
+namespace robodds {
+
+namespace detail {
+
+inline void append_scalar(std::string& out, double value) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.17g", value);
+  out += buf;
+}
+
+template <class V>
+void append_value(std::string& out, const V& value);
+
+template <class S>
+void append_struct(std::string& out, const S& value) {
+  bool first = true;
+  idl::visit_fields(value, [&](const char*, const auto& field) {
+    if (!first) {
+      out += ':';
+    }
+    first = false;
+    append_value(out, field);
+  });
+}
+
+template <class V>
+void append_value(std::string& out, const V& value) {
+  if constexpr (std::is_same_v<V, bool>) {
+    out += value ? "1" : "0";
+  } else if constexpr (std::is_floating_point_v<V>) {
+    append_scalar(out, static_cast<double>(value));
+  } else if constexpr (std::is_enum_v<V>) {
+    out += std::to_string(static_cast<long long>(value));
+  } else if constexpr (std::is_integral_v<V>) {
+    out += std::to_string(value);
+  } else if constexpr (std::is_same_v<V, std::string>) {
+    out += value;
+  } else if constexpr (IsVector<V>::value) {
+    for (std::size_t i = 0; i < value.size(); ++i) {
+      if (i != 0) {
+        out += ';';
+      }
+      if constexpr (std::is_class_v<std::decay_t<decltype(value[i])>>) {
+        append_struct(out, value[i]);
+      } else {
+        append_value(out, value[i]);
+      }
+    }
+  } else {
+    out += value.to_string();  // fixed_string<N>
+  }
+}
+
+}  // namespace detail
+
+/// Comma-separated field names of a sample type (nested fields dotted, arrays as name[i]).
+template <class Msg>
+std::string csv_header() {
+  std::string out;
+  idl::visit_fields(Msg{}, [&](const char* name, const auto&) {
+    out += out.empty() ? "" : ",";
+    out += name;
+  });
+  return out;
+}
+
+/// One CSV row (no newline). Sequences are ';'-separated, struct elements ':'-separated.
+template <class Msg>
+void append_csv_row(std::string& out, const Msg& sample) {
+  bool first = true;
+  idl::visit_fields(sample, [&](const char*, const auto& value) {
+    if (!first) {
+      out += ',';
+    }
+    first = false;
+    detail::append_value(out, value);
+  });
+}
+
+/// "name: value" lines, for people.
+template <class Msg>
+std::string to_text(const Msg& sample) {
+  std::string out;
+  idl::visit_fields(sample, [&](const char* name, const auto& value) {
+    out += "  ";
+    out += name;
+    out += ": ";
+    detail::append_value(out, value);
+    out += '\n';
+  });
+  return out;
+}
+
+}  // namespace robodds

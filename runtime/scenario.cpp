@@ -1,0 +1,257 @@
+#include "runtime/scenario.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <set>
+
+#include "runtime/error.hpp"
+
+namespace robodds {
+namespace {
+
+const std::set<std::string> kTopLevelKeys = {"name", "description", "step_s", "duration_s", "seed",
+                                             "robots", "components", "groups"};
+
+class ScenarioParser {
+ public:
+  explicit ScenarioParser(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& reason) const {
+    throw ConfigError(located(file_, key, reason));
+  }
+
+  template <class T>
+  T scalar(const YAML::Node& node, const std::string& key, const char* expected) const {
+    if (!node || !node.IsScalar()) {
+      fail(key, node ? std::string("expected ") + expected : "missing");
+    }
+    try {
+      return node.as<T>();
+    } catch (const YAML::Exception&) {
+      fail(key, std::string("expected ") + expected + ", got '" + node.Scalar() + "'");
+    }
+  }
+
+  double finite(const YAML::Node& node, const std::string& key) const {
+    const double value = scalar<double>(node, key, "a number");
+    if (!std::isfinite(value)) {
+      fail(key, "must be finite");
+    }
+    return value;
+  }
+
+  Scenario parse(const YAML::Node& root) const {
+    if (!root.IsMap()) {
+      fail("", "expected a map at the top level");
+    }
+    for (const auto& item : root) {
+      const std::string key = item.first.as<std::string>();
+      if (kTopLevelKeys.count(key) == 0) {
+        fail(key, "unknown key (known: name, description, step_s, duration_s, seed, robots, components, groups)");
+      }
+    }
+    Scenario s;
+    s.file = file_;
+    s.name = scalar<std::string>(root["name"], "name", "a string");
+    if (root["description"]) {
+      s.description = scalar<std::string>(root["description"], "description", "a string");
+    }
+    s.step_s = finite(root["step_s"], "step_s");
+    if (s.step_s <= 0.0) {
+      fail("step_s", "must be > 0");
+    }
+    s.duration_s = finite(root["duration_s"], "duration_s");
+    if (s.duration_s <= 0.0) {
+      fail("duration_s", "must be > 0");
+    }
+    s.seed = scalar<std::uint64_t>(root["seed"], "seed", "a non-negative integer");
+    parse_robots(root["robots"], s);
+    parse_components(root["components"], s);
+    parse_groups(root["groups"], s);
+    return s;
+  }
+
+ private:
+  void parse_robots(const YAML::Node& node, Scenario& s) const {
+    if (!node || !node.IsSequence() || node.size() == 0) {
+      fail("robots", "expected a non-empty list of {id, x, y, theta}");
+    }
+    std::set<std::uint32_t> ids;
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      const std::string key = "robots[" + std::to_string(i) + "]";
+      const YAML::Node& r = node[i];
+      if (!r.IsMap()) {
+        fail(key, "expected a map {id, x, y, theta}");
+      }
+      for (const auto& item : r) {
+        const std::string k = item.first.as<std::string>();
+        if (k != "id" && k != "x" && k != "y" && k != "theta") {
+          fail(key + "." + k, "unknown key (known: id, x, y, theta)");
+        }
+      }
+      RobotSpec robot;
+      robot.id = scalar<std::uint32_t>(r["id"], key + ".id", "a robot id (non-negative integer)");
+      robot.x = r["x"] ? finite(r["x"], key + ".x") : 0.0;
+      robot.y = r["y"] ? finite(r["y"], key + ".y") : 0.0;
+      robot.theta = r["theta"] ? finite(r["theta"], key + ".theta") : 0.0;
+      if (!ids.insert(robot.id).second) {
+        fail(key + ".id", "duplicate robot id " + std::to_string(robot.id));
+      }
+      s.robots.push_back(robot);
+    }
+  }
+
+  void parse_components(const YAML::Node& node, Scenario& s) const {
+    if (!node || !node.IsSequence() || node.size() == 0) {
+      fail("components", "expected a non-empty list of {name, type, robots, params}");
+    }
+    std::set<std::string> names;
+    for (std::size_t i = 0; i < node.size(); ++i) {
+      const std::string key = "components[" + std::to_string(i) + "]";
+      const YAML::Node& c = node[i];
+      if (!c.IsMap()) {
+        fail(key, "expected a map {name, type, robots, params}");
+      }
+      for (const auto& item : c) {
+        const std::string k = item.first.as<std::string>();
+        if (k != "name" && k != "type" && k != "robots" && k != "params") {
+          fail(key + "." + k, "unknown key (known: name, type, robots, params)");
+        }
+      }
+      ComponentSpec spec;
+      spec.name = scalar<std::string>(c["name"], key + ".name", "a string");
+      spec.type = c["type"] ? scalar<std::string>(c["type"], key + ".type", "a string") : spec.name;
+      if (!names.insert(spec.name).second) {
+        fail(key + ".name", "duplicate component name '" + spec.name + "'");
+      }
+      if (c["robots"]) {
+        if (!c["robots"].IsSequence()) {
+          fail(key + ".robots", "expected a list of robot ids");
+        }
+        for (std::size_t j = 0; j < c["robots"].size(); ++j) {
+          const std::string rkey = key + ".robots[" + std::to_string(j) + "]";
+          const auto id = scalar<std::uint32_t>(c["robots"][j], rkey, "a robot id");
+          const bool known = std::any_of(s.robots.begin(), s.robots.end(), [&](const RobotSpec& r) { return r.id == id; });
+          if (!known) {
+            fail(rkey, "unknown robot " + std::to_string(id) + " (not in 'robots')");
+          }
+          spec.robots.push_back(id);
+        }
+      } else {
+        for (const RobotSpec& r : s.robots) {
+          spec.robots.push_back(r.id);
+        }
+      }
+      if (c["params"]) {
+        if (!c["params"].IsMap()) {
+          fail(key + ".params", "expected a map of parameter overrides");
+        }
+        // Re-read through the same flattening as parameter files, tagging this scenario file.
+        flatten_overrides(c["params"], "", spec.overrides);
+      }
+      s.components.push_back(std::move(spec));
+    }
+  }
+
+  void flatten_overrides(const YAML::Node& node, const std::string& prefix, FlatParams& out) const {
+    for (const auto& item : node) {
+      const std::string key = prefix + item.first.as<std::string>();
+      if (item.second.IsMap()) {
+        flatten_overrides(item.second, key + ".", out);
+      } else {
+        YAML::Emitter emitter;
+        emitter << YAML::Flow << item.second;
+        out[key] = ParamEntry{emitter.c_str(), file_};
+      }
+    }
+  }
+
+  void parse_groups(const YAML::Node& node, Scenario& s) const {
+    std::set<std::string> placed;
+    if (node) {
+      if (!node.IsMap()) {
+        fail("groups", "expected a map group -> list of component names");
+      }
+      for (const auto& item : node) {
+        GroupSpec group;
+        group.name = item.first.as<std::string>();
+        const std::string key = "groups." + group.name;
+        if (!item.second.IsSequence() || item.second.size() == 0) {
+          fail(key, "expected a non-empty list of component names");
+        }
+        for (const auto& member : item.second) {
+          const std::string name = scalar<std::string>(member, key, "a component name");
+          const bool known = std::any_of(s.components.begin(), s.components.end(),
+                                         [&](const ComponentSpec& c) { return c.name == name; });
+          if (!known) {
+            fail(key, "unknown component '" + name + "'");
+          }
+          if (!placed.insert(name).second) {
+            fail(key, "component '" + name + "' is in more than one group");
+          }
+          group.components.push_back(name);
+        }
+        s.groups.push_back(std::move(group));
+      }
+    }
+    // Components not placed in a group each run in a group of their own name.
+    for (const ComponentSpec& c : s.components) {
+      if (placed.count(c.name) == 0) {
+        s.groups.push_back(GroupSpec{c.name, {c.name}});
+      }
+    }
+  }
+
+  std::string file_;
+};
+
+}  // namespace
+
+std::uint64_t Scenario::last_step() const {
+  return static_cast<std::uint64_t>(std::llround(duration_s / step_s));
+}
+
+const ComponentSpec& Scenario::component(const std::string& component_name) const {
+  for (const ComponentSpec& c : components) {
+    if (c.name == component_name) {
+      return c;
+    }
+  }
+  throw ConfigError(located(file, "components", "no component named '" + component_name + "'"));
+}
+
+const GroupSpec& Scenario::group(const std::string& group_name) const {
+  std::string known;
+  for (const GroupSpec& g : groups) {
+    if (g.name == group_name) {
+      return g;
+    }
+    known += (known.empty() ? "" : ", ") + g.name;
+  }
+  throw ConfigError(located(file, "groups", "no group named '" + group_name + "' (groups: " + known + ")"));
+}
+
+const RobotSpec& Scenario::robot(std::uint32_t id) const {
+  for (const RobotSpec& r : robots) {
+    if (r.id == id) {
+      return r;
+    }
+  }
+  throw ConfigError(located(file, "robots", "no robot with id " + std::to_string(id)));
+}
+
+Scenario load_scenario(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw ConfigError(located(path, "", "cannot open scenario file"));
+  } catch (const YAML::Exception& e) {
+    throw ConfigError(located(path, "", "invalid YAML at line " + std::to_string(e.mark.line + 1) + ": " + e.msg));
+  }
+  return ScenarioParser(path).parse(root);
+}
+
+}  // namespace robodds

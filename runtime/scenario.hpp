@@ -1,0 +1,54 @@
+#pragma once
+// Scenario files (sim/scenarios/*.yaml): robots, components with parameter overrides, time
+// step, duration, seed, and the deployment grouping (which components share a process).
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "runtime/params.hpp"
+
+namespace robodds {
+
+struct RobotSpec {
+  std::uint32_t id = 0;
+  double x = 0.0;      // m, initial position (world)
+  double y = 0.0;      // m
+  double theta = 0.0;  // rad, initial heading
+};
+
+struct ComponentSpec {
+  std::string name;                   // instance name, unique in the scenario
+  std::string type;                   // registered component type
+  std::vector<std::uint32_t> robots;  // robots it serves (default: all)
+  FlatParams overrides;               // scenario values over the type's defaults
+};
+
+struct GroupSpec {
+  std::string name;                     // deployment group = one host process
+  std::vector<std::string> components;  // component instance names
+};
+
+struct Scenario {
+  std::string file;
+  std::string name;
+  std::string description;
+  double step_s = 0.01;
+  double duration_s = 10.0;
+  std::uint64_t seed = 1;
+  std::vector<RobotSpec> robots;
+  std::vector<ComponentSpec> components;
+  std::vector<GroupSpec> groups;
+
+  /// Index of the last step: steps 0..last_step() run, at times step * step_s.
+  std::uint64_t last_step() const;
+  const ComponentSpec& component(const std::string& name) const;
+  const GroupSpec& group(const std::string& name) const;
+  const RobotSpec& robot(std::uint32_t id) const;
+};
+
+/// Loads and validates a scenario (throws ConfigError naming file, key and reason).
+Scenario load_scenario(const std::string& path);
+
+}  // namespace robodds

@@ -1,0 +1,97 @@
+// The lockstep input rule, without DDS: samples are handed to Input::on_sample directly.
+#include "runtime/io.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+namespace robodds {
+namespace {
+
+idl::RobotState state(std::uint32_t robot, std::uint64_t step, std::uint64_t next_step, double x) {
+  idl::RobotState s;
+  s.robot_id(robot);
+  s.header().step(step);
+  s.header().next_step(next_step);
+  s.x(x);
+  return s;
+}
+
+class InputTest : public ::testing::Test {
+ protected:
+  StepState clock;
+  Notifier notifier;
+};
+
+TEST_F(InputTest, WaitsUntilNextStepPassesTheConsumerStep) {
+  InputOptions options;
+  options.expected = {1, 2};
+  options.key_names = "robot_id";
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, options);
+  std::string missing;
+  EXPECT_FALSE(input.ready(0, &missing));
+  EXPECT_NE(missing.find("robot_id"), std::string::npos) << missing;
+  input.on_sample(state(1, 0, 10, 1.0));
+  EXPECT_FALSE(input.ready(0, &missing));  // robot 2 still missing
+  input.on_sample(state(2, 0, 10, 2.0));
+  EXPECT_TRUE(input.ready(0, nullptr));
+  EXPECT_TRUE(input.ready(9, nullptr));
+  EXPECT_FALSE(input.ready(10, nullptr));
+}
+
+TEST_F(InputTest, ReadsOnlySamplesUpToTheCurrentStepMinusDelay) {
+  InputOptions options;
+  options.expected = {1};
+  options.delay_steps = 1;
+  Input<idl::RobotState> input("plant/cmd", "test", &clock, &notifier, options);
+  clock.step = 0;
+  EXPECT_TRUE(input.ready(0, nullptr));  // nothing can be due before step 0
+  input.on_sample(state(1, 0, 1, 10.0));
+  input.on_sample(state(1, 1, 2, 11.0));  // already published for step 1
+  EXPECT_EQ(input.latest(1), nullptr);    // at step 0 the delayed input has nothing
+  clock.step = 1;
+  ASSERT_NE(input.latest(1), nullptr);
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 10.0);
+  clock.step = 2;
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 11.0);
+}
+
+TEST_F(InputTest, TakeNewReturnsEverySampleInOrderOnce) {
+  Input<idl::RobotState> input("sensor/odometry", "test", &clock, &notifier, InputOptions{{1}, 0, false, "robot_id", {}});
+  input.on_sample(state(1, 0, 2, 0.0));
+  input.on_sample(state(1, 2, 4, 2.0));
+  clock.step = 3;
+  auto first = input.take_new(1);
+  ASSERT_EQ(first.size(), 2u);
+  EXPECT_DOUBLE_EQ(first[1].x(), 2.0);
+  EXPECT_TRUE(input.take_new(1).empty());
+}
+
+TEST_F(InputTest, NonFiniteSampleAdvancesTimeButIsDropped) {
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, InputOptions{{1}, 0, false, "robot_id", {}});
+  input.on_sample(state(1, 0, 1, 1.0));
+  input.on_sample(state(1, 1, 2, std::numeric_limits<double>::quiet_NaN()));
+  clock.step = 1;
+  EXPECT_TRUE(input.ready(1, nullptr));
+  ASSERT_NE(input.latest(1), nullptr);
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 1.0);
+  EXPECT_EQ(input.rejected_count(), 1u);
+}
+
+TEST_F(InputTest, IgnoresUnexpectedInstances) {
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, InputOptions{{1}, 0, false, "robot_id", {}});
+  input.on_sample(state(5, 0, 1, 1.0));
+  EXPECT_TRUE(input.instances().empty());
+}
+
+TEST_F(InputTest, RealtimeIsAlwaysReadyAndReadsTheNewest) {
+  clock.mode = TimeMode::kRealtime;
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, InputOptions{{1}, 1, false, "robot_id", {}});
+  EXPECT_TRUE(input.ready(100, nullptr));
+  input.on_sample(state(1, 7, 8, 3.0));
+  ASSERT_NE(input.latest(1), nullptr);
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 3.0);
+}
+
+}  // namespace
+}  // namespace robodds

@@ -1,0 +1,96 @@
+#include "runtime/params.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "runtime/error.hpp"
+
+namespace robodds {
+namespace {
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Params, ReadsTypedValuesAndNestedKeys) {
+  const std::string file = write_temp("p1.yaml", "rate_hz: 10\nname: abc\nflag: true\ngains: {kd: 1.5}\nlist: [1, 2]\npts: [[1, 2], [3, 4]]\n");
+  ParamReader r("c", load_param_file(file));
+  EXPECT_DOUBLE_EQ(r.get_double("rate_hz"), 10.0);
+  EXPECT_EQ(r.get_string("name"), "abc");
+  EXPECT_TRUE(r.get_bool("flag"));
+  EXPECT_DOUBLE_EQ(r.get_double("gains.kd"), 1.5);
+  EXPECT_EQ(r.get_double_list("list").size(), 2u);
+  EXPECT_DOUBLE_EQ(r.get_point_list("pts")[1][0], 3.0);
+  EXPECT_NO_THROW(r.check_all_read());
+}
+
+TEST(Params, MissingKeyNamesFileAndKey) {
+  const std::string file = write_temp("p2.yaml", "a: 1\n");
+  ParamReader r("c", load_param_file(file));
+  const std::string message = error_of([&] { r.get_double("b"); });
+  EXPECT_NE(message.find(file), std::string::npos) << message;
+  EXPECT_NE(message.find("b: missing"), std::string::npos) << message;
+}
+
+TEST(Params, WrongTypeNamesKeyAndValue) {
+  const std::string file = write_temp("p3.yaml", "a: hello\n");
+  ParamReader r("c", load_param_file(file));
+  const std::string message = error_of([&] { r.get_double("a"); });
+  EXPECT_NE(message.find("a: expected a number, got 'hello'"), std::string::npos) << message;
+}
+
+TEST(Params, NonFiniteIsRejected) {
+  const std::string file = write_temp("p4.yaml", "a: .nan\n");
+  ParamReader r("c", load_param_file(file));
+  EXPECT_NE(error_of([&] { r.get_double("a"); }).find("must be finite"), std::string::npos);
+}
+
+TEST(Params, UnknownOverrideNamesOverrideFile) {
+  FlatParams defaults{{"a", {"1", "defaults.yaml"}}};
+  FlatParams overrides{{"typo", {"2", "scenario.yaml"}}};
+  const std::string message = error_of([&] { merge_params(defaults, overrides); });
+  EXPECT_NE(message.find("scenario.yaml: typo: unknown parameter (known: a)"), std::string::npos) << message;
+}
+
+TEST(Params, OverrideWinsAndKeepsItsFile) {
+  FlatParams defaults{{"a", {"1", "defaults.yaml"}}};
+  FlatParams overrides{{"a", {"-3", "scenario.yaml"}}};
+  ParamReader r("c", merge_params(defaults, overrides));
+  EXPECT_DOUBLE_EQ(r.get_double("a"), -3.0);
+  const std::string message = error_of([&] { r.fail("a: must be > 0"); });
+  EXPECT_EQ(message, "scenario.yaml: a: must be > 0");
+}
+
+TEST(Params, UnreadKeyIsReported) {
+  ParamReader r("plant", FlatParams{{"a", {"1", "d.yaml"}}, {"b", {"2", "d.yaml"}}});
+  r.get_double("a");
+  EXPECT_NE(error_of([&] { r.check_all_read(); }).find("d.yaml: b: unknown parameter for plant"), std::string::npos);
+}
+
+TEST(Params, NegativeUnsignedIsRejected) {
+  ParamReader r("c", FlatParams{{"n", {"-1", "d.yaml"}}});
+  EXPECT_NE(error_of([&] { r.get_uint("n"); }).find("non-negative"), std::string::npos);
+}
+
+TEST(Params, MissingAndMalformedFiles) {
+  EXPECT_NE(error_of([] { load_param_file("/nonexistent/x.yaml"); }).find("cannot open"), std::string::npos);
+  const std::string bad = write_temp("bad.yaml", "a: [1, 2\n");
+  EXPECT_NE(error_of([&] { load_param_file(bad); }).find("invalid YAML"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace robodds

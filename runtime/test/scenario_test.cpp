@@ -1,0 +1,92 @@
+#include "runtime/scenario.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "runtime/error.hpp"
+
+namespace robodds {
+namespace {
+
+std::string write_temp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string load_error(const std::string& text) {
+  const std::string path = write_temp("scenario.yaml", text);
+  try {
+    load_scenario(path);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* kValid = R"(name: s
+step_s: 0.01
+duration_s: 1.0
+seed: 3
+robots:
+  - {id: 1, x: 1, y: 2, theta: 0.5}
+  - {id: 2}
+components:
+  - {name: plant, robots: [1, 2], params: {wheel_base_m: 0.4}}
+  - {name: position_sensor}
+groups:
+  sim: [plant]
+)";
+
+TEST(Scenario, LoadsValidFile) {
+  const Scenario s = load_scenario(write_temp("ok.yaml", kValid));
+  EXPECT_EQ(s.name, "s");
+  EXPECT_EQ(s.last_step(), 100u);
+  ASSERT_EQ(s.robots.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.robot(1).theta, 0.5);
+  EXPECT_EQ(s.component("plant").type, "plant");
+  EXPECT_EQ(s.component("plant").overrides.at("wheel_base_m").yaml, "0.4");
+  ASSERT_EQ(s.groups.size(), 2u);  // position_sensor gets a group of its own
+  EXPECT_EQ(s.group("position_sensor").components.front(), "position_sensor");
+}
+
+TEST(Scenario, UnknownRobotIsNamed) {
+  std::string text = kValid;
+  text.replace(text.find("robots: [1, 2]"), 14, "robots: [1, 7]");
+  const std::string message = load_error(text);
+  EXPECT_NE(message.find("components[0].robots[1]: unknown robot 7"), std::string::npos) << message;
+}
+
+TEST(Scenario, UnknownGroupMemberIsNamed) {
+  std::string text = kValid;
+  text.replace(text.find("sim: [plant]"), 12, "sim: [plantt]");
+  EXPECT_NE(load_error(text).find("groups.sim: unknown component 'plantt'"), std::string::npos);
+}
+
+TEST(Scenario, BadValuesAreNamed) {
+  std::string text = kValid;
+  text.replace(text.find("step_s: 0.01"), 12, "step_s: -1");
+  EXPECT_NE(load_error(text).find("step_s: must be > 0"), std::string::npos);
+  std::string typo = kValid;
+  typo.replace(typo.find("seed: 3"), 7, "sed: 3");
+  EXPECT_NE(load_error(typo).find("sed: unknown key"), std::string::npos);
+}
+
+TEST(Scenario, DuplicateRobotIsRejected) {
+  std::string text = kValid;
+  text.replace(text.find("{id: 2}"), 7, "{id: 1}");
+  EXPECT_NE(load_error(text).find("duplicate robot id 1"), std::string::npos);
+}
+
+TEST(Scenario, MissingFileIsNamed) {
+  try {
+    load_scenario("/nonexistent/s.yaml");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/s.yaml: cannot open"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace robodds

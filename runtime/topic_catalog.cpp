@@ -1,0 +1,54 @@
+#include "runtime/topic_catalog.hpp"
+
+#include "runtime/error.hpp"
+
+namespace robodds {
+
+const std::vector<TopicInfo>& topic_catalog() {
+  static const std::vector<TopicInfo> topics = {
+      {"sim/clock", "robodds::idl::SimTick", "lockstep", "-", "coordinator (robodds run)", "every host"},
+      {"sim/step_done", "robodds::idl::StepDone", "lockstep", "member", "every host", "coordinator"},
+      {"plant/state", "robodds::idl::RobotState", "state", "robot_id", "plant", "sensors, ideal_estimator, evaluator"},
+      {"plant/cmd", "robodds::idl::VelocityCommand", "command", "robot_id", "controllers, open_loop_commander", "plant, evaluator"},
+      {"sensor/position", "robodds::idl::PositionMeasurement", "sensor", "robot_id", "position_sensor", "pf_estimator, evaluator"},
+      {"sensor/odometry", "robodds::idl::Odometry", "sensor", "robot_id", "odometry_sensor", "pf_estimator, evaluator"},
+      {"sensor/range", "robodds::idl::RangeMeasurement", "sensor", "robot_id, target_id", "range sensor", "range-rate observer"},
+      {"sensor/uwb", "robodds::idl::UwbRanges", "sensor", "robot_id, peer_id", "UWB sensor", "relative estimator"},
+      {"estimate/pose", "robodds::idl::PoseEstimate", "state", "robot_id", "pf_estimator, ideal_estimator", "controllers, evaluator"},
+      {"estimate/relative_pose", "robodds::idl::RelativePoseEstimate", "state", "robot_id, peer_id", "UWB estimator", "evaluator"},
+      {"observer/range_rate", "robodds::idl::RangeRateEstimate", "state", "robot_id, target_id", "range-rate observer", "guidance controller"},
+      {"mission/waypoints", "robodds::idl::WaypointMission", "mission", "robot_id", "mission source", "waypoint_controller, evaluator"},
+      {"mission/target", "robodds::idl::TargetAssignment", "mission", "robot_id", "mission source", "guidance controller"},
+      {"control/status", "robodds::idl::ControllerStatus", "state", "robot_id", "controllers", "evaluator, CLI"},
+  };
+  return topics;
+}
+
+const TopicInfo* find_topic(const std::string& name) {
+  for (const TopicInfo& topic : topic_catalog()) {
+    if (topic.name == name) {
+      return &topic;
+    }
+  }
+  return nullptr;
+}
+
+const TopicInfo& topic_info(const std::string& name) {
+  if (const TopicInfo* topic = find_topic(name)) {
+    return *topic;
+  }
+  std::string known;
+  for (const TopicInfo& topic : topic_catalog()) {
+    known += (known.empty() ? "" : ", ") + topic.name;
+  }
+  throw ConfigError("unknown topic '" + name + "' (known: " + known + ")");
+}
+
+std::string qos_profile_for(const TopicInfo& topic, TimeMode mode) {
+  if (mode == TimeMode::kLockstep && topic.qos_class != "mission") {
+    return "lockstep";
+  }
+  return topic.qos_class;
+}
+
+}  // namespace robodds

@@ -1,0 +1,14 @@
+#pragma once
+// Fast DDS type support by registered type name (runtime-internal; includes Fast DDS).
+
+#include <fastdds/dds/topic/TopicDataType.hpp>
+
+#include <string>
+
+namespace robodds {
+
+/// A new TopicDataType for `type_name` (e.g. "robodds::idl::RobotState") announcing no
+/// TypeObject/TypeInformation (XCDR1 interop with other vendors), or nullptr if unknown.
+eprosima::fastdds::dds::TopicDataType* make_type_support(const std::string& type_name);
+
+}  // namespace robodds

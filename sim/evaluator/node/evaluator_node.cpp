@@ -1,0 +1,215 @@
+#include "sim/evaluator/node/evaluator_node.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sys/stat.h>
+
+#include "common/json_writer.hpp"
+#include "robodds/idl/robodds.h"
+#include "runtime/sample_format.hpp"
+#include "sim/evaluator/track.hpp"
+
+namespace robodds::evaluator {
+namespace {
+
+std::string csv_file_name(std::string topic) {
+  for (char& c : topic) {
+    if (c == '/') {
+      c = '_';
+    }
+  }
+  return topic + ".csv";
+}
+
+/// What the metrics need from the recorded samples, per robot.
+struct Histories {
+  std::map<std::uint32_t, Track> truth;
+  std::map<std::uint32_t, Track> fixes;
+  std::map<std::uint32_t, Track> estimates;
+  std::map<std::uint32_t, std::size_t> commands;
+
+  template <class Msg>
+  void observe(const Msg&) {}
+  void observe(const idl::RobotState& m) { truth[m.robot_id()].push_back({m.header().step(), m.x(), m.y(), m.theta()}); }
+  void observe(const idl::PositionMeasurement& m) { fixes[m.robot_id()].push_back({m.header().step(), m.x(), m.y(), 0.0}); }
+  void observe(const idl::PoseEstimate& m) {
+    estimates[m.robot_id()].push_back({m.header().step(), m.x(), m.y(), m.theta()});
+  }
+  void observe(const idl::VelocityCommand& m) { ++commands[m.robot_id()]; }
+};
+
+class RecorderBase {
+ public:
+  virtual ~RecorderBase() = default;
+  virtual void collect(const std::vector<std::uint64_t>& keys, Histories& histories) = 0;
+  virtual void write(const std::string& dir) const = 0;
+  virtual const std::string& topic() const = 0;
+  virtual std::uint64_t rejected() const = 0;
+  virtual std::size_t rows() const = 0;
+};
+
+template <class Msg>
+class Recorder : public RecorderBase {
+ public:
+  Recorder(std::string topic, Input<Msg>* input) : topic_(std::move(topic)), input_(input) {
+    text_ = "t_s," + csv_header<Msg>() + "\n";
+  }
+  void collect(const std::vector<std::uint64_t>& keys, Histories& histories) override {
+    for (std::uint64_t key : keys) {
+      for (const Msg& sample : input_->take_new(key)) {
+        char t[32];
+        std::snprintf(t, sizeof(t), "%.9f,", static_cast<double>(sample.header().stamp_ns()) * 1e-9);
+        text_ += t;
+        append_csv_row(text_, sample);
+        text_ += '\n';
+        ++rows_;
+        histories.observe(sample);
+      }
+    }
+  }
+  void write(const std::string& dir) const override {
+    const std::string path = dir + "/" + csv_file_name(topic_);
+    std::ofstream out(path, std::ios::binary);
+    out << text_;
+    if (!out) {
+      throw RunError("evaluator: cannot write " + path);
+    }
+  }
+  const std::string& topic() const override { return topic_; }
+  std::uint64_t rejected() const override { return input_->rejected_count(); }
+  std::size_t rows() const override { return rows_; }
+
+ private:
+  std::string topic_;
+  Input<Msg>* input_;
+  std::string text_;
+  std::size_t rows_ = 0;
+};
+
+class EvaluatorNode : public Component {
+ public:
+  void configure(ComponentContext& ctx) override {
+    auto& p = ctx.params();
+    const std::vector<std::string> topics = p.get_string_list("topics");
+    metrics_after_s_ = p.get_double("metrics_after_s");
+    if (metrics_after_s_ < 0.0) {
+      p.fail("metrics_after_s: must be >= 0");
+    }
+    keys_ = ctx.robot_keys();
+    for (const std::string& topic : topics) {
+      const TopicInfo* info = find_topic(topic);
+      if (info == nullptr || info->key != "robot_id") {
+        p.fail("topics: '" + topic + "' is not a per-robot topic of the catalog (see docs/topics.md)");
+      }
+      idl::dispatch_type(info->type_name, [&](auto tag) {
+        using Msg = typename decltype(tag)::type;
+        auto* input = &ctx.subscribe<Msg>(topic, InputOptions{keys_, 0, false, "", {}});
+        recorders_.push_back(std::make_unique<Recorder<Msg>>(topic, input));
+      });
+    }
+    scenario_ = &ctx.scenario();
+    output_dir_ = ctx.output_dir();
+    step_s_ = ctx.step_s();
+  }
+
+  void on_step(const StepInfo&) override {
+    for (auto& recorder : recorders_) {
+      recorder->collect(keys_, histories_);
+    }
+  }
+
+  void on_finish(const StepInfo& info) override {
+    on_step(info);
+    if (output_dir_.empty()) {
+      return;
+    }
+    ::mkdir(output_dir_.c_str(), 0755);
+    for (const auto& recorder : recorders_) {
+      recorder->write(output_dir_);
+    }
+    write_summary(info);
+  }
+
+ private:
+  void write_summary(const StepInfo& info) const {
+    const auto from_step = static_cast<std::uint64_t>(std::llround(metrics_after_s_ / step_s_));
+    JsonWriter json;
+    json.begin_object();
+    json.value("scenario", scenario_->name);
+    json.value("steps", static_cast<std::int64_t>(info.step + 1));
+    json.value("step_s", step_s_);
+    json.begin_object("metrics");
+    double fix_sq = 0.0;
+    double est_sq = 0.0;
+    std::size_t fix_n = 0;
+    std::size_t est_n = 0;
+    json.begin_object("robots");
+    for (std::uint64_t key : keys_) {
+      const auto id = static_cast<std::uint32_t>(key);
+      json.begin_object(std::to_string(id));
+      auto truth = histories_.truth.find(id);
+      if (truth != histories_.truth.end() && !truth->second.empty()) {
+        const PoseSample& last = truth->second.back();
+        json.value("path_length_m", path_length(truth->second));
+        json.value("final_x_m", last.x).value("final_y_m", last.y).value("final_theta_rad", last.theta);
+        json.value("state_samples", static_cast<std::int64_t>(truth->second.size()));
+        auto fixes = histories_.fixes.find(id);
+        if (fixes != histories_.fixes.end()) {
+          const ErrorStats e = position_error(truth->second, fixes->second, from_step);
+          json.value("measurement_rmse_m", e.rmse).value("measurement_samples", static_cast<std::int64_t>(e.count));
+          fix_sq += e.rmse * e.rmse * static_cast<double>(e.count);
+          fix_n += e.count;
+        }
+        auto est = histories_.estimates.find(id);
+        if (est != histories_.estimates.end()) {
+          const ErrorStats e = position_error(truth->second, est->second, from_step);
+          const ErrorStats h = heading_error(truth->second, est->second, from_step);
+          json.value("estimate_rmse_m", e.rmse).value("heading_rmse_deg", h.rmse * 180.0 / 3.14159265358979323846);
+          est_sq += e.rmse * e.rmse * static_cast<double>(e.count);
+          est_n += e.count;
+        }
+      }
+      json.end_object();
+    }
+    json.end_object();
+    if (fix_n > 0) {
+      json.value("measurement_rmse_m", std::sqrt(fix_sq / static_cast<double>(fix_n)));
+    }
+    if (est_n > 0) {
+      json.value("estimate_rmse_m", std::sqrt(est_sq / static_cast<double>(est_n)));
+    }
+    json.begin_object("samples");
+    for (const auto& recorder : recorders_) {
+      json.value(recorder->topic(), static_cast<std::int64_t>(recorder->rows()));
+    }
+    json.end_object();
+    json.begin_object("rejected_samples");
+    for (const auto& recorder : recorders_) {
+      json.value(recorder->topic(), static_cast<std::int64_t>(recorder->rejected()));
+    }
+    json.end_object();
+    json.end_object();
+    json.end_object();
+    const std::string path = output_dir_ + "/summary.json";
+    std::ofstream out(path, std::ios::binary);
+    out << json.str();
+    if (!out) {
+      throw RunError("evaluator: cannot write " + path);
+    }
+  }
+
+  std::vector<std::uint64_t> keys_;
+  std::vector<std::unique_ptr<RecorderBase>> recorders_;
+  Histories histories_;
+  const Scenario* scenario_ = nullptr;
+  std::string output_dir_;
+  double step_s_ = 0.01;
+  double metrics_after_s_ = 5.0;
+};
+
+}  // namespace
+
+std::unique_ptr<Component> make_evaluator_node() { return std::make_unique<EvaluatorNode>(); }
+
+}  // namespace robodds::evaluator

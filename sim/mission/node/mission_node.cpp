@@ -1,0 +1,56 @@
+#include "sim/mission/node/mission_node.hpp"
+
+#include <array>
+#include <vector>
+
+#include "robodds/idl/robodds.h"
+
+namespace robodds::mission {
+namespace {
+
+class MissionNode : public Component {
+ public:
+  void configure(ComponentContext& ctx) override {
+    waypoints_ = ctx.params().get_point_list("waypoints");
+    if (waypoints_.empty()) {
+      ctx.params().fail("waypoints: the mission needs at least one way-point");
+    }
+    if (waypoints_.size() > 256) {
+      ctx.params().fail("waypoints: at most 256 way-points fit in a WaypointMission");
+    }
+    for (const RobotSpec& robot : ctx.robots()) {
+      robots_.push_back(robot.id);
+    }
+    out_ = &ctx.advertise<idl::WaypointMission>("mission/waypoints");
+  }
+
+  void on_step(const StepInfo&) override {
+    if (published_) {
+      return;
+    }
+    for (std::uint32_t id : robots_) {
+      idl::WaypointMission mission;
+      mission.robot_id(id);
+      for (const auto& point : waypoints_) {
+        idl::Waypoint w;
+        w.x(point[0]);
+        w.y(point[1]);
+        mission.waypoints().push_back(w);
+      }
+      out_->publish_final(mission);
+    }
+    published_ = true;
+  }
+
+ private:
+  std::vector<std::array<double, 2>> waypoints_;
+  std::vector<std::uint32_t> robots_;
+  Output<idl::WaypointMission>* out_ = nullptr;
+  bool published_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Component> make_mission_node() { return std::make_unique<MissionNode>(); }
+
+}  // namespace robodds::mission

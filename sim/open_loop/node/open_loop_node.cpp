@@ -1,0 +1,51 @@
+#include "sim/open_loop/node/open_loop_node.hpp"
+
+#include <vector>
+
+#include "robodds/idl/robodds.h"
+#include "sim/open_loop/open_loop_commander.hpp"
+
+namespace robodds::open_loop {
+namespace {
+
+class OpenLoopNode : public Component {
+ public:
+  void configure(ComponentContext& ctx) override {
+    auto& p = ctx.params();
+    const double rate_hz = p.get_double("rate_hz");
+    params_.v_mps = p.get_double("v_mps");
+    params_.omega_bias_radps = p.get_double("omega_bias_radps");
+    params_.omega_amplitude_radps = p.get_double("omega_amplitude_radps");
+    params_.omega_period_s = p.get_double("omega_period_s");
+    params_.phase_per_robot_rad = p.get_double("phase_per_robot_rad");
+    p.validate(params_);
+    ctx.set_rate_hz(rate_hz, "rate_hz");
+    for (const RobotSpec& robot : ctx.robots()) {
+      robots_.push_back(robot.id);
+    }
+    out_ = &ctx.advertise<idl::VelocityCommand>("plant/cmd");
+  }
+
+  void on_step(const StepInfo& info) override {
+    for (std::size_t i = 0; i < robots_.size(); ++i) {
+      const TwistCommand twist = open_loop_command(params_, i, info.time_s);
+      idl::VelocityCommand cmd;
+      cmd.robot_id(robots_[i]);
+      cmd.mode(idl::VELOCITY);
+      cmd.v(twist.v);
+      cmd.omega(twist.omega);
+      out_->publish(cmd);
+    }
+  }
+
+ private:
+  OpenLoopParams params_;
+  std::vector<std::uint32_t> robots_;
+  Output<idl::VelocityCommand>* out_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Component> make_open_loop_node() { return std::make_unique<OpenLoopNode>(); }
+
+}  // namespace robodds::open_loop

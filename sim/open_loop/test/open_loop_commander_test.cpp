@@ -1,0 +1,30 @@
+#include "sim/open_loop/open_loop_commander.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+
+namespace robodds::open_loop {
+namespace {
+
+TEST(OpenLoop, SineAroundBiasWithPerRobotPhase) {
+  OpenLoopParams p;
+  p.omega_bias_radps = 0.1;
+  p.omega_amplitude_radps = 0.5;
+  p.omega_period_s = 4.0;
+  p.phase_per_robot_rad = 0.0;
+  EXPECT_DOUBLE_EQ(open_loop_command(p, 0, 0.0).omega, 0.1);
+  EXPECT_NEAR(open_loop_command(p, 0, 1.0).omega, 0.6, 1e-12);
+  EXPECT_DOUBLE_EQ(open_loop_command(p, 3, 0.0).v, 1.0);
+  p.phase_per_robot_rad = 1.0;
+  EXPECT_NE(open_loop_command(p, 0, 0.3).omega, open_loop_command(p, 1, 0.3).omega);
+}
+
+TEST(OpenLoop, RejectsNonPositivePeriod) {
+  OpenLoopParams p;
+  p.omega_period_s = 0.0;
+  EXPECT_THROW(p.validate(), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace robodds::open_loop

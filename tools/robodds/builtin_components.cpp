@@ -1,0 +1,27 @@
+#include "tools/robodds/builtin_components.hpp"
+
+#include "components/odometry_sensor/node/odometry_sensor_node.hpp"
+#include "components/position_sensor/node/position_sensor_node.hpp"
+#include "sim/evaluator/node/evaluator_node.hpp"
+#include "sim/mission/node/mission_node.hpp"
+#include "sim/open_loop/node/open_loop_node.hpp"
+#include "sim/plant/node/plant_node.hpp"
+
+namespace robodds {
+
+void register_builtin_components(ComponentRegistry& registry) {
+  registry.add({"plant", "differential-drive plant (paper 1 eq. 1): plant/cmd -> plant/state",
+                "sim/plant/config/plant.params.yaml", plant::make_plant_node});
+  registry.add({"position_sensor", "noisy absolute position: plant/state -> sensor/position",
+                "components/position_sensor/config/position_sensor.params.yaml", position_sensor::make_position_sensor_node});
+  registry.add({"odometry_sensor", "wheel odometry with noise and slip: plant/state -> sensor/odometry",
+                "components/odometry_sensor/config/odometry_sensor.params.yaml", odometry_sensor::make_odometry_sensor_node});
+  registry.add({"open_loop_commander", "open-loop velocity commands -> plant/cmd",
+                "sim/open_loop/config/open_loop_commander.params.yaml", open_loop::make_open_loop_node});
+  registry.add({"mission_source", "publishes the way-point mission (transient local) -> mission/waypoints",
+                "sim/mission/config/mission_source.params.yaml", mission::make_mission_node});
+  registry.add({"evaluator", "records topics to CSV and writes summary.json",
+                "sim/evaluator/config/evaluator.params.yaml", evaluator::make_evaluator_node});
+}
+
+}  // namespace robodds

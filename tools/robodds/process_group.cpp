@@ -1,0 +1,104 @@
+#include "tools/robodds/process_group.hpp"
+
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+#include "runtime/error.hpp"
+
+namespace robodds {
+
+ProcessGroup::~ProcessGroup() { terminate_all(2.0); }
+
+void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>& argv) {
+  const pid_t parent = getpid();
+  const pid_t pid = fork();
+  if (pid < 0) {
+    throw RunError("cannot start the process of group '" + name + "': " + std::strerror(errno));
+  }
+  if (pid == 0) {
+    prctl(PR_SET_PDEATHSIG, SIGTERM);
+    if (getppid() != parent) {
+      _exit(1);  // the runner died between fork and prctl
+    }
+    std::vector<char*> args;
+    for (const std::string& a : argv) {
+      args.push_back(const_cast<char*>(a.c_str()));
+    }
+    args.push_back(nullptr);
+    execv(args[0], args.data());
+    std::fprintf(stderr, "[error] cannot execute %s: %s\n", args[0], std::strerror(errno));
+    _exit(127);
+  }
+  children_.push_back(Child{name, pid, false, 0});
+}
+
+std::string ProcessGroup::describe_exit(const Child& child) const {
+  if (WIFSIGNALED(child.status)) {
+    return "was killed by signal " + std::to_string(WTERMSIG(child.status)) + " (" + strsignal(WTERMSIG(child.status)) + ")";
+  }
+  return "exited with code " + std::to_string(WEXITSTATUS(child.status));
+}
+
+void ProcessGroup::check_alive() {
+  for (Child& child : children_) {
+    if (child.exited) {
+      continue;
+    }
+    if (waitpid(child.pid, &child.status, WNOHANG) == child.pid) {
+      child.exited = true;
+      throw RunError("group '" + child.name + "' (pid " + std::to_string(child.pid) + ") " + describe_exit(child) +
+                     " before the run finished");
+    }
+  }
+}
+
+void ProcessGroup::wait_all(double timeout_s) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  for (Child& child : children_) {
+    while (!child.exited) {
+      if (waitpid(child.pid, &child.status, WNOHANG) == child.pid) {
+        child.exited = true;
+        break;
+      }
+      if (std::chrono::steady_clock::now() > deadline) {
+        throw RunError("group '" + child.name + "' (pid " + std::to_string(child.pid) + ") did not exit within " +
+                       std::to_string(static_cast<int>(timeout_s)) + " s after the run");
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    if (!WIFEXITED(child.status) || WEXITSTATUS(child.status) != 0) {
+      throw RunError("group '" + child.name + "' " + describe_exit(child));
+    }
+  }
+}
+
+void ProcessGroup::terminate_all(double grace_s) {
+  for (Child& child : children_) {
+    if (!child.exited) {
+      kill(child.pid, SIGTERM);
+    }
+  }
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(grace_s);
+  for (Child& child : children_) {
+    while (!child.exited) {
+      if (waitpid(child.pid, &child.status, WNOHANG) == child.pid) {
+        child.exited = true;
+        break;
+      }
+      if (std::chrono::steady_clock::now() > deadline) {
+        kill(child.pid, SIGKILL);
+        waitpid(child.pid, &child.status, 0);
+        child.exited = true;
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+  }
+}
+
+}  // namespace robodds
