@@ -246,6 +246,8 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--out", out_dir, "output directory (default out/<scenario name>)");
   run_cmd->add_option("--seed", seed, "override the scenario seed")->each([&](const std::string&) { seed_given = true; });
   run_cmd->add_flag("--realtime", realtime, "wall-clock timers instead of lockstep");
+  double duration_s = 0.0;
+  run_cmd->add_option("--duration", duration_s, "override the scenario duration (s)")->check(CLI::PositiveNumber);
   run_dds.add_to(run_cmd);
   run_timeouts.add_to(run_cmd);
 
@@ -275,6 +277,8 @@ int main(int argc, char** argv) {
   host_cmd->add_flag("--realtime", host_realtime, "wall-clock timers instead of lockstep");
   host_cmd->add_flag("--coordinate", host_coordinate, "also publish ticks (a standalone lockstep host)");
   host_cmd->add_option("--epoch-ns", host_epoch_ns, "real time: wall clock (ns) of step 0");
+  double host_duration_s = 0.0;
+  host_cmd->add_option("--duration", host_duration_s, "override the scenario duration (s)")->check(CLI::PositiveNumber);
   host_cmd->add_option("--seed", host_seed, "override the scenario seed")->each([&](const std::string&) { host_seed_given = true; });
   host_dds.add_to(host_cmd);
   host_timeouts.add_to(host_cmd);
@@ -305,6 +309,9 @@ int main(int argc, char** argv) {
       if (seed_given) {
         scenario.seed = seed;
       }
+      if (duration_s > 0.0) {
+        scenario.duration_s = duration_s;
+      }
       if (out_dir.empty()) {
         out_dir = "out/" + scenario.name;
       }
@@ -312,6 +319,7 @@ int main(int argc, char** argv) {
       const TimeMode mode = realtime ? TimeMode::kRealtime : TimeMode::kLockstep;
       const DdsOptions dds = run_dds.resolve("robodds-run");
       RunStats stats;
+      std::fflush(stdout);
       std::printf("robodds run %s: %s, %s, %llu steps of %g s, seed %llu\n", scenario.name.c_str(), deploy.c_str(),
                   realtime ? "real time" : "lockstep", static_cast<unsigned long long>(scenario.last_step() + 1),
                   scenario.step_s, static_cast<unsigned long long>(scenario.seed));
@@ -343,7 +351,7 @@ int main(int argc, char** argv) {
           std::vector<std::string> args = {self_exe(), "--log", log_level, "host", "--scenario", scenario_file, "--group",
                                            group.name, "--run-id", std::to_string(run_id), "--out", out_dir,
                                            "--domain", std::to_string(dds.domain_id), "--participant-profile",
-                                           dds.participant_profile, "--seed", std::to_string(scenario.seed),
+                                           dds.participant_profile, "--seed", std::to_string(scenario.seed), "--duration", std::to_string(scenario.duration_s),
                                            "--input-timeout", std::to_string(run_timeouts.input_timeout_s),
                                            "--start-timeout", std::to_string(run_timeouts.start_timeout_s)};
           for (const std::string& q : dds.qos_files) {
@@ -360,21 +368,14 @@ int main(int argc, char** argv) {
         if (realtime) {
           const auto start = std::chrono::steady_clock::now();
           const double limit = 2.0 + scenario.duration_s + run_timeouts.start_timeout_s;
-          while (true) {
+          while (children.reap_finished() > 0) {
             if (g_stop) {
               throw RunError("interrupted by a signal");
-            }
-            try {
-              children.wait_all(0.05);
-              break;
-            } catch (const RunError& e) {
-              if (std::string(e.what()).find("did not exit") == std::string::npos) {
-                throw;
-              }
             }
             if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > limit) {
               throw RunError("real-time run did not finish within " + std::to_string(limit) + " s");
             }
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
           }
           stats.steps = scenario.last_step() + 1;
           stats.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -402,6 +403,9 @@ int main(int argc, char** argv) {
       Scenario scenario = load_scenario(host_scenario);
       if (host_seed_given) {
         scenario.seed = host_seed;
+      }
+      if (host_duration_s > 0.0) {
+        scenario.duration_s = host_duration_s;
       }
       if (!host_params.empty()) {
         const FlatParams overrides = load_param_file(host_params);
@@ -465,7 +469,8 @@ int main(int argc, char** argv) {
       std::vector<std::string> lines;
       idl::dispatch_type(info.type_name, [&](auto tag) {
         using Msg = typename decltype(tag)::type;
-        bus->reader(echo_topic, info.type_name, kMonitorProfile,
+        // Missions are transient local: read them with the mission profile to get the last one.
+        bus->reader(echo_topic, info.type_name, info.qos_class == "mission" ? "mission" : kMonitorProfile,
                     [&](const void* sample) {
                       const Msg& m = *static_cast<const Msg*>(sample);
                       std::lock_guard<std::mutex> lock(mutex);

@@ -57,6 +57,20 @@ void ProcessGroup::check_alive() {
   }
 }
 
+std::size_t ProcessGroup::reap_finished() {
+  std::size_t running = 0;
+  for (Child& child : children_) {
+    if (!child.exited && waitpid(child.pid, &child.status, WNOHANG) == child.pid) {
+      child.exited = true;
+      if (!WIFEXITED(child.status) || WEXITSTATUS(child.status) != 0) {
+        throw RunError("group '" + child.name + "' (pid " + std::to_string(child.pid) + ") " + describe_exit(child));
+      }
+    }
+    running += child.exited ? 0 : 1;
+  }
+  return running;
+}
+
 void ProcessGroup::wait_all(double timeout_s) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   for (Child& child : children_) {

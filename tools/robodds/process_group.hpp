@@ -15,6 +15,9 @@ class ProcessGroup {
   void spawn(const std::string& name, const std::vector<std::string>& argv);
   /// Throws RunError naming the group if a child has exited before being expected to.
   void check_alive();
+  /// Reaps children that exited; throws RunError naming a group that failed (non-zero exit or
+  /// signal). Returns how many are still running.
+  std::size_t reap_finished();
   /// Waits up to timeout_s for every child to exit; throws RunError naming a group that failed.
   void wait_all(double timeout_s);
   /// SIGTERM, then SIGKILL after grace_s, then reaps.

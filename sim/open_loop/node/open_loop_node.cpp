@@ -1,5 +1,6 @@
 #include "sim/open_loop/node/open_loop_node.hpp"
 
+#include <limits>
 #include <vector>
 
 #include "robodds/idl/robodds.h"
@@ -18,6 +19,7 @@ class OpenLoopNode : public Component {
     params_.omega_amplitude_radps = p.get_double("omega_amplitude_radps");
     params_.omega_period_s = p.get_double("omega_period_s");
     params_.phase_per_robot_rad = p.get_double("phase_per_robot_rad");
+    inject_nan_at_step_ = p.get_int("inject_nan_at_step");
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {
@@ -34,6 +36,9 @@ class OpenLoopNode : public Component {
       cmd.mode(idl::VELOCITY);
       cmd.v(twist.v);
       cmd.omega(twist.omega);
+      if (inject_nan_at_step_ >= 0 && info.step == static_cast<std::uint64_t>(inject_nan_at_step_)) {
+        cmd.v(std::numeric_limits<double>::quiet_NaN());  // fault injection for consumer tests
+      }
       out_->publish(cmd);
     }
   }
@@ -41,6 +46,7 @@ class OpenLoopNode : public Component {
  private:
   OpenLoopParams params_;
   std::vector<std::uint32_t> robots_;
+  std::int64_t inject_nan_at_step_ = -1;
   Output<idl::VelocityCommand>* out_ = nullptr;
 };
 

@@ -1,0 +1,44 @@
+#include "components/waypoint_controller/control_law.hpp"
+
+#include <cmath>
+
+#include "common/angle.hpp"
+#include "sim/plant/diff_drive.hpp"
+
+namespace robodds::waypoint {
+namespace {
+constexpr double kHalfPi = 0.5 * kPi;
+}  // namespace
+
+int sgn_star(double alpha_rad) {
+  const double magnitude = std::abs(alpha_rad);
+  if (magnitude < kHalfPi) {
+    return 1;
+  }
+  if (magnitude > kHalfPi) {
+    return -1;
+  }
+  return 0;
+}
+
+bool uses_forward_gains(double alpha_rad) { return std::abs(alpha_rad) <= kHalfPi; }
+
+const GainSet& select_gains(const ControllerParams& params, double alpha_rad) {
+  return uses_forward_gains(alpha_rad) ? params.forward_gains : params.backward_gains;
+}
+
+Command control_law(const PolarError& error, const GainSet& gains) {
+  Command command;
+  command.v = gains.kd * error.distance_m;
+  command.omega = gains.ka * error.alpha_rad + sgn_star(error.alpha_rad) * gains.ksigma * error.sigma_rad;
+  return command;
+}
+
+Command waypoint_command(const PolarError& error, const ControllerParams& params) {
+  const Command raw = control_law(error, select_gains(params, error.alpha_rad));
+  const plant::Twist limited = plant::saturate(plant::Twist{raw.v, raw.omega},
+                                               plant::TwistLimits{params.max_speed_mps, params.max_turn_rate_radps});
+  return Command{limited.v, limited.omega};
+}
+
+}  // namespace robodds::waypoint

@@ -1,0 +1,32 @@
+#pragma once
+// The way-point tracking control law of paper 1, eq. (10), with the gain-set choice of
+// section 4 (forward gains while |alpha| <= pi/2, backward gains beyond) and optional limits.
+
+#include "components/waypoint_controller/controller_params.hpp"
+#include "components/waypoint_controller/polar.hpp"
+
+namespace robodds::waypoint {
+
+/// Velocity command for a differential-drive robot (body frame).
+struct Command {
+  double v = 0.0;      // m/s, forward speed (< 0 = backing up)
+  double omega = 0.0;  // rad/s, turn rate, counter-clockwise positive
+};
+
+/// sgn* = sgn(pi/2 - |alpha|) of eq. (9): +1 for |alpha| < pi/2, 0 at exactly pi/2, -1 beyond.
+int sgn_star(double alpha_rad);
+
+/// True while |alpha| <= pi/2 (way-point ahead or abeam): the forward gain set applies.
+bool uses_forward_gains(double alpha_rad);
+
+/// The gain set that applies at bearing alpha_rad (forward for |alpha| <= pi/2, else backward).
+const GainSet& select_gains(const ControllerParams& params, double alpha_rad);
+
+/// Eq. (10) alone, no limits: v = kd·d, omega = ka·alpha + sgn*(alpha)·ksigma·sigma.
+Command control_law(const PolarError& error, const GainSet& gains);
+
+/// The controller output: eq. (10) with the gain set chosen by |alpha|, then |v| and |omega|
+/// clamped independently to the params' optional limits (0 = unlimited).
+Command waypoint_command(const PolarError& error, const ControllerParams& params);
+
+}  // namespace robodds::waypoint

@@ -1,0 +1,141 @@
+// Closed loop with the true pose: tracker -> exact unicycle plant, dt = 0.01 s. Reproduces
+// paper 1, section 4, step 2 (18 way-points from (50, 10)) and Table 1 (distance at switch for
+// epsilon = 0.1 / 0.01 / 0.001). Measured figures are printed and recorded in README.md.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "components/waypoint_controller/waypoint_tracker.hpp"
+#include "sim/plant/diff_drive.hpp"
+
+namespace robodds::waypoint {
+namespace {
+
+constexpr double kDt = 0.01;  // s, as the reference simulation
+// Alpha and sigma are judged once the robot is this close to the last way-point (m). They
+// decay more slowly (time constant ~6.6 s) than d (~1 s), and below ~1e-12 m the positions
+// near (20, 20) m stop resolving the motion, so the exact dynamics end there (see README.md).
+constexpr double kConvergedDistanceM = 1e-9;
+constexpr double kMaxSettleAfterDoneS = 60.0;
+
+std::vector<Eigen::Vector2d> paper_mission() {
+  return {{60, 20}, {75, 15}, {90, 25}, {85, 40}, {70, 45}, {60, 55}, {75, 65}, {90, 70}, {85, 85},
+          {70, 90}, {55, 80}, {40, 90}, {25, 85}, {15, 70}, {25, 55}, {40, 50}, {30, 35}, {20, 20}};
+}
+
+struct RunResult {
+  bool done = false;
+  double time_to_final_s = std::numeric_limits<double>::quiet_NaN();
+  std::vector<double> reach_distances_m;
+  double max_abs_v = 0.0;
+  double max_abs_omega = 0.0;
+  bool converged = false;       // came within kConvergedDistanceM of the last way-point
+  TrackerStatus final_status;   // at that moment (or at the end of the run)
+};
+
+RunResult run_paper_mission(const ControllerParams& params, double max_time_s) {
+  WaypointTracker tracker(params);
+  tracker.set_mission(paper_mission());
+  plant::Pose2 pose{50.0, 10.0, 0.0};
+  RunResult result;
+  const long max_steps = std::lround(max_time_s / kDt);
+  long done_step = -1;
+  for (long k = 0; k <= max_steps; ++k) {
+    const TrackerOutput output = tracker.step(pose.x, pose.y, pose.theta);
+    result.final_status = output.status;
+    result.max_abs_v = std::max(result.max_abs_v, std::abs(output.command.v));
+    result.max_abs_omega = std::max(result.max_abs_omega, std::abs(output.command.omega));
+    if (output.status.done && done_step < 0) {
+      done_step = k;
+    }
+    if (output.status.done && output.status.distance_to_final_m <= kConvergedDistanceM) {
+      result.converged = true;
+      break;
+    }
+    if (done_step >= 0 && (k - done_step) * kDt >= kMaxSettleAfterDoneS) {
+      break;
+    }
+    pose = plant::integrate_exact(pose, plant::Twist{output.command.v, output.command.omega}, kDt);
+  }
+  result.done = done_step >= 0;
+  result.time_to_final_s = done_step * kDt;
+  result.reach_distances_m = tracker.reach_distances_m();
+  return result;
+}
+
+void print_figures(const char* label, double epsilon, const RunResult& run) {
+  const auto [min_it, max_it] = std::minmax_element(run.reach_distances_m.begin(), run.reach_distances_m.end());
+  std::printf("[table1] %s epsilon=%g reached=%zu switch distance min=%.6g max=%.6g time_to_final=%.2f s "
+              "max|v|=%.3g m/s max|omega|=%.3g rad/s; at d_final=%.1e m: alpha=%.3g sigma=%.3g\n",
+              label, epsilon, run.reach_distances_m.size(), *min_it, *max_it, run.time_to_final_s, run.max_abs_v,
+              run.max_abs_omega, run.final_status.distance_to_final_m, run.final_status.alpha_rad,
+              run.final_status.sigma_rad);
+}
+
+struct TableOneCase {
+  const char* name;
+  double epsilon_m;
+  double min_time_s;  // plausible band around the reference time to the last way-point
+  double max_time_s;  // (reference ~93.5 / 134.9 / 176.3 s)
+};
+
+void PrintTo(const TableOneCase& c, std::ostream* os) { *os << "epsilon=" << c.epsilon_m; }
+
+class WaypointClosedLoop : public ::testing::TestWithParam<TableOneCase> {};
+
+TEST_P(WaypointClosedLoop, ReachesAllWaypointsWithinEpsilonLikeTableOne) {
+  const TableOneCase c = GetParam();
+  ControllerParams params;
+  params.epsilon_m = c.epsilon_m;
+  const RunResult run = run_paper_mission(params, 400.0);
+  ASSERT_TRUE(run.done);
+  ASSERT_EQ(run.reach_distances_m.size(), 18u);
+  print_figures("unlimited", c.epsilon_m, run);
+  for (const double distance : run.reach_distances_m) {
+    EXPECT_LE(distance, c.epsilon_m);
+    EXPECT_GT(distance, 0.9 * c.epsilon_m);  // Table 1: 0.0996 / 0.00984 / 0.000989
+  }
+  EXPECT_GT(run.time_to_final_s, c.min_time_s);
+  EXPECT_LT(run.time_to_final_s, c.max_time_s);
+  // The law converges onto the last way-point with alpha -> 0 and sigma -> 0 (heading pi/2);
+  // a wrong sign of sigma still reaches every way-point but keeps |sigma| ~ 2.5-3 rad here.
+  ASSERT_TRUE(run.converged);
+  EXPECT_LT(std::abs(run.final_status.alpha_rad), 0.03);
+  EXPECT_LT(std::abs(run.final_status.sigma_rad), 0.2);
+}
+
+INSTANTIATE_TEST_SUITE_P(TableOne, WaypointClosedLoop,
+                         ::testing::Values(TableOneCase{"epsilon_0p1", 0.1, 70.0, 130.0},
+                                           TableOneCase{"epsilon_0p01", 0.01, 105.0, 170.0},
+                                           TableOneCase{"epsilon_0p001", 0.001, 140.0, 215.0}),
+                         [](const ::testing::TestParamInfo<TableOneCase>& info) { return std::string(info.param.name); });
+
+TEST(WaypointClosedLoopLimited, StillReachesAllWaypointsWithUnitLimits) {
+  ControllerParams params;
+  params.epsilon_m = 0.1;
+  params.max_speed_mps = 1.0;
+  params.max_turn_rate_radps = 1.0;
+  const RunResult run = run_paper_mission(params, 1500.0);
+  ASSERT_TRUE(run.done);
+  ASSERT_EQ(run.reach_distances_m.size(), 18u);
+  print_figures("|v|<=1,|omega|<=1", params.epsilon_m, run);
+  for (const double distance : run.reach_distances_m) {
+    EXPECT_LE(distance, params.epsilon_m);
+  }
+  EXPECT_LE(run.max_abs_v, 1.0);
+  EXPECT_LE(run.max_abs_omega, 1.0);
+  EXPECT_GT(run.time_to_final_s, 130.0);  // slower than the unlimited ~93.5 s
+  ASSERT_TRUE(run.converged);
+  EXPECT_LT(std::abs(run.final_status.alpha_rad), 0.03);
+  EXPECT_LT(std::abs(run.final_status.sigma_rad), 0.2);
+}
+
+}  // namespace
+}  // namespace robodds::waypoint

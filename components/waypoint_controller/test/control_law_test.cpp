@@ -1,0 +1,118 @@
+#include "components/waypoint_controller/control_law.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/angle.hpp"
+
+namespace robodds::waypoint {
+namespace {
+
+constexpr double kTol = 1e-12;
+constexpr double kHalfPi = kPi / 2;
+
+PolarError error_of(double distance_m, double alpha_rad, double sigma_rad) {
+  PolarError error;
+  error.distance_m = distance_m;
+  error.alpha_rad = alpha_rad;
+  error.sigma_rad = sigma_rad;
+  return error;
+}
+
+TEST(WaypointSgnStar, IsOneInsideHalfPi) {
+  EXPECT_EQ(sgn_star(0.0), 1);
+  EXPECT_EQ(sgn_star(1.0), 1);
+  EXPECT_EQ(sgn_star(-1.0), 1);
+  EXPECT_EQ(sgn_star(std::nextafter(kHalfPi, 0.0)), 1);
+  EXPECT_EQ(sgn_star(-std::nextafter(kHalfPi, 0.0)), 1);
+}
+
+TEST(WaypointSgnStar, IsZeroAtExactlyHalfPi) {
+  EXPECT_EQ(sgn_star(kHalfPi), 0);
+  EXPECT_EQ(sgn_star(-kHalfPi), 0);
+}
+
+TEST(WaypointSgnStar, IsMinusOneBeyondHalfPi) {
+  EXPECT_EQ(sgn_star(std::nextafter(kHalfPi, 4.0)), -1);
+  EXPECT_EQ(sgn_star(-std::nextafter(kHalfPi, 4.0)), -1);
+  EXPECT_EQ(sgn_star(kPi), -1);
+  EXPECT_EQ(sgn_star(-3.0), -1);
+}
+
+TEST(WaypointGainChoice, ForwardUpToAndIncludingHalfPiBackwardBeyond) {
+  const ControllerParams params;
+  EXPECT_TRUE(uses_forward_gains(0.0));
+  EXPECT_TRUE(uses_forward_gains(kHalfPi));
+  EXPECT_TRUE(uses_forward_gains(-kHalfPi));
+  EXPECT_FALSE(uses_forward_gains(std::nextafter(kHalfPi, 4.0)));
+  EXPECT_FALSE(uses_forward_gains(kPi));
+  EXPECT_EQ(&select_gains(params, 0.3), &params.forward_gains);
+  EXPECT_EQ(&select_gains(params, kHalfPi), &params.forward_gains);
+  EXPECT_EQ(&select_gains(params, -2.0), &params.backward_gains);
+}
+
+TEST(WaypointControlLaw, ForwardHandComputed) {
+  // v = 1·2 = 2; omega = 20·0.1 + (+1)·(-2.5)·0.5 = 0.75.
+  const Command command = control_law(error_of(2.0, 0.1, 0.5), ControllerParams{}.forward_gains);
+  EXPECT_NEAR(command.v, 2.0, kTol);
+  EXPECT_NEAR(command.omega, 0.75, kTol);
+}
+
+TEST(WaypointControlLaw, BackwardHandComputedBacksUp) {
+  // v = -1·3 = -3; omega = 20·2 + (-1)·(-2.5)·(-1) = 37.5.
+  const Command command = control_law(error_of(3.0, 2.0, -1.0), ControllerParams{}.backward_gains);
+  EXPECT_NEAR(command.v, -3.0, kTol);
+  EXPECT_NEAR(command.omega, 37.5, kTol);
+}
+
+TEST(WaypointControlLaw, SigmaTermVanishesAtExactlyHalfPi) {
+  // sgn* = 0: omega = 20·(pi/2) whatever sigma; forward set, so v = +d.
+  const ControllerParams params;
+  const Command left = waypoint_command(error_of(1.5, kHalfPi, 0.7), params);
+  EXPECT_NEAR(left.v, 1.5, kTol);
+  EXPECT_NEAR(left.omega, 10.0 * kPi, kTol);
+  const Command right = waypoint_command(error_of(1.5, -kHalfPi, 0.7), params);
+  EXPECT_NEAR(right.omega, -10.0 * kPi, kTol);
+}
+
+TEST(WaypointControlLaw, CommandPicksTheGainSetByBearing) {
+  const ControllerParams params;
+  const Command ahead = waypoint_command(error_of(2.0, 0.1, 0.5), params);
+  EXPECT_NEAR(ahead.v, 2.0, kTol);
+  EXPECT_NEAR(ahead.omega, 0.75, kTol);
+  const Command behind = waypoint_command(error_of(3.0, 2.0, -1.0), params);
+  EXPECT_NEAR(behind.v, -3.0, kTol);
+  EXPECT_NEAR(behind.omega, 37.5, kTol);
+}
+
+TEST(WaypointControlLaw, ZeroDistanceGivesZeroSpeedAndFiniteTurn) {
+  // On the way-point: alpha = 0 (see polar_error), only the sigma term turns the robot.
+  const Command command = waypoint_command(error_of(0.0, 0.0, 0.4), ControllerParams{});
+  EXPECT_EQ(command.v, 0.0);
+  EXPECT_NEAR(command.omega, -2.5 * 0.4, kTol);
+}
+
+TEST(WaypointControlLaw, LimitsClampSpeedAndTurnRateIndependently) {
+  ControllerParams params;
+  params.max_speed_mps = 1.0;
+  params.max_turn_rate_radps = 0.5;
+  const Command ahead = waypoint_command(error_of(2.0, 0.1, 0.5), params);
+  EXPECT_EQ(ahead.v, 1.0);
+  EXPECT_EQ(ahead.omega, 0.5);
+  const Command behind = waypoint_command(error_of(3.0, -2.0, 1.0), params);
+  EXPECT_EQ(behind.v, -1.0);
+  EXPECT_EQ(behind.omega, -0.5);
+  const Command small = waypoint_command(error_of(0.2, 0.01, 0.0), params);
+  EXPECT_NEAR(small.v, 0.2, kTol);
+  EXPECT_NEAR(small.omega, 0.2, kTol);
+}
+
+TEST(WaypointControlLaw, ZeroLimitsMeanUnlimited) {
+  const Command command = waypoint_command(error_of(18.0, 1.5, 1.0), ControllerParams{});
+  EXPECT_NEAR(command.v, 18.0, kTol);
+  EXPECT_NEAR(command.omega, 20.0 * 1.5 - 2.5, kTol);
+}
+
+}  // namespace
+}  // namespace robodds::waypoint

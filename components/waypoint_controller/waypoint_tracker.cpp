@@ -1,0 +1,88 @@
+#include "components/waypoint_controller/waypoint_tracker.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "components/waypoint_controller/polar.hpp"
+
+namespace robodds::waypoint {
+namespace {
+
+std::string format_value(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
+}
+
+void require_valid_mission(const std::vector<Eigen::Vector2d>& waypoints_m) {
+  if (waypoints_m.empty()) {
+    throw std::invalid_argument("set_mission: the mission is empty (needs at least one way-point)");
+  }
+  for (std::size_t i = 0; i < waypoints_m.size(); ++i) {
+    if (!waypoints_m[i].allFinite()) {
+      throw std::invalid_argument("set_mission: way-point " + std::to_string(i) + " is not finite (got (" +
+                                  format_value(waypoints_m[i].x()) + ", " + format_value(waypoints_m[i].y()) +
+                                  "))");
+    }
+  }
+}
+
+void require_finite_pose(double x_m, double y_m, double theta_rad) {
+  if (!std::isfinite(x_m) || !std::isfinite(y_m) || !std::isfinite(theta_rad)) {
+    throw std::invalid_argument("step: the pose estimate is not finite (got x=" + format_value(x_m) +
+                                ", y=" + format_value(y_m) + ", theta=" + format_value(theta_rad) + ")");
+  }
+}
+
+}  // namespace
+
+WaypointTracker::WaypointTracker(const ControllerParams& params) : params_(params) { params_.validate(); }
+
+void WaypointTracker::set_mission(std::vector<Eigen::Vector2d> waypoints_m) {
+  require_valid_mission(waypoints_m);
+  mission_ = std::move(waypoints_m);
+  target_index_ = 0;
+  done_ = false;
+  reach_distances_m_.clear();
+  reach_distances_m_.reserve(mission_.size());  // keeps step() allocation-free
+}
+
+TrackerOutput WaypointTracker::step(double x_m, double y_m, double theta_rad) {
+  require_finite_pose(x_m, y_m, theta_rad);
+  if (!has_mission()) {
+    throw std::logic_error("step: no mission (call set_mission first)");
+  }
+  const Eigen::Vector2d position(x_m, y_m);
+  TrackerOutput output;
+  TrackerStatus& status = output.status;
+
+  // Eq. (19): chi = k+1 when ||p - W_k|| <= epsilon, chi = n at the last way-point.
+  const double distance_before_switch = (mission_[target_index_] - position).norm();
+  if (!done_ && distance_before_switch <= params_.epsilon_m) {
+    reach_distances_m_.push_back(distance_before_switch);
+    status.reached_this_step = true;
+    status.reached_distance_m = distance_before_switch;
+    if (target_index_ + 1 < mission_.size()) {
+      ++target_index_;
+    } else {
+      done_ = true;
+    }
+  }
+
+  const PolarError error = polar_error(position, theta_rad, mission_[target_index_]);
+  output.command = waypoint_command(error, params_);
+
+  status.target_index = target_index_;
+  status.reached_count = reach_distances_m_.size();
+  status.distance_to_target_m = error.distance_m;
+  status.distance_to_final_m = (mission_.back() - position).norm();
+  status.alpha_rad = error.alpha_rad;
+  status.sigma_rad = error.sigma_rad;
+  status.done = done_;
+  return output;
+}
+
+}  // namespace robodds::waypoint

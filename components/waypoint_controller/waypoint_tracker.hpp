@@ -1,0 +1,82 @@
+#pragma once
+// Multi-way-point tracking of paper 1, section 3: the control law eq. (10) aimed at the
+// current way-point, which advances by the switching rule eq. (19). World frame, SI units.
+
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "components/waypoint_controller/control_law.hpp"
+#include "components/waypoint_controller/controller_params.hpp"
+
+namespace robodds::waypoint {
+
+/// What the tracker did on one step, for telemetry and tests.
+struct TrackerStatus {
+  /// Index (0-based) of the way-point the returned command aims at.
+  std::size_t target_index = 0;
+  /// Way-points reached so far (the last one counts once `done` is set).
+  std::size_t reached_count = 0;
+  /// Distance from the pose to the target way-point, and to the last way-point (m).
+  double distance_to_target_m = 0.0;
+  double distance_to_final_m = 0.0;
+  /// Polar errors of eq. (8) to the target way-point (rad, (-pi, pi]).
+  double alpha_rad = 0.0;
+  double sigma_rad = 0.0;
+  /// True once the last way-point was within epsilon; stays true (latched).
+  bool done = false;
+  /// True on the step at which a way-point was declared reached (eq. 19 switch, or arrival
+  /// at the last one); reached_distance_m is then the distance at that moment (m), else NaN.
+  bool reached_this_step = false;
+  double reached_distance_m = std::numeric_limits<double>::quiet_NaN();
+};
+
+struct TrackerOutput {
+  Command command;
+  TrackerStatus status;
+};
+
+/// Holds a mission and turns pose estimates into commands.
+///
+/// Switching, eq. (19): at each step the distance to the current way-point W_k is measured
+/// first; if it is <= epsilon, W_k is reached and the target becomes W_{k+1} (one switch per
+/// step), and the command of that same step already aims at W_{k+1}. At the last way-point
+/// the index stays (chi = n) and the control law stays active on it, as in the paper (the robot
+/// converges onto it and keeps correcting its heading, v = kd·d -> 0); `done` latches when it
+/// is first within epsilon. No command is forced to zero: a caller that wants the robot to
+/// stop dead once done can do so.
+class WaypointTracker {
+ public:
+  /// Validates params (std::invalid_argument, see ControllerParams::validate).
+  explicit WaypointTracker(const ControllerParams& params = ControllerParams{});
+
+  /// Replaces the mission (world frame, m) and restarts at its first way-point. Throws
+  /// std::invalid_argument, leaving the tracker unchanged, if the list is empty or a
+  /// coordinate is not finite.
+  void set_mission(std::vector<Eigen::Vector2d> waypoints_m);
+
+  /// One control step from the pose estimate (x, y in m, theta in rad, any finite angle).
+  /// Throws std::invalid_argument for a non-finite pose and std::logic_error without a
+  /// mission; the tracker state is then unchanged. Allocation-free.
+  TrackerOutput step(double x_m, double y_m, double theta_rad);
+
+  bool has_mission() const { return !mission_.empty(); }
+  const std::vector<Eigen::Vector2d>& mission() const { return mission_; }
+  std::size_t target_index() const { return target_index_; }
+  std::size_t reached_count() const { return reach_distances_m_.size(); }
+  bool done() const { return done_; }
+  /// Distance (m) at the moment each way-point was declared reached, in mission order.
+  const std::vector<double>& reach_distances_m() const { return reach_distances_m_; }
+  const ControllerParams& params() const { return params_; }
+
+ private:
+  ControllerParams params_;
+  std::vector<Eigen::Vector2d> mission_;
+  std::size_t target_index_ = 0;
+  bool done_ = false;
+  std::vector<double> reach_distances_m_;
+};
+
+}  // namespace robodds::waypoint

@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Every bad input exits non-zero with one line naming the file/key/element and the reason.
+source "$(dirname "$0")/lib.sh"
+S="$SRC/sim/scenarios/plant_smoke.yaml"
+scenario_with() {  # scenario_with NAME SED-EXPR: a copy of plant_smoke edited by sed
+  sed "$2" "$S" >"$WORK/$1.yaml"
+  echo "$WORK/$1.yaml"
+}
+R=("$ROBODDS" run --domain "$DOMAIN" --out "$WORK/out")
+
+expect_error 2 "no-such\.yaml: cannot open scenario file" -- "${R[@]}" "$WORK/no-such.yaml"
+expect_error 2 "unknown component type 'plantt'" -- "${R[@]}" "$(scenario_with t1 's/type: plant}/type: plantt}/')"
+expect_error 2 "components\[1\]\.robots\[0\]: unknown robot 9" -- \
+  "${R[@]}" "$(scenario_with t2 's/{name: plant, type: plant}/{name: plant, type: plant, robots: [9]}/')"
+expect_error 2 "t3\.yaml: wheel_base_mm: unknown parameter" -- \
+  "${R[@]}" "$(scenario_with t3 's/{name: plant, type: plant}/{name: plant, type: plant, params: {wheel_base_mm: 1}}/')"
+expect_error 2 "t4\.yaml: wheel_base_m: must be > 0" -- \
+  "${R[@]}" "$(scenario_with t4 's/{name: plant, type: plant}/{name: plant, type: plant, params: {wheel_base_m: -1}}/')"
+expect_error 2 "t5\.yaml: wheel_base_m: expected a number, got 'wide'" -- \
+  "${R[@]}" "$(scenario_with t5 's/{name: plant, type: plant}/{name: plant, type: plant, params: {wheel_base_m: wide}}/')"
+expect_error 2 "rate_hz: 7\.000000 Hz is not the simulation rate" -- \
+  "${R[@]}" "$(scenario_with t6 's/{name: position_sensor, type: position_sensor}/{name: position_sensor, type: position_sensor, params: {rate_hz: 7}}/')"
+expect_error 2 "groups\.sim: unknown component 'plnt'" -- "${R[@]}" "$(scenario_with t7 's/sim: \[plant\]/sim: [plnt]/')"
+
+# QoS files: missing, malformed, broken element, unknown profile.
+expect_error 2 "nope\.xml: QoS profile file not found" -- "${R[@]}" "$S" --qos "$WORK/nope.xml"
+printf '<dds><profiles><participant profile_name="x">' >"$WORK/truncated.xml"
+expect_error 2 "truncated\.xml: rejected by Fast DDS" -- "${R[@]}" "$S" --qos "$WORK/truncated.xml"
+sed 's#<kind>RELIABLE</kind>#<kind>RELIABLEISH</kind>#' "$SRC/deploy/qos/robodds_qos.xml" >"$WORK/badkind.xml"
+expect_error 2 "badkind\.xml: rejected by Fast DDS" -- "${R[@]}" "$S" --qos "$WORK/badkind.xml"
+expect_error 2 "participant profile 'no.such.profile'.*not found" -- "${R[@]}" "$S" --participant-profile no.such.profile
+sed 's#profile_name="lockstep"#profile_name="lockstep_renamed"#g' "$SRC/deploy/qos/robodds_qos.xml" >"$WORK/noprofile.xml"
+expect_error 2 "noprofile\.xml: data_writer profile 'lockstep': not found" -- "${R[@]}" "$S" --qos "$WORK/noprofile.xml"
+
+# The same errors from a host started on its own.
+expect_error 2 "no group named 'nosuch'" -- "$ROBODDS" host --scenario "$S" --group nosuch --domain "$DOMAIN"
+expect_error 2 "unknown topic 'plant/stat'" -- "$ROBODDS" echo plant/stat --domain "$DOMAIN"
+echo "ok: all bad inputs rejected with a clear one-line error"
