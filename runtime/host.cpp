@@ -50,6 +50,7 @@ struct Host::Impl {
 
   const ComponentRegistry& registry;
   RunContext run;
+  std::uint64_t current_step = 0;  // the tick being processed (for failure reports)
   HostOptions options;
   std::vector<std::unique_ptr<Slot>> slots;
 
@@ -101,8 +102,14 @@ struct Host::Impl {
       tick_options.ignore_step = true;
       tick_input = std::make_unique<Input<idl::SimTick>>(clock.name, options.member, &host_state, run.notifier, tick_options);
       auto* raw = tick_input.get();
+      const std::uint64_t run_id = options.run_id;
       tick_reader = run.bus->reader(clock.name, clock.type_name, profile,
-                                    [raw](const void* s) { raw->on_sample(*static_cast<const idl::SimTick*>(s)); },
+                                    [raw, run_id](const void* s) {
+                                      const auto& tick = *static_cast<const idl::SimTick*>(s);
+                                      if (tick.run_id() == run_id) {  // ignore ticks of other runs
+                                        raw->on_sample(tick);
+                                      }
+                                    },
                                     [this](const std::string& e) { log::warn(options.member, "sim/clock: " + e); });
       ack_output = std::make_unique<Output<idl::StepDone>>(run.bus->writer(done.name, done.type_name, profile), &host_state);
     }
@@ -115,8 +122,14 @@ struct Host::Impl {
       }
       ack_input = std::make_unique<Input<idl::StepDone>>(done.name, "coordinator", &coordinator_state, run.notifier, ack_options);
       auto* raw = ack_input.get();
+      const std::uint64_t run_id = options.run_id;
       ack_reader = run.bus->reader(done.name, done.type_name, profile,
-                                   [raw](const void* s) { raw->on_sample(*static_cast<const idl::StepDone*>(s)); },
+                                   [raw, run_id](const void* s) {
+                                     const auto& ack = *static_cast<const idl::StepDone*>(s);
+                                     if (ack.run_id() == run_id) {  // a stale host of another run must not count
+                                       raw->on_sample(ack);
+                                     }
+                                   },
                                    [](const std::string& e) { log::warn("coordinator", "sim/step_done: " + e); });
       tick_output = std::make_unique<Output<idl::SimTick>>(run.bus->writer(clock.name, clock.type_name, profile), &coordinator_state);
     }
@@ -221,6 +234,7 @@ struct Host::Impl {
             tick_queue.pop_front();
             tick_active = true;
             tick_step = tick.header().step();
+            current_step = tick_step;
             tick_is_final = tick.final_tick();
             components_run = 0;
             first_tick = false;
@@ -387,7 +401,7 @@ RunStats Host::run() {
   } catch (const RunError& e) {
     // Tell the coordinator why this host stops, so it can report it at once.
     try {
-      impl_->publish_ack(impl_->host_state.step, 0, e.what());
+      impl_->publish_ack(impl_->current_step, 0, e.what());
     } catch (...) {
     }
     throw;

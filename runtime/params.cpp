@@ -184,6 +184,12 @@ void ParamReader::fail(const std::string& message) const {
   // validate() messages start with the key: find which file that key came from.
   const std::string key = message.substr(0, message.find(':'));
   auto it = params_.find(key);
+  if (it == params_.end()) {
+    it = params_.lower_bound(key + ".");  // a group of keys, e.g. "forward_gains" for forward_gains.kd
+    if (it != params_.end() && it->first.rfind(key + ".", 0) != 0) {
+      it = params_.end();
+    }
+  }
   const std::string file = it != params_.end() ? it->second.file : owner_;
   throw ConfigError(located(file, "", message));
 }

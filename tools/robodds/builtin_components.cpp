@@ -2,10 +2,12 @@
 
 #include "components/odometry_sensor/node/odometry_sensor_node.hpp"
 #include "components/position_sensor/node/position_sensor_node.hpp"
+#include "components/waypoint_controller/node/waypoint_controller_node.hpp"
 #include "sim/evaluator/node/evaluator_node.hpp"
 #include "sim/mission/node/mission_node.hpp"
 #include "sim/open_loop/node/open_loop_node.hpp"
 #include "sim/plant/node/plant_node.hpp"
+#include "sim/truth_estimator/node/truth_estimator_node.hpp"
 
 namespace robodds {
 
@@ -20,6 +22,10 @@ void register_builtin_components(ComponentRegistry& registry) {
                 "sim/open_loop/config/open_loop_commander.params.yaml", open_loop::make_open_loop_node});
   registry.add({"mission_source", "publishes the way-point mission (transient local) -> mission/waypoints",
                 "sim/mission/config/mission_source.params.yaml", mission::make_mission_node});
+  registry.add({"waypoint_controller", "paper 1 way-point tracking: estimate/pose + mission/waypoints -> plant/cmd, control/status",
+                "components/waypoint_controller/config/waypoint_controller.params.yaml", waypoint::make_waypoint_controller_node});
+  registry.add({"truth_estimator", "ideal estimator: plant/state -> estimate/pose (true pose)",
+                "sim/truth_estimator/config/truth_estimator.params.yaml", truth_estimator::make_truth_estimator_node});
   registry.add({"evaluator", "records topics to CSV and writes summary.json",
                 "sim/evaluator/config/evaluator.params.yaml", evaluator::make_evaluator_node});
 }

@@ -1,5 +1,7 @@
 #include "sim/evaluator/node/evaluator_node.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -9,6 +11,7 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/sample_format.hpp"
 #include "sim/evaluator/track.hpp"
+#include "sim/evaluator/waypoint_metrics.hpp"
 
 namespace robodds::evaluator {
 namespace {
@@ -27,7 +30,10 @@ struct Histories {
   std::map<std::uint32_t, Track> truth;
   std::map<std::uint32_t, Track> fixes;
   std::map<std::uint32_t, Track> estimates;
-  std::map<std::uint32_t, std::size_t> commands;
+  std::map<std::uint32_t, double> max_abs_omega;
+  std::map<std::uint32_t, double> max_abs_v;
+  std::map<std::uint32_t, std::vector<StatusSample>> status;
+  std::map<std::uint32_t, std::vector<std::array<double, 2>>> missions;
 
   template <class Msg>
   void observe(const Msg&) {}
@@ -36,7 +42,21 @@ struct Histories {
   void observe(const idl::PoseEstimate& m) {
     estimates[m.robot_id()].push_back({m.header().step(), m.x(), m.y(), m.theta()});
   }
-  void observe(const idl::VelocityCommand& m) { ++commands[m.robot_id()]; }
+  void observe(const idl::VelocityCommand& m) {
+    max_abs_omega[m.robot_id()] = std::max(max_abs_omega[m.robot_id()], std::abs(m.omega()));
+    max_abs_v[m.robot_id()] = std::max(max_abs_v[m.robot_id()], std::abs(m.v()));
+  }
+  void observe(const idl::ControllerStatus& m) {
+    status[m.robot_id()].push_back({m.header().step(), m.waypoints_reached(), m.waypoints_total(), m.done(), m.switched(),
+                                    m.switch_distance(), m.epsilon()});
+  }
+  void observe(const idl::WaypointMission& m) {
+    auto& mission = missions[m.robot_id()];
+    mission.clear();
+    for (const idl::Waypoint& w : m.waypoints()) {
+      mission.push_back({w.x(), w.y()});
+    }
+  }
 };
 
 class RecorderBase {
@@ -165,19 +185,25 @@ class EvaluatorNode : public Component {
         if (est != histories_.estimates.end()) {
           const ErrorStats e = position_error(truth->second, est->second, from_step);
           const ErrorStats h = heading_error(truth->second, est->second, from_step);
-          json.value("estimate_rmse_m", e.rmse).value("heading_rmse_deg", h.rmse * 180.0 / 3.14159265358979323846);
+          json.value("pf_rmse_m", e.rmse).value("heading_rmse_deg", h.rmse * 180.0 / 3.14159265358979323846);
           est_sq += e.rmse * e.rmse * static_cast<double>(e.count);
           est_n += e.count;
         }
+        write_waypoint_metrics(json, id, truth->second);
       }
       json.end_object();
     }
     json.end_object();
+    if (keys_.size() == 1 && histories_.status.count(static_cast<std::uint32_t>(keys_[0])) != 0) {
+      // One robot (the paper's setting): its way-point figures at the top level too.
+      const auto id = static_cast<std::uint32_t>(keys_[0]);
+      write_waypoint_metrics(json, id, histories_.truth.at(id));
+    }
     if (fix_n > 0) {
       json.value("measurement_rmse_m", std::sqrt(fix_sq / static_cast<double>(fix_n)));
     }
     if (est_n > 0) {
-      json.value("estimate_rmse_m", std::sqrt(est_sq / static_cast<double>(est_n)));
+      json.value("pf_rmse_m", std::sqrt(est_sq / static_cast<double>(est_n)));
     }
     json.begin_object("samples");
     for (const auto& recorder : recorders_) {
@@ -196,6 +222,27 @@ class EvaluatorNode : public Component {
     out << json.str();
     if (!out) {
       throw RunError("evaluator: cannot write " + path);
+    }
+  }
+
+  void write_waypoint_metrics(JsonWriter& json, std::uint32_t id, const Track& truth) const {
+    auto status = histories_.status.find(id);
+    auto mission = histories_.missions.find(id);
+    if (status == histories_.status.end() || mission == histories_.missions.end()) {
+      return;
+    }
+    const WaypointMetrics m = waypoint_metrics(truth, status->second, mission->second, step_s_);
+    json.value("waypoints_reached", static_cast<std::int64_t>(m.waypoints_reached));
+    json.value("waypoints_total", static_cast<std::int64_t>(m.waypoints_total));
+    json.value("time_to_final_s", m.time_to_final_s);
+    json.value("switch_distance_estimate_m", m.switch_distance_estimate_m);
+    json.value("switch_distance_true_m", m.switch_distance_true_m);
+    json.value("final_error_true_m", m.final_error_true_m);
+    json.value("epsilon", m.epsilon_m);
+    auto omega = histories_.max_abs_omega.find(id);
+    if (omega != histories_.max_abs_omega.end()) {
+      json.value("max_abs_omega", omega->second);
+      json.value("max_abs_v", histories_.max_abs_v.at(id));
     }
   }
 

@@ -1,0 +1,89 @@
+// Adapter: PoseEstimate/WaypointMission <-> WaypointTracker <-> VelocityCommand/ControllerStatus.
+#include "components/waypoint_controller/node/waypoint_controller_node.hpp"
+
+#include <map>
+
+#include "components/waypoint_controller/waypoint_tracker.hpp"
+#include "robodds/idl/robodds.h"
+
+namespace robodds::waypoint {
+namespace {
+
+GainSet read_gains(ParamReader& p, const std::string& prefix) {
+  return GainSet{p.get_double(prefix + ".kd"), p.get_double(prefix + ".ka"), p.get_double(prefix + ".ksigma")};
+}
+
+class WaypointControllerNode : public Component {
+ public:
+  void configure(ComponentContext& ctx) override {
+    auto& p = ctx.params();
+    const double rate_hz = p.get_double("rate_hz");
+    params_.forward_gains = read_gains(p, "forward_gains");
+    params_.backward_gains = read_gains(p, "backward_gains");
+    params_.epsilon_m = p.get_double("epsilon_m");
+    params_.max_speed_mps = p.get_double("max_speed_mps");
+    params_.max_turn_rate_radps = p.get_double("max_turn_rate_radps");
+    require_valid_ = p.get_bool("require_valid_estimate");
+    p.validate(params_);
+    ctx.set_rate_hz(rate_hz, "rate_hz");
+    for (const RobotSpec& robot : ctx.robots()) {
+      trackers_.emplace(robot.id, WaypointTracker(params_));
+    }
+    const auto keys = ctx.robot_keys();
+    estimates_ = &ctx.subscribe<idl::PoseEstimate>("estimate/pose", InputOptions{keys, 0, false, "", {}});
+    missions_ = &ctx.subscribe<idl::WaypointMission>("mission/waypoints", InputOptions{keys, 0, false, "", {}});
+    cmd_out_ = &ctx.advertise<idl::VelocityCommand>("plant/cmd");
+    status_out_ = &ctx.advertise<idl::ControllerStatus>("control/status");
+  }
+
+  void on_step(const StepInfo&) override {
+    for (auto& [id, tracker] : trackers_) {
+      if (const idl::WaypointMission* mission = missions_->latest(id); mission != nullptr && !tracker.has_mission()) {
+        std::vector<Eigen::Vector2d> waypoints;
+        for (const idl::Waypoint& w : mission->waypoints()) {
+          waypoints.emplace_back(w.x(), w.y());
+        }
+        tracker.set_mission(std::move(waypoints));  // throws on an empty or non-finite mission
+      }
+      const idl::PoseEstimate* estimate = estimates_->latest(id);
+      idl::VelocityCommand cmd;
+      cmd.robot_id(id);
+      cmd.mode(idl::VELOCITY);
+      idl::ControllerStatus status;
+      status.robot_id(id);
+      status.epsilon(params_.epsilon_m);
+      if (tracker.has_mission() && estimate != nullptr && (estimate->valid() || !require_valid_)) {
+        const TrackerOutput out = tracker.step(estimate->x(), estimate->y(), estimate->theta());
+        cmd.v(out.command.v);
+        cmd.omega(out.command.omega);
+        status.waypoint_index(static_cast<std::uint32_t>(out.status.target_index));
+        status.waypoints_total(static_cast<std::uint32_t>(tracker.mission().size()));
+        status.waypoints_reached(static_cast<std::uint32_t>(out.status.reached_count));
+        status.distance_to_waypoint(out.status.distance_to_target_m);
+        status.distance_to_final(out.status.distance_to_final_m);
+        status.alpha(out.status.alpha_rad);
+        status.sigma(out.status.sigma_rad);
+        status.done(out.status.done);
+        status.switched(out.status.reached_this_step);
+        status.switch_distance(out.status.reached_this_step ? out.status.reached_distance_m : 0.0);
+      }
+      cmd_out_->publish(cmd);
+      status_out_->publish(status);
+    }
+  }
+
+ private:
+  ControllerParams params_;
+  bool require_valid_ = true;
+  std::map<std::uint32_t, WaypointTracker> trackers_;
+  Input<idl::PoseEstimate>* estimates_ = nullptr;
+  Input<idl::WaypointMission>* missions_ = nullptr;
+  Output<idl::VelocityCommand>* cmd_out_ = nullptr;
+  Output<idl::ControllerStatus>* status_out_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Component> make_waypoint_controller_node() { return std::make_unique<WaypointControllerNode>(); }
+
+}  // namespace robodds::waypoint

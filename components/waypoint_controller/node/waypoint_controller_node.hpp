@@ -1,0 +1,9 @@
+#pragma once
+#include <memory>
+
+#include "runtime/component.hpp"
+
+namespace robodds::waypoint {
+/// estimate/pose + mission/waypoints in; plant/cmd and control/status out.
+std::unique_ptr<Component> make_waypoint_controller_node();
+}  // namespace robodds::waypoint

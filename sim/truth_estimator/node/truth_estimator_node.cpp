@@ -1,0 +1,43 @@
+#include "sim/truth_estimator/node/truth_estimator_node.hpp"
+
+#include "robodds/idl/robodds.h"
+
+namespace robodds::truth_estimator {
+namespace {
+
+class TruthEstimatorNode : public Component {
+ public:
+  void configure(ComponentContext& ctx) override {
+    ctx.set_rate_hz(ctx.params().get_double("rate_hz"), "rate_hz");
+    keys_ = ctx.robot_keys();
+    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", InputOptions{keys_, 0, false, "", {}});
+    out_ = &ctx.advertise<idl::PoseEstimate>("estimate/pose");
+  }
+
+  void on_step(const StepInfo&) override {
+    for (std::uint64_t key : keys_) {
+      const idl::RobotState* state = truth_->latest(key);
+      if (state == nullptr) {
+        continue;
+      }
+      idl::PoseEstimate estimate;
+      estimate.robot_id(state->robot_id());
+      estimate.x(state->x());
+      estimate.y(state->y());
+      estimate.theta(state->theta());
+      estimate.valid(true);
+      out_->publish(estimate);
+    }
+  }
+
+ private:
+  std::vector<std::uint64_t> keys_;
+  Input<idl::RobotState>* truth_ = nullptr;
+  Output<idl::PoseEstimate>* out_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Component> make_truth_estimator_node() { return std::make_unique<TruthEstimatorNode>(); }
+
+}  // namespace robodds::truth_estimator
