@@ -10,6 +10,7 @@
 #include <fstream>
 #include <sstream>
 #include <thread>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "runtime/dds_bus.hpp"
@@ -215,6 +216,14 @@ int run_host(const Scenario& scenario, const DdsOptions& dds, HostOptions option
   return 0;
 }
 
+/// Runs sim/report/report.py on a run's output directory; returns its exit code.
+int make_plots(const std::string& out_dir) {
+  const std::string script = share_dir() + "/sim/report/report.py";
+  const std::string command = "python3 '" + script + "' '" + out_dir + "'";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+}
+
 std::uint64_t make_run_id() {
   return (static_cast<std::uint64_t>(std::time(nullptr)) << 20) ^ static_cast<std::uint64_t>(getpid());
 }
@@ -299,6 +308,11 @@ int main(int argc, char** argv) {
   echo_cmd->add_option("--timeout", echo_timeout, "s; fail if no sample arrives in time (0 = wait forever)");
   echo_dds.add_to(echo_cmd);
   auto* list_cmd = app.add_subcommand("components", "list the registered component types");
+  auto* report_cmd = app.add_subcommand("report", "(re)generate the plots of a run from its CSVs");
+  std::string report_dir;
+  report_cmd->add_option("out_dir", report_dir, "output directory of a run")->required();
+  bool no_plots = false;
+  run_cmd->add_flag("--no-plots", no_plots, "do not draw the PNG plots at the end");
 
   CLI11_PARSE(app, argc, argv);
 
@@ -396,6 +410,9 @@ int main(int argc, char** argv) {
       std::printf("done: %llu ticks in %.3f s (%.0f ticks/s)\n", static_cast<unsigned long long>(stats.steps), stats.wall_s,
                   stats.wall_s > 0 ? static_cast<double>(stats.steps) / stats.wall_s : 0.0);
       print_summary(out_dir);
+      if (!no_plots && make_plots(out_dir) != 0) {
+        log::warn("run", "plots were not drawn (python3 with matplotlib missing?); the CSVs and summary.json are complete");
+      }
       std::printf("results: %s\n", out_dir.c_str());
       return 0;
     }
@@ -505,6 +522,9 @@ int main(int argc, char** argv) {
       }
       return 0;
     }
+    if (report_cmd->parsed()) {
+      return make_plots(report_dir);
+    }
     if (list_cmd->parsed()) {
       ComponentRegistry registry;
       register_builtin_components(registry);
@@ -516,6 +536,9 @@ int main(int argc, char** argv) {
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "robodds: error: %s\n", e.what());
     return 2;
+  } catch (const RunError& e) {
+    std::fprintf(stderr, "robodds: error: %s\n", e.what());
+    return g_stop ? 130 : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "robodds: error: %s\n", e.what());
     return 1;
