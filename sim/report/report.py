@@ -1,0 +1,397 @@
+#!/usr/bin/env python3
+"""Figures of a robodds run, after paper 1 (Jun et al. 2021, way-point tracking with a particle filter).
+
+    python3 report.py OUT_DIR
+
+reads the per-topic CSV files that `robodds run SCENARIO --out OUT_DIR` wrote and writes, next to them:
+
+  trajectory.png         (paper Fig. 3) true path, PF estimate, way-points, start, per robot
+  velocity.png           (paper Fig. 4) commanded v and omega over time
+  distance.png           (paper Fig. 5) distance to the current and to the final way-point over time
+  pf_error.png           (paper Fig. 2) x / y error of the PF estimate and of the raw position fixes
+  measurement_error.png  as pf_error.png, for runs without estimate_pose.csv (raw fixes only)
+
+A figure whose input files are absent is skipped. Prints the path of each written file, one per line.
+Exit status: 0 on success (also when no figure had its inputs), 2 when OUT_DIR is missing, holds no CSV
+file, or a CSV file is malformed (the one-line message names the file and the column or line), 1 when
+numpy / matplotlib cannot be imported.
+"""
+
+import csv
+import os
+import sys
+
+import importlib.util
+
+if importlib.util.find_spec("numpy") is None or importlib.util.find_spec("matplotlib") is None:
+    # The first python3 on PATH may be another interpreter (pyenv, a venv) without Debian's
+    # python3-matplotlib; run this script again with the system one if that is a different program.
+    _SYSTEM_PYTHON = "/usr/bin/python3"
+    if (__name__ == "__main__" and not os.environ.get("ROBODDS_REPORT_REEXEC")
+            and os.path.exists(_SYSTEM_PYTHON)
+            and os.path.realpath(sys.executable) != os.path.realpath(_SYSTEM_PYTHON)):
+        os.environ["ROBODDS_REPORT_REEXEC"] = "1"
+        os.execv(_SYSTEM_PYTHON, [_SYSTEM_PYTHON, os.path.abspath(__file__)] + sys.argv[1:])
+    if __name__ == "__main__":
+        sys.stderr.write("report: needs numpy and matplotlib (Debian: apt-get install python3-matplotlib), "
+                         "not found for %s\n" % sys.executable)
+        sys.exit(1)
+
+import numpy as np  # noqa: E402
+
+plt = None  # matplotlib.pyplot, imported by _load_matplotlib() only when there is something to draw
+Line2D = None
+
+
+def _load_matplotlib():
+    global plt, Line2D
+    if plt is None:
+        import matplotlib
+
+        matplotlib.use("Agg")
+        import matplotlib.pyplot
+        import matplotlib.lines
+
+        plt = matplotlib.pyplot
+        Line2D = matplotlib.lines.Line2D
+
+
+HEADER = ["t_s", "robot_id", "header.step", "header.next_step", "header.stamp_ns"]
+
+# Columns every known file must have (extra columns are ignored). Files not named here are ignored.
+SCHEMAS = {
+    "plant_state.csv": HEADER + ["x", "y", "theta", "v", "omega"],
+    "plant_cmd.csv": HEADER + ["mode", "v", "omega", "v_left", "v_right"],
+    "sensor_position.csv": HEADER + ["x", "y", "var_x", "var_y"],
+    "sensor_odometry.csv": HEADER + ["v", "omega", "dt_s", "var_v", "var_omega"],
+    "estimate_pose.csv": HEADER + ["x", "y", "theta"] + ["cov[%d]" % i for i in range(9)] + ["valid"],
+    "control_status.csv": HEADER + ["waypoint_index", "waypoints_total", "waypoints_reached",
+                                    "distance_to_waypoint", "distance_to_final", "alpha", "sigma", "done"],
+    "mission_waypoints.csv": HEADER + ["waypoints"],
+}
+TEXT_COLUMNS = {"waypoints"}  # parsed separately; every other column is a number
+
+MODE_WHEEL_SPEEDS = 1  # idl::CommandMode (VELOCITY = 0, WHEEL_SPEEDS = 1)
+DPI = 120
+
+
+class ReportError(Exception):
+    """An input problem; the message is the one line printed before exit status 2."""
+
+
+# ---- reading ----------------------------------------------------------------------------------
+
+def read_table(path, columns):
+    """Reads a CSV file into {column: array} (floats; str arrays for TEXT_COLUMNS); checks the columns."""
+    name = os.path.basename(path)
+    try:
+        with open(path, newline="") as f:
+            rows = list(csv.reader(f))
+    except (OSError, UnicodeDecodeError, csv.Error) as e:
+        raise ReportError("%s: cannot read: %s" % (path, e))
+    if not rows or not any(field.strip() for field in rows[0]):
+        raise ReportError("%s: empty file, no header row" % path)
+    header = [field.strip() for field in rows[0]]
+    for column in columns:
+        if column not in header:
+            raise ReportError("%s: missing column '%s'" % (path, column))
+    body = [(line, row) for line, row in enumerate(rows[1:], start=2) if row]
+    for line, row in body:
+        if len(row) != len(header):
+            raise ReportError("%s: line %d has %d fields, the header has %d" % (path, line, len(row), len(header)))
+    table = {}
+    for column in columns:
+        index = header.index(column)
+        values = [row[index].strip() for _, row in body]
+        if column in TEXT_COLUMNS:
+            table[column] = np.array(values, dtype=object)
+            continue
+        try:
+            table[column] = np.array(values, dtype=float) if values else np.zeros(0)
+        except ValueError:
+            for (line, _), value in zip(body, values):
+                try:
+                    float(value)
+                except ValueError:
+                    raise ReportError("%s: line %d, column '%s': not a number: '%s'" % (path, line, column, value))
+            raise ReportError("%s: column '%s': not a number" % (name, column))  # not reached
+    return table
+
+
+def load(out_dir):
+    """Reads every known CSV file of out_dir: {file name: table}. Raises ReportError on bad input."""
+    if not os.path.isdir(out_dir):
+        raise ReportError("%s: no such directory" % out_dir)
+    csv_files = sorted(f for f in os.listdir(out_dir) if f.endswith(".csv"))
+    if not csv_files:
+        raise ReportError("%s: no CSV file (expected the output of `robodds run SCENARIO --out DIR`)" % out_dir)
+    return {f: read_table(os.path.join(out_dir, f), SCHEMAS[f]) for f in csv_files if f in SCHEMAS}
+
+
+def by_robot(table):
+    """Splits a table into {robot_id: table}, rows of each robot in step order."""
+    groups = {}
+    if table is None or len(table["robot_id"]) == 0:
+        return groups
+    ids = table["robot_id"].astype(np.int64)
+    for robot in sorted(set(ids.tolist())):
+        rows = np.flatnonzero(ids == robot)
+        rows = rows[np.argsort(table["header.step"][rows], kind="stable")]
+        groups[robot] = {column: values[rows] for column, values in table.items()}
+    return groups
+
+
+def parse_waypoints(text):
+    """'x:y;x:y;...' -> (n, 2) array (m)."""
+    points = []
+    for item in str(text).split(";"):
+        item = item.strip()
+        if not item:
+            continue
+        parts = item.split(":")
+        if len(parts) != 2:
+            raise ValueError("way-point '%s' is not x:y" % item)
+        points.append((float(parts[0]), float(parts[1])))
+    return np.array(points, dtype=float).reshape(-1, 2)
+
+
+def waypoints_by_robot(table, path):
+    """Last published mission of each robot: {robot_id: (n, 2) array}."""
+    missions = {}
+    for robot, rows in by_robot(table).items():
+        if len(rows["waypoints"]) == 0:
+            continue
+        try:
+            missions[robot] = parse_waypoints(rows["waypoints"][-1])
+        except ValueError as e:
+            raise ReportError("%s: column 'waypoints': %s" % (path, e))
+    return missions
+
+
+def match_steps(truth, other):
+    """Indices (i_truth, i_other) of the rows of two step-sorted tables with equal header.step."""
+    truth_steps = truth["header.step"]
+    other_steps = other["header.step"]
+    if len(truth_steps) == 0 or len(other_steps) == 0:
+        return np.zeros(0, dtype=int), np.zeros(0, dtype=int)
+    pos = np.clip(np.searchsorted(truth_steps, other_steps), 0, len(truth_steps) - 1)
+    hit = truth_steps[pos] == other_steps
+    return pos[hit], np.flatnonzero(hit)
+
+
+def valid_rows(estimate):
+    keep = estimate["valid"] != 0
+    return {column: values[keep] for column, values in estimate.items()}
+
+
+# ---- figures ----------------------------------------------------------------------------------
+
+def robot_colors(robots):
+    cycle = plt.rcParams["axes.prop_cycle"].by_key().get("color", ["C0"])
+    return {robot: cycle[i % len(cycle)] for i, robot in enumerate(sorted(robots))}
+
+
+def save(fig, out_dir, name, written):
+    path = os.path.join(out_dir, name)
+    fig.savefig(path, dpi=DPI)
+    plt.close(fig)
+    print(path)
+    written.append(path)
+
+
+def plot_trajectory(data, missions, out_dir, written):
+    truth = by_robot(data.get("plant_state.csv"))
+    estimate = {r: valid_rows(t) for r, t in by_robot(data.get("estimate_pose.csv")).items()}
+    robots = sorted(set(truth) | set(estimate))
+    if not robots:
+        return
+    colors = robot_colors(set(robots) | set(missions))
+    fig, ax = plt.subplots(figsize=(7.5, 7.0))
+    for robot in sorted(set(robots) | set(missions)):
+        c = colors[robot]
+        if robot in truth and len(truth[robot]["x"]):
+            t = truth[robot]
+            ax.plot(t["x"], t["y"], "-", color=c, lw=1.6)
+        if robot in estimate and len(estimate[robot]["x"]):
+            e = estimate[robot]
+            ax.plot(e["x"], e["y"], "--", color=c, lw=1.2)
+        start = truth.get(robot) if robot in truth and len(truth[robot]["x"]) else estimate.get(robot)
+        if start is not None and len(start["x"]):
+            ax.plot(start["x"][0], start["y"][0], "o", ms=9, mfc=c, mec="black", zorder=5)
+        if robot in missions and len(missions[robot]):
+            wp = missions[robot]
+            ax.plot(wp[:, 0], wp[:, 1], "^", ms=10, mfc="none", mec=c, mew=1.8, zorder=6)
+            for i, (x, y) in enumerate(wp, start=1):
+                ax.annotate(str(i), (x, y), xytext=(6, 6), textcoords="offset points", color=c, fontsize=9,
+                            fontweight="bold", zorder=7,
+                            bbox=dict(boxstyle="round,pad=0.1", fc="white", ec="none", alpha=0.75))
+    handles = [Line2D([], [], color=colors[r], lw=2, label="robot %d" % r) for r in sorted(colors)]
+    handles.append(Line2D([], [], color="gray", ls="-", label="true path"))
+    if estimate:
+        handles.append(Line2D([], [], color="gray", ls="--", label="estimate"))
+    if missions:
+        handles.append(Line2D([], [], color="gray", ls="none", marker="^", mfc="none", ms=9, label="way-point (order)"))
+    handles.append(Line2D([], [], color="gray", ls="none", marker="o", mec="black", ms=8, label="start"))
+    ax.legend(handles=handles, loc="best", fontsize=8, framealpha=0.85)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title("Trajectory (paper Fig. 3)")
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    save(fig, out_dir, "trajectory.png", written)
+
+
+def command_twist(cmd, state):
+    """Commanded (v, omega) of one robot. WHEEL_SPEEDS rows give v = (v_left + v_right) / 2; their omega needs
+    the wheel base, which is not recorded, so the plant's achieved omega at the same step stands in (NaN if none)."""
+    v = cmd["v"].copy()
+    omega = cmd["omega"].copy()
+    wheels = cmd["mode"] == MODE_WHEEL_SPEEDS
+    if np.any(wheels):
+        v[wheels] = 0.5 * (cmd["v_left"][wheels] + cmd["v_right"][wheels])
+        omega[wheels] = np.nan
+        if state is not None:
+            i_state, i_cmd = match_steps(state, cmd)
+            take = wheels[i_cmd]
+            omega[i_cmd[take]] = state["omega"][i_state[take]]
+    return v, omega
+
+
+def plot_velocity(data, out_dir, written):
+    cmds = by_robot(data.get("plant_cmd.csv"))
+    if not cmds:
+        return
+    states = by_robot(data.get("plant_state.csv"))
+    colors = robot_colors(cmds)
+    fig, (ax_v, ax_w) = plt.subplots(2, 1, sharex=True, figsize=(8.0, 6.0))
+    for robot, cmd in cmds.items():
+        v, omega = command_twist(cmd, states.get(robot))
+        ax_v.plot(cmd["t_s"], v, color=colors[robot], lw=1.3, drawstyle="steps-post", label="robot %d" % robot)
+        ax_w.plot(cmd["t_s"], omega, color=colors[robot], lw=1.3, drawstyle="steps-post", label="robot %d" % robot)
+    ax_v.set_ylabel("v [m/s]")
+    ax_w.set_ylabel(r"$\omega$ [rad/s]")
+    ax_w.set_xlabel("time [s]")
+    ax_v.set_title("Commanded velocities (paper Fig. 4)")
+    for ax in (ax_v, ax_w):
+        ax.grid(True, alpha=0.3)
+        ax.axhline(0.0, color="black", lw=0.6)
+    ax_v.legend(loc="best", fontsize=8)
+    fig.tight_layout()
+    save(fig, out_dir, "velocity.png", written)
+
+
+def plot_distance(data, out_dir, written):
+    status = by_robot(data.get("control_status.csv"))
+    if not status:
+        return
+    colors = robot_colors(status)
+    fig, (ax_wp, ax_final) = plt.subplots(2, 1, sharex=True, figsize=(8.0, 6.0))
+    any_reached = False
+    for robot, s in status.items():
+        c = colors[robot]
+        ax_wp.plot(s["t_s"], s["distance_to_waypoint"], color=c, lw=1.3, label="robot %d" % robot)
+        ax_final.plot(s["t_s"], s["distance_to_final"], color=c, lw=1.3, label="robot %d" % robot)
+        # Mark each way-point reached (waypoints_reached goes up) on the upper plot.
+        up = np.flatnonzero(np.diff(s["waypoints_reached"]) > 0) + 1
+        if len(up):
+            ax_wp.plot(s["t_s"][up], s["distance_to_waypoint"][up - 1], "v", color=c, ms=6, ls="none")
+            any_reached = True
+    ax_wp.set_ylabel("to current way-point [m]")
+    ax_final.set_ylabel("to final way-point [m]")
+    ax_final.set_xlabel("time [s]")
+    ax_wp.set_title("Distance to the way-points (paper Fig. 5)")
+    for ax in (ax_wp, ax_final):
+        ax.grid(True, alpha=0.3)
+        ax.set_ylim(bottom=0.0)
+    handles = [Line2D([], [], color=colors[r], lw=1.5, label="robot %d" % r) for r in sorted(status)]
+    if any_reached:
+        handles.append(Line2D([], [], color="gray", ls="none", marker="v", ms=6, label="way-point reached"))
+    ax_wp.legend(handles=handles, loc="best", fontsize=8)
+    fig.tight_layout()
+    save(fig, out_dir, "distance.png", written)
+
+
+def rmse(values):
+    values = values[np.isfinite(values)]
+    return float(np.sqrt(np.mean(values * values))) if len(values) else float("nan")
+
+
+def plot_errors(data, out_dir, written):
+    """pf_error.png (estimate and raw fixes vs truth) or, without estimate_pose.csv, measurement_error.png."""
+    truth = by_robot(data.get("plant_state.csv"))
+    if not truth:
+        return
+    has_estimate = "estimate_pose.csv" in data
+    estimates = {r: valid_rows(t) for r, t in by_robot(data.get("estimate_pose.csv")).items()}
+    fixes = by_robot(data.get("sensor_position.csv"))
+    if not has_estimate and "sensor_position.csv" not in data:
+        return
+    colors = robot_colors(set(truth) | set(estimates) | set(fixes))
+    fig, axes = plt.subplots(2, 1, sharex=True, figsize=(8.0, 6.5))
+    for robot in sorted(colors):
+        if robot not in truth:
+            continue
+        c = colors[robot]
+        for source, rows in (("measurement", fixes.get(robot)), ("estimate", estimates.get(robot))):
+            if rows is None:
+                continue
+            i_truth, i_rows = match_steps(truth[robot], rows)
+            if not len(i_rows):
+                continue
+            t = rows["t_s"][i_rows]
+            for ax, axis in zip(axes, ("x", "y")):
+                err = rows[axis][i_rows] - truth[robot][axis][i_truth]
+                label = "robot %d %s (RMSE %.3g m)" % (robot, source, rmse(err))
+                if source == "measurement":
+                    ax.plot(t, err, ".", color=c, ms=3.5, alpha=0.45, label=label)
+                else:
+                    ax.plot(t, err, "-", color=c, lw=1.5, label=label)
+    for ax, axis in zip(axes, ("x", "y")):
+        ax.set_ylabel("%s error [m]" % axis)
+        ax.axhline(0.0, color="black", lw=0.6)
+        ax.grid(True, alpha=0.3)
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(loc="upper right", fontsize=7, framealpha=0.85)
+    axes[1].set_xlabel("time [s]")
+    if has_estimate:
+        axes[0].set_title("Estimate (PF) and raw measurement error vs truth (paper Fig. 2)")
+        name = "pf_error.png"
+    else:
+        axes[0].set_title("Raw position measurement error vs truth")
+        name = "measurement_error.png"
+    fig.tight_layout()
+    save(fig, out_dir, name, written)
+
+
+def report(out_dir):
+    """Writes the figures of out_dir; returns the written paths. Raises ReportError on bad input."""
+    data = load(out_dir)
+    # Every input check happens before the first figure, so bad input leaves no figure behind.
+    missions = waypoints_by_robot(data.get("mission_waypoints.csv"), os.path.join(out_dir, "mission_waypoints.csv"))
+    written = []
+    if data:
+        _load_matplotlib()
+    plot_trajectory(data, missions, out_dir, written)
+    plot_velocity(data, out_dir, written)
+    plot_distance(data, out_dir, written)
+    plot_errors(data, out_dir, written)
+    return written
+
+
+def main(argv):
+    if len(argv) != 1 or argv[0] in ("-h", "--help"):
+        sys.stderr.write("usage: report.py OUT_DIR   (the --out directory of `robodds run`)\n")
+        return 2
+    try:
+        written = report(argv[0])
+    except ReportError as e:
+        sys.stderr.write("report: %s\n" % e)
+        return 2
+    if not written:
+        sys.stderr.write("report: %s: no figure has its input files, nothing written\n" % argv[0])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
