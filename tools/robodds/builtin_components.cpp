@@ -1,6 +1,7 @@
 #include "tools/robodds/builtin_components.hpp"
 
 #include "components/odometry_sensor/node/odometry_sensor_node.hpp"
+#include "components/pf_estimator/node/pf_estimator_node.hpp"
 #include "components/position_sensor/node/position_sensor_node.hpp"
 #include "components/waypoint_controller/node/waypoint_controller_node.hpp"
 #include "sim/evaluator/node/evaluator_node.hpp"
@@ -24,6 +25,8 @@ void register_builtin_components(ComponentRegistry& registry) {
                 "sim/mission/config/mission_source.params.yaml", mission::make_mission_node});
   registry.add({"waypoint_controller", "paper 1 way-point tracking: estimate/pose + mission/waypoints -> plant/cmd, control/status",
                 "components/waypoint_controller/config/waypoint_controller.params.yaml", waypoint::make_waypoint_controller_node});
+  registry.add({"pf_estimator", "paper 1 particle filter, full pose: sensor/odometry + sensor/position -> estimate/pose",
+                "components/pf_estimator/config/pf_estimator.params.yaml", pf::make_pf_estimator_node});
   registry.add({"truth_estimator", "ideal estimator: plant/state -> estimate/pose (true pose)",
                 "sim/truth_estimator/config/truth_estimator.params.yaml", truth_estimator::make_truth_estimator_node});
   registry.add({"evaluator", "records topics to CSV and writes summary.json",

@@ -162,6 +162,8 @@ class EvaluatorNode : public Component {
     json.begin_object("metrics");
     double fix_sq = 0.0;
     double est_sq = 0.0;
+    double heading_sq = 0.0;
+    std::size_t heading_n = 0;
     std::size_t fix_n = 0;
     std::size_t est_n = 0;
     json.begin_object("robots");
@@ -188,6 +190,8 @@ class EvaluatorNode : public Component {
           json.value("pf_rmse_m", e.rmse).value("heading_rmse_deg", h.rmse * 180.0 / 3.14159265358979323846);
           est_sq += e.rmse * e.rmse * static_cast<double>(e.count);
           est_n += e.count;
+          heading_sq += h.rmse * h.rmse * static_cast<double>(h.count);
+          heading_n += h.count;
         }
         write_waypoint_metrics(json, id, truth->second);
       }
@@ -204,6 +208,9 @@ class EvaluatorNode : public Component {
     }
     if (est_n > 0) {
       json.value("pf_rmse_m", std::sqrt(est_sq / static_cast<double>(est_n)));
+    }
+    if (heading_n > 0) {
+      json.value("heading_rmse_deg", std::sqrt(heading_sq / static_cast<double>(heading_n)) * 180.0 / 3.14159265358979323846);
     }
     json.begin_object("samples");
     for (const auto& recorder : recorders_) {

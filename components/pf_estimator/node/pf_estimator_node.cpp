@@ -1,0 +1,122 @@
+// Adapter: Odometry/PositionMeasurement -> ParticleFilter -> PoseEstimate.
+#include "components/pf_estimator/node/pf_estimator_node.hpp"
+
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "components/pf_estimator/particle_filter.hpp"
+#include "robodds/idl/robodds.h"
+
+namespace robodds::pf {
+namespace {
+
+class PfEstimatorNode : public Component {
+ public:
+  void configure(ComponentContext& ctx) override {
+    auto& p = ctx.params();
+    const double rate_hz = p.get_double("rate_hz");
+    PfParams params;
+    params.num_particles = static_cast<int>(p.get_int("num_particles"));
+    params.resample_threshold = p.get_double("resample_threshold");
+    const std::string resampling = p.get_string("resampling");
+    params.measurement_std_m = p.get_double("measurement_std_m");
+    params.odom_v_std_mps = p.get_double("odom_v_std_mps");
+    params.odom_omega_std_radps = p.get_double("odom_omega_std_radps");
+    params.process_pos_std_m = p.get_double("process_pos_std_m");
+    params.process_theta_std_rad = p.get_double("process_theta_std_rad");
+    params.regularization_scale = p.get_double("regularization_scale");
+    const std::string init_mode = p.get_string("init_mode");
+    params.init_area_min_x = p.get_double("init_area_min_x");
+    params.init_area_max_x = p.get_double("init_area_max_x");
+    params.init_area_min_y = p.get_double("init_area_min_y");
+    params.init_area_max_y = p.get_double("init_area_max_y");
+    params.init_theta_known = p.get_bool("init_theta_known");
+    params.init_theta_rad = p.get_double("init_theta_rad");
+    params.init_fix_std_m = p.get_double("init_fix_std_m");
+    valid_max_std_m_ = p.get_double("valid_max_position_std_m");
+    try {
+      params.resampling = resampling_scheme_from_string(resampling);
+    } catch (const std::exception& e) {
+      p.fail(e.what());
+    }
+    try {
+      params.init_mode = init_mode_from_string(init_mode);
+    } catch (const std::exception& e) {
+      p.fail(e.what());
+    }
+    if (!(valid_max_std_m_ > 0.0)) {
+      p.fail("valid_max_position_std_m: must be > 0");
+    }
+    p.validate(params);
+    ctx.set_rate_hz(rate_hz, "rate_hz");
+    for (const RobotSpec& robot : ctx.robots()) {
+      filters_.emplace(robot.id, std::make_unique<ParticleFilter>(params, ctx.seed_for("robot" + std::to_string(robot.id))));
+    }
+    const auto keys = ctx.robot_keys();
+    odometry_ = &ctx.subscribe<idl::Odometry>("sensor/odometry", InputOptions{keys, 0, false, "", {}});
+    fixes_ = &ctx.subscribe<idl::PositionMeasurement>("sensor/position", InputOptions{keys, 0, false, "", {}});
+    out_ = &ctx.advertise<idl::PoseEstimate>("estimate/pose");
+  }
+
+  void on_step(const StepInfo&) override {
+    for (auto& [id, filter] : filters_) {
+      const std::vector<idl::Odometry> odometry = odometry_->take_new(id);
+      const std::vector<idl::PositionMeasurement> fixes = fixes_->take_new(id);
+      // Merge by step: odometry of step s covers the motion up to s, so it goes before a fix of s.
+      std::size_t next_odometry = 0;
+      for (const idl::PositionMeasurement& fix : fixes) {
+        for (; next_odometry < odometry.size() && odometry[next_odometry].header().step() <= fix.header().step(); ++next_odometry) {
+          predict(*filter, odometry[next_odometry]);
+        }
+        if (!filter->initialized()) {
+          if (filter->params().init_mode == InitMode::kFirstFix) {
+            filter->initialize_around(fix.x(), fix.y());
+            continue;  // the first fix seeds the cloud; it is not also used as an update
+          }
+          filter->initialize_uniform();
+        }
+        filter->update(fix.x(), fix.y());
+      }
+      for (; next_odometry < odometry.size(); ++next_odometry) {
+        predict(*filter, odometry[next_odometry]);
+      }
+      publish(id, *filter);
+    }
+  }
+
+ private:
+  static void predict(ParticleFilter& filter, const idl::Odometry& odometry) {
+    if (filter.initialized() && odometry.dt_s() > 0.0) {
+      filter.predict(odometry.v(), odometry.omega(), odometry.dt_s());
+    }
+  }
+
+  void publish(std::uint32_t id, const ParticleFilter& filter) {
+    idl::PoseEstimate m;
+    m.robot_id(id);
+    if (filter.initialized()) {
+      const PoseEstimate e = filter.estimate();
+      m.x(e.mean.x());
+      m.y(e.mean.y());
+      m.theta(e.mean.z());
+      for (int i = 0; i < 9; ++i) {
+        m.cov()[static_cast<std::size_t>(i)] = e.covariance(i / 3, i % 3);
+      }
+      m.valid(std::sqrt(e.covariance(0, 0) + e.covariance(1, 1)) < valid_max_std_m_);
+    }
+    out_->publish(m);
+  }
+
+  std::map<std::uint32_t, std::unique_ptr<ParticleFilter>> filters_;
+  double valid_max_std_m_ = 3.0;
+  Input<idl::Odometry>* odometry_ = nullptr;
+  Input<idl::PositionMeasurement>* fixes_ = nullptr;
+  Output<idl::PoseEstimate>* out_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Component> make_pf_estimator_node() { return std::make_unique<PfEstimatorNode>(); }
+
+}  // namespace robodds::pf

@@ -1,0 +1,107 @@
+#pragma once
+// Particle-filter pose estimator of paper 1, section 2 (eq. 4-7), extended from the paper's
+// position state [p_x, p_y] to the pose [x, y, theta] so the motion model can be driven by
+// odometry and the heading is learned from the fixes while the robot moves.
+//
+// Frames and units: world frame, x/y in m, theta in rad counter-clockwise from world +x,
+// wrapped to (-pi, pi]. Speeds in m/s and rad/s, time steps in s.
+//
+// Cycle: predict() for every odometry sample, update() for every position fix, estimate() when
+// an output is wanted. Not thread-safe; one instance per robot. All randomness comes from one
+// RandomEngine seeded in the constructor, so the same seed and inputs give bit-identical output.
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "common/random.hpp"
+#include "components/pf_estimator/particle_set.hpp"
+#include "components/pf_estimator/pf_params.hpp"
+#include "components/pf_estimator/pose_estimate.hpp"
+
+namespace robodds::pf {
+
+class ParticleFilter {
+ public:
+  using PoseEstimate = pf::PoseEstimate;
+
+  /// Validates `params` (std::invalid_argument on a bad value). In kUniformArea mode the cloud is
+  /// created here (the paper's k = 0 step); in kFirstFix mode it waits for the first update().
+  ParticleFilter(const PfParams& params, std::uint64_t seed);
+
+  const PfParams& params() const { return params_; }
+
+  /// False only in kFirstFix mode before the first fix (or initialize_*/set_particles call).
+  bool initialized() const { return initialized_; }
+
+  /// M particles uniform over the init area (heading known or uniform), weights 1/M.
+  void initialize_uniform();
+
+  /// M particles Gaussian (std init_fix_std_m) around the fix (x_m, y_m), heading as in
+  /// initialize_uniform(); weights 1/M. Throws std::invalid_argument on non-finite input.
+  void initialize_around(double x_m, double y_m);
+
+  /// Propagates every particle over dt_s with the measured odometry (v_mps forward, omega_radps
+  /// counter-clockwise): each particle draws its own v + N(0, odom_v_std_mps^2) and
+  /// omega + N(0, odom_omega_std_radps^2), moves on the exact constant-(v, omega) arc, then gets
+  /// the additive process diffusion. dt_s == 0 changes nothing; before initialisation the call is
+  /// ignored (odometry without a pose carries no position information).
+  /// Throws std::invalid_argument (state untouched) on non-finite input or dt_s < 0.
+  void predict(double v_mps, double omega_radps, double dt_s);
+
+  /// Weights the particles with the position fix (z_x_m, z_y_m) (eq. 5, log space), normalises,
+  /// computes N_eff (eq. 6) and resamples when N_eff < resample_threshold (then jitters the
+  /// copies if regularization_scale > 0, see regularization.hpp). Degenerate weights are
+  /// reset to uniform. In kFirstFix mode the first fix initialises the cloud around itself
+  /// instead (it is not weighted a second time).
+  /// Throws std::invalid_argument (state untouched) on non-finite input.
+  void update(double z_x_m, double z_y_m);
+
+  /// N_eff of the current weights (M right after resampling or initialisation).
+  double effective_sample_size() const;
+  /// N_eff computed by the last update() before any resampling: the value compared with N_s.
+  double last_update_effective_sample_size() const { return last_update_ess_; }
+  bool last_update_resampled() const { return last_update_resampled_; }
+  /// Number of resampling steps since construction.
+  std::size_t resample_count() const { return resample_count_; }
+
+  /// Weighted mean and covariance (eq. 7, circular mean for theta).
+  /// Throws std::logic_error before initialisation.
+  PoseEstimate estimate() const;
+
+  const ParticleSet& particles() const { return particles_; }
+  /// Normalised weights, sum 1.
+  const Eigen::ArrayXd& weights() const { return weights_; }
+
+  /// Replaces the particle set (sizes must equal M, values finite; theta is wrapped) and the
+  /// weights (finite, >= 0, positive sum; normalised here). For tests and state restore.
+  /// Throws std::invalid_argument, leaving the state untouched, on bad input.
+  void set_particles(const ParticleSet& particles, const Eigen::ArrayXd& weights);
+
+ private:
+  double draw_heading();
+  double noise(double std_dev);
+  void reset_weights_to_uniform();
+  void resample();
+
+  PfParams params_;
+  RandomEngine engine_;
+  Eigen::Index num_particles_;
+  bool initialized_ = false;
+
+  ParticleSet particles_;
+  Eigen::ArrayXd weights_;      // normalised
+  Eigen::ArrayXd log_weights_;  // log(weights_), kept so tiny weights keep their ratios
+
+  // Reused by resample() so the filter does not allocate after construction.
+  ParticleSet resample_buffer_;
+  std::vector<std::size_t> ancestor_indices_;
+
+  double last_update_ess_;
+  bool last_update_resampled_ = false;
+  std::size_t resample_count_ = 0;
+};
+
+}  // namespace robodds::pf

@@ -1,0 +1,43 @@
+#include "components/pf_estimator/pose_estimate.hpp"
+
+#include <cmath>
+
+#include "components/pf_estimator/angle_near.hpp"
+
+namespace robodds::pf {
+
+PoseEstimate weighted_pose_estimate(const ParticleSet& particles,
+                                    const Eigen::ArrayXd& normalized_weights) {
+  const Eigen::ArrayXd& w = normalized_weights;
+  PoseEstimate estimate;
+  const double mean_x = (w * particles.x).sum();
+  const double mean_y = (w * particles.y).sum();
+  // One loop with sin and cos of the same angle: the compiler fuses them into one sincos call.
+  double sum_sin = 0.0;
+  double sum_cos = 0.0;
+  for (Eigen::Index i = 0; i < w.size(); ++i) {
+    sum_sin += w[i] * std::sin(particles.theta[i]);
+    sum_cos += w[i] * std::cos(particles.theta[i]);
+  }
+  const double mean_theta = std::atan2(sum_sin, sum_cos);
+  estimate.mean << mean_x, mean_y, mean_theta;
+
+  double xx = 0.0, xy = 0.0, xt = 0.0, yy = 0.0, yt = 0.0, tt = 0.0;
+  for (Eigen::Index i = 0; i < w.size(); ++i) {
+    const double dx = particles.x[i] - mean_x;
+    const double dy = particles.y[i] - mean_y;
+    const double dt = wrap_angle_near(particles.theta[i] - mean_theta);
+    xx += w[i] * dx * dx;
+    xy += w[i] * dx * dy;
+    xt += w[i] * dx * dt;
+    yy += w[i] * dy * dy;
+    yt += w[i] * dy * dt;
+    tt += w[i] * dt * dt;
+  }
+  estimate.covariance << xx, xy, xt,  //
+      xy, yy, yt,                     //
+      xt, yt, tt;
+  return estimate;
+}
+
+}  // namespace robodds::pf

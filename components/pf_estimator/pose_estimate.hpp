@@ -1,0 +1,24 @@
+#pragma once
+// State output of paper 1, eq. (7): the weighted mean of the particles, extended to heading.
+
+#include <Eigen/Core>
+
+#include "components/pf_estimator/particle_set.hpp"
+
+namespace robodds::pf {
+
+struct PoseEstimate {
+  /// [x (m), y (m), theta (rad, (-pi, pi])], world frame.
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  /// Weighted covariance of [x, y, theta] about `mean` (m^2, m rad, rad^2). Heading residuals
+  /// are wrapped to (-pi, pi] before use. Normalised weights, no small-sample correction.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+};
+
+/// x, y: sum_i w_i x_i (eq. 7). theta: circular mean atan2(sum w_i sin theta_i, sum w_i cos theta_i),
+/// since an arithmetic mean of angles near +-pi points the wrong way.
+/// `normalized_weights` must sum to 1 and have the size of `particles`.
+PoseEstimate weighted_pose_estimate(const ParticleSet& particles,
+                                    const Eigen::ArrayXd& normalized_weights);
+
+}  // namespace robodds::pf

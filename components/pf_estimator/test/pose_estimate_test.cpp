@@ -1,0 +1,62 @@
+#include "components/pf_estimator/pose_estimate.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/angle.hpp"
+
+namespace robodds::pf {
+namespace {
+
+ParticleSet make_particles(std::initializer_list<double> x, std::initializer_list<double> y,
+                           std::initializer_list<double> theta) {
+  ParticleSet particles;
+  particles.resize(static_cast<Eigen::Index>(x.size()));
+  Eigen::Index i = 0;
+  for (const double v : x) particles.x[i++] = v;
+  i = 0;
+  for (const double v : y) particles.y[i++] = v;
+  i = 0;
+  for (const double v : theta) particles.theta[i++] = v;
+  return particles;
+}
+
+TEST(WeightedPoseEstimate, PositionIsTheWeightedMeanOfEquationSeven) {
+  const ParticleSet particles = make_particles({0.0, 2.0, 4.0}, {1.0, 1.0, -2.0}, {0.1, 0.1, 0.1});
+  Eigen::ArrayXd w(3);
+  w << 0.5, 0.25, 0.25;
+  const PoseEstimate estimate = weighted_pose_estimate(particles, w);
+  EXPECT_NEAR(estimate.mean.x(), 1.5, 1e-15);
+  EXPECT_NEAR(estimate.mean.y(), 0.25, 1e-15);
+  EXPECT_NEAR(estimate.mean.z(), 0.1, 1e-15);
+  // var x = 0.5*2.25 + 0.25*0.25 + 0.25*6.25; cov xy = 0.5*(-1.5)(0.75) + 0.25*0.5*0.75 + 0.25*2.5*(-2.25)
+  EXPECT_NEAR(estimate.covariance(0, 0), 2.75, 1e-12);
+  EXPECT_NEAR(estimate.covariance(0, 1), -1.875, 1e-12);
+  EXPECT_NEAR(estimate.covariance(1, 0), -1.875, 1e-12);
+  EXPECT_NEAR(estimate.covariance(1, 1), 0.5 * 0.5625 + 0.25 * 0.5625 + 0.25 * 5.0625, 1e-12);
+  EXPECT_NEAR(estimate.covariance(2, 2), 0.0, 1e-15);
+}
+
+TEST(WeightedPoseEstimate, HeadingMeanAndSpreadAreCircularAcrossPlusMinusPi) {
+  // An arithmetic mean of these two would point to 0, i.e. exactly backwards.
+  const ParticleSet particles = make_particles({0.0, 0.0}, {0.0, 0.0}, {kPi - 0.1, -kPi + 0.1});
+  Eigen::ArrayXd w(2);
+  w << 0.5, 0.5;
+  const PoseEstimate estimate = weighted_pose_estimate(particles, w);
+  EXPECT_NEAR(std::abs(wrap_angle(estimate.mean.z() - kPi)), 0.0, 1e-12);
+  EXPECT_NEAR(estimate.covariance(2, 2), 0.01, 1e-12);
+}
+
+TEST(WeightedPoseEstimate, CovarianceIsSymmetricWithHeadingCrossTerms) {
+  const ParticleSet particles = make_particles({-1.0, 1.0}, {0.0, 0.0}, {-0.2, 0.2});
+  Eigen::ArrayXd w(2);
+  w << 0.5, 0.5;
+  const PoseEstimate estimate = weighted_pose_estimate(particles, w);
+  EXPECT_NEAR(estimate.covariance(0, 2), 0.2, 1e-12);
+  EXPECT_EQ(estimate.covariance(0, 2), estimate.covariance(2, 0));
+  EXPECT_NEAR(estimate.covariance(2, 2), 0.04, 1e-12);
+}
+
+}  // namespace
+}  // namespace robodds::pf
