@@ -1,8 +1,10 @@
 #pragma once
 // Text forms of IDL samples, built on the generated visit_fields(): CSV rows for the evaluator
-// (exact: doubles with 17 significant digits, so outputs can be compared byte for byte) and
+// (exact: the shortest round-trip text of each double, so outputs can be compared byte for byte) and
 // readable "field: value" text for `robodds echo`.
 
+#include <charconv>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 #include <type_traits>
@@ -14,13 +16,32 @@ namespace robodds {
 namespace detail {
 
 inline void append_scalar(std::string& out, double value) {
+  // Shortest text that parses back to the same double (exact, and ~10x cheaper than %.17g,
+  // which dominated the co-located lockstep profile when every sample is recorded).
   char buf[32];
-  std::snprintf(buf, sizeof(buf), "%.17g", value);
-  out += buf;
+  const std::to_chars_result r = std::to_chars(buf, buf + sizeof(buf), value);
+  out.append(buf, r.ptr);
 }
 
 template <class V>
 void append_value(std::string& out, const V& value);
+
+}  // namespace detail
+
+/// Appends a time in ns as seconds with 9 decimals ("12.340000000"), exactly, with integer
+/// arithmetic (no rounding through double). Negative times get a leading '-'.
+inline void append_seconds(std::string& out, std::int64_t ns) {
+  const std::uint64_t magnitude = ns < 0 ? 0 - static_cast<std::uint64_t>(ns) : static_cast<std::uint64_t>(ns);
+  if (ns < 0) {
+    out += '-';
+  }
+  out += std::to_string(magnitude / 1000000000ULL);
+  char fraction[11];
+  std::snprintf(fraction, sizeof(fraction), ".%09llu", static_cast<unsigned long long>(magnitude % 1000000000ULL));
+  out += fraction;
+}
+
+namespace detail {
 
 template <class S>
 void append_struct(std::string& out, const S& value) {

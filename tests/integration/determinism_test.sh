@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# plant_smoke co-located vs one process per group: byte-identical CSVs, identical metrics.
+# A scenario (default plant_smoke) co-located vs one process per group: byte-identical CSVs,
+# identical metrics. Arguments after the domain: scenario name, optional duration override (s).
 source "$(dirname "$0")/lib.sh"
 SCENARIO="$SRC/sim/scenarios/${4:-plant_smoke}.yaml"
-timeout -k 5 300 "$ROBODDS" run "$SCENARIO" --out "$WORK/colocated" --domain "$DOMAIN" --no-plots >/dev/null
-timeout -k 5 300 "$ROBODDS" run "$SCENARIO" --out "$WORK/processes" --domain "$DOMAIN" --deploy processes --no-plots >/dev/null
+DURATION=()
+[[ -n "${5:-}" ]] && DURATION=(--duration "$5")
+timeout -k 5 300 "$ROBODDS" run "$SCENARIO" "${DURATION[@]}" --out "$WORK/colocated" --domain "$DOMAIN" --no-plots >/dev/null
+timeout -k 5 300 "$ROBODDS" run "$SCENARIO" "${DURATION[@]}" --out "$WORK/processes" --domain "$DOMAIN" --deploy processes --no-plots >/dev/null
 n=0
 for f in "$WORK"/colocated/*.csv; do
   cmp "$f" "$WORK/processes/$(basename "$f")" || fail "$(basename "$f") differs between deployments"

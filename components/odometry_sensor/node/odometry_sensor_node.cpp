@@ -4,6 +4,7 @@
 
 #include "common/random.hpp"
 #include "components/odometry_sensor/odometry_model.hpp"
+#include "components/odometry_sensor/twist_accumulator.hpp"
 #include "robodds/idl/robodds.h"
 
 namespace robodds::odometry_sensor {
@@ -21,27 +22,22 @@ class OdometrySensorNode : public Component {
     p.validate(params_);
     ctx.set_rate_hz(params_.rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {
-      robots_.emplace(robot.id, Robot{RandomEngine(ctx.seed_for("robot" + std::to_string(robot.id))), 0.0, 0.0, 0.0});
+      robots_.emplace(robot.id, Robot{RandomEngine(ctx.seed_for("robot" + std::to_string(robot.id))), TwistAccumulator{}});
     }
     truth_ = &ctx.subscribe<idl::RobotState>("plant/state", InputOptions{ctx.robot_keys(), 0, false, "", {}});
     out_ = &ctx.advertise<idl::Odometry>("sensor/odometry");
     step_s_ = ctx.step_s();
-    realtime_ = ctx.mode() == TimeMode::kRealtime;
   }
 
-  void on_step(const StepInfo& info) override {
+  void on_step(const StepInfo&) override {
     for (auto& [id, robot] : robots_) {
-      // Each state carries the twist applied over its own step: sum them into wheel travel.
+      // Each state carries the twist applied over its own step(s): sum them into wheel travel.
       for (const idl::RobotState& state : truth_->take_new(id)) {
-        const double dt = realtime_ ? info.dt_s : step_s_;
-        robot.distance += state.v() * dt;
-        robot.turn += state.omega() * dt;
-        robot.elapsed += dt;
+        const double covered_s = static_cast<double>(state.header().next_step() - state.header().step()) * step_s_;
+        robot.travel.add(plant::Twist{state.v(), state.omega()}, covered_s);
       }
-      const double interval = realtime_ ? info.dt_s : robot.elapsed;
-      const plant::Twist mean = interval > 0.0 ? plant::Twist{robot.distance / interval, robot.turn / interval} : plant::Twist{};
-      const OdometryReading reading = measure_odometry(mean, interval, params_, robot.engine);
-      robot.distance = robot.turn = robot.elapsed = 0.0;
+      const OdometryReading reading = measure_odometry(robot.travel.mean(), robot.travel.elapsed_s(), params_, robot.engine);
+      robot.travel.reset();
       idl::Odometry m;
       m.robot_id(id);
       m.v(reading.v);
@@ -56,9 +52,7 @@ class OdometrySensorNode : public Component {
  private:
   struct Robot {
     RandomEngine engine;
-    double distance;  // m travelled since the last reading
-    double turn;      // rad turned since the last reading
-    double elapsed;   // s covered by the summed states
+    TwistAccumulator travel;  // true twist since the last reading
   };
 
   OdometryParams params_;
@@ -66,7 +60,6 @@ class OdometrySensorNode : public Component {
   Input<idl::RobotState>* truth_ = nullptr;
   Output<idl::Odometry>* out_ = nullptr;
   double step_s_ = 0.01;
-  bool realtime_ = false;
 };
 
 }  // namespace

@@ -78,9 +78,8 @@ class Recorder : public RecorderBase {
   void collect(const std::vector<std::uint64_t>& keys, Histories& histories) override {
     for (std::uint64_t key : keys) {
       for (const Msg& sample : input_->take_new(key)) {
-        char t[32];
-        std::snprintf(t, sizeof(t), "%.9f,", static_cast<double>(sample.header().stamp_ns()) * 1e-9);
-        text_ += t;
+        append_seconds(text_, static_cast<std::int64_t>(sample.header().stamp_ns()));
+        text_ += ',';
         append_csv_row(text_, sample);
         text_ += '\n';
         ++rows_;

@@ -1,5 +1,7 @@
 #include "sim/truth_estimator/node/truth_estimator_node.hpp"
 
+#include <limits>
+
 #include "robodds/idl/robodds.h"
 
 namespace robodds::truth_estimator {
@@ -9,12 +11,13 @@ class TruthEstimatorNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
     ctx.set_rate_hz(ctx.params().get_double("rate_hz"), "rate_hz");
+    inject_nan_at_step_ = ctx.params().get_int("inject_nan_at_step");
     keys_ = ctx.robot_keys();
     truth_ = &ctx.subscribe<idl::RobotState>("plant/state", InputOptions{keys_, 0, false, "", {}});
     out_ = &ctx.advertise<idl::PoseEstimate>("estimate/pose");
   }
 
-  void on_step(const StepInfo&) override {
+  void on_step(const StepInfo& info) override {
     for (std::uint64_t key : keys_) {
       const idl::RobotState* state = truth_->latest(key);
       if (state == nullptr) {
@@ -26,11 +29,15 @@ class TruthEstimatorNode : public Component {
       estimate.y(state->y());
       estimate.theta(state->theta());
       estimate.valid(true);
+      if (inject_nan_at_step_ >= 0 && info.step == static_cast<std::uint64_t>(inject_nan_at_step_)) {
+        estimate.x(std::numeric_limits<double>::quiet_NaN());  // fault injection for consumer tests
+      }
       out_->publish(estimate);
     }
   }
 
  private:
+  std::int64_t inject_nan_at_step_ = -1;
   std::vector<std::uint64_t> keys_;
   Input<idl::RobotState>* truth_ = nullptr;
   Output<idl::PoseEstimate>* out_ = nullptr;

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Paper 1 end to end with the particle filter in the loop (sim/scenarios/paper1_waypoints.yaml):
+# every way-point reached at epsilon 0.1 m, PF position RMSE at most half the raw measurement
+# RMSE, the heading learned from motion (unknown initial heading), the true switch distances
+# reported next to the estimated ones, and the paper's figures written next to summary.json.
+source "$(dirname "$0")/../integration/lib.sh"
+timeout -k 5 300 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --out "$WORK/run" --domain "$DOMAIN" \
+  >"$WORK/run.log" 2>&1 || fail "run failed: $(tail -5 "$WORK/run.log")"
+python3 - "$WORK/run/summary.json" <<'PY' || fail "metrics check failed"
+import json, sys
+m = json.load(open(sys.argv[1]))["metrics"]
+def check(ok, what):
+    if not ok:
+        sys.exit("FAIL: " + what)
+check(m["waypoints_reached"] == 18, f"reached {m['waypoints_reached']}/18")
+check(m["epsilon"] == 0.1, f"epsilon {m['epsilon']}")
+check(m["pf_rmse_m"] <= 0.5 * m["measurement_rmse_m"], f"PF RMSE {m['pf_rmse_m']} > half the measurement RMSE {m['measurement_rmse_m']}")
+# Measurement noise is 2.28 m^2 per axis: the raw position RMSE must be near sqrt(2 * 2.28) = 2.14 m.
+check(1.9 < m["measurement_rmse_m"] < 2.4, f"measurement RMSE {m['measurement_rmse_m']} does not match the sensor noise")
+check(m["heading_rmse_deg"] < 10.0, f"heading RMSE {m['heading_rmse_deg']} deg")
+est, true_d = m["switch_distance_estimate_m"], m["switch_distance_true_m"]
+check(len(est) == 18 and len(true_d) == 18, "18 switch distances of each kind")
+check(max(est) <= 0.1, f"the controller switched with the estimate beyond epsilon: {max(est)}")
+check(all(t >= 0.0 for t in true_d), "true switch distances present")
+check(m["final_error_true_m"] < 1.5, f"final true error {m['final_error_true_m']} m")
+print(f"ok: 18/18, PF RMSE {m['pf_rmse_m']:.3f} m vs measurement {m['measurement_rmse_m']:.3f} m, "
+      f"heading RMSE {m['heading_rmse_deg']:.2f} deg, true switch distance max {max(true_d):.3f} m")
+PY
+for figure in trajectory.png velocity.png distance.png pf_error.png; do
+  [[ -s "$WORK/run/$figure" ]] || fail "figure '$figure' not written: $(ls "$WORK/run")"
+done
+echo "ok: figures written"
