@@ -104,6 +104,7 @@ void ControllerParams::validate() const {
   require_positive_finite("epsilon_m", epsilon_m);
   require_non_negative_finite("max_speed_mps", max_speed_mps);
   require_non_negative_finite("max_turn_rate_radps", max_turn_rate_radps);
+  require_non_negative_finite("confidence_switch_sigmas", confidence_switch_sigmas);
 }
 
 }  // namespace robodds::waypoint

@@ -24,6 +24,13 @@ struct ControllerParams {
   double max_speed_mps = 0.0;
   /// Optional limit on |omega| (rad/s); 0 = unlimited, as in the paper.
   double max_turn_rate_radps = 0.0;
+  /// Confidence-aware switching (extension, 0 = off = the paper), dimensionless kappa >= 0: the
+  /// way-point also counts as reached when it lies inside the kappa-sigma ellipse of the
+  /// estimate's position covariance P, i.e. (W - p)^T P^-1 (W - p) <= kappa^2. With an estimated
+  /// pose the true distance at a switch is bounded by the estimator's error, not by epsilon; an
+  /// epsilon far below that error may never trigger (the mission stalls). This rule lets the
+  /// mission go on once the estimator cannot tell the robot from the way-point any more.
+  double confidence_switch_sigmas = 0.0;
 
   /// Throws std::invalid_argument "key: reason (got ...)" for the first bad field. Gain sets
   /// are checked against eq. (11) and eq. (16) as read in README.md (forward set with

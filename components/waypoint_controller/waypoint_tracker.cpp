@@ -6,6 +6,8 @@
 #include <string>
 #include <utility>
 
+#include <Eigen/Cholesky>
+
 #include "components/waypoint_controller/polar.hpp"
 
 namespace robodds::waypoint {
@@ -51,6 +53,27 @@ void WaypointTracker::set_mission(std::vector<Eigen::Vector2d> waypoints_m) {
 }
 
 TrackerOutput WaypointTracker::step(double x_m, double y_m, double theta_rad) {
+  return step_impl(x_m, y_m, theta_rad, nullptr);
+}
+
+TrackerOutput WaypointTracker::step(double x_m, double y_m, double theta_rad, const Eigen::Matrix2d& position_covariance_m2) {
+  return step_impl(x_m, y_m, theta_rad, &position_covariance_m2);
+}
+
+bool WaypointTracker::inside_confidence_ellipse(const Eigen::Vector2d& offset_m, const Eigen::Matrix2d* covariance_m2) const {
+  const double kappa = params_.confidence_switch_sigmas;
+  if (!(kappa > 0.0) || covariance_m2 == nullptr || !covariance_m2->allFinite()) {
+    return false;
+  }
+  const Eigen::LLT<Eigen::Matrix2d> cholesky(*covariance_m2);
+  if (cholesky.info() != Eigen::Success) {
+    return false;  // not positive definite: no usable confidence
+  }
+  const double mahalanobis_squared = offset_m.dot(cholesky.solve(offset_m));
+  return mahalanobis_squared <= kappa * kappa;
+}
+
+TrackerOutput WaypointTracker::step_impl(double x_m, double y_m, double theta_rad, const Eigen::Matrix2d* position_covariance_m2) {
   require_finite_pose(x_m, y_m, theta_rad);
   if (!has_mission()) {
     throw std::logic_error("step: no mission (call set_mission first)");
@@ -60,8 +83,9 @@ TrackerOutput WaypointTracker::step(double x_m, double y_m, double theta_rad) {
   TrackerStatus& status = output.status;
 
   // Eq. (19): chi = k+1 when ||p - W_k|| <= epsilon, chi = n at the last way-point.
-  const double distance_before_switch = (mission_[target_index_] - position).norm();
-  if (!done_ && distance_before_switch <= params_.epsilon_m) {
+  const Eigen::Vector2d offset = mission_[target_index_] - position;
+  const double distance_before_switch = offset.norm();
+  if (!done_ && (distance_before_switch <= params_.epsilon_m || inside_confidence_ellipse(offset, position_covariance_m2))) {
     reach_distances_m_.push_back(distance_before_switch);
     status.reached_this_step = true;
     status.reached_distance_m = distance_before_switch;

@@ -61,6 +61,11 @@ class WaypointTracker {
   /// Throws std::invalid_argument for a non-finite pose and std::logic_error without a
   /// mission; the tracker state is then unchanged. Allocation-free.
   TrackerOutput step(double x_m, double y_m, double theta_rad);
+  /// As above, with the estimate's 2x2 position covariance (m^2, world frame) for the
+  /// confidence-aware switch (ControllerParams::confidence_switch_sigmas). A covariance that is
+  /// not finite or not positive definite (e.g. the zero covariance of the true pose) disables
+  /// that rule for this step; eq. (19) applies as usual.
+  TrackerOutput step(double x_m, double y_m, double theta_rad, const Eigen::Matrix2d& position_covariance_m2);
 
   bool has_mission() const { return !mission_.empty(); }
   const std::vector<Eigen::Vector2d>& mission() const { return mission_; }
@@ -72,6 +77,9 @@ class WaypointTracker {
   const ControllerParams& params() const { return params_; }
 
  private:
+  TrackerOutput step_impl(double x_m, double y_m, double theta_rad, const Eigen::Matrix2d* position_covariance_m2);
+  bool inside_confidence_ellipse(const Eigen::Vector2d& offset_m, const Eigen::Matrix2d* covariance_m2) const;
+
   ControllerParams params_;
   std::vector<Eigen::Vector2d> mission_;
   std::size_t target_index_ = 0;

@@ -30,3 +30,22 @@ for figure in trajectory.png velocity.png distance.png pf_error.png; do
   [[ -s "$WORK/run/$figure" ]] || fail "figure '$figure' not written: $(ls "$WORK/run")"
 done
 echo "ok: figures written"
+
+# Epsilon far below the estimator's error: the paper's rule alone stalls, the confidence-aware
+# switch (kappa = 0.5) completes the mission with true switch distances like epsilon = 0.1 m.
+sed "s/{name: controller, type: waypoint_controller}/{name: controller, type: waypoint_controller, params: {epsilon_m: 0.01, confidence_switch_sigmas: 0.5}}/" \
+  "$SRC/sim/scenarios/paper1_waypoints.yaml" >"$WORK/kappa.yaml"
+grep -q "confidence_switch_sigmas: 0.5" "$WORK/kappa.yaml" || fail "scenario rewrite did not apply"
+timeout -k 5 300 "$ROBODDS" run "$WORK/kappa.yaml" --out "$WORK/kappa" --domain "$DOMAIN" --no-plots \
+  >"$WORK/kappa.log" 2>&1 || fail "run failed: $(tail -5 "$WORK/kappa.log")"
+python3 - "$WORK/kappa/summary.json" "$WORK/run/summary.json" <<'PY' || fail "confidence-aware switch check failed"
+import json, sys
+m = json.load(open(sys.argv[1]))["metrics"]
+base = json.load(open(sys.argv[2]))["metrics"]
+if m["waypoints_reached"] != 18:
+    sys.exit(f"FAIL: kappa 0.5, epsilon 0.01: reached {m['waypoints_reached']}/18")
+mean = lambda v: sum(v) / len(v)
+if mean(m["switch_distance_true_m"]) > 1.5 * mean(base["switch_distance_true_m"]):
+    sys.exit(f"FAIL: true switch distance mean {mean(m['switch_distance_true_m'])} vs {mean(base['switch_distance_true_m'])} at epsilon 0.1")
+print(f"ok: epsilon 0.01 with kappa 0.5: 18/18 in {m['time_to_final_s']} s, true switch distance mean {mean(m['switch_distance_true_m']):.3f} m")
+PY

@@ -23,6 +23,7 @@ class WaypointControllerNode : public Component {
     params_.epsilon_m = p.get_double("epsilon_m");
     params_.max_speed_mps = p.get_double("max_speed_mps");
     params_.max_turn_rate_radps = p.get_double("max_turn_rate_radps");
+    params_.confidence_switch_sigmas = p.get_double("confidence_switch_sigmas");
     require_valid_ = p.get_bool("require_valid_estimate");
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
@@ -53,7 +54,9 @@ class WaypointControllerNode : public Component {
       status.robot_id(id);
       status.epsilon(params_.epsilon_m);
       if (tracker.has_mission() && estimate != nullptr && (estimate->valid() || !require_valid_)) {
-        const TrackerOutput out = tracker.step(estimate->x(), estimate->y(), estimate->theta());
+        Eigen::Matrix2d position_covariance;  // row-major 3x3 [x, y, theta] -> its xy block
+        position_covariance << estimate->cov()[0], estimate->cov()[1], estimate->cov()[3], estimate->cov()[4];
+        const TrackerOutput out = tracker.step(estimate->x(), estimate->y(), estimate->theta(), position_covariance);
         cmd.v(out.command.v);
         cmd.omega(out.command.omega);
         status.waypoint_index(static_cast<std::uint32_t>(out.status.target_index));

@@ -171,5 +171,70 @@ TEST(WaypointTracker, AppliesTheConfiguredLimits) {
   EXPECT_LE(std::abs(output.command.omega), 1.0);
 }
 
+WaypointTracker confident_tracker(double kappa) {
+  ControllerParams params;
+  params.confidence_switch_sigmas = kappa;
+  WaypointTracker tracker(params);
+  tracker.set_mission(line_mission());
+  return tracker;
+}
+
+TEST(WaypointTrackerConfidence, OffByDefaultSoOnlyEpsilonSwitches) {
+  WaypointTracker tracker = line_tracker();
+  const Eigen::Matrix2d wide = Eigen::Matrix2d::Identity() * 100.0;  // 10 m sigma
+  const TrackerOutput out = tracker.step(0.5, 0.0, 0.0, wide);
+  EXPECT_FALSE(out.status.reached_this_step);
+  EXPECT_EQ(tracker.target_index(), 0u);
+}
+
+TEST(WaypointTrackerConfidence, SwitchesWhenTheWaypointIsInsideTheKappaSigmaEllipse) {
+  WaypointTracker tracker = confident_tracker(1.0);
+  Eigen::Matrix2d covariance;
+  covariance << 0.09, 0.0, 0.0, 0.04;  // sigma 0.3 m along x, 0.2 m along y
+  // 0.25 m along x: Mahalanobis 0.83 <= 1 -> reached although 0.25 > epsilon.
+  const TrackerOutput out = tracker.step(0.25, 0.0, 0.0, covariance);
+  EXPECT_TRUE(out.status.reached_this_step);
+  EXPECT_NEAR(out.status.reached_distance_m, 0.25, kTol);
+  EXPECT_EQ(tracker.target_index(), 1u);
+}
+
+TEST(WaypointTrackerConfidence, UsesTheEllipseNotTheMeanSigma) {
+  WaypointTracker tracker = confident_tracker(1.0);
+  Eigen::Matrix2d covariance;
+  covariance << 0.09, 0.0, 0.0, 0.04;
+  // 0.25 m along y: Mahalanobis 1.25 > 1 -> not reached (it would be with sigma 0.3 m).
+  EXPECT_FALSE(tracker.step(0.0, 0.25, 0.0, covariance).status.reached_this_step);
+  EXPECT_EQ(tracker.target_index(), 0u);
+}
+
+TEST(WaypointTrackerConfidence, ZeroOrBrokenCovarianceFallsBackToEpsilon) {
+  WaypointTracker tracker = confident_tracker(3.0);
+  EXPECT_FALSE(tracker.step(0.5, 0.0, 0.0, Eigen::Matrix2d::Zero()).status.reached_this_step);
+  Eigen::Matrix2d broken;
+  broken << kNan, 0.0, 0.0, 1.0;
+  EXPECT_FALSE(tracker.step(0.5, 0.0, 0.0, broken).status.reached_this_step);
+  Eigen::Matrix2d indefinite;
+  indefinite << 1.0, 0.0, 0.0, -1.0;
+  EXPECT_FALSE(tracker.step(0.5, 0.0, 0.0, indefinite).status.reached_this_step);
+  EXPECT_TRUE(tracker.step(0.05, 0.0, 0.0, Eigen::Matrix2d::Zero()).status.reached_this_step);
+}
+
+TEST(WaypointTrackerConfidence, NegativeOrNonFiniteKappaIsRejectedByName) {
+  ControllerParams params;
+  params.confidence_switch_sigmas = -1.0;
+  EXPECT_THROW(
+      {
+        try {
+          params.validate();
+        } catch (const std::invalid_argument& e) {
+          EXPECT_NE(std::string(e.what()).find("confidence_switch_sigmas"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      std::invalid_argument);
+  params.confidence_switch_sigmas = kNan;
+  EXPECT_THROW(params.validate(), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace robodds::waypoint
