@@ -31,6 +31,11 @@ struct ControllerParams {
   /// epsilon far below that error may never trigger (the mission stalls). This rule lets the
   /// mission go on once the estimator cannot tell the robot from the way-point any more.
   double confidence_switch_sigmas = 0.0;
+  /// Once the last way-point is reached, command zero instead of keeping the law active on it.
+  /// The paper keeps it active (small heading corrections after t = 100 s in its Fig. 4); with
+  /// an estimated pose the bearing alpha of a way-point a few cm away is pure estimate noise,
+  /// and ka = 20 turns that noise into omega swings of tens of rad/s at standstill.
+  bool stop_when_done = false;
 
   /// Throws std::invalid_argument "key: reason (got ...)" for the first bad field. Gain sets
   /// are checked against eq. (11) and eq. (16) as read in README.md (forward set with

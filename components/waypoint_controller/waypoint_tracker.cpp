@@ -97,7 +97,7 @@ TrackerOutput WaypointTracker::step_impl(double x_m, double y_m, double theta_ra
   }
 
   const PolarError error = polar_error(position, theta_rad, mission_[target_index_]);
-  output.command = waypoint_command(error, params_);
+  output.command = done_ && params_.stop_when_done ? Command{} : waypoint_command(error, params_);
 
   status.target_index = target_index_;
   status.reached_count = reach_distances_m_.size();

@@ -45,8 +45,7 @@ struct TrackerOutput {
 /// step), and the command of that same step already aims at W_{k+1}. At the last way-point
 /// the index stays (chi = n) and the control law stays active on it, as in the paper (the robot
 /// converges onto it and keeps correcting its heading, v = kd·d -> 0); `done` latches when it
-/// is first within epsilon. No command is forced to zero: a caller that wants the robot to
-/// stop dead once done can do so.
+/// is first within epsilon. With ControllerParams::stop_when_done the command is zero from then on.
 class WaypointTracker {
  public:
   /// Validates params (std::invalid_argument, see ControllerParams::validate).

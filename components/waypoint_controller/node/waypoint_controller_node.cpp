@@ -24,6 +24,7 @@ class WaypointControllerNode : public Component {
     params_.max_speed_mps = p.get_double("max_speed_mps");
     params_.max_turn_rate_radps = p.get_double("max_turn_rate_radps");
     params_.confidence_switch_sigmas = p.get_double("confidence_switch_sigmas");
+    params_.stop_when_done = p.get_bool("stop_when_done");
     require_valid_ = p.get_bool("require_valid_estimate");
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");

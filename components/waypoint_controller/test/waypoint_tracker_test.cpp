@@ -236,5 +236,28 @@ TEST(WaypointTrackerConfidence, NegativeOrNonFiniteKappaIsRejectedByName) {
   EXPECT_THROW(params.validate(), std::invalid_argument);
 }
 
+TEST(WaypointTracker, StopWhenDoneCommandsZeroAfterTheLastWaypoint) {
+  ControllerParams params;
+  params.stop_when_done = true;
+  WaypointTracker tracker(params);
+  tracker.set_mission({Eigen::Vector2d(0.0, 0.0)});
+  const TrackerOutput before = tracker.step(5.0, 0.0, 0.0);
+  EXPECT_NE(before.command.v, 0.0);  // still driving
+  const TrackerOutput reached = tracker.step(0.05, 0.0, 1.0);
+  EXPECT_TRUE(reached.status.done);
+  EXPECT_EQ(reached.command.v, 0.0);
+  EXPECT_EQ(reached.command.omega, 0.0);
+  const TrackerOutput after = tracker.step(0.5, 0.3, -2.0);  // drifted: stays stopped
+  EXPECT_EQ(after.command.v, 0.0);
+  EXPECT_EQ(after.command.omega, 0.0);
+}
+
+TEST(WaypointTracker, WithoutStopWhenDoneTheLawStaysActiveAtTheLastWaypoint) {
+  WaypointTracker tracker;  // the paper's behaviour
+  tracker.set_mission({Eigen::Vector2d(0.0, 0.0)});
+  EXPECT_TRUE(tracker.step(0.05, 0.0, 1.0).status.done);
+  EXPECT_NE(tracker.step(0.5, 0.3, -2.0).command.omega, 0.0);
+}
+
 }  // namespace
 }  // namespace robodds::waypoint
