@@ -10,6 +10,7 @@
 #                        the tables give the median over runs of each statistic
 #   PROFILES="state lockstep"   QoS profiles for latency_bench
 #   LOCKSTEP_RUNS=3      robodds runs of sim/scenarios/plant_smoke.yaml per deployment
+#   LOCKSTEP_WINDOW=16   --lockstep-window of the pipelined multi-process variant
 #   LOCKSTEP_DURATION=200  simulated seconds per lockstep run (20,001 ticks at 100 Hz): long
 #                        enough that start-up (discovery, first-touch page faults) does not
 #                        dominate the ticks/s figure; the scenario's own 20 s is 2,001 ticks
@@ -34,6 +35,7 @@ LATENCY_RUNS=${LATENCY_RUNS:-3}
 PROFILES=${PROFILES:-state lockstep}
 LOCKSTEP_RUNS=${LOCKSTEP_RUNS:-3}
 LOCKSTEP_DURATION=${LOCKSTEP_DURATION:-200}
+LOCKSTEP_WINDOW=${LOCKSTEP_WINDOW:-16}
 DOMAIN=${DOMAIN:-150}
 MIN_TIME=${MIN_TIME:-0.2}
 DIAGNOSE=${DIAGNOSE:-1}
@@ -128,17 +130,23 @@ lockstep_table() {
   for ((r = 1; r <= LOCKSTEP_RUNS; r++)); do header+=" run $r |"; rule+="---:|"; done
   echo "$header median | target | met |"
   echo "$rule---:|---:|---|"
-  local deploy target row values out v med met
-  for deploy in colocated processes; do
+  local variant deploy extra target row values out v med met
+  # Variants: co-located; one process per group with the strict lockstep (each tick waits for
+  # every acknowledgement); the same with the pipelined coordinator (LOCKSTEP_WINDOW ticks
+  # outstanding, byte-identical results: integration.determinism_paper1_window).
+  for variant in colocated processes "processes-window$LOCKSTEP_WINDOW"; do
+    deploy=${variant%%-*}
+    extra=()
+    [[ $variant == processes-window* ]] && extra=(--lockstep-window "$LOCKSTEP_WINDOW")
     [[ $deploy == colocated ]] && target=20000 || target=2000
-    row="| $deploy |"
+    row="| $variant |"
     values=""
     for ((r = 1; r <= LOCKSTEP_RUNS; r++)); do
-      out=$RESULTS/lockstep$tag-$deploy-$r
+      out=$RESULTS/lockstep$tag-$variant-$r
       rm -rf "$out"
       log "${preload:+[LD_PRELOAD] }robodds run $SCENARIO --deploy $deploy (run $r/$LOCKSTEP_RUNS)"
       if env ${preload:+LD_PRELOAD=$preload} timeout 600 "$ROBODDS" run "$SCENARIO" --out "$out" --domain $((DOMAIN + 1)) \
-           --duration "$LOCKSTEP_DURATION" --deploy "$deploy" "${no_plots[@]}" >"$out.log" 2>&1 && [[ -f $out/summary.json ]]; then
+           --duration "$LOCKSTEP_DURATION" --deploy "$deploy" "${extra[@]}" "${no_plots[@]}" >"$out.log" 2>&1 && [[ -f $out/summary.json ]]; then
         v=$(ticks_per_s "$out/summary.json")
         row+=" ${v:-?} |"
         values+="$v "

@@ -42,6 +42,9 @@ class Bus {
                                                ReaderEventCallback on_event) = 0;
   /// Waits until every reliable writer's samples are acknowledged (before a process exits).
   virtual void flush(std::chrono::milliseconds timeout) = 0;
+  /// One line naming this process's topics without a matched peer and any incompatible QoS
+  /// (both sides' policies), appended to lockstep timeout errors; empty when all matched.
+  virtual std::string match_report() { return {}; }
 };
 
 }  // namespace robodds

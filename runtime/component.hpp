@@ -45,6 +45,7 @@ struct RunContext {
   TimeMode mode = TimeMode::kLockstep;
   std::string output_dir;   // where the evaluator writes CSVs and summary.json
   std::string share_dir;    // repository root or install prefix (params defaults, QoS files)
+  bool single_process = false;  // every component of the run lives in this process (co-located)
 };
 
 class ComponentContext {
@@ -79,7 +80,7 @@ class ComponentContext {
     Input<Msg>* raw = input.get();
     const std::string owner = spec_.name;
     readers_.push_back(run_.bus->reader(
-        topic, info.type_name, qos_profile_for(info, run_.mode),
+        topic, info.type_name, qos_profile_for(info, run_.mode, run_.single_process),
         [raw](const void* sample) { raw->on_sample(*static_cast<const Msg*>(sample)); },
         [owner, topic](const std::string& event) { log::warn(owner, topic + ": " + event); }));
     inputs_.push_back(std::move(input));
@@ -89,7 +90,7 @@ class ComponentContext {
   template <class Msg>
   Output<Msg>& advertise(const std::string& topic) {
     const TopicInfo& info = checked_topic<Msg>(topic);
-    auto output = std::make_unique<Output<Msg>>(run_.bus->writer(topic, info.type_name, qos_profile_for(info, run_.mode)), state_);
+    auto output = std::make_unique<Output<Msg>>(run_.bus->writer(topic, info.type_name, qos_profile_for(info, run_.mode, run_.single_process)), state_);
     Output<Msg>* raw = output.get();
     outputs_.push_back(std::shared_ptr<void>(output.release(), [](void* p) { delete static_cast<Output<Msg>*>(p); }));
     return *raw;

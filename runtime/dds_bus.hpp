@@ -21,6 +21,10 @@ class DdsBus : public Bus {
   /// Readers are created when start() runs, so that every local subscriber of a topic is
   /// registered before the first (possibly transient-local) sample is delivered.
   virtual void start() = 0;
+  /// Deletes every reader; no sample or event callback runs once it returns. Call it before
+  /// destroying what the callbacks point to (a host's inputs, a notifier): otherwise a sample
+  /// arriving while the bus is being destroyed reaches freed memory.
+  virtual void close_readers() = 0;
 };
 
 /// Loads and validates the QoS files and creates one DomainParticipant. Throws ConfigError naming
@@ -30,6 +34,10 @@ std::unique_ptr<DdsBus> make_dds_bus(const DdsOptions& options);
 /// Loads the QoS files into the process-wide profile store (idempotent per file); ConfigError on
 /// a malformed file, naming the file and Fast DDS's reason.
 void load_qos_files(const std::vector<std::string>& files);
+
+/// Loads the QoS files and checks the participant profile exists and is usable (e.g. every
+/// discovery-server locator has a real address and port); ConfigError naming file and element.
+void check_participant_profile(const DdsOptions& options);
 
 /// Data-writer/reader profile names the runtime requires in the QoS files.
 const std::vector<std::string>& required_data_profiles();

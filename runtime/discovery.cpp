@@ -70,7 +70,7 @@ class DiscoveryListener : public dds::DomainParticipantListener {
 }  // namespace
 
 std::vector<DiscoveredTopic> discover_topics(const DdsOptions& options, double seconds) {
-  load_qos_files(options.qos_files);
+  check_participant_profile(options);
   auto* factory = dds::DomainParticipantFactory::get_instance();
   dds::DomainParticipantQos qos;
   if (factory->get_participant_qos_from_profile(options.participant_profile, qos) != eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {

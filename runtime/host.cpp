@@ -1,5 +1,6 @@
 #include "runtime/host.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -96,7 +97,7 @@ struct Host::Impl {
     coordinator_state.mode = run.mode;
     const TopicInfo& clock = topic_info("sim/clock");
     const TopicInfo& done = topic_info("sim/step_done");
-    const std::string profile = qos_profile_for(clock, run.mode);
+    const std::string profile = qos_profile_for(clock, run.mode, run.single_process);
     if (!options.components.empty()) {
       InputOptions tick_options;
       tick_options.ignore_step = true;
@@ -133,6 +134,13 @@ struct Host::Impl {
                                    [](const std::string& e) { log::warn("coordinator", "sim/step_done: " + e); });
       tick_output = std::make_unique<Output<idl::SimTick>>(run.bus->writer(clock.name, clock.type_name, profile), &coordinator_state);
     }
+  }
+
+  /// "; DDS: ..." naming unmatched topics and incompatible QoS, so a wait that timed out
+  /// because peers never matched says so (empty when everything matched).
+  std::string dds_report() const {
+    const std::string report = run.bus->match_report();
+    return report.empty() ? "" : "; " + report;
   }
 
   std::int64_t sim_stamp_ns(std::uint64_t step) const {
@@ -208,11 +216,15 @@ struct Host::Impl {
     // Coordinator state.
     const bool coordinating = tick_output != nullptr;
     bool coordinator_done = !coordinating;
-    std::uint64_t coordinator_step = 0;
-    Clock::time_point tick_sent_at = start;
-    if (coordinating) {
-      publish_tick(0, last == 0);
-    }
+    // Steps [0, acked_steps) are acknowledged by every member; ticks [0, next_tick) are sent.
+    // At most `lockstep_window` ticks are outstanding: 1 is the strict rule (the next tick
+    // waits for all acknowledgements). A wider window lets the groups of a pipeline work on
+    // consecutive steps at once; results are unchanged, because an input at step m only ever
+    // reads samples with step <= m - delay, however early later samples arrive.
+    const std::uint64_t window = std::max<std::uint64_t>(1, options.lockstep_window);
+    std::uint64_t acked_steps = 0;
+    std::uint64_t next_tick = 0;
+    Clock::time_point ack_progress_at = start;
 
     while (!(host_done && coordinator_done)) {
       check_stop();
@@ -250,7 +262,7 @@ struct Host::Impl {
             if (seconds_since(waiting_since) > limit) {
               throw RunError(options.member + ": no tick on sim/clock for " + fmt_s(limit) + " s " +
                              (first_tick ? "after start" : "after step " + std::to_string(tick_step)) +
-                             ": is the coordinator (robodds run) alive and on the same domain?");
+                             ": is the coordinator (robodds run) alive and on the same domain?" + dds_report());
             }
           }
         }
@@ -273,7 +285,7 @@ struct Host::Impl {
               if (seconds_since(waiting_since) > options.input_timeout_s) {
                 throw RunError("lockstep: component '" + slot->spec->name + "' waited " + fmt_s(options.input_timeout_s) +
                                " s at step " + std::to_string(tick_step) + " for topic " + blocking->topic() + ", " +
-                               missing);
+                               missing + dds_report());
               }
               continue;
             }
@@ -308,24 +320,31 @@ struct Host::Impl {
           }
         }
         std::string missing;
-        if (ack_input->ready(coordinator_step, &missing)) {
+        while (acked_steps < next_tick && ack_input->ready(acked_steps, &missing)) {
           if (options.progress) {
-            options.progress(coordinator_step, last);
+            options.progress(acked_steps, last);
           }
-          if (coordinator_step >= last) {
-            coordinator_done = true;
-          } else {
-            ++coordinator_step;
-            publish_tick(coordinator_step, coordinator_step == last);
-            tick_sent_at = Clock::now();
-          }
-          stats.steps = coordinator_step + 1;
+          ++acked_steps;
+          stats.steps = acked_steps;
+          ack_progress_at = Clock::now();
           progressed = true;
-        } else {
-          const double limit = coordinator_step == 0 ? options.start_timeout_s : options.tick_timeout_s;
-          if (seconds_since(tick_sent_at) > limit) {
-            throw RunError("lockstep: no acknowledgement of step " + std::to_string(coordinator_step) + " within " +
-                           fmt_s(limit) + " s from group " + missing + " on sim/step_done");
+        }
+        if (acked_steps > last) {
+          coordinator_done = true;
+        }
+        while (next_tick <= last && next_tick < acked_steps + window) {
+          publish_tick(next_tick, next_tick == last);
+          if (next_tick == acked_steps) {
+            ack_progress_at = Clock::now();  // the oldest outstanding tick starts its wait now
+          }
+          ++next_tick;
+          progressed = true;
+        }
+        if (!coordinator_done && !progressed) {
+          const double limit = acked_steps == 0 ? options.start_timeout_s : options.tick_timeout_s;
+          if (seconds_since(ack_progress_at) > limit) {
+            throw RunError("lockstep: no acknowledgement of step " + std::to_string(acked_steps) + " within " +
+                           fmt_s(limit) + " s from group " + missing + " on sim/step_done" + dds_report());
           }
         }
       }

@@ -24,6 +24,8 @@ struct HostOptions {
   double start_timeout_s = 30.0;            // max wait for the first tick / first acknowledgements
   double tick_timeout_s = 30.0;             // max wait between ticks (host) or for acks (coordinator)
   std::int64_t realtime_epoch_ns = 0;       // real time: wall clock of step 0 (0 = now)
+  std::size_t lockstep_window = 1;          // coordinator: ticks outstanding at once (1 = strict)
+  bool single_process = false;              // this host runs the whole scenario (RunContext::single_process)
   std::function<void()> poll;               // called every loop iteration; may throw (child died)
   std::function<void(std::uint64_t step, std::uint64_t last_step)> progress;
   const std::atomic<bool>* stop = nullptr;  // set by a signal handler

@@ -44,9 +44,9 @@ const TopicInfo& topic_info(const std::string& name) {
   throw ConfigError("unknown topic '" + name + "' (known: " + known + ")");
 }
 
-std::string qos_profile_for(const TopicInfo& topic, TimeMode mode) {
+std::string qos_profile_for(const TopicInfo& topic, TimeMode mode, bool single_process) {
   if (mode == TimeMode::kLockstep && topic.qos_class != "mission") {
-    return "lockstep";
+    return single_process ? "lockstep_local" : "lockstep";
   }
   return topic.qos_class;
 }

@@ -27,7 +27,9 @@ const TopicInfo& topic_info(const std::string& name);
 /// QoS profile used for a topic in a time mode. Simulated time (lockstep) must lose nothing and
 /// must not depend on discovery timing, so every data topic uses the reliable, transient-local
 /// `lockstep` profile there (missions keep `mission`); real-time uses the topic's own class.
-std::string qos_profile_for(const TopicInfo& topic, TimeMode mode);
+/// `single_process`: every component of the run is in this process (co-located run), so lockstep
+/// topics use `lockstep_local` (intra-process delivery is lossless without the reliable protocol).
+std::string qos_profile_for(const TopicInfo& topic, TimeMode mode, bool single_process);
 
 /// Participant/data profile names the runtime needs from the QoS file.
 inline constexpr const char* kDefaultParticipantProfile = "robodds.participant";

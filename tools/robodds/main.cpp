@@ -20,6 +20,7 @@
 #include "runtime/log.hpp"
 #include "runtime/sample_format.hpp"
 #include "tools/robodds/builtin_components.hpp"
+#include "tools/robodds/deploy_command.hpp"
 #include "tools/robodds/process_group.hpp"
 
 #ifndef ROBODDS_SOURCE_DIR
@@ -97,12 +98,23 @@ struct DdsFlags {
   }
 };
 
+/// Lockstep options shared by `run` and `host` (timeouts, coordinator window).
 struct TimeoutFlags {
   double input_timeout_s = 10.0;
   double start_timeout_s = 30.0;
+  std::size_t lockstep_window = 1;
   void add_to(CLI::App* app) {
     app->add_option("--input-timeout", input_timeout_s, "s, lockstep: max wait for a component's inputs at one step");
     app->add_option("--start-timeout", start_timeout_s, "s, max wait for peers to start");
+    app->add_option("--lockstep-window", lockstep_window,
+                    "lockstep coordinator: ticks outstanding at once (1 = each tick waits for all acknowledgements; "
+                    "more pipelines the groups, same results)")
+        ->check(CLI::Range(1, 64));
+  }
+  void apply_to(HostOptions& options) const {
+    options.input_timeout_s = input_timeout_s;
+    options.start_timeout_s = start_timeout_s;
+    options.lockstep_window = lockstep_window;
   }
 };
 
@@ -123,9 +135,13 @@ std::vector<std::string> all_components(const Scenario& scenario) {
 }
 
 void show_progress(std::uint64_t step, std::uint64_t last) {
+  static const bool on_terminal = isatty(STDERR_FILENO) != 0;  // a system call: ask once, not per tick
+  if (!on_terminal) {
+    return;
+  }
   static auto last_print = std::chrono::steady_clock::now();
   const auto now = std::chrono::steady_clock::now();
-  if (!isatty(STDERR_FILENO) || (step != last && now - last_print < std::chrono::milliseconds(200))) {
+  if (step != last && now - last_print < std::chrono::milliseconds(200)) {
     return;
   }
   last_print = now;
@@ -204,8 +220,14 @@ int run_host(const Scenario& scenario, const DdsOptions& dds, HostOptions option
   run.mode = mode;
   run.output_dir = out_dir;
   run.share_dir = share_dir();
+  run.single_process = options.single_process;
   options.stop = &g_stop;
   Host host(registry, run, options);
+  // The readers call into the host's inputs and the notifier: delete them first, also on a throw.
+  struct ReaderCloser {
+    DdsBus& bus;
+    ~ReaderCloser() { bus.close_readers(); }
+  } closer{*bus};
   host.configure();
   bus->start();
   const RunStats stats = host.run();
@@ -285,6 +307,11 @@ int main(int argc, char** argv) {
   host_cmd->add_option("--out", host_out, "output directory for the evaluator");
   host_cmd->add_flag("--realtime", host_realtime, "wall-clock timers instead of lockstep");
   host_cmd->add_flag("--coordinate", host_coordinate, "also publish ticks (a standalone lockstep host)");
+  std::vector<std::string> host_members;
+  host_cmd->add_option("--members", host_members,
+                       "with --coordinate: groups whose acknowledgements to wait for (default: this host's group, "
+                       "or every group of the scenario when the host runs no component)")
+      ->delimiter(',');
   host_cmd->add_option("--epoch-ns", host_epoch_ns, "real time: wall clock (ns) of step 0");
   double host_duration_s = 0.0;
   host_cmd->add_option("--duration", host_duration_s, "override the scenario duration (s)")->check(CLI::PositiveNumber);
@@ -313,6 +340,8 @@ int main(int argc, char** argv) {
   report_cmd->add_option("out_dir", report_dir, "output directory of a run")->required();
   bool no_plots = false;
   run_cmd->add_flag("--no-plots", no_plots, "do not draw the PNG plots at the end");
+
+  DeployCommand deploy_cmd(app);  // deploy compose: docker-compose file from a scenario
 
   CLI11_PARSE(app, argc, argv);
 
@@ -343,8 +372,8 @@ int main(int argc, char** argv) {
         options.components = all_components(scenario);
         options.coordinator = true;
         options.members = {"colocated"};
-        options.input_timeout_s = run_timeouts.input_timeout_s;
-        options.start_timeout_s = run_timeouts.start_timeout_s;
+        options.single_process = true;
+        run_timeouts.apply_to(options);
         options.progress = show_progress;
         run_host(scenario, dds, options, mode, out_dir, &stats);
       } else {
@@ -398,8 +427,7 @@ int main(int argc, char** argv) {
           options.coordinator = true;
           options.members = all_members(scenario);
           options.run_id = run_id;
-          options.input_timeout_s = run_timeouts.input_timeout_s;
-          options.start_timeout_s = run_timeouts.start_timeout_s;
+          run_timeouts.apply_to(options);
           options.progress = show_progress;
           options.poll = [&children] { children.check_alive(); };
           run_host(scenario, dds, options, mode, out_dir, &stats);
@@ -451,18 +479,21 @@ int main(int argc, char** argv) {
         }
         options.components = host_components;
         options.member = "host";
+      } else if (host_coordinate) {
+        options.member = "coordinator";  // a coordinator alone (e.g. on its own machine): ticks only
       } else {
-        throw ConfigError("robodds host: give --group or --components");
+        throw ConfigError("robodds host: give --group or --components (or --coordinate alone)");
       }
       if (!host_member.empty()) {
         options.member = host_member;
       }
       options.run_id = host_run_id;
       options.coordinator = host_coordinate;
-      options.members = {options.member};
+      options.members = !host_members.empty()        ? host_members
+                        : options.components.empty() ? all_members(scenario)
+                                                     : std::vector<std::string>{options.member};
       options.realtime_epoch_ns = host_epoch_ns;
-      options.input_timeout_s = host_timeouts.input_timeout_s;
-      options.start_timeout_s = host_timeouts.start_timeout_s;
+      host_timeouts.apply_to(options);
       return run_host(scenario, host_dds.resolve("robodds-" + options.member), options,
                       host_realtime ? TimeMode::kRealtime : TimeMode::kLockstep, host_out, nullptr);
     }
@@ -480,10 +511,11 @@ int main(int argc, char** argv) {
     }
     if (echo_cmd->parsed()) {
       const TopicInfo& info = topic_info(echo_topic);
-      auto bus = make_dds_bus(echo_dds.resolve("robodds-echo"));
+      // Declared before the bus so that they outlive it: the bus's reader callback uses them.
       Notifier notifier;
       std::mutex mutex;
       std::vector<std::string> lines;
+      auto bus = make_dds_bus(echo_dds.resolve("robodds-echo"));
       idl::dispatch_type(info.type_name, [&](auto tag) {
         using Msg = typename decltype(tag)::type;
         // Missions are transient local: read them with the mission profile to get the last one.
@@ -521,6 +553,9 @@ int main(int argc, char** argv) {
         notifier.wait(seen, std::chrono::milliseconds(100));
       }
       return 0;
+    }
+    if (deploy_cmd.parsed()) {
+      return deploy_cmd.run(share_dir());
     }
     if (report_cmd->parsed()) {
       return make_plots(report_dir);

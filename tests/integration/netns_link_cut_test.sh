@@ -1,0 +1,85 @@
+#!/usr/bin/env bash
+# Real time across namespace hosts, the controller's host loses its cable for 2 s:
+#   - the survivors report it: the plant (and the evaluator) log that the writer of plant/cmd in
+#     group 'control' lost liveliness, then that it regained it;
+#   - the plant never acts on stale commands: from command_timeout_s (0.5 s) after the cut until
+#     the cable is back, the applied v and omega are exactly 0 and the robot does not move;
+#   - the system resumes: after the restore the robot moves again and every host exits 0.
+source "$(dirname "$0")/netns_lib.sh"
+S="$SRC/sim/scenarios/paper1_waypoints.yaml"
+DURATION=14      # s of real time
+CUT_AT=5         # s after step 0
+CUT_FOR=2        # s
+GROUPS_=(sim sensors estimation control evaluation)
+VICTIM=4         # host of group 'control' (controller + mission)
+
+netns_setup 5
+epoch=$(( ($(now_ns) / 1000000000 + 3) * 1000000000 ))  # step 0 in 3 s: time to discover
+pids=()
+for i in "${!GROUPS_[@]}"; do
+  netns_spawn $((i + 1)) "$WORK/${GROUPS_[$i]}.log" "$ROBODDS" host --group "${GROUPS_[$i]}" --scenario "$S" \
+    --out "$WORK/out" --domain "$DOMAIN" --participant-profile robodds.participant.udp_only --duration "$DURATION" \
+    --realtime --epoch-ns "$epoch"
+  pids+=("$SPAWNED")
+done
+
+sleep "$(python3 -c "import time; print(max(0.0, ($epoch + $CUT_AT * 10**9 - time.time_ns()) / 1e9))")"
+netns_link $VICTIM down
+cut_ns=$(now_ns)          # taken after the link is down: the stale window starts no earlier
+sleep "$CUT_FOR"
+restore_ns=$(now_ns)      # taken before the link is up: the stale window ends no later
+netns_link $VICTIM up
+echo "cable of host $VICTIM (control) cut at +$(( (cut_ns - epoch) / 1000000 )) ms, restored at +$(( (restore_ns - epoch) / 1000000 )) ms"
+
+for i in "${!pids[@]}"; do
+  wait_pid "${pids[$i]}" $((DURATION + 30))
+  [[ $RC -eq 0 ]] || fail "host ${GROUPS_[$i]} exited $RC: $(cat "$WORK/${GROUPS_[$i]}.log")"
+done
+
+# Survivors report the loss and the recovery, naming topic and group.
+for g in sim evaluation; do
+  grep -q "plant/cmd: writer of 'control' lost liveliness" "$WORK/$g.log" ||
+    fail "$g did not report the lost plant/cmd writer: $(cat "$WORK/$g.log")"
+  grep -q "plant/cmd: writer of 'control' regained liveliness" "$WORK/$g.log" ||
+    fail "$g did not report the plant/cmd writer back: $(cat "$WORK/$g.log")"
+done
+grep -m1 "plant/cmd: writer of 'control' lost" "$WORK/sim.log"
+grep -m1 "plant/cmd: writer of 'control' regained" "$WORK/sim.log"
+
+# The plant's applied command, from the evaluator's records of plant/state and plant/cmd (the
+# evaluator's host is not cut off). header.step is the real-time step: (wall clock - epoch) / step_s.
+python3 - "$WORK/out" "$epoch" "$cut_ns" "$restore_ns" <<'PY' || fail "plant behaviour around the cut is wrong"
+import bisect, csv, math, sys
+out, epoch, cut, restore = sys.argv[1], *map(int, sys.argv[2:5])
+step_s, timeout_s, margin_s = 0.01, 0.5, 0.1   # timeout_s: the plant's command_timeout_s
+load = lambda name: [{k: float(v) for k, v in r.items()} for r in csv.DictReader(open(f"{out}/{name}"))]
+states, cmds = load("plant_state.csv"), load("plant_cmd.csv")
+cmd_stamps = sorted(c["header.stamp_ns"] for c in cmds)
+ok = True
+def check(cond, text):
+    global ok
+    print(("ok: " if cond else "FAIL: ") + text)
+    ok = ok and cond
+# 1. Whenever the newest command is older than the timeout (+ margin), the plant applies nothing.
+def stale(r):
+    i = bisect.bisect_right(cmd_stamps, r["header.stamp_ns"])
+    return i == 0 or (r["header.stamp_ns"] - cmd_stamps[i - 1]) * 1e-9 > timeout_s + margin_s
+stale_rows = [r for r in states if stale(r) and r["header.step"] > 100]
+check(len(stale_rows) >= 100, f"{len(stale_rows)} plant states while the newest command was stale")
+check(all(r["v"] == 0.0 and r["omega"] == 0.0 for r in stale_rows), "v = omega = 0 whenever the newest command was stale")
+# 2. The same seen from the cable: from timeout + margin after the cut until the restore.
+step = lambda ns: (ns - epoch) / 1e9 / step_s
+window = [r for r in states if step(cut) + (timeout_s + margin_s) / step_s <= r["header.step"] <= step(restore)]
+check(len(window) >= 100 and all(r["v"] == 0.0 and r["omega"] == 0.0 for r in window),
+      f"safe stop during the cut ({len(window)} states)")
+check(len({(r["x"], r["y"], r["theta"]) for r in window}) == 1, "the robot stood still during the cut")
+# 3. Moving before, moving again after.
+before = [r for r in states if step(cut) - 200 <= r["header.step"] < step(cut)]
+after = [r for r in states if r["header.step"] >= step(restore) + 100]
+check(any(r["v"] != 0.0 for r in before), "the robot was moving before the cut")
+check(any(r["v"] != 0.0 for r in after), "commands applied again after the restore")
+moved = math.hypot(after[-1]["x"] - after[0]["x"], after[-1]["y"] - after[0]["y"]) if after else 0.0
+check(moved > 0.5, f"the robot moved {moved:.2f} m after the restore")
+sys.exit(0 if ok else 1)
+PY
+echo "ok: link cut reported by the survivors, safe stop while commands were stale, resumed after the restore"

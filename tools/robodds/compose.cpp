@@ -1,0 +1,311 @@
+#include "tools/robodds/compose.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <set>
+#include <sstream>
+#include <vector>
+
+#include "runtime/error.hpp"
+
+namespace robodds {
+namespace {
+
+using C = ComposeConstants;
+
+/// A YAML scalar: plain when unambiguous, otherwise double-quoted. Quoting anything with ':',
+/// '$', spaces or a number/boolean look keeps compose from reading a string as another type.
+std::string scalar(const std::string& text) {
+  static const std::set<std::string> kReserved = {"y", "n", "yes", "no", "true", "false", "on", "off", "null", "~"};
+  std::string lower = text;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  const bool safe_chars = !text.empty() && std::all_of(text.begin(), text.end(), [](unsigned char c) {
+    return std::isalnum(c) != 0 || c == '_' || c == '.' || c == '/' || c == '-';
+  });
+  const auto starts_with = [&text](const char* prefix) { return text.rfind(prefix, 0) == 0; };
+  const unsigned char first = static_cast<unsigned char>(text.empty() ? ' ' : text.front());
+  // Not a digit, '.' or '-' first: ".5", ".inf" or "-1" would read as numbers.
+  const bool plain_start = std::isalpha(first) != 0 || first == '/' || first == '_' || starts_with("./") || starts_with("../") ||
+                           (starts_with("--") && text.size() > 2 && std::isalpha(static_cast<unsigned char>(text[2])) != 0);
+  if (safe_chars && plain_start && kReserved.count(lower) == 0) {
+    return text;
+  }
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"' || c == '\\') {
+      quoted += '\\';
+    }
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
+std::string flow_list(const std::vector<std::string>& items) {
+  std::string text = "[";
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    text += (i == 0 ? "" : ", ") + scalar(items[i]);
+  }
+  return text + "]";
+}
+
+/// Compose service names double as DNS names on the network: keep to what compose accepts.
+bool valid_service_name(const std::string& name) {
+  return !name.empty() && std::isalnum(static_cast<unsigned char>(name.front())) != 0 &&
+         std::all_of(name.begin(), name.end(), [](unsigned char c) { return std::isalnum(c) != 0 || c == '_' || c == '.' || c == '-'; });
+}
+
+struct Service {
+  std::string name;
+  std::string comment;
+  std::vector<std::string> entrypoint;  // empty: the image's (robodds host)
+  std::vector<std::string> command;
+  std::vector<std::string> volumes;
+  std::vector<std::string> depends_on;
+  bool init = false;
+  bool uses_robodds_env = true;
+};
+
+class ComposeWriter {
+ public:
+  ComposeWriter(const Scenario& scenario, const ComposeOptions& options) : scenario_(scenario), options_(options) {}
+
+  std::string write() {
+    validate();
+    header();
+    out_ << "services:\n";
+    for (const Service& service : services()) {
+      write_service(service);
+    }
+    footer();
+    return out_.str();
+  }
+
+ private:
+  bool bridge() const { return options_.network == ComposeNetwork::kBridge; }
+  bool server() const { return options_.discovery == ComposeDiscovery::kServer; }
+  std::string in_share(const std::string& repo_path) const { return std::string(C::kShareDir) + "/" + repo_path; }
+  std::string from_repo(const std::string& repo_path) const { return options_.repo_dir + "/" + repo_path; }
+  std::string read_only_mount(const std::string& repo_path) const {
+    return from_repo(repo_path) + ":" + in_share(repo_path) + ":ro";
+  }
+  std::string out_dir() const { return std::string(C::kShareDir) + "/out/" + scenario_.name; }
+
+  void validate() const {
+    if (options_.scenario_path.empty() || options_.scenario_path.find('$') != std::string::npos) {
+      throw ConfigError(located(scenario_.file, "", "scenario path '" + options_.scenario_path +
+                                                        "' cannot be mounted (empty or contains '$')"));
+    }
+    for (const ComponentSpec& component : scenario_.components) {
+      if (options_.params_files.count(component.type) == 0) {
+        std::string known;
+        for (const auto& [type, file] : options_.params_files) {
+          known += (known.empty() ? "" : ", ") + type;
+        }
+        throw ConfigError(located(scenario_.file, "components." + component.name,
+                                  "unknown component type '" + component.type + "' (known: " + known + ")"));
+      }
+    }
+    if (!valid_service_name(scenario_.name)) {
+      throw ConfigError(located(scenario_.file, "name", "scenario name '" + scenario_.name +
+                                                            "' is not usable as a compose project and output directory name (letters, digits, '_', '.', '-')"));
+    }
+    for (const GroupSpec& group : scenario_.groups) {
+      if (!valid_service_name(group.name)) {
+        throw ConfigError(located(scenario_.file, "groups." + group.name,
+                                  "group name '" + group.name + "' is not a valid compose service name (letters, digits, '_', '.', '-')"));
+      }
+      if (group.name == C::kCoordinatorService || (server() && group.name == C::kDiscoveryService)) {
+        throw ConfigError(located(scenario_.file, "groups." + group.name,
+                                  "group name '" + group.name + "' is reserved for the generated " + group.name + " service"));
+      }
+    }
+  }
+
+  std::string participant_profile() const {
+    if (server()) {
+      return "robodds.participant.discovery_client";
+    }
+    // Bridge: containers do not share /dev/shm, so shared memory can only fail between them
+    // ("topics visible, no data" when Fast DDS takes a peer for local): UDP only.
+    // Host network: the default SHM + UDP profile, made to work by ipc: host.
+    return bridge() ? "robodds.participant.udp_only" : "robodds.participant";
+  }
+
+  /// The second QoS file (robodds_qos.xml is always loaded first, from the share dir).
+  std::string qos_file_repo_path() const {
+    if (!server()) {
+      return "deploy/qos/robodds_qos.xml";
+    }
+    // On the host network the server listens on 127.0.0.1, which the shipped client profile uses.
+    return bridge() ? C::kBridgeDiscoveryClientXml : "deploy/qos/discovery_client.xml";
+  }
+
+  std::string discovery_address() const { return bridge() ? C::kDiscoveryAddress : "127.0.0.1"; }
+
+  void header() {
+    const std::string scenario_arg = options_.scenario_path;
+    std::string variant_args;
+    if (server()) {
+      variant_args += " --discovery server";
+    }
+    if (!bridge()) {
+      variant_args += " --network host";
+    }
+    const std::string compose = "docker-compose -p " + scenario_.name + " -f FILE";
+    out_ << "# Generated by `robodds deploy compose " << scenario_arg << variant_args << "`\n"
+         << "# (deploy/compose/regenerate.sh); do not edit. Scenario '" << scenario_.name << "': one container per\n"
+         << "# deployment group, plus the lockstep coordinator" << (server() ? " and a Fast DDS Discovery Server" : "") << ".\n"
+         << "# Discovery: " << (server() ? "Discovery Server at " + discovery_address() + ":" + std::to_string(C::kDiscoveryPort)
+                                         : std::string("multicast (SIMPLE)"))
+         << "; network: " << (bridge() ? std::string("user-defined bridge '") + C::kNetwork + "'" : std::string("host")) << ";\n"
+         << "# participant profile: " << participant_profile() << ".\n";
+    if (bridge()) {
+      out_ << "# UDP only: containers do not share /dev/shm, so Fast DDS shared memory between them can\n"
+           << "# only fail (\"topics visible, no data\").\n";
+    } else {
+      out_ << "# ipc: host is required: on the host network every container has the host's addresses, so\n"
+           << "# Fast DDS takes its peers for local processes and uses shared memory, whose segments live\n"
+           << "# in /dev/shm. That is private per container unless ipc: host; without it topics match but\n"
+           << "# no data arrives.\n";
+    }
+    out_ << "# Run from the repository root, FILE = this file (docs/deployment.md):\n"
+         << "#   " << compose << " up -d --build\n"
+         << "#   docker wait $(" << compose << " ps -q coordinator)   # exit code of the run, 0 = completed\n"
+         << "#   " << compose << " down\n"
+         << "# ROBODDS_DOMAIN_ID and ROBODDS_RUN_ID (defaults 0 and 1) are taken from the environment.\n";
+  }
+
+  std::vector<Service> services() const {
+    std::vector<Service> result;
+    const std::string scenario_in_image = in_share(options_.scenario_path);
+    std::vector<std::string> common_mounts = {read_only_mount("deploy/qos")};
+    if (server() && bridge()) {
+      common_mounts.push_back(read_only_mount(C::kBridgeDiscoveryClientXml));
+    }
+    common_mounts.push_back(read_only_mount(options_.scenario_path));
+    const std::vector<std::string> after_server = server() ? std::vector<std::string>{C::kDiscoveryService} : std::vector<std::string>{};
+
+    if (server()) {
+      Service discovery;
+      discovery.name = C::kDiscoveryService;
+      discovery.comment = "Fast DDS Discovery Server (server id 0 = the prefix in the client profile); every participant is its client";
+      discovery.entrypoint = {"fastdds", "discovery", "-i", "0", "-l", discovery_address(), "-p", std::to_string(C::kDiscoveryPort)};
+      discovery.init = true;  // `fastdds` is a Python wrapper: tini forwards SIGTERM on `docker-compose down`
+      discovery.uses_robodds_env = false;
+      result.push_back(discovery);
+    }
+
+    Service coordinator;
+    coordinator.name = C::kCoordinatorService;
+    coordinator.comment = "lockstep coordinator: ticks sim/clock, waits for every group's sim/step_done; exits 0 when the run completes";
+    coordinator.command = {"--scenario", scenario_in_image, "--coordinate", "--run-id", "${ROBODDS_RUN_ID:-1}"};
+    coordinator.volumes = common_mounts;
+    coordinator.depends_on = after_server;
+    result.push_back(coordinator);
+
+    for (const GroupSpec& group : scenario_.groups) {
+      Service host;
+      host.name = group.name;
+      std::string members;
+      for (const std::string& name : group.components) {
+        members += (members.empty() ? "" : ", ") + name + " (" + scenario_.component(name).type + ")";
+      }
+      host.comment = "group " + group.name + ": " + members;
+      host.command = {"--scenario", scenario_in_image, "--group", group.name, "--run-id", "${ROBODDS_RUN_ID:-1}", "--out", out_dir()};
+      host.volumes = common_mounts;
+      for (const std::string& name : group.components) {
+        const std::string mount = read_only_mount(options_.params_files.at(scenario_.component(name).type));
+        if (std::find(host.volumes.begin(), host.volumes.end(), mount) == host.volumes.end()) {
+          host.volumes.push_back(mount);
+        }
+      }
+      // Every host gets --out, as with `robodds run --deploy processes`; the evaluator writes there.
+      host.volumes.push_back("results:" + std::string(C::kShareDir) + "/out");
+      host.depends_on = after_server;
+      result.push_back(host);
+    }
+    return result;
+  }
+
+  void write_service(const Service& s) {
+    out_ << "  # " << s.comment << "\n"
+         << "  " << s.name << ":\n"
+         << "    image: " << scalar(C::kImage) << "\n"
+         << "    build:\n"
+         << "      context: " << scalar(options_.repo_dir) << "\n"
+         << "      dockerfile: " << scalar(C::kDockerfile) << "\n";
+    if (!s.entrypoint.empty()) {
+      out_ << "    entrypoint: " << flow_list(s.entrypoint) << "\n";
+    }
+    if (!s.command.empty()) {
+      out_ << "    command: " << flow_list(s.command) << "\n";
+    }
+    if (s.init) {
+      out_ << "    init: true\n";
+    }
+    if (s.uses_robodds_env) {
+      out_ << "    environment:\n"
+           << "      ROBODDS_DOMAIN_ID: " << scalar("${ROBODDS_DOMAIN_ID:-0}") << "\n"
+           << "      ROBODDS_QOS_FILE: " << scalar(in_share(qos_file_repo_path())) << "\n"
+           << "      ROBODDS_PARTICIPANT_PROFILE: " << scalar(participant_profile()) << "\n";
+    }
+    if (!s.volumes.empty()) {
+      out_ << "    volumes:\n";
+      for (const std::string& v : s.volumes) {
+        out_ << "      - " << scalar(v) << "\n";
+      }
+    }
+    if (!s.depends_on.empty()) {
+      out_ << "    depends_on: " << flow_list(s.depends_on) << "\n";
+    }
+    if (bridge()) {
+      out_ << "    networks:\n";
+      if (s.name == C::kDiscoveryService) {
+        out_ << "      " << C::kNetwork << ":\n"
+             << "        ipv4_address: " << scalar(C::kDiscoveryAddress) << "\n";
+      } else {
+        out_ << "      - " << C::kNetwork << "\n";
+      }
+    } else {
+      // Host network: every container has the host's addresses, so Fast DDS takes its peers
+      // for local processes and offers shared memory. Its segments live in /dev/shm, which is
+      // private per container unless ipc: host: without it topics match but no data arrives.
+      out_ << "    network_mode: host\n"
+           << "    ipc: host  # share /dev/shm: Fast DDS shared memory between the containers (see the top)\n";
+    }
+  }
+
+  void footer() {
+    if (bridge()) {
+      out_ << "networks:\n"
+           << "  " << C::kNetwork << ":\n"
+           << "    driver: bridge\n";
+      if (server()) {
+        // A fixed subnet so the Discovery Server has the address the client profile names.
+        out_ << "    ipam:\n"
+             << "      config:\n"
+             << "        - subnet: " << scalar(C::kSubnet) << "\n";
+      }
+    }
+    out_ << "volumes:\n"
+         << "  results: {}\n";
+  }
+
+  const Scenario& scenario_;
+  const ComposeOptions& options_;
+  std::ostringstream out_;
+};
+
+}  // namespace
+
+std::string generate_compose(const Scenario& scenario, const ComposeOptions& options) {
+  return ComposeWriter(scenario, options).write();
+}
+
+const char* to_string(ComposeDiscovery discovery) {
+  return discovery == ComposeDiscovery::kServer ? "server" : "multicast";
+}
+
+const char* to_string(ComposeNetwork network) { return network == ComposeNetwork::kHost ? "host" : "bridge"; }
+
+}  // namespace robodds

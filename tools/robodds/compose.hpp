@@ -1,0 +1,55 @@
+#pragma once
+// `robodds deploy compose`: a docker-compose file generated from a scenario's deployment
+// groups, so the shipped files in deploy/compose/ cannot drift from the scenarios.
+//
+// Pure: no file system, no environment. The caller resolves paths and the component types'
+// parameter files; the output depends only on the arguments (deterministic ordering).
+
+#include <map>
+#include <string>
+
+#include "runtime/scenario.hpp"
+
+namespace robodds {
+
+enum class ComposeDiscovery { kMulticast, kServer };
+enum class ComposeNetwork { kBridge, kHost };
+
+struct ComposeOptions {
+  ComposeDiscovery discovery = ComposeDiscovery::kMulticast;
+  ComposeNetwork network = ComposeNetwork::kBridge;
+  /// The scenario file relative to the repository root, e.g. sim/scenarios/plant_smoke.yaml.
+  std::string scenario_path;
+  /// The repository root as seen from the compose file's directory (build context and the
+  /// host side of every bind mount), e.g. "../.." for a file in deploy/compose/.
+  std::string repo_dir = "../..";
+  /// Component type -> its parameter defaults file relative to the repository root
+  /// (ComponentType::defaults_file). A scenario component whose type is missing is an error.
+  std::map<std::string, std::string> params_files;
+};
+
+/// Fixed names and addresses of the generated deployments (also used by the tests and docs).
+struct ComposeConstants {
+  static constexpr const char* kImage = "robodds:latest";
+  static constexpr const char* kDockerfile = "deploy/docker/Dockerfile";
+  static constexpr const char* kShareDir = "/opt/robodds";  // ROBODDS_SHARE_DIR in the image
+  static constexpr const char* kNetwork = "robodds";
+  static constexpr const char* kSubnet = "172.30.77.0/24";
+  static constexpr const char* kDiscoveryAddress = "172.30.77.2";
+  static constexpr int kDiscoveryPort = 11811;
+  /// The discovery client profile for the bridge network: deploy/qos/discovery_client.xml with
+  /// 127.0.0.1 replaced by kDiscoveryAddress (XML cannot read the address from the environment).
+  static constexpr const char* kBridgeDiscoveryClientXml = "deploy/compose/discovery_client.compose.xml";
+  static constexpr const char* kCoordinatorService = "coordinator";
+  static constexpr const char* kDiscoveryService = "discovery";
+};
+
+/// The compose file's YAML text. Throws ConfigError naming the scenario file and the offending
+/// group or component (unknown component type, group name unusable as a service name).
+std::string generate_compose(const Scenario& scenario, const ComposeOptions& options);
+
+/// "multicast"/"server" and "bridge"/"host", as on the command line.
+const char* to_string(ComposeDiscovery discovery);
+const char* to_string(ComposeNetwork network);
+
+}  // namespace robodds

@@ -1,0 +1,104 @@
+#include "tools/robodds/deploy_command.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "runtime/error.hpp"
+#include "runtime/registry.hpp"
+#include "runtime/scenario.hpp"
+#include "tools/robodds/builtin_components.hpp"
+#include "tools/robodds/compose.hpp"
+
+namespace robodds {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// True when `path` is `root` or below it (both canonical).
+bool is_inside(const fs::path& path, const fs::path& root) {
+  const fs::path rel = path.lexically_relative(root);
+  return !rel.empty() && *rel.begin() != "..";
+}
+
+/// How the compose file reaches the repository: relative when the file is inside it (the
+/// shipped files stay valid in any checkout), absolute otherwise.
+std::string repo_dir_seen_from(const fs::path& compose_dir, const fs::path& root) {
+  if (!is_inside(compose_dir, root)) {
+    return root.string();
+  }
+  const std::string rel = root.lexically_relative(compose_dir).generic_string();
+  return rel.empty() ? "." : rel;
+}
+
+void require_in_repo(const fs::path& root, const std::string& repo_path, const std::string& what) {
+  if (!fs::exists(root / repo_path)) {
+    throw ConfigError(located((root / repo_path).string(), "", what + " not found (the compose file mounts it from the repository)"));
+  }
+}
+
+}  // namespace
+
+DeployCommand::DeployCommand(CLI::App& app) {
+  deploy_ = app.add_subcommand("deploy", "generate deployment files from a scenario");
+  deploy_->require_subcommand(1);
+  CLI::App* compose = deploy_->add_subcommand("compose", "docker-compose file: one service per group of the scenario + coordinator");
+  compose->add_option("scenario", scenario_file_, "scenario YAML file (inside the repository)")->required();
+  compose->add_option("--discovery", discovery_, "multicast (SIMPLE discovery) or server (a Fast DDS Discovery Server service)")
+      ->check(CLI::IsMember({"multicast", "server"}));
+  compose->add_option("--network", network_, "bridge (user-defined network, UDP only) or host (network_mode: host, ipc: host)")
+      ->check(CLI::IsMember({"bridge", "host"}));
+  compose->add_option("-o,--output", output_, "write here (default: stdout, with paths for a file in deploy/compose/)");
+}
+
+int DeployCommand::run(const std::string& repo_root) const {
+  const Scenario scenario = load_scenario(scenario_file_);
+  const fs::path root = fs::canonical(repo_root);
+  const fs::path scenario_abs = fs::canonical(scenario_file_);
+  if (!is_inside(scenario_abs, root)) {
+    throw ConfigError(located(scenario_file_, "", "is outside the repository " + root.string() +
+                                                      " (the image and the mounts take scenarios from there, e.g. sim/scenarios/)"));
+  }
+
+  ComposeOptions options;
+  options.discovery = discovery_ == "server" ? ComposeDiscovery::kServer : ComposeDiscovery::kMulticast;
+  options.network = network_ == "host" ? ComposeNetwork::kHost : ComposeNetwork::kBridge;
+  options.scenario_path = scenario_abs.lexically_relative(root).generic_string();
+  if (!output_.empty()) {
+    options.repo_dir = repo_dir_seen_from(fs::weakly_canonical(fs::absolute(output_)).parent_path(), root);
+  }
+  ComponentRegistry registry;
+  register_builtin_components(registry);
+  for (const ComponentType& type : registry.types()) {
+    options.params_files[type.name] = type.defaults_file;
+  }
+
+  const std::string text = generate_compose(scenario, options);  // validates groups and types first
+
+  // Everything the file mounts must exist, or docker would mount an empty directory instead.
+  require_in_repo(root, "deploy/qos/robodds_qos.xml", "QoS file");
+  if (options.discovery == ComposeDiscovery::kServer) {
+    require_in_repo(root, options.network == ComposeNetwork::kBridge ? ComposeConstants::kBridgeDiscoveryClientXml
+                                                                     : "deploy/qos/discovery_client.xml",
+                    "discovery client profile");
+  }
+  for (const ComponentSpec& component : scenario.components) {
+    require_in_repo(root, options.params_files.at(component.type), "parameter file of component '" + component.name + "'");
+  }
+
+  if (output_.empty()) {
+    std::fputs(text.c_str(), stdout);
+    return 0;
+  }
+  std::ofstream out(output_, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();
+  if (!out) {
+    throw ConfigError(located(output_, "", "cannot write the compose file"));
+  }
+  std::printf("wrote %s (%zu groups + coordinator%s)\n", output_.c_str(), scenario.groups.size(),
+              options.discovery == ComposeDiscovery::kServer ? " + discovery server" : "");
+  return 0;
+}
+
+}  // namespace robodds
