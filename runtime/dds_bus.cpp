@@ -670,6 +670,12 @@ void load_qos_files(const std::vector<std::string>& files) {
       throw ConfigError(located(file, "", "rejected by Fast DDS (2.9 XML schema): " +
                                               (reasons.empty() ? std::string("malformed XML") : reasons)));
     }
+    if (!messages.empty()) {
+      // Loaded "successfully" but with errors, e.g. a profile name already defined by an earlier
+      // file: Fast DDS keeps the first definition and drops this one, which would silently run
+      // with other QoS than the file says.
+      throw ConfigError(located(file, "", "Fast DDS reported errors while loading it: " + reasons));
+    }
     loaded.insert(file);
   }
 }

@@ -32,6 +32,10 @@ expect_error 2 "participant profile 'no.such.profile'.*not found" -- "${R[@]}" "
 sed 's#profile_name="lockstep"#profile_name="lockstep_renamed"#g' "$SRC/deploy/qos/robodds_qos.xml" >"$WORK/noprofile.xml"
 expect_error 2 "noprofile\.xml: data_writer profile 'lockstep': not found" -- "${R[@]}" "$S" --qos "$WORK/noprofile.xml"
 
+cp "$SRC/deploy/qos/robodds_qos.xml" "$WORK/dup.xml"
+expect_error 2 "dup\.xml: Fast DDS reported errors while loading it: .*profile" -- \
+  "${R[@]}" "$S" --qos "$SRC/deploy/qos/robodds_qos.xml" --qos "$WORK/dup.xml"
+
 # The same errors from a host started on its own.
 expect_error 2 "no group named 'nosuch'" -- "$ROBODDS" host --scenario "$S" --group nosuch --domain "$DOMAIN"
 expect_error 2 "unknown topic 'plant/stat'" -- "$ROBODDS" echo plant/stat --domain "$DOMAIN"
