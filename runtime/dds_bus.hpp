@@ -31,13 +31,11 @@ class DdsBus : public Bus {
 /// the file and the rejected element, or a missing profile, and RunError if DDS fails.
 std::unique_ptr<DdsBus> make_dds_bus(const DdsOptions& options);
 
+// The QoS files (defined in runtime/dds_qos_files.cpp).
+
 /// Loads the QoS files into the process-wide profile store (idempotent per file); ConfigError on
 /// a malformed file, naming the file and Fast DDS's reason.
 void load_qos_files(const std::vector<std::string>& files);
-
-/// Loads the QoS files and checks the participant profile exists and is usable (e.g. every
-/// discovery-server locator has a real address and port); ConfigError naming file and element.
-void check_participant_profile(const DdsOptions& options);
 
 /// Data-writer/reader profile names the runtime requires in the QoS files.
 const std::vector<std::string>& required_data_profiles();

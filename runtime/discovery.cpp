@@ -1,4 +1,5 @@
 #include "runtime/discovery.hpp"
+#include "runtime/dds_qos_files.hpp"
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
@@ -70,12 +71,8 @@ class DiscoveryListener : public dds::DomainParticipantListener {
 }  // namespace
 
 std::vector<DiscoveredTopic> discover_topics(const DdsOptions& options, double seconds) {
-  check_participant_profile(options);
   auto* factory = dds::DomainParticipantFactory::get_instance();
-  dds::DomainParticipantQos qos;
-  if (factory->get_participant_qos_from_profile(options.participant_profile, qos) != eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
-    throw ConfigError("participant profile '" + options.participant_profile + "' not found in the loaded QoS files");
-  }
+  dds::DomainParticipantQos qos = checked_participant_qos(options);
   qos.name("robodds-topics");
   DiscoveryListener listener;
   // Only discovery callbacks: leave data_on_readers out of the mask (it would swallow data).

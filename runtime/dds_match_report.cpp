@@ -1,0 +1,146 @@
+#include "runtime/dds_match_report.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+#include "runtime/dds_text.hpp"
+#include "runtime/log.hpp"
+
+namespace robodds {
+
+void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::ParticipantDiscoveryInfo&& info) {
+  const std::string name = info.info.m_participantName.to_string();
+  const std::string key = guid_prefix_text(info.info.m_guid.guidPrefix);
+  std::lock_guard<std::mutex> lock(mutex_);
+  switch (info.status) {
+    case rtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT:
+      names_[key] = name;
+      alive_.insert(key);
+      break;
+    case rtps::ParticipantDiscoveryInfo::DROPPED_PARTICIPANT:
+      // Dropped = its lease expired without a goodbye: the host died or its network did.
+      log::warn("dds", "participant '" + name + "' dropped: no announcement within its lease (host or network down?)");
+      alive_.erase(key);
+      break;
+    case rtps::ParticipantDiscoveryInfo::REMOVED_PARTICIPANT:
+      alive_.erase(key);
+      break;
+    default:
+      break;
+  }
+}
+
+void PeerDirectory::on_publisher_discovery(dds::DomainParticipant*, rtps::WriterDiscoveryInfo&& info) {
+  const auto& q = info.info.m_qos;
+  remember(writers_, info.info.topicName().to_string(), info.info.guid(),
+           info.status != rtps::WriterDiscoveryInfo::REMOVED_WRITER,
+           describe_qos(q.m_reliability, q.m_durability, q.m_deadline, q.m_liveliness));
+}
+
+void PeerDirectory::on_subscriber_discovery(dds::DomainParticipant*, rtps::ReaderDiscoveryInfo&& info) {
+  const auto& q = info.info.m_qos;
+  remember(readers_, info.info.topicName().to_string(), info.info.guid(),
+           info.status != rtps::ReaderDiscoveryInfo::REMOVED_READER,
+           describe_qos(q.m_reliability, q.m_durability, q.m_deadline, q.m_liveliness));
+}
+
+std::string PeerDirectory::who(const rtps::GUID_t& guid) const {
+  const std::string key = guid_prefix_text(guid.guidPrefix);
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto it = names_.find(key);
+  if (it == names_.end()) {
+    return "participant " + key;
+  }
+  const std::string& name = it->second;
+  return "'" + (name.rfind("robodds-", 0) == 0 ? name.substr(8) : name) + "'";
+}
+
+std::string PeerDirectory::remote_qos(const std::string& topic, bool of_writers, const std::string& local) const {
+  std::vector<std::pair<std::string, rtps::GUID_t>> found;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto& table = of_writers ? writers_ : readers_;
+    auto it = table.find(topic);
+    if (it != table.end()) {
+      for (const auto& [guid_key, entry] : it->second) {
+        found.push_back(entry);
+      }
+    }
+  }
+  const bool any_differs = std::any_of(found.begin(), found.end(), [&](const auto& e) { return e.first != local; });
+  std::string out;
+  for (const auto& [qos, guid] : found) {
+    if (!any_differs || qos != local) {
+      out += (out.empty() ? "" : ", ") + qos + " from " + who(guid);
+    }
+  }
+  return out.empty() ? std::string("(not discovered yet)") : out;
+}
+
+std::size_t PeerDirectory::participants_alive() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return alive_.size();
+}
+
+void PeerDirectory::remember(Table& table, const std::string& topic, const rtps::GUID_t& guid, bool present,
+                             const std::string& qos) {
+  std::ostringstream key;
+  key << guid;
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (present) {
+    table[topic][key.str()] = {qos, guid};
+  } else {
+    table[topic].erase(key.str());
+  }
+}
+
+void MatchState::set_incompatible(dds::QosPolicyId_t policy, std::string local_qos) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  policy_ = policy;
+  local_qos_ = std::move(local_qos);
+  incompatible_ = true;
+}
+
+std::string MatchState::incompatible() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!incompatible_) {
+    return "";
+  }
+  return "incompatible QoS " + policy_name(policy_) + (reader_ ? ": this reader requests " : ": this writer offers ") +
+         local_qos_ + (reader_ ? ", writers offer " : ", readers request ") + peers_->remote_qos(topic_, reader_, local_qos_);
+}
+
+std::string MatchState::problem() const {
+  const std::string what = topic_ + (reader_ ? " (reader)" : " (writer)");
+  const std::string incompatibility = incompatible();
+  if (!incompatibility.empty()) {
+    return what + ": " + incompatibility;
+  }
+  if (matched == 0) {
+    return what + (reader_ ? ": no writer matched" : ": no reader matched");
+  }
+  return "";
+}
+
+std::string describe_match_problems(const PeerDirectory& peers, const std::vector<const MatchState*>& endpoints) {
+  std::vector<std::string> problems;
+  for (const MatchState* endpoint : endpoints) {
+    std::string problem = endpoint->problem();
+    if (!problem.empty()) {
+      problems.push_back(std::move(problem));
+    }
+  }
+  if (problems.empty()) {
+    return "";
+  }
+  const std::size_t alive = peers.participants_alive();
+  std::string out = alive == 0 ? "DDS: no other participant discovered (another domain id, multicast blocked, "
+                                 "or discovery server unreachable?)"
+                               : "DDS: " + std::to_string(alive) + " other participant(s) discovered";
+  for (const std::string& problem : problems) {
+    out += "; " + problem;
+  }
+  return out;
+}
+
+}  // namespace robodds

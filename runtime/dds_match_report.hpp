@@ -1,0 +1,85 @@
+#pragma once
+// What a participant knows about its peers and the match state of its own endpoints, kept to
+// explain a lockstep timeout: which topics have no matched peer and which QoS are incompatible,
+// with both sides' policies (runtime-internal; includes Fast DDS).
+
+#include <fastdds/dds/core/policy/QosPolicies.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
+#include <fastdds/rtps/common/Guid.h>
+
+#include <atomic>
+#include <map>
+#include <mutex>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace robodds {
+namespace dds = eprosima::fastdds::dds;
+namespace rtps = eprosima::fastrtps::rtps;
+
+/// What discovery told this participant about its peers: participant names (so that reports can
+/// say which host a writer lives on) and the QoS each remote endpoint offers or requests per
+/// topic (so that an incompatible-QoS report shows both sides). Filled by Fast DDS's discovery
+/// thread; only stores, never calls back into DDS.
+class PeerDirectory : public dds::DomainParticipantListener {
+ public:
+  void on_participant_discovery(dds::DomainParticipant*, rtps::ParticipantDiscoveryInfo&& info) override;
+  void on_publisher_discovery(dds::DomainParticipant*, rtps::WriterDiscoveryInfo&& info) override;
+  void on_subscriber_discovery(dds::DomainParticipant*, rtps::ReaderDiscoveryInfo&& info) override;
+
+  /// "'control'" for a participant named "robodds-control" (the host names participants
+  /// "robodds-<group>"), another participant's full name, or its GUID prefix if not yet known.
+  std::string who(const rtps::GUID_t& guid) const;
+
+  /// Remote endpoints of `topic` whose QoS differs from `local` (the suspects of a mismatch;
+  /// all of them if none differs), e.g. "BEST_EFFORT/TRANSIENT_LOCAL from 'control'".
+  std::string remote_qos(const std::string& topic, bool of_writers, const std::string& local) const;
+
+  std::size_t participants_alive() const;
+
+ private:
+  using Table = std::map<std::string, std::map<std::string, std::pair<std::string, rtps::GUID_t>>>;
+  void remember(Table& table, const std::string& topic, const rtps::GUID_t& guid, bool present, const std::string& qos);
+
+  mutable std::mutex mutex_;
+  std::map<std::string, std::string> names_;  // GUID prefix -> participant name
+  std::set<std::string> alive_;
+  Table writers_;
+  Table readers_;
+};
+
+/// Match state of one local endpoint, kept for the report appended to lockstep timeouts. The
+/// remote side of an incompatibility is looked up when the text is built, not when Fast DDS
+/// reports it: the incompatible-QoS callback can come before discovery reports the remote QoS.
+class MatchState {
+ public:
+  MatchState(std::string topic, bool reader, const PeerDirectory* peers)
+      : topic_(std::move(topic)), reader_(reader), peers_(peers) {}
+
+  std::atomic<int> matched{0};
+
+  void set_incompatible(dds::QosPolicyId_t policy, std::string local_qos);
+  /// e.g. "incompatible QoS RELIABILITY: this reader requests RELIABLE/..., writers offer
+  /// BEST_EFFORT/... from 'control'"; empty if no incompatibility was reported.
+  std::string incompatible() const;
+  /// e.g. "plant/cmd (reader): no writer matched" or "plant/cmd (writer): incompatible QoS ..."; empty when
+  /// matched and compatible. An incompatible QoS explains a missing match, so it wins over "no match".
+  std::string problem() const;
+
+ private:
+  std::string topic_;
+  bool reader_;
+  const PeerDirectory* peers_;
+  mutable std::mutex mutex_;
+  bool incompatible_ = false;
+  dds::QosPolicyId_t policy_ = dds::INVALID_QOS_POLICY_ID;
+  std::string local_qos_;
+};
+
+/// One line for Bus::match_report: how many peers were discovered, then the problem of each of
+/// `endpoints` that has one; empty when none has.
+std::string describe_match_problems(const PeerDirectory& peers, const std::vector<const MatchState*>& endpoints);
+
+}  // namespace robodds

@@ -1,0 +1,156 @@
+#include "runtime/dds_qos_files.hpp"
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/log/Log.hpp>
+#include <fastrtps/utils/IPLocator.h>
+
+#include <fstream>
+#include <iterator>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "runtime/dds_text.hpp"
+#include "runtime/error.hpp"
+
+namespace robodds {
+namespace dds = eprosima::fastdds::dds;
+namespace rtps = eprosima::fastrtps::rtps;
+using eprosima::fastrtps::types::ReturnCode_t;
+
+namespace {
+
+/// Collects Fast DDS log entries so a rejected XML file can be reported in one line.
+class CapturingConsumer : public dds::LogConsumer {
+ public:
+  void Consume(const dds::Log::Entry& entry) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (entry.kind == dds::Log::Kind::Error) {
+      messages_.push_back(entry.message);
+    }
+  }
+  std::vector<std::string> take() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return std::move(messages_);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<std::string> messages_;
+};
+
+CapturingConsumer* install_log_consumer() {
+  static CapturingConsumer* consumer = [] {
+    auto owned = std::make_unique<CapturingConsumer>();
+    CapturingConsumer* raw = owned.get();
+    dds::Log::ClearConsumers();
+    dds::Log::RegisterConsumer(std::move(owned));
+    dds::Log::SetVerbosity(dds::Log::Kind::Error);
+    return raw;
+  }();
+  return consumer;
+}
+
+/// The loaded file that defines `<kind profile_name="name">` (for error messages), else `fallback`.
+std::string file_defining(const std::vector<std::string>& files, const std::string& name, const std::string& fallback) {
+  for (const std::string& file : files) {
+    std::ifstream in(file);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (text.find("profile_name=\"" + name + "\"") != std::string::npos) {
+      return file;
+    }
+  }
+  return fallback;
+}
+
+/// Fast DDS 2.9 parses a discovery-server locator with port 0, a port above 65535 (silently
+/// truncated) or address 0.0.0.0 and then never reaches the server: discovery just never
+/// happens. Reject such a profile at start-up instead, naming the file and the element.
+void check_discovery_servers(const dds::DomainParticipantQos& qos, const std::string& profile, const std::string& file) {
+  const auto& config = qos.wire_protocol().builtin.discovery_config;
+  const std::string where = "participant profile '" + profile + "': discoveryServersList";
+  const bool client = config.discoveryProtocol == rtps::DiscoveryProtocol_t::CLIENT ||
+                      config.discoveryProtocol == rtps::DiscoveryProtocol_t::SUPER_CLIENT;
+  if (client && config.m_DiscoveryServers.empty()) {
+    throw ConfigError(located(file, where, "a discovery CLIENT needs at least one <RemoteServer>"));
+  }
+  for (const auto& server : config.m_DiscoveryServers) {
+    const std::string element = where + ": RemoteServer " + guid_prefix_text(server.guidPrefix);
+    if (server.metatrafficUnicastLocatorList.empty() && server.metatrafficMulticastLocatorList.empty()) {
+      throw ConfigError(located(file, element, "has no locator: add a <metatrafficUnicastLocatorList> with the server's address and port"));
+    }
+    for (const auto& locator : server.metatrafficUnicastLocatorList) {
+      const std::string address = rtps::IPLocator::ip_to_string(locator);
+      if (locator.port == 0 || locator.port > 65535) {
+        throw ConfigError(located(file, element + ": locator " + address,
+                                  "port " + std::to_string(locator.port) + " is not a valid port (1-65535)"));
+      }
+      if (rtps::IPLocator::isAny(locator)) {
+        throw ConfigError(located(file, element + ": locator " + address + ":" + std::to_string(locator.port),
+                                  "address " + address + " is not a server address (give the server's IP)"));
+      }
+    }
+  }
+}
+
+}  // namespace
+
+const std::vector<std::string>& required_data_profiles() {
+  static const std::vector<std::string> profiles = {"sensor", "state", "command", "mission", "lockstep", "lockstep_local", "monitor"};
+  return profiles;
+}
+
+void load_qos_files(const std::vector<std::string>& files) {
+  static std::mutex mutex;
+  static std::set<std::string> loaded;
+  std::lock_guard<std::mutex> lock(mutex);
+  CapturingConsumer* consumer = install_log_consumer();
+  for (const std::string& file : files) {
+    if (loaded.count(file) != 0) {
+      continue;
+    }
+    if (!std::ifstream(file).good()) {
+      throw ConfigError(located(file, "", "QoS profile file not found or not readable"));
+    }
+    consumer->take();
+    const ReturnCode_t rc = dds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(file);
+    dds::Log::Flush();
+    // Fast DDS logs the real problem first, then one "Error parsing ..." line per enclosing
+    // element and per later profile: the first two name the element and where it sits.
+    std::string reasons;
+    const std::vector<std::string> messages = consumer->take();
+    for (std::size_t i = 0; i < messages.size() && i < 2; ++i) {
+      reasons += (reasons.empty() ? "" : "; ") + messages[i];
+    }
+    if (rc != ReturnCode_t::RETCODE_OK) {
+      throw ConfigError(located(file, "", "rejected by Fast DDS (2.9 XML schema): " +
+                                              (reasons.empty() ? std::string("malformed XML") : reasons)));
+    }
+    if (!messages.empty()) {
+      // Loaded "successfully" but with errors, e.g. a profile name already defined by an earlier
+      // file: Fast DDS keeps the first definition and drops this one, which would silently run
+      // with other QoS than the file says.
+      throw ConfigError(located(file, "", "Fast DDS reported errors while loading it: " + reasons));
+    }
+    loaded.insert(file);
+  }
+}
+
+dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
+  load_qos_files(options.qos_files);
+  const std::string last = options.qos_files.empty() ? "(no QoS file)" : options.qos_files.back();
+  dds::DomainParticipantQos qos;
+  if (dds::DomainParticipantFactory::get_instance()->get_participant_qos_from_profile(options.participant_profile, qos) !=
+      ReturnCode_t::RETCODE_OK) {
+    throw ConfigError(located(last, "participant profile '" + options.participant_profile + "'", "not found in the loaded QoS files"));
+  }
+  check_discovery_servers(qos, options.participant_profile,
+                          file_defining(options.qos_files, options.participant_profile, last));
+  return qos;
+}
+
+
+
+}  // namespace robodds
