@@ -151,6 +151,4 @@ dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
   return qos;
 }
 
-
-
 }  // namespace robodds
