@@ -242,6 +242,7 @@ int run_host(const Scenario& scenario, const DdsOptions& dds, HostOptions option
 int make_plots(const std::string& out_dir) {
   const std::string script = share_dir() + "/sim/report/report.py";
   const std::string command = "python3 '" + script + "' '" + out_dir + "'";
+  std::fflush(stdout);  // our buffered output first, then the child's
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : 1;
 }
