@@ -81,7 +81,12 @@ class PfEstimatorNode : public Component {
       for (; next_odometry < odometry.size(); ++next_odometry) {
         predict(*filter, odometry[next_odometry]);
       }
-      publish(id, *filter);
+      // The estimate is published every step but the cloud only changes with new odometry or
+      // fixes: reuse the last estimate otherwise (it costs a pass with sin/cos over M particles).
+      if (!odometry.empty() || !fixes.empty() || published_.count(id) == 0) {
+        published_[id] = to_message(id, *filter);
+      }
+      out_->publish(published_[id]);
     }
   }
 
@@ -92,7 +97,7 @@ class PfEstimatorNode : public Component {
     }
   }
 
-  void publish(std::uint32_t id, const ParticleFilter& filter) {
+  idl::PoseEstimate to_message(std::uint32_t id, const ParticleFilter& filter) const {
     idl::PoseEstimate m;
     m.robot_id(id);
     if (filter.initialized()) {
@@ -105,10 +110,11 @@ class PfEstimatorNode : public Component {
       }
       m.valid(std::sqrt(e.covariance(0, 0) + e.covariance(1, 1)) < valid_max_std_m_);
     }
-    out_->publish(m);
+    return m;
   }
 
   std::map<std::uint32_t, std::unique_ptr<ParticleFilter>> filters_;
+  std::map<std::uint32_t, idl::PoseEstimate> published_;  // last estimate per robot
   double valid_max_std_m_ = 3.0;
   Input<idl::Odometry>* odometry_ = nullptr;
   Input<idl::PositionMeasurement>* fixes_ = nullptr;
