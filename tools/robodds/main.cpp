@@ -67,7 +67,7 @@ struct DdsFlags {
 
   void add_to(CLI::App* app) {
     app->add_option("--domain", domain, "DDS domain id (default: $ROBODDS_DOMAIN_ID or 0)")->check(CLI::Range(0, 232));
-    app->add_option("--qos", qos_files, "QoS profile XML file(s) (default: $ROBODDS_QOS_FILE or deploy/qos/robodds_qos.xml)");
+    app->add_option("--qos", qos_files, "QoS profile XML file(s) (default: deploy/qos/robodds_qos.xml, plus $ROBODDS_QOS_FILE if set)");
     app->add_option("--participant-profile", participant_profile,
                     "participant profile (default: $ROBODDS_PARTICIPANT_PROFILE or robodds.participant)");
   }
