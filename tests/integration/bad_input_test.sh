@@ -36,6 +36,11 @@ cp "$SRC/deploy/qos/robodds_qos.xml" "$WORK/dup.xml"
 expect_error 2 "dup\.xml: Fast DDS reported errors while loading it: .*profile" -- \
   "${R[@]}" "$S" --qos "$SRC/deploy/qos/robodds_qos.xml" --qos "$WORK/dup.xml"
 
+# Command-line mistakes are bad input too: exit 2, one line.
+expect_error 2 "--scenario is required" -- "$ROBODDS" host --components plant,position_sensor --domain "$DOMAIN"
+expect_error 2 "--domain: Value 300 not in range" -- "${R[@]}" "$S" --domain 300
+expect_error 2 "--deploy: everywhere not in" -- "${R[@]}" "$S" --deploy everywhere
+
 # The same errors from a host started on its own.
 expect_error 2 "no group named 'nosuch'" -- "$ROBODDS" host --scenario "$S" --group nosuch --domain "$DOMAIN"
 expect_error 2 "unknown topic 'plant/stat'" -- "$ROBODDS" echo plant/stat --domain "$DOMAIN"

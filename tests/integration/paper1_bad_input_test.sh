@@ -26,4 +26,6 @@ expect_error 2 "p4\.yaml: measurement_std_m: " -- \
   "${R[@]}" "$(with_params p4 estimator pf_estimator '{measurement_std_m: .nan}')"
 expect_error 2 "m1\.yaml: waypoints" -- \
   "${R[@]}" "$(with_params m1 mission mission_source '{waypoints: [[60, 20], [.nan, 15]]}')"
+expect_error 2 "m2\.yaml: waypoints" -- \
+  "${R[@]}" "$(with_params m2 mission mission_source '{waypoints: []}')"
 echo "ok: paper 1 bad parameters rejected with a clear one-line error"

@@ -344,7 +344,18 @@ int main(int argc, char** argv) {
 
   DeployCommand deploy_cmd(app);  // deploy compose: docker-compose file from a scenario
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // Bad command line = bad input: one line and exit code 2, like every other ConfigError.
+    std::fprintf(stderr, "robodds: error: %s (see robodds %s--help)\n", e.what(),
+                 app.get_subcommands().empty() ? "" : (app.get_subcommands().front()->get_name() + " ").c_str());
+    return 2;
+  }
 
   try {
     log::set_level(log::parse_level(log_level));
