@@ -8,7 +8,7 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/../.." && pwd)"
 ROBODDS="${1:-$ROOT/build/tools/robodds/robodds}"
 OUT="${2:-$ROOT/deploy/compose}"
-SCENARIOS=(paper1_waypoints plant_smoke)  # the shipped closed-loop scenarios
+SCENARIOS=(paper1_ideal paper1_waypoints plant_smoke)  # the shipped closed-loop scenarios
 DISCOVERY_ADDRESS=172.30.77.2             # ComposeConstants::kDiscoveryAddress (tools/robodds/compose.hpp)
 
 mkdir -p "$OUT"

@@ -69,12 +69,15 @@ echo "ok: -o FILE gets paths relative to FILE"
 
 # 6. The services' commands, run as local processes, complete the run; the outputs are
 #    byte-identical to a co-located run (bridge variant: UDP only; host variant: SHM + UDP).
-"$ROBODDS" --log warn run "$S" --domain "$DOMAIN" --out "$WORK/colocated" --no-plots >/dev/null
-for variant in plant_smoke.yml plant_smoke.host-network.yml; do
+for scenario in plant_smoke paper1_waypoints; do
+  "$ROBODDS" --log warn run "$SRC/sim/scenarios/$scenario.yaml" --domain "$DOMAIN" --out "$WORK/colocated/$scenario" --no-plots >/dev/null
+done
+for variant in plant_smoke.yml plant_smoke.host-network.yml paper1_waypoints.yml; do
+  scenario="${variant%%.*}"
   mkdir -p "$WORK/$variant"
   ROBODDS_DOMAIN_ID="$DOMAIN" ROBODDS_RUN_ID="$RANDOM$$" timeout -k 5 300 "${CHECK[@]}" "$COMPOSE_DIR/$variant" --run "$WORK/$variant"
-  for csv in "$WORK/colocated"/*.csv; do
-    cmp -s "$csv" "$WORK/$variant/plant_smoke/$(basename "$csv")" || fail "$variant: $(basename "$csv") differs from the co-located run"
+  for csv in "$WORK/colocated/$scenario"/*.csv; do
+    cmp -s "$csv" "$WORK/$variant/$scenario/$(basename "$csv")" || fail "$variant: $(basename "$csv") differs from the co-located run"
   done
   echo "ok: $variant commands complete the run, CSVs byte-identical to co-located"
 done
