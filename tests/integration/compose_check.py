@@ -223,6 +223,16 @@ def check_discovery(discovery, services, src):
             fail(f"{name}: client profile {qos} does not name the server {address}:{port}")
 
 
+def last_errors(out_dir, processes):
+    """The last error line of each service's log (the scratch directory is gone after a test)."""
+    lines = []
+    for name in processes:
+        with open(os.path.join(out_dir, f"{name}.log"), errors="replace") as log:
+            errors = [line.strip() for line in log if "error" in line]
+        lines.append(f"{name}: {errors[-1] if errors else '(no error logged)'}")
+    return " | ".join(lines)
+
+
 def run_natively(robodds, src, config, out_dir, timeout_s=120):
     """Each robodds service as a local process: the containers' commands, without containers."""
     processes = {}
@@ -249,7 +259,7 @@ def run_natively(robodds, src, config, out_dir, timeout_s=120):
             time.sleep(0.1)
         code = processes["coordinator"].poll()
         if code != 0:
-            fail(f"native run: coordinator exited with {code} (logs in {out_dir}/*.log)")
+            fail(f"native run: coordinator exited with {code}; " + last_errors(out_dir, processes))
         for name, p in processes.items():
             try:
                 if p.wait(timeout=30) != 0:
