@@ -8,13 +8,6 @@ DURATION=()
 [[ -n "${5:-}" ]] && DURATION=(--duration "$5")
 timeout -k 5 300 "$ROBODDS" run "$SCENARIO" "${DURATION[@]}" --out "$WORK/colocated" --domain "$DOMAIN" --no-plots >/dev/null
 timeout -k 5 300 "$ROBODDS" run "$SCENARIO" "${DURATION[@]}" --out "$WORK/processes" --domain "$DOMAIN" --deploy processes ${PROCESSES_ARGS:-} --no-plots >/dev/null
-n=0
-for f in "$WORK"/colocated/*.csv; do
-  cmp "$f" "$WORK/processes/$(basename "$f")" || fail "$(basename "$f") differs between deployments"
-  n=$((n + 1))
-done
-[[ $n -ge 1 ]] || fail "no CSV written"
-diff <(sed '/"run"/,$d' "$WORK/colocated/summary.json") <(sed '/"run"/,$d' "$WORK/processes/summary.json") \
-  || fail "summary.json metrics differ"
+same_outputs "$WORK/colocated" "$WORK/processes"
 grep -q '"deploy": "processes"' "$WORK/processes/summary.json" || fail "run section missing"
-echo "ok: $n CSV files and the metrics are identical co-located and across processes"
+echo "ok: $N_CSV CSV files and the metrics are identical co-located and across processes"

@@ -24,3 +24,16 @@ expect_error() {
   [[ $(grep -c "error:" <<<"$out") -eq 1 ]] || fail "expected exactly one error line in: $out"
   echo "ok: $pattern"
 }
+# same_outputs DIR_A DIR_B: every CSV of DIR_A is byte-identical in DIR_B and the metrics of the
+# two summary.json files are equal (the "run" section, wall-clock figures, aside). Sets $N_CSV.
+same_outputs() {
+  local a="$1" b="$2" f
+  N_CSV=0
+  for f in "$a"/*.csv; do
+    [[ -e "$f" ]] || break
+    cmp "$f" "$b/$(basename "$f")" || fail "$(basename "$f") differs between $(basename "$a") and $(basename "$b")"
+    N_CSV=$((N_CSV + 1))
+  done
+  [[ $N_CSV -ge 1 ]] || fail "no CSV written in $a"
+  diff <(sed '/"run"/,$d' "$a/summary.json") <(sed '/"run"/,$d' "$b/summary.json") || fail "summary.json metrics differ"
+}

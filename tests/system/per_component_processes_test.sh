@@ -22,12 +22,5 @@ timeout -k 5 300 "$ROBODDS" run "$WORK/per_component.yaml" --out "$WORK/colocate
   || fail "co-located run failed: $(tail -5 "$WORK/colocated.log")"
 timeout -k 5 600 "$ROBODDS" run "$WORK/per_component.yaml" --out "$WORK/processes" --domain "$DOMAIN" --deploy processes \
   --lockstep-window "$WINDOW" --no-plots >"$WORK/processes.log" 2>&1 || fail "processes run failed: $(tail -5 "$WORK/processes.log")"
-n=0
-for f in "$WORK"/colocated/*.csv; do
-  cmp "$f" "$WORK/processes/$(basename "$f")" || fail "$(basename "$f") differs between co-located and $groups processes"
-  n=$((n + 1))
-done
-[[ $n -ge 1 ]] || fail "no CSV written"
-diff <(sed '/"run"/,$d' "$WORK/colocated/summary.json") <(sed '/"run"/,$d' "$WORK/processes/summary.json") \
-  || fail "summary.json metrics differ"
-echo "ok: $NAME with $groups processes (one per component, window $WINDOW): $n CSV files and the metrics identical to co-located"
+same_outputs "$WORK/colocated" "$WORK/processes"
+echo "ok: $NAME with $groups processes (one per component, window $WINDOW): $N_CSV CSV files and the metrics identical to co-located"
