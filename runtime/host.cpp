@@ -320,6 +320,7 @@ struct Host::Impl {
           }
         }
         std::string missing;
+        bool coordinator_progressed = false;  // the timeout below is about acks, not host work
         while (acked_steps < next_tick && ack_input->ready(acked_steps, &missing)) {
           if (options.progress) {
             options.progress(acked_steps, last);
@@ -327,7 +328,7 @@ struct Host::Impl {
           ++acked_steps;
           stats.steps = acked_steps;
           ack_progress_at = Clock::now();
-          progressed = true;
+          coordinator_progressed = true;
         }
         if (acked_steps > last) {
           coordinator_done = true;
@@ -338,9 +339,10 @@ struct Host::Impl {
             ack_progress_at = Clock::now();  // the oldest outstanding tick starts its wait now
           }
           ++next_tick;
-          progressed = true;
+          coordinator_progressed = true;
         }
-        if (!coordinator_done && !progressed) {
+        progressed = progressed || coordinator_progressed;
+        if (!coordinator_done && !coordinator_progressed) {
           const double limit = acked_steps == 0 ? options.start_timeout_s : options.tick_timeout_s;
           if (seconds_since(ack_progress_at) > limit) {
             throw RunError("lockstep: no acknowledgement of step " + std::to_string(acked_steps) + " within " +

@@ -47,6 +47,18 @@ class ParamReader {
   std::vector<std::array<double, 2>> get_point_list(const std::string& key);
   bool has(const std::string& key) const;
 
+  /// A string parameter turned into a value by `parse` (e.g. an enum from its name); a parse
+  /// failure, whose message must start with "key: ", is reported through fail().
+  template <class Parse>
+  auto get_parsed(const std::string& key, Parse parse) -> decltype(parse(std::string{})) {
+    const std::string text = get_string(key);
+    try {
+      return parse(text);
+    } catch (const std::exception& e) {
+      fail(e.what());
+    }
+  }
+
   /// Turns a validate() message "key: reason" into a ConfigError naming the key's file.
   [[noreturn]] void fail(const std::string& message) const;
 

@@ -44,6 +44,8 @@ double path_length(const Track& track) {
   return length;
 }
 
+double PooledRmse::rmse() const { return std::sqrt(sum_squares_ / static_cast<double>(count_)); }
+
 ErrorStats position_error(const Track& truth, const Track& estimate, std::uint64_t from_step) {
   return matched_error(truth, estimate, from_step,
                        [](const PoseSample& t, const PoseSample& e) { return std::hypot(e.x - t.x, e.y - t.y); });

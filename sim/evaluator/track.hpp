@@ -25,6 +25,21 @@ struct ErrorStats {
   std::size_t count = 0;   // samples matched with truth at the same step
 };
 
+/// RMSE over several ErrorStats (e.g. all robots), each weighted by its sample count.
+class PooledRmse {
+ public:
+  void add(const ErrorStats& stats) {
+    sum_squares_ += stats.rmse * stats.rmse * static_cast<double>(stats.count);
+    count_ += stats.count;
+  }
+  bool empty() const { return count_ == 0; }
+  double rmse() const;
+
+ private:
+  double sum_squares_ = 0.0;
+  std::size_t count_ = 0;
+};
+
 /// Position error of `estimate` against `truth` at equal steps, for steps >= from_step.
 ErrorStats position_error(const Track& truth, const Track& estimate, std::uint64_t from_step);
 

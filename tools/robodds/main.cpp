@@ -346,9 +346,7 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
+  } catch (const CLI::Success& e) {  // --help and friends: CLI11 prints and exits 0
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // Bad command line = bad input: one line and exit code 2, like every other ConfigError.

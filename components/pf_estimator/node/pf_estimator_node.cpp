@@ -19,14 +19,14 @@ class PfEstimatorNode : public Component {
     PfParams params;
     params.num_particles = static_cast<int>(p.get_int("num_particles"));
     params.resample_threshold = p.get_double("resample_threshold");
-    const std::string resampling = p.get_string("resampling");
+    params.resampling = p.get_parsed("resampling", resampling_scheme_from_string);
     params.measurement_std_m = p.get_double("measurement_std_m");
     params.odom_v_std_mps = p.get_double("odom_v_std_mps");
     params.odom_omega_std_radps = p.get_double("odom_omega_std_radps");
     params.process_pos_std_m = p.get_double("process_pos_std_m");
     params.process_theta_std_rad = p.get_double("process_theta_std_rad");
     params.regularization_scale = p.get_double("regularization_scale");
-    const std::string init_mode = p.get_string("init_mode");
+    params.init_mode = p.get_parsed("init_mode", init_mode_from_string);
     params.init_area_min_x = p.get_double("init_area_min_x");
     params.init_area_max_x = p.get_double("init_area_max_x");
     params.init_area_min_y = p.get_double("init_area_min_y");
@@ -35,16 +35,6 @@ class PfEstimatorNode : public Component {
     params.init_theta_rad = p.get_double("init_theta_rad");
     params.init_fix_std_m = p.get_double("init_fix_std_m");
     valid_max_std_m_ = p.get_double("valid_max_position_std_m");
-    try {
-      params.resampling = resampling_scheme_from_string(resampling);
-    } catch (const std::exception& e) {
-      p.fail(e.what());
-    }
-    try {
-      params.init_mode = init_mode_from_string(init_mode);
-    } catch (const std::exception& e) {
-      p.fail(e.what());
-    }
     if (!(valid_max_std_m_ > 0.0)) {
       p.fail("valid_max_position_std_m: must be > 0");
     }

@@ -7,6 +7,7 @@
 #include <map>
 #include <sys/stat.h>
 
+#include "common/angle.hpp"
 #include "common/json_writer.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/sample_format.hpp"
@@ -15,6 +16,8 @@
 
 namespace robodds::evaluator {
 namespace {
+
+constexpr double kDegPerRad = 180.0 / kPi;
 
 std::string csv_file_name(std::string topic) {
   for (char& c : topic) {
@@ -159,12 +162,9 @@ class EvaluatorNode : public Component {
     json.value("steps", static_cast<std::int64_t>(info.step + 1));
     json.value("step_s", step_s_);
     json.begin_object("metrics");
-    double fix_sq = 0.0;
-    double est_sq = 0.0;
-    double heading_sq = 0.0;
-    std::size_t heading_n = 0;
-    std::size_t fix_n = 0;
-    std::size_t est_n = 0;
+    PooledRmse fix_rmse;
+    PooledRmse estimate_rmse;
+    PooledRmse heading_rmse_rad;
     json.begin_object("robots");
     for (std::uint64_t key : keys_) {
       const auto id = static_cast<std::uint32_t>(key);
@@ -179,18 +179,15 @@ class EvaluatorNode : public Component {
         if (fixes != histories_.fixes.end()) {
           const ErrorStats e = position_error(truth->second, fixes->second, from_step);
           json.value("measurement_rmse_m", e.rmse).value("measurement_samples", static_cast<std::int64_t>(e.count));
-          fix_sq += e.rmse * e.rmse * static_cast<double>(e.count);
-          fix_n += e.count;
+          fix_rmse.add(e);
         }
         auto est = histories_.estimates.find(id);
         if (est != histories_.estimates.end()) {
           const ErrorStats e = position_error(truth->second, est->second, from_step);
           const ErrorStats h = heading_error(truth->second, est->second, from_step);
-          json.value("pf_rmse_m", e.rmse).value("heading_rmse_deg", h.rmse * 180.0 / 3.14159265358979323846);
-          est_sq += e.rmse * e.rmse * static_cast<double>(e.count);
-          est_n += e.count;
-          heading_sq += h.rmse * h.rmse * static_cast<double>(h.count);
-          heading_n += h.count;
+          json.value("pf_rmse_m", e.rmse).value("heading_rmse_deg", h.rmse * kDegPerRad);
+          estimate_rmse.add(e);
+          heading_rmse_rad.add(h);
         }
         write_waypoint_metrics(json, id, truth->second);
       }
@@ -202,14 +199,14 @@ class EvaluatorNode : public Component {
       const auto id = static_cast<std::uint32_t>(keys_[0]);
       write_waypoint_metrics(json, id, histories_.truth.at(id));
     }
-    if (fix_n > 0) {
-      json.value("measurement_rmse_m", std::sqrt(fix_sq / static_cast<double>(fix_n)));
+    if (!fix_rmse.empty()) {
+      json.value("measurement_rmse_m", fix_rmse.rmse());
     }
-    if (est_n > 0) {
-      json.value("pf_rmse_m", std::sqrt(est_sq / static_cast<double>(est_n)));
+    if (!estimate_rmse.empty()) {
+      json.value("pf_rmse_m", estimate_rmse.rmse());
     }
-    if (heading_n > 0) {
-      json.value("heading_rmse_deg", std::sqrt(heading_sq / static_cast<double>(heading_n)) * 180.0 / 3.14159265358979323846);
+    if (!heading_rmse_rad.empty()) {
+      json.value("heading_rmse_deg", heading_rmse_rad.rmse() * kDegPerRad);
     }
     json.begin_object("samples");
     for (const auto& recorder : recorders_) {

@@ -29,5 +29,16 @@ TEST(Track, HeadingErrorWraps) {
   EXPECT_NEAR(heading_error(truth, est, 0).rmse, 2.0 * M_PI - 6.2, 1e-12);
 }
 
+TEST(PooledRmse, WeightsEachRmseByItsSampleCount) {
+  PooledRmse pool;
+  EXPECT_TRUE(pool.empty());
+  pool.add(ErrorStats{1.0, 1.0, 1});
+  pool.add(ErrorStats{2.0, 2.0, 3});  // squares 1 x 1 + 4 x 3 = 13 over 4 samples
+  EXPECT_FALSE(pool.empty());
+  EXPECT_DOUBLE_EQ(pool.rmse(), std::sqrt(13.0 / 4.0));
+  pool.add(ErrorStats{});  // no samples: changes nothing
+  EXPECT_DOUBLE_EQ(pool.rmse(), std::sqrt(13.0 / 4.0));
+}
+
 }  // namespace
 }  // namespace robodds::evaluator
