@@ -3,19 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
 #include <string>
 
 #include "runtime/error.hpp"
+#include "tests/support/temp_file.hpp"
 
 namespace robodds {
 namespace {
 
-std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
+using test_support::write_test_file;
 
 std::string error_of(const std::function<void()>& f) {
   try {
@@ -27,7 +23,7 @@ std::string error_of(const std::function<void()>& f) {
 }
 
 TEST(Params, ReadsTypedValuesAndNestedKeys) {
-  const std::string file = write_temp("p1.yaml", "rate_hz: 10\nname: abc\nflag: true\ngains: {kd: 1.5}\nlist: [1, 2]\npts: [[1, 2], [3, 4]]\n");
+  const std::string file = write_test_file("p1.yaml", "rate_hz: 10\nname: abc\nflag: true\ngains: {kd: 1.5}\nlist: [1, 2]\npts: [[1, 2], [3, 4]]\n");
   ParamReader r("c", load_param_file(file));
   EXPECT_DOUBLE_EQ(r.get_double("rate_hz"), 10.0);
   EXPECT_EQ(r.get_string("name"), "abc");
@@ -39,7 +35,7 @@ TEST(Params, ReadsTypedValuesAndNestedKeys) {
 }
 
 TEST(Params, MissingKeyNamesFileAndKey) {
-  const std::string file = write_temp("p2.yaml", "a: 1\n");
+  const std::string file = write_test_file("p2.yaml", "a: 1\n");
   ParamReader r("c", load_param_file(file));
   const std::string message = error_of([&] { r.get_double("b"); });
   EXPECT_NE(message.find(file), std::string::npos) << message;
@@ -47,14 +43,14 @@ TEST(Params, MissingKeyNamesFileAndKey) {
 }
 
 TEST(Params, WrongTypeNamesKeyAndValue) {
-  const std::string file = write_temp("p3.yaml", "a: hello\n");
+  const std::string file = write_test_file("p3.yaml", "a: hello\n");
   ParamReader r("c", load_param_file(file));
   const std::string message = error_of([&] { r.get_double("a"); });
   EXPECT_NE(message.find("a: expected a number, got 'hello'"), std::string::npos) << message;
 }
 
 TEST(Params, NonFiniteIsRejected) {
-  const std::string file = write_temp("p4.yaml", "a: .nan\n");
+  const std::string file = write_test_file("p4.yaml", "a: .nan\n");
   ParamReader r("c", load_param_file(file));
   EXPECT_NE(error_of([&] { r.get_double("a"); }).find("must be finite"), std::string::npos);
 }
@@ -88,7 +84,7 @@ TEST(Params, NegativeUnsignedIsRejected) {
 
 TEST(Params, MissingAndMalformedFiles) {
   EXPECT_NE(error_of([] { load_param_file("/nonexistent/x.yaml"); }).find("cannot open"), std::string::npos);
-  const std::string bad = write_temp("bad.yaml", "a: [1, 2\n");
+  const std::string bad = write_test_file("bad.yaml", "a: [1, 2\n");
   EXPECT_NE(error_of([&] { load_param_file(bad); }).find("invalid YAML"), std::string::npos);
 }
 

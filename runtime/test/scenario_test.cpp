@@ -2,21 +2,17 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
 
 #include "runtime/error.hpp"
+#include "tests/support/temp_file.hpp"
 
 namespace robodds {
 namespace {
 
-std::string write_temp(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
-  std::ofstream(path) << text;
-  return path;
-}
+using test_support::write_test_file;
 
 std::string load_error(const std::string& text) {
-  const std::string path = write_temp("scenario.yaml", text);
+  const std::string path = write_test_file("scenario.yaml", text);
   try {
     load_scenario(path);
   } catch (const ConfigError& e) {
@@ -40,7 +36,7 @@ groups:
 )";
 
 TEST(Scenario, LoadsValidFile) {
-  const Scenario s = load_scenario(write_temp("ok.yaml", kValid));
+  const Scenario s = load_scenario(write_test_file("ok.yaml", kValid));
   EXPECT_EQ(s.name, "s");
   EXPECT_EQ(s.last_step(), 100u);
   ASSERT_EQ(s.robots.size(), 2u);

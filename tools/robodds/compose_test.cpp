@@ -3,9 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <fstream>
-
 #include "runtime/error.hpp"
+#include "tests/support/temp_file.hpp"
 
 namespace robodds {
 namespace {
@@ -14,9 +13,7 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 
 Scenario scenario_from(const std::string& text) {
-  const std::string path = ::testing::TempDir() + "compose_scenario.yaml";
-  std::ofstream(path) << text;
-  return load_scenario(path);
+  return load_scenario(test_support::write_test_file("compose_scenario.yaml", text));
 }
 
 const char* kTwoGroups = R"(name: demo
