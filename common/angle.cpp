@@ -4,7 +4,7 @@
 
 namespace robodds {
 
-double wrap_angle(double angle_rad) {
+double wrap_angle_by_remainder(double angle_rad) {
   if (!std::isfinite(angle_rad)) {
     return angle_rad;
   }

@@ -5,7 +5,6 @@
 #include <stdexcept>
 
 #include "common/angle.hpp"
-#include "components/pf_estimator/angle_near.hpp"
 #include "components/pf_estimator/likelihood.hpp"
 #include "components/pf_estimator/regularization.hpp"
 #include "components/pf_estimator/resampling.hpp"
@@ -105,7 +104,7 @@ void ParticleFilter::predict(double v_mps, double omega_radps, double dt_s) {
     particles_.y[i] = moved.y + noise(params_.process_pos_std_m);
     // integrate_exact already wraps; only re-wrap when diffusion can leave (-pi, pi].
     particles_.theta[i] = diffuse_theta
-                              ? wrap_angle_near(moved.theta + noise(params_.process_theta_std_rad))
+                              ? wrap_angle(moved.theta + noise(params_.process_theta_std_rad))
                               : moved.theta;
   }
 }
@@ -164,7 +163,7 @@ void ParticleFilter::resample() {
       const Eigen::Vector3d jitter = jitter_sqrt * unit_noise;
       particles_.x[j] += jitter.x();
       particles_.y[j] += jitter.y();
-      particles_.theta[j] = wrap_angle_near(particles_.theta[j] + jitter.z());
+      particles_.theta[j] = wrap_angle(particles_.theta[j] + jitter.z());
     }
   }
   reset_weights_to_uniform();

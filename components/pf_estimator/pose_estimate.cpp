@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "components/pf_estimator/angle_near.hpp"
+#include "common/angle.hpp"
 
 namespace robodds::pf {
 
@@ -26,7 +26,7 @@ PoseEstimate weighted_pose_estimate(const ParticleSet& particles,
   for (Eigen::Index i = 0; i < w.size(); ++i) {
     const double dx = particles.x[i] - mean_x;
     const double dy = particles.y[i] - mean_y;
-    const double dt = wrap_angle_near(particles.theta[i] - mean_theta);
+    const double dt = wrap_angle(particles.theta[i] - mean_theta);
     xx += w[i] * dx * dx;
     xy += w[i] * dx * dy;
     xt += w[i] * dx * dt;
