@@ -33,6 +33,19 @@ TEST(DiffDrive, MatchesClosedFormArc) {
   EXPECT_NEAR(end.theta, start.theta + twist.omega * dt, 1e-12);
 }
 
+TEST(DiffDrive, SincSeriesMatchesSinOverXAndIsContinuousAtItsSwitch) {
+  EXPECT_EQ(sinc(0.0), 1.0);
+  for (double x = -0.2; x <= 0.2; x += 1e-4) {
+    if (x == 0.0) continue;
+    EXPECT_NEAR(sinc(x), std::sin(x) / x, 2e-16) << "x " << x;
+  }
+  for (const double edge : {0.1, -0.1}) {
+    EXPECT_NEAR(sinc(std::nextafter(edge, 0.0)), std::sin(edge) / edge, 2e-16);
+    EXPECT_EQ(sinc(edge), std::sin(edge) / edge);
+  }
+  EXPECT_EQ(sinc(-0.05), sinc(0.05));
+}
+
 TEST(DiffDrive, TinyOmegaIsContinuousWithTheStraightLine) {
   const Pose2 straight = integrate_exact({0, 0, 0.2}, {1.0, 0.0}, 0.01);
   const Pose2 almost = integrate_exact({0, 0, 0.2}, {1.0, 1e-9}, 0.01);
