@@ -37,3 +37,23 @@ same_outputs() {
   [[ $N_CSV -ge 1 ]] || fail "no CSV written in $a"
   diff <(sed '/"run"/,$d' "$a/summary.json") <(sed '/"run"/,$d' "$b/summary.json") || fail "summary.json metrics differ"
 }
+# run_with_nan_injected SCENARIO DURATION_S DEPLOY: `robodds run` of SCENARIO (a rewrite that makes
+# one producer publish NaN) into $WORK/DEPLOY, its log in $WORK/DEPLOY.log; fails if the run does.
+run_with_nan_injected() {
+  local scenario="$1" duration="$2" deploy="$3"
+  timeout -k 5 120 "$ROBODDS" run "$scenario" --duration "$duration" --out "$WORK/$deploy" --domain "$DOMAIN" \
+    --deploy "$deploy" --no-plots >"$WORK/$deploy.log" 2>&1 || fail "run failed: $(cat "$WORK/$deploy.log")"
+}
+# expect_rejected_once LOG CONSUMER TOPIC STEP FIELD CSV...: CONSUMER logged exactly one rejection,
+# of robot 1's sample on TOPIC at STEP for FIELD, and no non-finite value reached the CSVs.
+expect_rejected_once() {
+  local log="$1" consumer="$2" topic="$3" step="$4" field="$5" csv
+  shift 5
+  grep -q "\[warn\] $consumer: rejected a sample on $topic (robot_id=1, step $step): field '$field' is not finite" "$log" \
+    || fail "$consumer did not report the NaN sample on $topic: $(cat "$log")"
+  [[ $(grep -c "$consumer: rejected" "$log") -eq 1 ]] || fail "rejection logged more than once"
+  for csv in "$@"; do
+    grep -qiE "nan|inf" "$csv" && fail "a non-finite value reached $(basename "$csv")"
+  done
+  return 0
+}
