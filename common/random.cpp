@@ -77,7 +77,7 @@ double standard_normal_outside_rectangle(RandomEngine& engine, std::uint64_t bit
   while (true) {
     const auto layer = static_cast<std::size_t>(bits & 127U);
     const bool negative = ((bits >> 7) & 1U) != 0;
-    const double x = static_cast<double>(bits >> 11) * (1.0 / 9007199254740992.0) * tables.x[layer];
+    const double x = top53_to_unit(bits) * tables.x[layer];
     if (x < tables.x[layer + 1]) {
       return negative ? -x : x;  // inside the layer's rectangle, under the curve for any y
     }

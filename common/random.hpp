@@ -52,10 +52,15 @@ class RandomEngine {
   std::array<std::uint64_t, 4> state_;
 };
 
-/// Uniform sample in [0, 1): the top 53 bits of one draw, exactly representable.
-inline double uniform01(RandomEngine& engine) {
-  return static_cast<double>(engine() >> 11) * (1.0 / 9007199254740992.0);
-}
+namespace detail {
+
+/// The top 53 bits of a draw as a double in [0, 1), exactly representable.
+inline double top53_to_unit(std::uint64_t bits) { return static_cast<double>(bits >> 11) * (1.0 / 9007199254740992.0); }
+
+}  // namespace detail
+
+/// Uniform sample in [0, 1) from one draw.
+inline double uniform01(RandomEngine& engine) { return detail::top53_to_unit(engine()); }
 
 namespace detail {
 
@@ -89,7 +94,7 @@ inline double standard_normal(RandomEngine& engine) {
   const detail::ZigguratTables& tables = detail::ziggurat_tables();
   const std::uint64_t bits = engine();
   const auto layer = static_cast<std::size_t>(bits & 127U);
-  const double x = static_cast<double>(bits >> 11) * (1.0 / 9007199254740992.0) * tables.x[layer];
+  const double x = detail::top53_to_unit(bits) * tables.x[layer];
   if (x < tables.x[layer + 1]) {
     return ((bits >> 7) & 1U) != 0 ? -x : x;
   }
