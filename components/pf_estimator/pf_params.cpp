@@ -1,47 +1,25 @@
 #include "components/pf_estimator/pf_params.hpp"
 
-#include <sstream>
 #include <stdexcept>
+#include <string>
+
+#include "common/number_text.hpp"
+#include "common/param_checks.hpp"
 
 namespace robodds::pf {
 namespace {
 
-// Formats "key: requirement (got value)"; the key comes first so callers can map the error
-// back to the YAML line.
-[[noreturn]] void reject(std::string_view key, std::string_view requirement, double got) {
-  std::ostringstream message;
-  message << key << ": " << requirement << " (got " << got << ")";
-  throw std::invalid_argument(message.str());
-}
-
-void require_finite(std::string_view key, double value) {
-  if (!std::isfinite(value)) {
-    reject(key, "must be finite", value);
-  }
-}
-
-void require_positive(std::string_view key, double value) {
-  require_finite(key, value);
-  if (!(value > 0.0)) {
-    reject(key, "must be > 0", value);
-  }
-}
-
-void require_non_negative(std::string_view key, double value) {
-  require_finite(key, value);
-  if (!(value >= 0.0)) {
-    reject(key, "must be >= 0", value);
-  }
-}
+using param_checks::reject;
+using param_checks::require_finite;
+using param_checks::require_non_negative;
+using param_checks::require_positive;
 
 void require_ordered(std::string_view min_key, double min_value, std::string_view max_key,
                      double max_value) {
   require_finite(min_key, min_value);
   require_finite(max_key, max_value);
   if (!(max_value > min_value)) {
-    std::ostringstream requirement;
-    requirement << "must be > " << min_key << " = " << min_value;
-    reject(max_key, requirement.str(), max_value);
+    reject(max_key, "must be > " + std::string(min_key) + " = " + shortest_text(min_value), max_value);
   }
 }
 

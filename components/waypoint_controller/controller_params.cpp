@@ -1,59 +1,29 @@
 #include "components/waypoint_controller/controller_params.hpp"
 
-#include <charconv>
 #include <cmath>
-#include <stdexcept>
 #include <string>
 
 #include "common/angle.hpp"
+#include "common/number_text.hpp"
+#include "common/param_checks.hpp"
 
 namespace robodds::waypoint {
 namespace {
 
-/// Shortest text that reads back as the same double ("-2.5", "20", "nan", "inf").
-std::string format_value(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
-
 std::string format_gains(const GainSet& gains) {
-  return "kd=" + format_value(gains.kd) + ", ka=" + format_value(gains.ka) +
-         ", ksigma=" + format_value(gains.ksigma);
-}
-
-[[noreturn]] void reject(const std::string& key, const std::string& reason, const std::string& got) {
-  throw std::invalid_argument(key + ": " + reason + " (got " + got + ")");
-}
-
-void require_finite(const std::string& key, double value) {
-  if (!std::isfinite(value)) {
-    reject(key, "must be finite", format_value(value));
-  }
-}
-
-void require_positive_finite(const char* key, double value) {
-  if (!(value > 0.0) || !std::isfinite(value)) {
-    reject(key, "must be > 0 and finite", format_value(value));
-  }
-}
-
-void require_non_negative_finite(const char* key, double value) {
-  if (!(value >= 0.0) || !std::isfinite(value)) {
-    reject(key, "must be >= 0 and finite (0 = no limit)", format_value(value));
-  }
+  return "kd=" + shortest_text(gains.kd) + ", ka=" + shortest_text(gains.ka) + ", ksigma=" + shortest_text(gains.ksigma);
 }
 
 void require_finite_gains(const std::string& key, const GainSet& gains) {
-  require_finite(key + ".kd", gains.kd);
-  require_finite(key + ".ka", gains.ka);
-  require_finite(key + ".ksigma", gains.ksigma);
+  param_checks::require_finite(key + ".kd", gains.kd);
+  param_checks::require_finite(key + ".ka", gains.ka);
+  param_checks::require_finite(key + ".ksigma", gains.ksigma);
 }
 
 /// Throws "key: violates <inequality> (got <gains>)" unless holds.
 void require_inequality(bool holds, const char* key, const char* inequality, const GainSet& gains) {
   if (!holds) {
-    reject(key, std::string("violates ") + inequality, format_gains(gains));
+    param_checks::reject(key, std::string("violates ") + inequality, format_gains(gains));
   }
 }
 
@@ -101,10 +71,10 @@ void ControllerParams::validate() const {
   check_forward_gains(forward_gains);
   require_finite_gains("backward_gains", backward_gains);
   check_backward_gains(backward_gains);
-  require_positive_finite("epsilon_m", epsilon_m);
-  require_non_negative_finite("max_speed_mps", max_speed_mps);
-  require_non_negative_finite("max_turn_rate_radps", max_turn_rate_radps);
-  require_non_negative_finite("confidence_switch_sigmas", confidence_switch_sigmas);
+  param_checks::require_positive("epsilon_m", epsilon_m);
+  param_checks::require_non_negative("max_speed_mps", max_speed_mps, "0 = no limit");
+  param_checks::require_non_negative("max_turn_rate_radps", max_turn_rate_radps, "0 = no limit");
+  param_checks::require_non_negative("confidence_switch_sigmas", confidence_switch_sigmas, "0 = off");
 }
 
 }  // namespace robodds::waypoint

@@ -1,6 +1,5 @@
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -8,16 +7,11 @@
 
 #include <Eigen/Cholesky>
 
+#include "common/number_text.hpp"
 #include "components/waypoint_controller/polar.hpp"
 
 namespace robodds::waypoint {
 namespace {
-
-std::string format_value(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
 
 void require_valid_mission(const std::vector<Eigen::Vector2d>& waypoints_m) {
   if (waypoints_m.empty()) {
@@ -26,7 +20,7 @@ void require_valid_mission(const std::vector<Eigen::Vector2d>& waypoints_m) {
   for (std::size_t i = 0; i < waypoints_m.size(); ++i) {
     if (!waypoints_m[i].allFinite()) {
       throw std::invalid_argument("set_mission: way-point " + std::to_string(i) + " is not finite (got (" +
-                                  format_value(waypoints_m[i].x()) + ", " + format_value(waypoints_m[i].y()) +
+                                  shortest_text(waypoints_m[i].x()) + ", " + shortest_text(waypoints_m[i].y()) +
                                   "))");
     }
   }
@@ -34,8 +28,8 @@ void require_valid_mission(const std::vector<Eigen::Vector2d>& waypoints_m) {
 
 void require_finite_pose(double x_m, double y_m, double theta_rad) {
   if (!std::isfinite(x_m) || !std::isfinite(y_m) || !std::isfinite(theta_rad)) {
-    throw std::invalid_argument("step: the pose estimate is not finite (got x=" + format_value(x_m) +
-                                ", y=" + format_value(y_m) + ", theta=" + format_value(theta_rad) + ")");
+    throw std::invalid_argument("step: the pose estimate is not finite (got x=" + shortest_text(x_m) +
+                                ", y=" + shortest_text(y_m) + ", theta=" + shortest_text(theta_rad) + ")");
   }
 }
 

@@ -1,17 +1,18 @@
 #include "sim/open_loop/open_loop_commander.hpp"
 
 #include <cmath>
-#include <stdexcept>
-#include <string>
 
 #include "common/angle.hpp"
+#include "common/param_checks.hpp"
 
 namespace robodds::open_loop {
 
 void OpenLoopParams::validate() const {
-  if (!(omega_period_s > 0.0)) {
-    throw std::invalid_argument("omega_period_s: must be > 0 (got " + std::to_string(omega_period_s) + ")");
-  }
+  param_checks::require_finite("v_mps", v_mps);
+  param_checks::require_finite("omega_bias_radps", omega_bias_radps);
+  param_checks::require_finite("omega_amplitude_radps", omega_amplitude_radps);
+  param_checks::require_positive("omega_period_s", omega_period_s);
+  param_checks::require_finite("phase_per_robot_rad", phase_per_robot_rad);
 }
 
 TwistCommand open_loop_command(const OpenLoopParams& params, std::size_t robot_index, double time_s) {

@@ -6,21 +6,15 @@
 #include <stdexcept>
 #include <string>
 
+#include "tests/support/validation_error.hpp"
+
 namespace robodds::odometry_sensor {
 namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-/// The validate() message, or "" if it did not throw std::invalid_argument.
-std::string validation_error(const OdometryParams& params) {
-  try {
-    params.validate();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+using test_support::validation_error;
 
 bool starts_with(const std::string& text, const std::string& prefix) {
   return text.rfind(prefix, 0) == 0;

@@ -7,22 +7,19 @@
 #include <stdexcept>
 #include <string>
 
+#include "tests/support/validation_error.hpp"
+
 namespace robodds::pf {
 namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// Returns the message of the std::invalid_argument thrown by validate(), or "" if none.
+// The validate() message of the defaults changed by `mutate`, or "" if accepted.
 std::string validation_error(const std::function<void(PfParams&)>& mutate) {
   PfParams params;
   mutate(params);
-  try {
-    params.validate();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "";
+  return test_support::validation_error(params);
 }
 
 // The message must start with the YAML key so the node can point at the offending line.

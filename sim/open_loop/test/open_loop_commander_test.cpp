@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <stdexcept>
+#include <string>
+
+#include "tests/support/validation_error.hpp"
 
 namespace robodds::open_loop {
 namespace {
@@ -20,10 +24,22 @@ TEST(OpenLoop, SineAroundBiasWithPerRobotPhase) {
   EXPECT_NE(open_loop_command(p, 0, 0.3).omega, open_loop_command(p, 1, 0.3).omega);
 }
 
+using test_support::validation_error;
+
 TEST(OpenLoop, RejectsNonPositivePeriod) {
   OpenLoopParams p;
+  EXPECT_EQ(validation_error(p), "");
   p.omega_period_s = 0.0;
-  EXPECT_THROW(p.validate(), std::invalid_argument);
+  EXPECT_EQ(validation_error(p), "omega_period_s: must be > 0 and finite (got 0)");
+}
+
+TEST(OpenLoop, RejectsNonFiniteCommandParameters) {
+  OpenLoopParams p;
+  p.v_mps = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(validation_error(p), "v_mps: must be finite (got nan)");
+  p = OpenLoopParams{};
+  p.omega_amplitude_radps = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(validation_error(p), "omega_amplitude_radps: must be finite (got inf)");
 }
 
 }  // namespace
