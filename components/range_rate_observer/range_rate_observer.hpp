@@ -1,0 +1,85 @@
+#pragma once
+// A range-rate observer fed by sampled ranges: the estimator state (s_hat, v_hat) integrated with
+// explicit Euler between samples, the correction computed from the error at the previous sample.
+// One class for both of paper 2's observers; `Law` picks the right-hand side (observer_laws.hpp).
+
+#include <cmath>
+#include <cstddef>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include "components/range_rate_observer/observer_laws.hpp"
+
+namespace robodds::range_rate {
+
+struct RangeRateEstimate {
+  double time_s = 0.0;
+  double range_m = 0.0;    // s_hat
+  double rate_mps = 0.0;   // v_hat, the range-rate estimate (positive: the range grows)
+};
+
+template <class Params, ObserverDerivative (*Derivative)(const Params&, double, double)>
+class RangeRateObserver {
+ public:
+  /// Throws std::invalid_argument (from Params::validate) for bad gains.
+  explicit RangeRateObserver(Params params) : params_(std::move(params)) { params_.validate(); }
+
+  /// Feeds the range measured at time_s (s, strictly increasing) and returns the estimate at
+  /// time_s. The first sample starts the observer at (range, rate 0). A non-finite input or a
+  /// time that does not advance throws std::invalid_argument and leaves the state unchanged.
+  RangeRateEstimate update(double time_s, double range_m) {
+    if (!std::isfinite(time_s) || !std::isfinite(range_m)) {
+      std::ostringstream message;
+      message << "range-rate observer: non-finite input (time_s " << time_s << ", range_m " << range_m << ")";
+      throw std::invalid_argument(message.str());
+    }
+    if (!started_) {
+      start_at(time_s, range_m, 0.0);
+      return estimate_;
+    }
+    if (!(time_s > estimate_.time_s)) {
+      std::ostringstream message;
+      message << "range-rate observer: time must advance (got " << time_s << " s after " << estimate_.time_s << " s)";
+      throw std::invalid_argument(message.str());
+    }
+    if (params_.restart_jump_m > 0.0 && std::abs(range_m - last_range_m_) > params_.restart_jump_m) {
+      ++restarts_;
+      start_at(time_s, range_m, estimate_.rate_mps);
+      return estimate_;
+    }
+    const double dt = time_s - estimate_.time_s;
+    const ObserverDerivative derivative = Derivative(params_, estimate_.rate_mps, error_m_);
+    estimate_.time_s = time_s;
+    estimate_.range_m += dt * derivative.range_mps;
+    estimate_.rate_mps += dt * derivative.rate_mps2;
+    error_m_ = range_m - estimate_.range_m;
+    last_range_m_ = range_m;
+    return estimate_;
+  }
+
+  bool started() const { return started_; }
+  /// How many times a range jump above restart_jump_m restarted the observer.
+  std::size_t restarts() const { return restarts_; }
+  const Params& params() const { return params_; }
+
+ private:
+  void start_at(double time_s, double range_m, double rate_mps) {
+    estimate_ = {time_s, range_m, rate_mps};
+    error_m_ = 0.0;
+    last_range_m_ = range_m;
+    started_ = true;
+  }
+
+  Params params_;
+  RangeRateEstimate estimate_;
+  double error_m_ = 0.0;       // s - s_hat at the last sample, m
+  double last_range_m_ = 0.0;  // last measured range, m
+  bool started_ = false;
+  std::size_t restarts_ = 0;
+};
+
+using SuperTwistingObserver = RangeRateObserver<SuperTwistingParams, &super_twisting_derivative>;
+using LinearRangeRateObserver = RangeRateObserver<LinearObserverParams, &linear_derivative>;
+
+}  // namespace robodds::range_rate
