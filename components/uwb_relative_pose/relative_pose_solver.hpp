@@ -1,0 +1,55 @@
+#pragma once
+// Single-epoch relative pose from UWB array ranges (paper 3, eq. 1): the pose x = (x, y, theta) of
+// robot j in robot i's frame that minimises sum over node pairs (k, l) of
+// rho((r_kl - d(x, C_i^k, C_j^l))^2), solved by Levenberg-Marquardt (Ceres). rho is a robust loss
+// (an extension: the paper uses plain least squares, which non-line-of-sight outliers bias).
+
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "components/uwb_relative_pose/relative_pose.hpp"
+#include "components/uwb_relative_pose/uwb_array.hpp"
+
+namespace robodds::uwb {
+
+enum class RobustLoss {
+  kNone,    // plain least squares, as the paper
+  kHuber,   // quadratic below loss_scale_m, linear above
+  kSoftL1,  // smooth version of the same
+};
+
+/// "none" / "huber" / "soft_l1"; throws std::invalid_argument("loss: ...") otherwise.
+RobustLoss robust_loss_from_string(const std::string& text);
+
+struct SolverOptions {
+  RobustLoss loss = RobustLoss::kHuber;
+  /// m, > 0: residuals beyond this count linearly (about 2-3 x the range noise std).
+  double loss_scale_m = 0.15;
+  /// Cold start (no initial pose): positions in this many directions on the circle of the mean
+  /// range, times as many headings (4 x 8 = 32 starts); the lowest cost wins. >= 1 each.
+  int start_directions = 8;
+  int start_headings = 4;
+  /// Levenberg-Marquardt iterations per start, >= 1.
+  int max_iterations = 50;
+
+  /// Throws std::invalid_argument "key: requirement (got value)".
+  void validate() const;
+};
+
+struct SolverResult {
+  RelativePose pose;
+  double final_cost = 0.0;  // Ceres cost, 1/2 sum of rho(residual^2), m^2
+  int starts = 0;           // how many starts were solved
+  bool converged = false;   // the winning start reported convergence
+};
+
+/// Solves eq. (1) for the K x L matrix `ranges_m` (row k: node k of `own`, column l: node l of
+/// `other`). With `initial` (e.g. the previous epoch's pose) one start from there; without it the
+/// multi-start of SolverOptions. Throws std::invalid_argument if the matrix does not match the
+/// arrays or holds a non-finite or negative range (the message names the pair).
+SolverResult solve_relative_pose(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m,
+                                 const std::optional<RelativePose>& initial, const SolverOptions& options);
+
+}  // namespace robodds::uwb
