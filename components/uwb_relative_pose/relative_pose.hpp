@@ -30,6 +30,12 @@ T predicted_range(const T& x, const T& y, const T& theta, const Eigen::Vector2d&
   return sqrt(dx * dx + dy * dy);
 }
 
+/// Frame b given in frame a, composed with frame c given in frame b: frame c in frame a.
+RelativePose compose(const RelativePose& a_b, const RelativePose& b_c);
+
+/// Frame b in frame a, given both in a common frame w: inverse(w_a) composed with w_b.
+RelativePose between(const RelativePose& w_a, const RelativePose& w_b);
+
 inline double predicted_range(const RelativePose& pose, const Eigen::Vector2d& node_i, const Eigen::Vector2d& node_j) {
   return predicted_range(pose.x_m, pose.y_m, pose.theta_rad, node_i, node_j);
 }

@@ -1,0 +1,167 @@
+#include "components/uwb_relative_pose/sliding_window.hpp"
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include <ceres/ceres.h>
+
+#include "common/angle.hpp"
+#include "common/param_checks.hpp"
+
+namespace robodds::uwb {
+namespace {
+
+/// Residual of one edge "pose b seen from pose a is `measured`", each row divided by its std:
+/// [R(theta_a)^T (p_b - p_a) - measured.xy; wrap(theta_b - theta_a - measured.theta)].
+struct EdgeResidual {
+  RelativePose measured;
+  double xy_std_m;
+  double theta_std_rad;
+
+  template <class T>
+  bool operator()(const T* const a, const T* const b, T* residual) const {
+    using std::atan2;
+    using std::cos;
+    using std::sin;
+    const T c = cos(a[2]);
+    const T s = sin(a[2]);
+    const T dx = b[0] - a[0];
+    const T dy = b[1] - a[1];
+    const T dtheta = b[2] - a[2] - T(measured.theta_rad);
+    residual[0] = (c * dx + s * dy - T(measured.x_m)) / T(xy_std_m);
+    residual[1] = (-s * dx + c * dy - T(measured.y_m)) / T(xy_std_m);
+    residual[2] = atan2(sin(dtheta), cos(dtheta)) / T(theta_std_rad);  // wrapped; wrap_angle takes no Jets
+    return true;
+  }
+};
+
+bool finite(const RelativePose& p) { return std::isfinite(p.x_m) && std::isfinite(p.y_m) && std::isfinite(p.theta_rad); }
+
+RelativePose inverse(const RelativePose& a_b) { return between(a_b, RelativePose{}); }
+
+}  // namespace
+
+void WindowWeights::validate() const {
+  param_checks::require_positive("odometry_xy_std_m", odometry_xy_std_m);
+  param_checks::require_positive("odometry_theta_std_rad", odometry_theta_std_rad);
+  param_checks::require_positive("uwb_xy_std_m", uwb_xy_std_m);
+  param_checks::require_positive("uwb_theta_std_rad", uwb_theta_std_rad);
+}
+
+SlidingWindowGraph::SlidingWindowGraph(std::size_t num_robots, std::size_t window, WindowWeights weights)
+    : num_robots_(num_robots), window_(window), weights_(weights) {
+  if (num_robots_ < 2) {
+    param_checks::reject("num_robots", "must be >= 2", static_cast<double>(num_robots_));
+  }
+  if (window_ < 2) {
+    param_checks::reject("window", "must be >= 2 epochs", static_cast<double>(window_));
+  }
+  weights_.validate();
+}
+
+void SlidingWindowGraph::add_epoch(const std::vector<RelativePose>& odometry, const std::vector<PairMeasurement>& uwb) {
+  if (odometry.size() != num_robots_) {
+    throw std::invalid_argument("add_epoch: " + std::to_string(odometry.size()) + " odometry increments for " +
+                                std::to_string(num_robots_) + " robots");
+  }
+  for (std::size_t i = 0; i < odometry.size(); ++i) {
+    if (!finite(odometry[i])) {
+      throw std::invalid_argument("add_epoch: odometry of robot " + std::to_string(i) + " is not finite");
+    }
+  }
+  for (const PairMeasurement& m : uwb) {
+    if (m.own >= num_robots_ || m.other >= num_robots_ || m.own == m.other) {
+      throw std::invalid_argument("add_epoch: UWB pair (" + std::to_string(m.own) + ", " + std::to_string(m.other) +
+                                  ") is not two different robots of " + std::to_string(num_robots_));
+    }
+    if (!finite(m.pose)) {
+      throw std::invalid_argument("add_epoch: UWB pose of pair (" + std::to_string(m.own) + ", " +
+                                  std::to_string(m.other) + ") is not finite");
+    }
+  }
+  Epoch epoch;
+  epoch.odometry = odometry;
+  epoch.uwb = uwb;
+  epoch.poses.resize(num_robots_);
+  if (epochs_.empty()) {
+    // Robot 0 defines the frame; the others start where a UWB measurement to robot 0 puts them.
+    for (std::size_t i = 1; i < num_robots_; ++i) {
+      epoch.poses[i] = RelativePose{static_cast<double>(i), 0.0, 0.0};
+      for (const PairMeasurement& m : uwb) {
+        if (m.own == 0 && m.other == i) {
+          epoch.poses[i] = m.pose;
+        } else if (m.own == i && m.other == 0) {
+          epoch.poses[i] = inverse(m.pose);
+        }
+      }
+    }
+  } else {
+    for (std::size_t i = 0; i < num_robots_; ++i) {
+      epoch.poses[i] = compose(epochs_.back().poses[i], odometry[i]);
+    }
+  }
+  epochs_.push_back(std::move(epoch));
+  if (epochs_.size() > window_) {
+    epochs_.pop_front();
+  }
+}
+
+bool SlidingWindowGraph::optimize() {
+  if (epochs_.empty()) {
+    return true;
+  }
+  std::vector<std::array<double, 3>> blocks(epochs_.size() * num_robots_);
+  const auto block = [&](std::size_t e, std::size_t i) { return blocks[e * num_robots_ + i].data(); };
+  for (std::size_t e = 0; e < epochs_.size(); ++e) {
+    for (std::size_t i = 0; i < num_robots_; ++i) {
+      const RelativePose& p = epochs_[e].poses[i];
+      blocks[e * num_robots_ + i] = {p.x_m, p.y_m, p.theta_rad};
+    }
+  }
+  ceres::Problem problem;
+  const auto add_edge = [&](double* a, double* b, const RelativePose& measured, double xy_std, double theta_std) {
+    problem.AddResidualBlock(
+        new ceres::AutoDiffCostFunction<EdgeResidual, 3, 3, 3>(new EdgeResidual{measured, xy_std, theta_std}), nullptr, a, b);
+  };
+  for (std::size_t e = 0; e < epochs_.size(); ++e) {
+    for (std::size_t i = 0; i < num_robots_ && e > 0; ++i) {
+      add_edge(block(e - 1, i), block(e, i), epochs_[e].odometry[i], weights_.odometry_xy_std_m,
+               weights_.odometry_theta_std_rad);
+    }
+    for (const PairMeasurement& m : epochs_[e].uwb) {
+      add_edge(block(e, m.own), block(e, m.other), m.pose, weights_.uwb_xy_std_m, weights_.uwb_theta_std_rad);
+    }
+  }
+  for (std::size_t e = 0; e < epochs_.size(); ++e) {
+    for (std::size_t i = 0; i < num_robots_; ++i) {
+      problem.AddParameterBlock(block(e, i), 3);  // a robot without any edge yet still has a block
+    }
+  }
+  problem.SetParameterBlockConstant(block(0, 0));  // gauge: the oldest pose of robot 0
+  ceres::Solver::Options options;
+  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;  // a chain of 3x3 blocks: sparse
+  options.max_num_iterations = 50;
+  options.logging_type = ceres::SILENT;
+  options.num_threads = 1;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &problem, &summary);
+  for (std::size_t e = 0; e < epochs_.size(); ++e) {
+    for (std::size_t i = 0; i < num_robots_; ++i) {
+      const double* p = block(e, i);
+      epochs_[e].poses[i] = {p[0], p[1], wrap_angle(p[2])};
+    }
+  }
+  return summary.termination_type == ceres::CONVERGENCE;
+}
+
+RelativePose SlidingWindowGraph::latest_relative(std::size_t own, std::size_t other) const {
+  if (epochs_.empty() || own >= num_robots_ || other >= num_robots_) {
+    throw std::invalid_argument("latest_relative: no epoch yet, or no such robot");
+  }
+  return between(epochs_.back().poses[own], epochs_.back().poses[other]);
+}
+
+}  // namespace robodds::uwb

@@ -1,0 +1,68 @@
+#pragma once
+// The sliding-window pose graph of paper 3, eq. (2): the poses of N robots over the last `window`
+// epochs, constrained by each robot's odometry between consecutive epochs and by the single-epoch
+// UWB relative poses of eq. (1); least squares with constant information matrices (as the paper:
+// "set to constants"), solved with Ceres. Poses live in an arbitrary common frame whose gauge is
+// fixed by holding robot 0's oldest pose in the window; only relative poses are meaningful.
+
+#include <cstddef>
+#include <deque>
+#include <vector>
+
+#include "components/uwb_relative_pose/relative_pose.hpp"
+
+namespace robodds::uwb {
+
+/// Standard deviations behind the constant information matrices (diagonal, 1/sigma^2).
+struct WindowWeights {
+  double odometry_xy_std_m = 0.02;       // per epoch increment, m
+  double odometry_theta_std_rad = 0.01;  // per epoch increment, rad
+  double uwb_xy_std_m = 0.3;             // single-epoch relative position, m
+  double uwb_theta_std_rad = 0.1;        // single-epoch relative heading, rad
+  /// Throws std::invalid_argument "key: requirement (got value)"; each must be > 0 and finite.
+  void validate() const;
+};
+
+/// One UWB relative pose of eq. (1): robot `other` in robot `own`'s frame.
+struct PairMeasurement {
+  std::size_t own = 0;
+  std::size_t other = 0;
+  RelativePose pose;
+};
+
+class SlidingWindowGraph {
+ public:
+  /// num_robots >= 2, window >= 2 epochs (the paper: 30). Throws std::invalid_argument.
+  SlidingWindowGraph(std::size_t num_robots, std::size_t window, WindowWeights weights);
+
+  /// Adds an epoch: `odometry[i]` is robot i's motion since the previous epoch in its own frame
+  /// (ignored for the first epoch), `uwb` the relative poses measured at this epoch (any pairs,
+  /// possibly none). The new poses are initialised by dead reckoning, or from a UWB measurement to
+  /// robot 0 at the first epoch. The oldest epoch drops out once the window is full. Throws
+  /// std::invalid_argument (wrong count, unknown or equal robots, non-finite values) and then
+  /// changes nothing.
+  void add_epoch(const std::vector<RelativePose>& odometry, const std::vector<PairMeasurement>& uwb);
+
+  /// Re-estimates every pose in the window (Levenberg-Marquardt). Returns false if Ceres did not
+  /// report convergence; the poses are still its best estimate.
+  bool optimize();
+
+  /// Robot `other` in robot `own`'s frame at the newest epoch.
+  RelativePose latest_relative(std::size_t own, std::size_t other) const;
+
+  std::size_t epochs() const { return epochs_.size(); }
+
+ private:
+  struct Epoch {
+    std::vector<RelativePose> poses;        // per robot, common frame
+    std::vector<RelativePose> odometry;     // per robot, increment into this epoch
+    std::vector<PairMeasurement> uwb;
+  };
+
+  std::size_t num_robots_;
+  std::size_t window_;
+  WindowWeights weights_;
+  std::deque<Epoch> epochs_;
+};
+
+}  // namespace robodds::uwb
