@@ -30,6 +30,18 @@ void require_positive(std::string_view key, double value) {
   }
 }
 
+void require_in_open_interval(std::string_view key, double value, double low, double high) {
+  if (!(value > low && value < high)) {
+    reject(key, "must be in (" + shortest_text(low) + ", " + shortest_text(high) + ")", value);
+  }
+}
+
+void require_at_least(std::string_view key, long long value, long long minimum) {
+  if (value < minimum) {
+    reject(key, "must be >= " + std::to_string(minimum), std::to_string(value));
+  }
+}
+
 void require_non_negative(std::string_view key, double value, std::string_view meaning_of_zero) {
   if (!(value >= 0.0) || !std::isfinite(value)) {
     std::string requirement = "must be >= 0 and finite";

@@ -49,6 +49,11 @@ TEST(ParamChecks, NameKeyRequirementAndValue) {
   EXPECT_EQ(error_of([] { require_non_negative("max_speed_mps", -0.5, "0 = no limit"); }),
             "max_speed_mps: must be >= 0 and finite (0 = no limit) (got -0.5)");
   EXPECT_EQ(error_of([] { reject("mode", "must be a or b", "c"); }), "mode: must be a or b (got c)");
+  EXPECT_EQ(error_of([] { require_in_open_interval("slip", 0.5, -0.5, 0.5); }), "slip: must be in (-0.5, 0.5) (got 0.5)");
+  EXPECT_EQ(error_of([] { require_in_open_interval("slip", kNan, -0.5, 0.5); }), "slip: must be in (-0.5, 0.5) (got nan)");
+  EXPECT_EQ(error_of([] { require_in_open_interval("slip", 0.49, -0.5, 0.5); }), "");
+  EXPECT_EQ(error_of([] { require_at_least("num_particles", 0, 1); }), "num_particles: must be >= 1 (got 0)");
+  EXPECT_EQ(error_of([] { require_at_least("num_particles", 1, 1); }), "");
 }
 
 }  // namespace

@@ -8,11 +8,8 @@ void OdometryParams::validate() const {
   param_checks::require_positive("rate_hz", rate_hz);
   param_checks::require_positive("wheel_base_m", wheel_base_m);
   param_checks::require_non_negative("wheel_speed_noise_std_mps", wheel_speed_noise_std_mps);
-  for (const auto& [key, slip] : {std::pair{"left_slip", left_slip}, std::pair{"right_slip", right_slip}}) {
-    if (!(slip > -0.5 && slip < 0.5)) {  // NaN fails too
-      param_checks::reject(key, "must be in (-0.5, 0.5)", slip);
-    }
-  }
+  param_checks::require_in_open_interval("left_slip", left_slip, -0.5, 0.5);
+  param_checks::require_in_open_interval("right_slip", right_slip, -0.5, 0.5);
 }
 
 }  // namespace robodds::odometry_sensor

@@ -56,9 +56,7 @@ std::string to_string(InitMode mode) {
 }
 
 void PfParams::validate() const {
-  if (num_particles < 1) {
-    reject("num_particles", "must be >= 1", num_particles);
-  }
+  param_checks::require_at_least("num_particles", num_particles, 1);
   require_finite("resample_threshold", resample_threshold);
   if (!(resample_threshold > 0.0) || resample_threshold > num_particles) {
     reject("resample_threshold", "must be in (0, num_particles]", resample_threshold);

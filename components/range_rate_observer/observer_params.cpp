@@ -5,9 +5,7 @@
 namespace robodds::range_rate {
 
 void SuperTwistingParams::validate() const {
-  if (!(a > 0.0 && a < 2.5)) {  // NaN fails too
-    param_checks::reject("a", "must be in (0, 2.5) (paper 2, section 1.2)", a);
-  }
+  param_checks::require_in_open_interval("a", a, 0.0, 2.5);  // paper 2, section 1.2
   param_checks::require_positive("b", b);
   param_checks::require_positive("c", c);
   param_checks::require_non_negative("d", d, "0 = plain super-twisting");

@@ -21,9 +21,9 @@ struct SuperTwistingParams {
   double c = 1.0;
   /// d >= 0, the linear term of J in eq. (3); d = 0 is the plain super-twisting observer.
   double d = 1.0;
-  /// A range step larger than this between two samples (a new target or range source) restarts
-  /// the observer at the new range with the last rate, instead of a transient of hundreds of m/s.
-  /// m, > 0; 0 = never restart.
+  /// A range step between two samples that the rate estimate misses by more than this (a new
+  /// target or range source) restarts the observer at the new range, instead of a transient of
+  /// hundreds of m/s; the next sample sets the rate. m, >= 0; 0 = never restart.
   double restart_jump_m = 5.0;
 
   /// Throws std::invalid_argument "key: requirement (got value)" for the first bad field.
@@ -37,7 +37,7 @@ struct SuperTwistingParams {
 struct LinearObserverParams {
   double k1 = 3.0;   // 1/s, > 0
   double k2 = 2.25;  // 1/s^2, > 0
-  double restart_jump_m = 5.0;  // m, as above
+  double restart_jump_m = 5.0;  // m, >= 0, as above
 
   void validate() const;
 };

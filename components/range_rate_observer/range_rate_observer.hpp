@@ -5,10 +5,10 @@
 
 #include <cmath>
 #include <cstddef>
-#include <sstream>
 #include <stdexcept>
 #include <utility>
 
+#include "common/number_text.hpp"
 #include "components/range_rate_observer/observer_laws.hpp"
 
 namespace robodds::range_rate {
@@ -28,27 +28,38 @@ class RangeRateObserver {
   /// Feeds the range measured at time_s (s, strictly increasing) and returns the estimate at
   /// time_s. The first sample starts the observer at (range, rate 0). A non-finite input or a
   /// time that does not advance throws std::invalid_argument and leaves the state unchanged.
+  ///
+  /// Restart: when the range moved between two samples by more than restart_jump_m beyond what
+  /// the rate estimate explains, |(s_k - s_k-1) - v_hat dt| (a new target or range source), the
+  /// observer starts again at the new range and the next sample sets the rate from the difference
+  /// of the two. Measured differences, not s_hat, are compared, so the range error of a converging
+  /// observer never triggers it, and a fast target at a coarse sample rate restarts once at most
+  /// (while v_hat is still far off), not on every sample.
   RangeRateEstimate update(double time_s, double range_m) {
     if (!std::isfinite(time_s) || !std::isfinite(range_m)) {
-      std::ostringstream message;
-      message << "range-rate observer: non-finite input (time_s " << time_s << ", range_m " << range_m << ")";
-      throw std::invalid_argument(message.str());
+      throw std::invalid_argument("range-rate observer: non-finite input (time_s " + shortest_text(time_s) +
+                                  ", range_m " + shortest_text(range_m) + ")");
     }
     if (!started_) {
       start_at(time_s, range_m, 0.0);
       return estimate_;
     }
     if (!(time_s > estimate_.time_s)) {
-      std::ostringstream message;
-      message << "range-rate observer: time must advance (got " << time_s << " s after " << estimate_.time_s << " s)";
-      throw std::invalid_argument(message.str());
-    }
-    if (params_.restart_jump_m > 0.0 && std::abs(range_m - last_range_m_) > params_.restart_jump_m) {
-      ++restarts_;
-      start_at(time_s, range_m, estimate_.rate_mps);
-      return estimate_;
+      throw std::invalid_argument("range-rate observer: time must advance (got " + shortest_text(time_s) + " s after " +
+                                  shortest_text(estimate_.time_s) + " s)");
     }
     const double dt = time_s - estimate_.time_s;
+    if (rate_from_next_difference_) {
+      start_at(time_s, range_m, (range_m - last_range_m_) / dt);
+      return estimate_;
+    }
+    const double unexplained_m = (range_m - last_range_m_) - estimate_.rate_mps * dt;
+    if (params_.restart_jump_m > 0.0 && std::abs(unexplained_m) > params_.restart_jump_m) {
+      ++restarts_;
+      start_at(time_s, range_m, estimate_.rate_mps);
+      rate_from_next_difference_ = true;
+      return estimate_;
+    }
     const ObserverDerivative derivative = Derivative(params_, estimate_.rate_mps, error_m_);
     estimate_.time_s = time_s;
     estimate_.range_m += dt * derivative.range_mps;
@@ -68,13 +79,15 @@ class RangeRateObserver {
     estimate_ = {time_s, range_m, rate_mps};
     error_m_ = 0.0;
     last_range_m_ = range_m;
+    rate_from_next_difference_ = false;
     started_ = true;
   }
 
   Params params_;
   RangeRateEstimate estimate_;
   double error_m_ = 0.0;       // s - s_hat at the last sample, m
-  double last_range_m_ = 0.0;  // last measured range, m
+  double last_range_m_ = 0.0;  // the last measured range, m
+  bool rate_from_next_difference_ = false;  // just restarted: the next sample sets the rate
   bool started_ = false;
   std::size_t restarts_ = 0;
 };

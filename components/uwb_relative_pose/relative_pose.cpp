@@ -1,6 +1,7 @@
 #include "components/uwb_relative_pose/relative_pose.hpp"
 
 #include "common/angle.hpp"
+#include "common/number_text.hpp"
 
 namespace robodds::uwb {
 
@@ -12,11 +13,15 @@ RelativePose compose(const RelativePose& a_b, const RelativePose& b_c) {
 }
 
 RelativePose between(const RelativePose& w_a, const RelativePose& w_b) {
-  const double c = std::cos(w_a.theta_rad);
-  const double s = std::sin(w_a.theta_rad);
-  const double dx = w_b.x_m - w_a.x_m;
-  const double dy = w_b.y_m - w_a.y_m;
-  return {c * dx + s * dy, -s * dx + c * dy, wrap_angle(w_b.theta_rad - w_a.theta_rad)};
+  const double a[3] = {w_a.x_m, w_a.y_m, w_a.theta_rad};
+  const double b[3] = {w_b.x_m, w_b.y_m, w_b.theta_rad};
+  double a_b[3];
+  between_unwrapped(a, b, a_b);
+  return {a_b[0], a_b[1], wrap_angle(a_b[2])};
+}
+
+std::string to_text(const RelativePose& pose) {
+  return "x=" + shortest_text(pose.x_m) + ", y=" + shortest_text(pose.y_m) + ", theta=" + shortest_text(pose.theta_rad);
 }
 
 }  // namespace robodds::uwb

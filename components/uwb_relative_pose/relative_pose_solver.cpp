@@ -41,7 +41,8 @@ ceres::LossFunction* make_loss(const SolverOptions& options) {
 
 void require_valid_ranges(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m) {
   if (own.nodes_m.empty() || other.nodes_m.empty()) {
-    throw std::invalid_argument("solve_relative_pose: both arrays need at least one node");
+    throw std::invalid_argument("solve_relative_pose: both arrays need at least one node (got " +
+                                std::to_string(own.nodes_m.size()) + " and " + std::to_string(other.nodes_m.size()) + ")");
   }
   if (ranges_m.rows() != static_cast<Eigen::Index>(own.nodes_m.size()) ||
       ranges_m.cols() != static_cast<Eigen::Index>(other.nodes_m.size())) {
@@ -99,9 +100,9 @@ RobustLoss robust_loss_from_string(const std::string& text) {
 
 void SolverOptions::validate() const {
   param_checks::require_positive("loss_scale_m", loss_scale_m);
-  if (start_directions < 1) param_checks::reject("start_directions", "must be >= 1", start_directions);
-  if (start_headings < 1) param_checks::reject("start_headings", "must be >= 1", start_headings);
-  if (max_iterations < 1) param_checks::reject("max_iterations", "must be >= 1", max_iterations);
+  param_checks::require_at_least("start_directions", start_directions, 1);
+  param_checks::require_at_least("start_headings", start_headings, 1);
+  param_checks::require_at_least("max_iterations", max_iterations, 1);
 }
 
 SolverResult solve_relative_pose(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m,
@@ -109,6 +110,9 @@ SolverResult solve_relative_pose(const UwbArray& own, const UwbArray& other, con
   options.validate();
   require_valid_ranges(own, other, ranges_m);
   if (initial) {
+    if (!std::isfinite(initial->x_m) || !std::isfinite(initial->y_m) || !std::isfinite(initial->theta_rad)) {
+      throw std::invalid_argument("solve_relative_pose: initial pose is not finite (got " + to_text(*initial) + ")");
+    }
     return solve_from(own, other, ranges_m, *initial, options);
   }
   const double radius = ranges_m.mean();

@@ -14,7 +14,7 @@ namespace robodds::uwb {
 namespace {
 
 /// Residual of one edge "pose b seen from pose a is `measured`", each row divided by its std:
-/// [R(theta_a)^T (p_b - p_a) - measured.xy; wrap(theta_b - theta_a - measured.theta)].
+/// between(a, b) - measured, the heading difference wrapped.
 struct EdgeResidual {
   RelativePose measured;
   double xy_std_m;
@@ -25,13 +25,11 @@ struct EdgeResidual {
     using std::atan2;
     using std::cos;
     using std::sin;
-    const T c = cos(a[2]);
-    const T s = sin(a[2]);
-    const T dx = b[0] - a[0];
-    const T dy = b[1] - a[1];
-    const T dtheta = b[2] - a[2] - T(measured.theta_rad);
-    residual[0] = (c * dx + s * dy - T(measured.x_m)) / T(xy_std_m);
-    residual[1] = (-s * dx + c * dy - T(measured.y_m)) / T(xy_std_m);
+    T a_b[3];
+    between_unwrapped(a, b, a_b);
+    const T dtheta = a_b[2] - T(measured.theta_rad);
+    residual[0] = (a_b[0] - T(measured.x_m)) / T(xy_std_m);
+    residual[1] = (a_b[1] - T(measured.y_m)) / T(xy_std_m);
     residual[2] = atan2(sin(dtheta), cos(dtheta)) / T(theta_std_rad);  // wrapped; wrap_angle takes no Jets
     return true;
   }
@@ -68,7 +66,8 @@ void SlidingWindowGraph::add_epoch(const std::vector<RelativePose>& odometry, co
   }
   for (std::size_t i = 0; i < odometry.size(); ++i) {
     if (!finite(odometry[i])) {
-      throw std::invalid_argument("add_epoch: odometry of robot " + std::to_string(i) + " is not finite");
+      throw std::invalid_argument("add_epoch: odometry of robot " + std::to_string(i) + " is not finite (got " +
+                                  to_text(odometry[i]) + ")");
     }
   }
   for (const PairMeasurement& m : uwb) {
@@ -78,7 +77,7 @@ void SlidingWindowGraph::add_epoch(const std::vector<RelativePose>& odometry, co
     }
     if (!finite(m.pose)) {
       throw std::invalid_argument("add_epoch: UWB pose of pair (" + std::to_string(m.own) + ", " +
-                                  std::to_string(m.other) + ") is not finite");
+                                  std::to_string(m.other) + ") is not finite (got " + to_text(m.pose) + ")");
     }
   }
   Epoch epoch;
@@ -158,8 +157,12 @@ bool SlidingWindowGraph::optimize() {
 }
 
 RelativePose SlidingWindowGraph::latest_relative(std::size_t own, std::size_t other) const {
-  if (epochs_.empty() || own >= num_robots_ || other >= num_robots_) {
-    throw std::invalid_argument("latest_relative: no epoch yet, or no such robot");
+  if (epochs_.empty()) {
+    throw std::invalid_argument("latest_relative: no epoch added yet");
+  }
+  if (own >= num_robots_ || other >= num_robots_) {
+    throw std::invalid_argument("latest_relative: robots (" + std::to_string(own) + ", " + std::to_string(other) +
+                                ") are not both among the " + std::to_string(num_robots_));
   }
   return between(epochs_.back().poses[own], epochs_.back().poses[other]);
 }

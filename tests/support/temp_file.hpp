@@ -17,11 +17,15 @@ namespace robodds::test_support {
 // returns its path.
 inline std::string write_test_file(const std::string& name, const std::string& text) {
   const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::string owner = info == nullptr ? std::string("no_test")
-                                            : std::string(info->test_suite_name()) + "." + info->name();
+  std::string owner = info == nullptr ? std::string("no_test")
+                                      : std::string(info->test_suite_name()) + "." + info->name();
+  for (char& c : owner) {
+    if (c == '/') c = '_';  // parameterised cases are named "Instance/Suite.Test/0"
+  }
   const std::string path = ::testing::TempDir() + owner + "." + name;
   std::ofstream out(path);
   out << text;
+  out.close();
   if (!out) ADD_FAILURE() << "could not write test file " << path;
   return path;
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -113,6 +114,8 @@ TEST(Observers, RangeNoiseSetsTheFloorOfBoth) {
               linear.rms_after_mps);
   EXPECT_GT(sliding.rms_after_mps, 0.3);
   EXPECT_LT(sliding.rms_after_mps, 1.5);
+  EXPECT_GT(linear.rms_after_mps, 0.3);
+  EXPECT_LT(linear.rms_after_mps, 1.5);
 }
 
 TEST(RangeRateObserver, RestartsOnARangeJumpInsteadOfSpiking) {
@@ -134,6 +137,22 @@ TEST(RangeRateObserver, RestartsOnARangeJumpInsteadOfSpiking) {
   EXPECT_EQ(after.range_m, 510.0);
 }
 
+TEST(RangeRateObserver, AFastTargetAtACoarseRateRestartsAtMostOnce) {
+  // 10 m/s sampled at 1 Hz moves 10 m per sample, twice restart_jump_m: the restart rule
+  // compares with the prediction s_hat + v_hat dt, so once the rate is known it stops firing.
+  SuperTwistingObserver observer{SuperTwistingParams{}};
+  double worst_late_error = 0.0;
+  for (int k = 0; k <= 60; ++k) {
+    const double t = k;
+    const RangeRateEstimate est = observer.update(t, 50.0 + 10.0 * t);
+    if (t >= 30.0) {
+      worst_late_error = std::max(worst_late_error, std::abs(est.rate_mps - 10.0));
+    }
+  }
+  EXPECT_LE(observer.restarts(), 1u);
+  EXPECT_LT(worst_late_error, 2.5);  // 1 Hz chattering is about 0.8 b T = 1.8 m/s
+}
+
 TEST(RangeRateObserver, BadInputThrowsAndChangesNothing) {
   SuperTwistingObserver a{SuperTwistingParams{}};
   SuperTwistingObserver b{SuperTwistingParams{}};
@@ -145,6 +164,12 @@ TEST(RangeRateObserver, BadInputThrowsAndChangesNothing) {
     b.update(t, smooth_range(t));
   }
   EXPECT_THROW(a.update(0.49, 60.0), std::invalid_argument);  // time does not advance
+  EXPECT_THROW(a.update(std::numeric_limits<double>::quiet_NaN(), 60.0), std::invalid_argument);
+  try {
+    a.update(0.49, 60.0);
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "range-rate observer: time must advance (got 0.49 s after 0.49 s)");
+  }
   EXPECT_THROW(a.update(0.5, std::numeric_limits<double>::infinity()), std::invalid_argument);
   const RangeRateEstimate ea = a.update(0.5, smooth_range(0.5));
   const RangeRateEstimate eb = b.update(0.5, smooth_range(0.5));

@@ -146,6 +146,12 @@ TEST(SolveRelativePose, BadInputNamesWhatIsWrong) {
   bad.loss_scale_m = 0.0;
   ranges(2, 1) = 3.0;
   EXPECT_THROW(solve_relative_pose(array, array, ranges, std::nullopt, bad), std::invalid_argument);
+  try {
+    solve_relative_pose(array, array, ranges, RelativePose{std::numeric_limits<double>::infinity(), 0.0, 0.0}, SolverOptions{});
+    FAIL() << "accepted a non-finite initial pose";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "solve_relative_pose: initial pose is not finite (got x=inf, y=0, theta=0)");
+  }
   EXPECT_EQ(robust_loss_from_string("soft_l1"), RobustLoss::kSoftL1);
   EXPECT_THROW(robust_loss_from_string("cauchy"), std::invalid_argument);
 }

@@ -116,7 +116,15 @@ TEST(SlidingWindowGraph, BadInputIsRejectedAndChangesNothing) {
   EXPECT_THROW(graph.add_epoch(still, {{0, 3, RelativePose{}}}), std::invalid_argument);
   EXPECT_THROW(graph.add_epoch(still, {{0, 1, RelativePose{std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0}}}),
                std::invalid_argument);
+  try {
+    graph.add_epoch({RelativePose{}, RelativePose{0.0, std::numeric_limits<double>::quiet_NaN(), 0.0}, RelativePose{}}, {});
+    FAIL() << "accepted NaN odometry";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "add_epoch: odometry of robot 1 is not finite (got x=0, y=nan, theta=0)");
+  }
   EXPECT_EQ(graph.epochs(), 1u);
+  EXPECT_THROW(graph.latest_relative(0, 3), std::invalid_argument);
+  EXPECT_THROW(SlidingWindowGraph(3, 5, WindowWeights{}).latest_relative(0, 1), std::invalid_argument);
   const RelativePose r = graph.latest_relative(0, 1);
   EXPECT_DOUBLE_EQ(r.x_m, 2.0);
   for (int e = 0; e < 10; ++e) {
