@@ -62,14 +62,21 @@ class ParamReader {
   /// Turns a validate() message "key: reason" into a ConfigError naming the key's file.
   [[noreturn]] void fail(const std::string& message) const;
 
-  /// Runs params.validate() and reports a failure through fail().
-  template <class Params>
-  void validate(const Params& params) const {
+  /// Runs a check that throws "key: reason" (e.g. one of common/param_checks.hpp) and reports a
+  /// failure through fail().
+  template <class Check>
+  void check(Check&& check_values) const {
     try {
-      params.validate();
+      check_values();
     } catch (const std::exception& e) {
       fail(e.what());
     }
+  }
+
+  /// Runs params.validate() and reports a failure through fail().
+  template <class Params>
+  void validate(const Params& params) const {
+    check([&params] { params.validate(); });
   }
 
   /// Throws ConfigError if a key was never read (a typo or a stale key in a params file).

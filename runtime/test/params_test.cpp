@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include "common/param_checks.hpp"
 #include "runtime/error.hpp"
 #include "tests/support/temp_file.hpp"
 
@@ -69,6 +70,16 @@ TEST(Params, OverrideWinsAndKeepsItsFile) {
   EXPECT_DOUBLE_EQ(r.get_double("a"), -3.0);
   const std::string message = error_of([&] { r.fail("a: must be > 0"); });
   EXPECT_EQ(message, "scenario.yaml: a: must be > 0");
+}
+
+TEST(Params, CheckReportsAThrowingCheckWithTheKeysFile) {
+  FlatParams defaults{{"a", {"1", "defaults.yaml"}}};
+  FlatParams overrides{{"a", {"-3", "scenario.yaml"}}};
+  ParamReader r("c", merge_params(defaults, overrides));
+  const double a = r.get_double("a");
+  EXPECT_EQ(error_of([&] { r.check([&] { param_checks::require_positive("a", a); }); }),
+            "scenario.yaml: a: must be > 0 and finite (got -3)");
+  EXPECT_EQ(error_of([&] { r.check([] {}); }), "");
 }
 
 TEST(Params, UnreadKeyIsReported) {

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 
+#include "common/param_checks.hpp"
 #include "components/pf_estimator/particle_filter.hpp"
 #include "robodds/idl/robodds.h"
 
@@ -35,9 +36,7 @@ class PfEstimatorNode : public Component {
     params.init_theta_rad = p.get_double("init_theta_rad");
     params.init_fix_std_m = p.get_double("init_fix_std_m");
     valid_max_std_m_ = p.get_double("valid_max_position_std_m");
-    if (!(valid_max_std_m_ > 0.0)) {
-      p.fail("valid_max_position_std_m: must be > 0");
-    }
+    p.check([this] { param_checks::require_positive("valid_max_position_std_m", valid_max_std_m_); });
     p.validate(params);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {

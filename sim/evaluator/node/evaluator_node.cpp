@@ -9,6 +9,7 @@
 
 #include "common/angle.hpp"
 #include "common/json_writer.hpp"
+#include "common/param_checks.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/sample_format.hpp"
 #include "sim/evaluator/track.hpp"
@@ -115,9 +116,7 @@ class EvaluatorNode : public Component {
     auto& p = ctx.params();
     const std::vector<std::string> topics = p.get_string_list("topics");
     metrics_after_s_ = p.get_double("metrics_after_s");
-    if (metrics_after_s_ < 0.0) {
-      p.fail("metrics_after_s: must be >= 0");
-    }
+    p.check([this] { param_checks::require_non_negative("metrics_after_s", metrics_after_s_); });
     keys_ = ctx.robot_keys();
     for (const std::string& topic : topics) {
       const TopicInfo* info = find_topic(topic);
