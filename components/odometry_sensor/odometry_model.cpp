@@ -4,7 +4,7 @@
 
 namespace robodds::odometry_sensor {
 
-OdometryReading measure_odometry(const plant::Twist& true_twist, double dt_s,
+OdometryReading measure_odometry(const model::Twist& true_twist, double dt_s,
                                  const OdometryParams& params, RandomEngine& engine) {
   const WheelSpeeds truth = wheel_speeds_from_twist(true_twist, params.wheel_base_m);
   // Named locals fix the draw order (left, then right) regardless of argument evaluation order.
@@ -15,8 +15,8 @@ OdometryReading measure_odometry(const plant::Twist& true_twist, double dt_s,
   const double measured_right =
       (1.0 + params.right_slip) * truth.right + std_mps * unit_noise_right;
 
-  const plant::Twist measured =
-      plant::twist_from_wheel_speeds(measured_left, measured_right, params.wheel_base_m);
+  const model::Twist measured =
+      model::twist_from_wheel_speeds(measured_left, measured_right, params.wheel_base_m);
   // v = (l + r)/2 and omega = (r - l)/D of two independent wheel errors of variance std^2.
   const double wheel_var = std_mps * std_mps;
   OdometryReading reading;

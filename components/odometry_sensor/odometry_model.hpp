@@ -3,9 +3,9 @@
 // wheel's speed gets its scale error (slip) and independent white Gaussian noise, and the
 // result is turned back into a body twist.
 
+#include "common/model/twist.hpp"
 #include "common/random.hpp"
 #include "components/odometry_sensor/odometry_params.hpp"
-#include "sim/plant/diff_drive.hpp"
 
 namespace robodds::odometry_sensor {
 
@@ -23,7 +23,7 @@ struct OdometryReading {
 /// included, as a real odometry does not know its own calibration error. Always draws exactly
 /// two standard normals from `engine` (left wheel first, then right). `params` must have
 /// passed validate().
-OdometryReading measure_odometry(const plant::Twist& true_twist, double dt_s,
+OdometryReading measure_odometry(const model::Twist& true_twist, double dt_s,
                                  const OdometryParams& params, RandomEngine& engine);
 
 }  // namespace robodds::odometry_sensor

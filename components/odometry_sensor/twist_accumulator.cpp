@@ -2,17 +2,17 @@
 
 namespace robodds::odometry_sensor {
 
-void TwistAccumulator::add(const plant::Twist& twist, double dt_s) {
+void TwistAccumulator::add(const model::Twist& twist, double dt_s) {
   distance_m_ += twist.v * dt_s;
   turn_rad_ += twist.omega * dt_s;
   elapsed_s_ += dt_s;
 }
 
-plant::Twist TwistAccumulator::mean() const {
+model::Twist TwistAccumulator::mean() const {
   if (!(elapsed_s_ > 0.0)) {
-    return plant::Twist{};
+    return model::Twist{};
   }
-  return plant::Twist{distance_m_ / elapsed_s_, turn_rad_ / elapsed_s_};
+  return model::Twist{distance_m_ / elapsed_s_, turn_rad_ / elapsed_s_};
 }
 
 void TwistAccumulator::reset() { *this = TwistAccumulator{}; }

@@ -4,18 +4,18 @@
 // actually covered. Each plant state covers its own step, so a lost state (best effort in real
 // time) shortens the covered time instead of inflating the speed.
 
-#include "sim/plant/diff_drive.hpp"
+#include "common/model/twist.hpp"
 
 namespace robodds::odometry_sensor {
 
 class TwistAccumulator {
  public:
   /// Adds a twist (m/s, rad/s, body frame) applied for dt_s seconds (>= 0).
-  void add(const plant::Twist& twist, double dt_s);
+  void add(const model::Twist& twist, double dt_s);
   /// Time covered since the last reset, s.
   double elapsed_s() const { return elapsed_s_; }
   /// Mean twist over the covered time; zero twist if nothing was added.
-  plant::Twist mean() const;
+  model::Twist mean() const;
   void reset();
 
  private:

@@ -2,7 +2,7 @@
 
 namespace robodds::odometry_sensor {
 
-WheelSpeeds wheel_speeds_from_twist(const plant::Twist& twist, double wheel_base_m) {
+WheelSpeeds wheel_speeds_from_twist(const model::Twist& twist, double wheel_base_m) {
   const double rim_speed_from_turn = 0.5 * twist.omega * wheel_base_m;
   return WheelSpeeds{twist.v - rim_speed_from_turn, twist.v + rim_speed_from_turn};
 }

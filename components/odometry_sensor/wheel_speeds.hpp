@@ -1,8 +1,8 @@
 #pragma once
 // Body twist -> wheel rim speeds of a differential drive: the inverse of
-// plant::twist_from_wheel_speeds (omega = (v_right - v_left) / D, counter-clockwise positive).
+// model::twist_from_wheel_speeds (omega = (v_right - v_left) / D, counter-clockwise positive).
 
-#include "sim/plant/diff_drive.hpp"
+#include "common/model/diff_drive_kinematics.hpp"
 
 namespace robodds::odometry_sensor {
 
@@ -13,6 +13,6 @@ struct WheelSpeeds {
 };
 
 /// v_left = v - omega D/2, v_right = v + omega D/2 for wheel base D = wheel_base_m (m, > 0).
-WheelSpeeds wheel_speeds_from_twist(const plant::Twist& twist, double wheel_base_m);
+WheelSpeeds wheel_speeds_from_twist(const model::Twist& twist, double wheel_base_m);
 
 }  // namespace robodds::odometry_sensor

@@ -5,10 +5,10 @@
 #include <stdexcept>
 
 #include "common/angle.hpp"
+#include "common/model/diff_drive_kinematics.hpp"
 #include "components/pf_estimator/likelihood.hpp"
 #include "components/pf_estimator/regularization.hpp"
 #include "components/pf_estimator/resampling.hpp"
-#include "sim/plant/diff_drive.hpp"
 
 namespace robodds::pf {
 namespace {
@@ -96,9 +96,9 @@ void ParticleFilter::predict(double v_mps, double omega_radps, double dt_s) {
   }
   const bool diffuse_theta = params_.process_theta_std_rad > 0.0;
   for (Eigen::Index i = 0; i < num_particles_; ++i) {
-    const plant::Twist noisy_odometry{v_mps + noise(params_.odom_v_std_mps),
+    const model::Twist noisy_odometry{v_mps + noise(params_.odom_v_std_mps),
                                       omega_radps + noise(params_.odom_omega_std_radps)};
-    const plant::Pose2 moved = plant::integrate_exact(
+    const model::Pose2 moved = model::integrate_exact(
         {particles_.x[i], particles_.y[i], particles_.theta[i]}, noisy_odometry, dt_s);
     particles_.x[i] = moved.x + noise(params_.process_pos_std_m);
     particles_.y[i] = moved.y + noise(params_.process_pos_std_m);

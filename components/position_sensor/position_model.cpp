@@ -4,7 +4,7 @@
 
 namespace robodds::position_sensor {
 
-PositionFix measure_position(const plant::Pose2& truth, const PositionSensorParams& params,
+PositionFix measure_position(const model::Pose2& truth, const PositionSensorParams& params,
                              RandomEngine& engine) {
   // Draw into named locals: the order of evaluation of function arguments is unspecified,
   // and a fixed x-then-y order keeps the output reproducible across compilers.

@@ -2,9 +2,9 @@
 // Measurement model of the absolute position sensor: the true world-frame position plus
 // independent zero-mean Gaussian noise on x and y (paper 1, Step 1). Heading is not measured.
 
+#include "common/model/pose2.hpp"
 #include "common/random.hpp"
 #include "components/position_sensor/position_sensor_params.hpp"
-#include "sim/plant/diff_drive.hpp"
 
 namespace robodds::position_sensor {
 
@@ -19,7 +19,7 @@ struct PositionFix {
 /// Samples one fix of `truth` (only x and y are used). Always draws exactly two standard
 /// normals from `engine` (x first, then y), also when a variance is zero, so the stream
 /// position does not depend on the configuration. `params` must have passed validate().
-PositionFix measure_position(const plant::Pose2& truth, const PositionSensorParams& params,
+PositionFix measure_position(const model::Pose2& truth, const PositionSensorParams& params,
                              RandomEngine& engine);
 
 }  // namespace robodds::position_sensor

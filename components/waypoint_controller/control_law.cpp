@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "common/angle.hpp"
-#include "sim/plant/diff_drive.hpp"
+#include "common/model/twist.hpp"
 
 namespace robodds::waypoint {
 namespace {
@@ -36,8 +36,8 @@ Command control_law(const PolarError& error, const GainSet& gains) {
 
 Command waypoint_command(const PolarError& error, const ControllerParams& params) {
   const Command raw = control_law(error, select_gains(params, error.alpha_rad));
-  const plant::Twist limited = plant::saturate(plant::Twist{raw.v, raw.omega},
-                                               plant::TwistLimits{params.max_speed_mps, params.max_turn_rate_radps});
+  const model::Twist limited = model::saturate(model::Twist{raw.v, raw.omega},
+                                               model::TwistLimits{params.max_speed_mps, params.max_turn_rate_radps});
   return Command{limited.v, limited.omega};
 }
 

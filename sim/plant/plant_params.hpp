@@ -1,11 +1,11 @@
 #pragma once
-#include "sim/plant/diff_drive.hpp"
+#include "common/model/twist.hpp"
 
 namespace robodds::plant {
 
 struct PlantParams {
   double wheel_base_m = 0.5;       // m, D of eq. (1)
-  TwistLimits limits;              // m/s, rad/s; 0 = unlimited
+  model::TwistLimits limits;       // m/s, rad/s; 0 = unlimited
   double command_timeout_s = 0.5;  // s, real time: older commands stop the robot
 
   /// Throws std::invalid_argument("key: reason").

@@ -34,7 +34,7 @@ class OdometrySensorNode : public Component {
       // Each state carries the twist applied over its own step(s): sum them into wheel travel.
       for (const idl::RobotState& state : truth_->take_new(id)) {
         const double covered_s = static_cast<double>(state.header().next_step() - state.header().step()) * step_s_;
-        robot.travel.add(plant::Twist{state.v(), state.omega()}, covered_s);
+        robot.travel.add(model::Twist{state.v(), state.omega()}, covered_s);
       }
       const OdometryReading reading = measure_odometry(robot.travel.mean(), robot.travel.elapsed_s(), params_, robot.engine);
       robot.travel.reset();

@@ -18,7 +18,7 @@ struct ErrorMoments {
   double correlation = 0.0;
 };
 
-ErrorMoments error_moments(const plant::Twist& truth, const OdometryParams& params,
+ErrorMoments error_moments(const model::Twist& truth, const OdometryParams& params,
                            RandomEngine& engine, int samples) {
   double sum_v = 0.0, sum_w = 0.0, sum_vv = 0.0, sum_ww = 0.0, sum_vw = 0.0;
   for (int i = 0; i < samples; ++i) {
@@ -51,7 +51,7 @@ TEST(OdometryModel, ClaimedVariancesFollowFromWheelNoise) {
   params.wheel_speed_noise_std_mps = 0.04;
   params.wheel_base_m = 0.4;
   RandomEngine engine(1);
-  const OdometryReading reading = measure_odometry(plant::Twist{1.0, 0.5}, 0.02, params, engine);
+  const OdometryReading reading = measure_odometry(model::Twist{1.0, 0.5}, 0.02, params, engine);
   EXPECT_DOUBLE_EQ(reading.var_v, 0.04 * 0.04 / 2.0);
   EXPECT_DOUBLE_EQ(reading.var_omega, 2.0 * 0.04 * 0.04 / (0.4 * 0.4));
   EXPECT_EQ(reading.dt_s, 0.02);
@@ -62,7 +62,7 @@ TEST(OdometryModel, EmpiricalNoiseMatchesClaimedVariancesWithZeroMean) {
   params.wheel_speed_noise_std_mps = 0.05;
   params.wheel_base_m = 0.5;
   RandomEngine engine(derive_seed(1, "odometry_sensor/statistics"));
-  const plant::Twist truth{0.8, -0.6};
+  const model::Twist truth{0.8, -0.6};
   const ErrorMoments m = error_moments(truth, params, engine, kSamples);
 
   RandomEngine claim_engine(0);
@@ -80,8 +80,8 @@ TEST(OdometryModel, EmpiricalNoiseMatchesClaimedVariancesWithZeroMean) {
 TEST(OdometryModel, ZeroNoiseAndSlipGiveTruth) {
   const OdometryParams params = noiseless();
   RandomEngine engine(derive_seed(2, "odometry_sensor/zero_noise"));
-  for (const plant::Twist truth : {plant::Twist{0.0, 0.0}, plant::Twist{1.0, 0.0},
-                                   plant::Twist{0.0, -1.0}, plant::Twist{0.37, 0.91}}) {
+  for (const model::Twist truth : {model::Twist{0.0, 0.0}, model::Twist{1.0, 0.0},
+                                   model::Twist{0.0, -1.0}, model::Twist{0.37, 0.91}}) {
     const OdometryReading reading = measure_odometry(truth, 0.02, params, engine);
     // Exact up to the rounding of the wheel-speed round trip.
     EXPECT_NEAR(reading.v, truth.v, 1e-15);
@@ -95,7 +95,7 @@ TEST(OdometryModel, SameSeedGivesIdenticalSequence) {
   const OdometryParams params;
   RandomEngine a(derive_seed(42, "odometry_sensor/robot1"));
   RandomEngine b(derive_seed(42, "odometry_sensor/robot1"));
-  const plant::Twist truth{0.5, 0.2};
+  const model::Twist truth{0.5, 0.2};
   for (int i = 0; i < 1000; ++i) {
     const OdometryReading ra = measure_odometry(truth, 0.02, params, a);
     const OdometryReading rb = measure_odometry(truth, 0.02, params, b);
@@ -108,8 +108,8 @@ TEST(OdometryModel, DifferentSeedGivesDifferentReadings) {
   const OdometryParams params;
   RandomEngine a(derive_seed(42, "odometry_sensor/robot1"));
   RandomEngine b(derive_seed(42, "odometry_sensor/robot2"));
-  const OdometryReading ra = measure_odometry(plant::Twist{}, 0.02, params, a);
-  const OdometryReading rb = measure_odometry(plant::Twist{}, 0.02, params, b);
+  const OdometryReading ra = measure_odometry(model::Twist{}, 0.02, params, a);
+  const OdometryReading rb = measure_odometry(model::Twist{}, 0.02, params, b);
   EXPECT_NE(ra.v, rb.v);
   EXPECT_NE(ra.omega, rb.omega);
 }
@@ -117,8 +117,8 @@ TEST(OdometryModel, DifferentSeedGivesDifferentReadings) {
 TEST(OdometryModel, DrawsTwoNormalsPerReadingWhateverTheNoise) {
   RandomEngine a(9);
   RandomEngine b(9);
-  measure_odometry(plant::Twist{}, 0.02, OdometryParams{}, a);
-  measure_odometry(plant::Twist{}, 0.02, noiseless(), b);
+  measure_odometry(model::Twist{}, 0.02, OdometryParams{}, a);
+  measure_odometry(model::Twist{}, 0.02, noiseless(), b);
   EXPECT_EQ(a, b);
 }
 
@@ -129,7 +129,7 @@ TEST(OdometryModel, FastRightWheelReadsFasterAndTurningLeft) {
   OdometryParams params = noiseless();
   params.right_slip = 0.01;
   RandomEngine engine(3);
-  const OdometryReading reading = measure_odometry(plant::Twist{1.0, 0.0}, 0.02, params, engine);
+  const OdometryReading reading = measure_odometry(model::Twist{1.0, 0.0}, 0.02, params, engine);
   EXPECT_NEAR(reading.v, 1.005, 1e-12);
   EXPECT_NEAR(reading.omega, 0.02, 1e-12);  // counter-clockwise
 }
@@ -138,7 +138,7 @@ TEST(OdometryModel, FastLeftWheelReadsFasterAndTurningRight) {
   OdometryParams params = noiseless();
   params.left_slip = 0.01;
   RandomEngine engine(3);
-  const OdometryReading reading = measure_odometry(plant::Twist{1.0, 0.0}, 0.02, params, engine);
+  const OdometryReading reading = measure_odometry(model::Twist{1.0, 0.0}, 0.02, params, engine);
   EXPECT_NEAR(reading.v, 1.005, 1e-12);
   EXPECT_NEAR(reading.omega, -0.02, 1e-12);  // clockwise
 }
@@ -148,7 +148,7 @@ TEST(OdometryModel, EqualSlipScalesTheWholeTwist) {
   params.left_slip = -0.03;
   params.right_slip = -0.03;
   RandomEngine engine(3);
-  const OdometryReading reading = measure_odometry(plant::Twist{0.8, -0.4}, 0.02, params, engine);
+  const OdometryReading reading = measure_odometry(model::Twist{0.8, -0.4}, 0.02, params, engine);
   EXPECT_NEAR(reading.v, 0.97 * 0.8, 1e-12);
   EXPECT_NEAR(reading.omega, 0.97 * -0.4, 1e-12);
 }
@@ -158,7 +158,7 @@ TEST(OdometryModel, SlipBiasMatchesPredictionUnderNoise) {
   OdometryParams params;
   params.left_slip = -0.02;
   params.right_slip = 0.015;
-  const plant::Twist truth{0.6, 0.8};
+  const model::Twist truth{0.6, 0.8};
   const double v_left = truth.v - 0.5 * truth.omega * params.wheel_base_m;
   const double v_right = truth.v + 0.5 * truth.omega * params.wheel_base_m;
   const double predicted_v_bias = 0.5 * (params.left_slip * v_left + params.right_slip * v_right);

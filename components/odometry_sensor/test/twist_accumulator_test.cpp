@@ -14,8 +14,8 @@ TEST(TwistAccumulator, EmptyGivesZeroTwist) {
 
 TEST(TwistAccumulator, MeanIsDistanceOverCoveredTime) {
   TwistAccumulator acc;
-  acc.add(plant::Twist{1.0, 0.2}, 0.01);
-  acc.add(plant::Twist{3.0, -0.4}, 0.01);
+  acc.add(model::Twist{1.0, 0.2}, 0.01);
+  acc.add(model::Twist{3.0, -0.4}, 0.01);
   EXPECT_DOUBLE_EQ(acc.elapsed_s(), 0.02);
   EXPECT_DOUBLE_EQ(acc.mean().v, 2.0);
   EXPECT_NEAR(acc.mean().omega, -0.1, 1e-15);
@@ -26,7 +26,7 @@ TEST(TwistAccumulator, ConstantTwistIsReproducedWhateverTheNumberOfSteps) {
   for (int steps : {1, 2, 3, 7}) {
     TwistAccumulator acc;
     for (int i = 0; i < steps; ++i) {
-      acc.add(plant::Twist{5.0, 1.5}, 0.01);
+      acc.add(model::Twist{5.0, 1.5}, 0.01);
     }
     EXPECT_DOUBLE_EQ(acc.mean().v, 5.0) << steps;
     EXPECT_DOUBLE_EQ(acc.mean().omega, 1.5) << steps;
@@ -35,9 +35,9 @@ TEST(TwistAccumulator, ConstantTwistIsReproducedWhateverTheNumberOfSteps) {
 
 TEST(TwistAccumulator, ResetStartsAFreshPeriod) {
   TwistAccumulator acc;
-  acc.add(plant::Twist{9.0, 9.0}, 0.5);
+  acc.add(model::Twist{9.0, 9.0}, 0.5);
   acc.reset();
-  acc.add(plant::Twist{1.0, -1.0}, 0.01);
+  acc.add(model::Twist{1.0, -1.0}, 0.01);
   EXPECT_DOUBLE_EQ(acc.mean().v, 1.0);
   EXPECT_DOUBLE_EQ(acc.mean().omega, -1.0);
   EXPECT_DOUBLE_EQ(acc.elapsed_s(), 0.01);

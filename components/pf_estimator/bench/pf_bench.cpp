@@ -6,9 +6,9 @@
 
 #include <cmath>
 
+#include "common/model/diff_drive_kinematics.hpp"
 #include "common/random.hpp"
 #include "components/pf_estimator/particle_filter.hpp"
-#include "sim/plant/diff_drive.hpp"
 
 namespace {
 
@@ -32,11 +32,11 @@ PfParams params_for(benchmark::State& state) {
 void BM_PredictUpdate(benchmark::State& state) {
   ParticleFilter filter(params_for(state), 1);
   RandomEngine world(2);
-  robodds::plant::Pose2 truth{0.0, 0.0, 0.0};
-  const robodds::plant::Twist twist{1.0, 0.2};
+  robodds::model::Pose2 truth{0.0, 0.0, 0.0};
+  const robodds::model::Twist twist{1.0, 0.2};
   filter.update(0.0, 0.0);
   for (auto _ : state) {
-    truth = robodds::plant::integrate_exact(truth, twist, kDt);
+    truth = robodds::model::integrate_exact(truth, twist, kDt);
     filter.predict(twist.v, twist.omega, kDt);
     filter.update(truth.x + 1.5 * robodds::standard_normal(world),
                   truth.y + 1.5 * robodds::standard_normal(world));

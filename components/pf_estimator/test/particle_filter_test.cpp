@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "common/angle.hpp"
+#include "common/model/diff_drive_kinematics.hpp"
 #include "common/random.hpp"
-#include "sim/plant/diff_drive.hpp"
 
 namespace robodds::pf {
 namespace {
@@ -50,7 +50,7 @@ struct SimulationConfig {
   int odom_steps_per_fix = 5;  // 10 Hz fixes
   double odom_v_noise_mps = 0.05;
   double odom_omega_noise_radps = 0.02;
-  plant::Pose2 start{5.0, -3.0, 2.0};
+  model::Pose2 start{5.0, -3.0, 2.0};
 };
 
 struct SimulationResult {
@@ -61,22 +61,22 @@ struct SimulationResult {
 };
 
 // Speed around 1 m/s and a turn rate that changes sign: the robot drives S-curves.
-plant::Twist true_twist(double t_s) {
+model::Twist true_twist(double t_s) {
   return {1.0 + 0.2 * std::sin(0.3 * t_s), 0.1 + 0.3 * std::sin(0.15 * t_s)};
 }
 
 SimulationResult simulate(ParticleFilter& filter, const SimulationConfig& config,
                           std::uint64_t world_seed) {
   RandomEngine world(derive_seed(world_seed, "world"));
-  plant::Pose2 truth = config.start;
+  model::Pose2 truth = config.start;
   const int steps = static_cast<int>(std::lround(config.duration_s / config.odom_dt_s));
   double estimate_sq = 0.0;
   double fix_sq = 0.0;
   int fixes = 0;
   SimulationResult result;
   for (int step = 1; step <= steps; ++step) {
-    const plant::Twist twist = true_twist(step * config.odom_dt_s);
-    truth = plant::integrate_exact(truth, twist, config.odom_dt_s);
+    const model::Twist twist = true_twist(step * config.odom_dt_s);
+    truth = model::integrate_exact(truth, twist, config.odom_dt_s);
     filter.predict(twist.v + config.odom_v_noise_mps * standard_normal(world),
                    twist.omega + config.odom_omega_noise_radps * standard_normal(world),
                    config.odom_dt_s);
@@ -176,8 +176,8 @@ TEST(ParticleFilter, NoiseFreePredictionFollowsTheExactArc) {
   filter.set_particles(start, Eigen::ArrayXd::Ones(5));
   filter.predict(1.5, -0.7, 0.3);
   for (Eigen::Index i = 0; i < 5; ++i) {
-    const plant::Pose2 expected =
-        plant::integrate_exact({start.x[i], start.y[i], start.theta[i]}, {1.5, -0.7}, 0.3);
+    const model::Pose2 expected =
+        model::integrate_exact({start.x[i], start.y[i], start.theta[i]}, {1.5, -0.7}, 0.3);
     EXPECT_DOUBLE_EQ(filter.particles().x[i], expected.x);
     EXPECT_DOUBLE_EQ(filter.particles().y[i], expected.y);
     EXPECT_DOUBLE_EQ(filter.particles().theta[i], expected.theta);

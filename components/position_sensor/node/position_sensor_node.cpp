@@ -31,7 +31,7 @@ class PositionSensorNode : public Component {
       if (state == nullptr) {
         continue;  // real time before the plant's first sample
       }
-      const PositionFix fix = measure_position(plant::Pose2{state->x(), state->y(), state->theta()}, params_, engine);
+      const PositionFix fix = measure_position(model::Pose2{state->x(), state->y(), state->theta()}, params_, engine);
       idl::PositionMeasurement m;
       m.robot_id(id);
       m.x(fix.x);

@@ -18,7 +18,7 @@ struct ErrorMoments {
   double correlation_xy = 0.0;
 };
 
-ErrorMoments error_moments(const plant::Pose2& truth, const PositionSensorParams& params,
+ErrorMoments error_moments(const model::Pose2& truth, const PositionSensorParams& params,
                            RandomEngine& engine, int samples) {
   double sum_x = 0.0, sum_y = 0.0, sum_xx = 0.0, sum_yy = 0.0, sum_xy = 0.0;
   for (int i = 0; i < samples; ++i) {
@@ -45,7 +45,7 @@ TEST(PositionModel, NoiseHasZeroMeanConfiguredVarianceAndNoCorrelation) {
   params.noise_var_x_m2 = 2.28;
   params.noise_var_y_m2 = 0.5;  // different per axis: catches swapped axes
   RandomEngine engine(derive_seed(1, "position_sensor/statistics"));
-  const plant::Pose2 truth{3.0, -7.5, 1.2};
+  const model::Pose2 truth{3.0, -7.5, 1.2};
   const ErrorMoments m = error_moments(truth, params, engine, kSamples);
 
   // Tolerances: 5 standard errors. Mean: sigma/sqrt(n). Variance: var*sqrt(2/n).
@@ -63,7 +63,7 @@ TEST(PositionModel, ClaimedVarianceIsTheConfiguredOne) {
   params.noise_var_x_m2 = 1.5;
   params.noise_var_y_m2 = 0.25;
   RandomEngine engine(5);
-  const PositionFix fix = measure_position(plant::Pose2{}, params, engine);
+  const PositionFix fix = measure_position(model::Pose2{}, params, engine);
   EXPECT_EQ(fix.var_x, 1.5);
   EXPECT_EQ(fix.var_y, 0.25);
 }
@@ -73,7 +73,7 @@ TEST(PositionModel, ZeroNoiseGivesExactTruth) {
   params.noise_var_x_m2 = 0.0;
   params.noise_var_y_m2 = 0.0;
   RandomEngine engine(derive_seed(2, "position_sensor/zero_noise"));
-  const plant::Pose2 truth{12.345, -0.001, -2.0};
+  const model::Pose2 truth{12.345, -0.001, -2.0};
   for (int i = 0; i < 1000; ++i) {
     const PositionFix fix = measure_position(truth, params, engine);
     ASSERT_EQ(fix.x, truth.x);
@@ -87,7 +87,7 @@ TEST(PositionModel, SameSeedGivesIdenticalSequence) {
   const PositionSensorParams params;
   RandomEngine a(derive_seed(42, "position_sensor/robot1"));
   RandomEngine b(derive_seed(42, "position_sensor/robot1"));
-  const plant::Pose2 truth{1.0, 2.0, 0.3};
+  const model::Pose2 truth{1.0, 2.0, 0.3};
   for (int i = 0; i < 1000; ++i) {
     const PositionFix fa = measure_position(truth, params, a);
     const PositionFix fb = measure_position(truth, params, b);
@@ -100,7 +100,7 @@ TEST(PositionModel, DifferentSeedGivesDifferentFixes) {
   const PositionSensorParams params;
   RandomEngine a(derive_seed(42, "position_sensor/robot1"));
   RandomEngine b(derive_seed(42, "position_sensor/robot2"));
-  const plant::Pose2 truth;
+  const model::Pose2 truth;
   const PositionFix fa = measure_position(truth, params, a);
   const PositionFix fb = measure_position(truth, params, b);
   EXPECT_NE(fa.x, fb.x);
@@ -115,8 +115,8 @@ TEST(PositionModel, DrawsTwoNormalsPerFixWhateverTheVariance) {
   exact.noise_var_y_m2 = 0.0;
   RandomEngine a(9);
   RandomEngine b(9);
-  measure_position(plant::Pose2{}, noisy, a);
-  measure_position(plant::Pose2{}, exact, b);
+  measure_position(model::Pose2{}, noisy, a);
+  measure_position(model::Pose2{}, exact, b);
   EXPECT_EQ(a, b);
 }
 

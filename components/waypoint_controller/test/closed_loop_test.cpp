@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "common/model/diff_drive_kinematics.hpp"
 #include "components/waypoint_controller/waypoint_tracker.hpp"
-#include "sim/plant/diff_drive.hpp"
 
 namespace robodds::waypoint {
 namespace {
@@ -43,7 +43,7 @@ struct RunResult {
 RunResult run_paper_mission(const ControllerParams& params, double max_time_s) {
   WaypointTracker tracker(params);
   tracker.set_mission(paper_mission());
-  plant::Pose2 pose{50.0, 10.0, 0.0};
+  model::Pose2 pose{50.0, 10.0, 0.0};
   RunResult result;
   const long max_steps = std::lround(max_time_s / kDt);
   long done_step = -1;
@@ -62,7 +62,7 @@ RunResult run_paper_mission(const ControllerParams& params, double max_time_s) {
     if (done_step >= 0 && (k - done_step) * kDt >= kMaxSettleAfterDoneS) {
       break;
     }
-    pose = plant::integrate_exact(pose, plant::Twist{output.command.v, output.command.omega}, kDt);
+    pose = model::integrate_exact(pose, model::Twist{output.command.v, output.command.omega}, kDt);
   }
   result.done = done_step >= 0;
   result.time_to_final_s = done_step * kDt;

@@ -4,8 +4,8 @@
 #include <cmath>
 #include <map>
 
+#include "common/model/diff_drive_kinematics.hpp"
 #include "robodds/idl/robodds.h"
-#include "sim/plant/diff_drive.hpp"
 #include "sim/plant/plant_params.hpp"
 
 namespace robodds::plant {
@@ -23,7 +23,7 @@ class PlantNode : public Component {
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {
-      robots_[robot.id] = Robot{Pose2{robot.x, robot.y, robot.theta}, Twist{}};
+      robots_[robot.id] = Robot{model::Pose2{robot.x, robot.y, robot.theta}, model::Twist{}};
     }
     InputOptions cmd_options;
     cmd_options.expected = ctx.robot_keys();
@@ -35,11 +35,11 @@ class PlantNode : public Component {
 
   void on_step(const StepInfo& info) override {
     for (auto& [id, robot] : robots_) {
-      const Twist twist = command_for(id, info);
+      const model::Twist twist = command_for(id, info);
       if (info.dt_s > 0.0) {
-        robot.pose = integrate_exact(robot.pose, twist, info.dt_s);
+        robot.pose = model::integrate_exact(robot.pose, twist, info.dt_s);
       }
-      robot.applied = info.dt_s > 0.0 ? twist : Twist{};
+      robot.applied = info.dt_s > 0.0 ? twist : model::Twist{};
       idl::RobotState state;
       state.robot_id(id);
       state.x(robot.pose.x);
@@ -53,28 +53,28 @@ class PlantNode : public Component {
 
  private:
   struct Robot {
-    Pose2 pose;
-    Twist applied;
+    model::Pose2 pose;
+    model::Twist applied;
   };
 
-  Twist command_for(std::uint32_t id, const StepInfo& info) {
+  model::Twist command_for(std::uint32_t id, const StepInfo& info) {
     const idl::VelocityCommand* cmd = commands_->latest(id);
     if (cmd == nullptr) {
-      return Twist{};  // no command yet: stand still
+      return model::Twist{};  // no command yet: stand still
     }
     if (mode_ == TimeMode::kRealtime) {
       const double age_s = static_cast<double>(info.stamp_ns - cmd->header().stamp_ns()) * 1e-9;
       if (age_s > params_.command_timeout_s) {
-        return Twist{};  // stale command: safe stop
+        return model::Twist{};  // stale command: safe stop
       }
     }
-    const Twist requested = cmd->mode() == idl::WHEEL_SPEEDS
-                                ? twist_from_wheel_speeds(cmd->v_left(), cmd->v_right(), params_.wheel_base_m)
-                                : Twist{cmd->v(), cmd->omega()};
+    const model::Twist requested = cmd->mode() == idl::WHEEL_SPEEDS
+                                       ? model::twist_from_wheel_speeds(cmd->v_left(), cmd->v_right(), params_.wheel_base_m)
+                                       : model::Twist{cmd->v(), cmd->omega()};
     if (!std::isfinite(requested.v) || !std::isfinite(requested.omega)) {
-      return Twist{};  // never integrate a non-finite command
+      return model::Twist{};  // never integrate a non-finite command
     }
-    return saturate(requested, params_.limits);
+    return model::saturate(requested, params_.limits);
   }
 
   PlantParams params_;
