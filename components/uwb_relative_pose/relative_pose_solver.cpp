@@ -61,9 +61,9 @@ void require_valid_ranges(const UwbArray& own, const UwbArray& other, const Eige
 }
 
 /// One Levenberg-Marquardt solve from `start`.
-SolverResult solve_from(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m, RelativePose start,
+SolverResult solve_from(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m, model::Pose2 start,
                         const SolverOptions& options) {
-  std::array<double, 3> pose{start.x_m, start.y_m, start.theta_rad};
+  std::array<double, 3> pose{start.x, start.y, start.theta};
   ceres::Problem problem;
   for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
     for (Eigen::Index l = 0; l < ranges_m.cols(); ++l) {
@@ -106,12 +106,12 @@ void SolverOptions::validate() const {
 }
 
 SolverResult solve_relative_pose(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m,
-                                 const std::optional<RelativePose>& initial, const SolverOptions& options) {
+                                 const std::optional<model::Pose2>& initial, const SolverOptions& options) {
   options.validate();
   require_valid_ranges(own, other, ranges_m);
   if (initial) {
-    if (!std::isfinite(initial->x_m) || !std::isfinite(initial->y_m) || !std::isfinite(initial->theta_rad)) {
-      throw std::invalid_argument("solve_relative_pose: initial pose is not finite (got " + to_text(*initial) + ")");
+    if (!std::isfinite(initial->x) || !std::isfinite(initial->y) || !std::isfinite(initial->theta)) {
+      throw std::invalid_argument("solve_relative_pose: initial pose is not finite (got " + model::to_text(*initial) + ")");
     }
     return solve_from(own, other, ranges_m, *initial, options);
   }
@@ -122,7 +122,7 @@ SolverResult solve_relative_pose(const UwbArray& own, const UwbArray& other, con
   for (int d = 0; d < options.start_directions; ++d) {
     const double bearing = 2.0 * kPi * d / options.start_directions;
     for (int h = 0; h < options.start_headings; ++h) {
-      const RelativePose start{radius * std::cos(bearing), radius * std::sin(bearing),
+      const model::Pose2 start{radius * std::cos(bearing), radius * std::sin(bearing),
                                wrap_angle(2.0 * kPi * h / options.start_headings)};
       const SolverResult candidate = solve_from(own, other, ranges_m, start, options);
       ++starts;

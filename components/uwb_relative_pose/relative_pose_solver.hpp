@@ -39,7 +39,7 @@ struct SolverOptions {
 };
 
 struct SolverResult {
-  RelativePose pose;
+  model::Pose2 pose;
   double final_cost = 0.0;  // Ceres cost, 1/2 sum of rho(residual^2), m^2
   int starts = 0;           // how many starts were solved
   bool converged = false;   // the winning start reported convergence
@@ -50,6 +50,6 @@ struct SolverResult {
 /// multi-start of SolverOptions. Throws std::invalid_argument if the matrix does not match the
 /// arrays or holds a non-finite or negative range (the message names the pair).
 SolverResult solve_relative_pose(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m,
-                                 const std::optional<RelativePose>& initial, const SolverOptions& options);
+                                 const std::optional<model::Pose2>& initial, const SolverOptions& options);
 
 }  // namespace robodds::uwb

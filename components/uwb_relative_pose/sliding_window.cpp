@@ -16,7 +16,7 @@ namespace {
 /// Residual of one edge "pose b seen from pose a is `measured`", each row divided by its std:
 /// between(a, b) - measured, the heading difference wrapped.
 struct EdgeResidual {
-  RelativePose measured;
+  model::Pose2 measured;
   double xy_std_m;
   double theta_std_rad;
 
@@ -26,18 +26,18 @@ struct EdgeResidual {
     using std::cos;
     using std::sin;
     T a_b[3];
-    between_unwrapped(a, b, a_b);
-    const T dtheta = a_b[2] - T(measured.theta_rad);
-    residual[0] = (a_b[0] - T(measured.x_m)) / T(xy_std_m);
-    residual[1] = (a_b[1] - T(measured.y_m)) / T(xy_std_m);
+    model::between_unwrapped(a, b, a_b);
+    const T dtheta = a_b[2] - T(measured.theta);
+    residual[0] = (a_b[0] - T(measured.x)) / T(xy_std_m);
+    residual[1] = (a_b[1] - T(measured.y)) / T(xy_std_m);
     residual[2] = atan2(sin(dtheta), cos(dtheta)) / T(theta_std_rad);  // wrapped; wrap_angle takes no Jets
     return true;
   }
 };
 
-bool finite(const RelativePose& p) { return std::isfinite(p.x_m) && std::isfinite(p.y_m) && std::isfinite(p.theta_rad); }
+bool finite(const model::Pose2& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta); }
 
-RelativePose inverse(const RelativePose& a_b) { return between(a_b, RelativePose{}); }
+model::Pose2 inverse(const model::Pose2& a_b) { return model::between(a_b, model::Pose2{}); }
 
 }  // namespace
 
@@ -59,7 +59,7 @@ SlidingWindowGraph::SlidingWindowGraph(std::size_t num_robots, std::size_t windo
   weights_.validate();
 }
 
-void SlidingWindowGraph::add_epoch(const std::vector<RelativePose>& odometry, const std::vector<PairMeasurement>& uwb) {
+void SlidingWindowGraph::add_epoch(const std::vector<model::Pose2>& odometry, const std::vector<PairMeasurement>& uwb) {
   if (odometry.size() != num_robots_) {
     throw std::invalid_argument("add_epoch: " + std::to_string(odometry.size()) + " odometry increments for " +
                                 std::to_string(num_robots_) + " robots");
@@ -67,7 +67,7 @@ void SlidingWindowGraph::add_epoch(const std::vector<RelativePose>& odometry, co
   for (std::size_t i = 0; i < odometry.size(); ++i) {
     if (!finite(odometry[i])) {
       throw std::invalid_argument("add_epoch: odometry of robot " + std::to_string(i) + " is not finite (got " +
-                                  to_text(odometry[i]) + ")");
+                                  model::to_text(odometry[i]) + ")");
     }
   }
   for (const PairMeasurement& m : uwb) {
@@ -77,7 +77,7 @@ void SlidingWindowGraph::add_epoch(const std::vector<RelativePose>& odometry, co
     }
     if (!finite(m.pose)) {
       throw std::invalid_argument("add_epoch: UWB pose of pair (" + std::to_string(m.own) + ", " +
-                                  std::to_string(m.other) + ") is not finite (got " + to_text(m.pose) + ")");
+                                  std::to_string(m.other) + ") is not finite (got " + model::to_text(m.pose) + ")");
     }
   }
   Epoch epoch;
@@ -87,7 +87,7 @@ void SlidingWindowGraph::add_epoch(const std::vector<RelativePose>& odometry, co
   if (epochs_.empty()) {
     // Robot 0 defines the frame; the others start where a UWB measurement to robot 0 puts them.
     for (std::size_t i = 1; i < num_robots_; ++i) {
-      epoch.poses[i] = RelativePose{static_cast<double>(i), 0.0, 0.0};
+      epoch.poses[i] = model::Pose2{static_cast<double>(i), 0.0, 0.0};
       for (const PairMeasurement& m : uwb) {
         if (m.own == 0 && m.other == i) {
           epoch.poses[i] = m.pose;
@@ -98,7 +98,7 @@ void SlidingWindowGraph::add_epoch(const std::vector<RelativePose>& odometry, co
     }
   } else {
     for (std::size_t i = 0; i < num_robots_; ++i) {
-      epoch.poses[i] = compose(epochs_.back().poses[i], odometry[i]);
+      epoch.poses[i] = model::compose(epochs_.back().poses[i], odometry[i]);
     }
   }
   epochs_.push_back(std::move(epoch));
@@ -115,12 +115,12 @@ bool SlidingWindowGraph::optimize() {
   const auto block = [&](std::size_t e, std::size_t i) { return blocks[e * num_robots_ + i].data(); };
   for (std::size_t e = 0; e < epochs_.size(); ++e) {
     for (std::size_t i = 0; i < num_robots_; ++i) {
-      const RelativePose& p = epochs_[e].poses[i];
-      blocks[e * num_robots_ + i] = {p.x_m, p.y_m, p.theta_rad};
+      const model::Pose2& p = epochs_[e].poses[i];
+      blocks[e * num_robots_ + i] = {p.x, p.y, p.theta};
     }
   }
   ceres::Problem problem;
-  const auto add_edge = [&](double* a, double* b, const RelativePose& measured, double xy_std, double theta_std) {
+  const auto add_edge = [&](double* a, double* b, const model::Pose2& measured, double xy_std, double theta_std) {
     problem.AddResidualBlock(
         new ceres::AutoDiffCostFunction<EdgeResidual, 3, 3, 3>(new EdgeResidual{measured, xy_std, theta_std}), nullptr, a, b);
   };
@@ -156,7 +156,7 @@ bool SlidingWindowGraph::optimize() {
   return summary.termination_type == ceres::CONVERGENCE;
 }
 
-RelativePose SlidingWindowGraph::latest_relative(std::size_t own, std::size_t other) const {
+model::Pose2 SlidingWindowGraph::latest_relative(std::size_t own, std::size_t other) const {
   if (epochs_.empty()) {
     throw std::invalid_argument("latest_relative: no epoch added yet");
   }
@@ -164,7 +164,7 @@ RelativePose SlidingWindowGraph::latest_relative(std::size_t own, std::size_t ot
     throw std::invalid_argument("latest_relative: robots (" + std::to_string(own) + ", " + std::to_string(other) +
                                 ") are not both among the " + std::to_string(num_robots_));
   }
-  return between(epochs_.back().poses[own], epochs_.back().poses[other]);
+  return model::between(epochs_.back().poses[own], epochs_.back().poses[other]);
 }
 
 }  // namespace robodds::uwb

@@ -9,7 +9,7 @@
 #include <deque>
 #include <vector>
 
-#include "components/uwb_relative_pose/relative_pose.hpp"
+#include "common/model/pose2.hpp"
 
 namespace robodds::uwb {
 
@@ -27,7 +27,7 @@ struct WindowWeights {
 struct PairMeasurement {
   std::size_t own = 0;
   std::size_t other = 0;
-  RelativePose pose;
+  model::Pose2 pose;
 };
 
 class SlidingWindowGraph {
@@ -41,21 +41,21 @@ class SlidingWindowGraph {
   /// robot 0 at the first epoch. The oldest epoch drops out once the window is full. Throws
   /// std::invalid_argument (wrong count, unknown or equal robots, non-finite values) and then
   /// changes nothing.
-  void add_epoch(const std::vector<RelativePose>& odometry, const std::vector<PairMeasurement>& uwb);
+  void add_epoch(const std::vector<model::Pose2>& odometry, const std::vector<PairMeasurement>& uwb);
 
   /// Re-estimates every pose in the window (Levenberg-Marquardt). Returns false if Ceres did not
   /// report convergence; the poses are still its best estimate.
   bool optimize();
 
   /// Robot `other` in robot `own`'s frame at the newest epoch.
-  RelativePose latest_relative(std::size_t own, std::size_t other) const;
+  model::Pose2 latest_relative(std::size_t own, std::size_t other) const;
 
   std::size_t epochs() const { return epochs_.size(); }
 
  private:
   struct Epoch {
-    std::vector<RelativePose> poses;        // per robot, common frame
-    std::vector<RelativePose> odometry;     // per robot, increment into this epoch
+    std::vector<model::Pose2> poses;        // per robot, common frame
+    std::vector<model::Pose2> odometry;     // per robot, increment into this epoch
     std::vector<PairMeasurement> uwb;
   };
 

@@ -14,21 +14,8 @@
 namespace robodds::uwb {
 namespace {
 
-TEST(RelativePoseAlgebra, ComposeAndBetweenAreInverse) {
-  const RelativePose w_a{1.0, 2.0, 0.7};
-  const RelativePose a_b{-0.5, 3.0, -2.9};
-  const RelativePose w_b = compose(w_a, a_b);
-  const RelativePose back = between(w_a, w_b);
-  EXPECT_NEAR(back.x_m, a_b.x_m, 1e-12);
-  EXPECT_NEAR(back.y_m, a_b.y_m, 1e-12);
-  EXPECT_NEAR(back.theta_rad, a_b.theta_rad, 1e-12);
-  const RelativePose quarter = compose(RelativePose{0.0, 0.0, kPi / 2.0}, RelativePose{1.0, 0.0, 0.0});
-  EXPECT_NEAR(quarter.x_m, 0.0, 1e-12);
-  EXPECT_NEAR(quarter.y_m, 1.0, 1e-12);
-}
-
 /// Three robots on circles of different radius, speed and centre (world frame), one epoch per 0.1 s.
-RelativePose truth_of(std::size_t robot, int epoch) {
+model::Pose2 truth_of(std::size_t robot, int epoch) {
   const double t = 0.1 * epoch;
   const double radius[3] = {2.0, 3.0, 1.5};
   const double omega[3] = {0.2, -0.15, 0.3};
@@ -52,19 +39,19 @@ Errors run(double uwb_xy_noise_m, double uwb_theta_noise_rad, double odometry_no
   double raw_sq = 0.0, win_sq = 0.0, raw_h = 0.0, win_h = 0.0;
   int counted = 0;
   for (int e = 0; e < epochs; ++e) {
-    std::vector<RelativePose> odometry(3);
+    std::vector<model::Pose2> odometry(3);
     for (std::size_t i = 0; i < 3; ++i) {
-      odometry[i] = e == 0 ? RelativePose{} : between(truth_of(i, e - 1), truth_of(i, e));
-      odometry[i].x_m += odometry_noise_m * standard_normal(engine);
-      odometry[i].y_m += odometry_noise_m * standard_normal(engine);
+      odometry[i] = e == 0 ? model::Pose2{} : model::between(truth_of(i, e - 1), truth_of(i, e));
+      odometry[i].x += odometry_noise_m * standard_normal(engine);
+      odometry[i].y += odometry_noise_m * standard_normal(engine);
     }
     std::vector<PairMeasurement> uwb;
     for (std::size_t own = 0; own < 3; ++own) {
       for (std::size_t other = own + 1; other < 3; ++other) {
-        RelativePose m = between(truth_of(own, e), truth_of(other, e));
-        m.x_m += uwb_xy_noise_m * standard_normal(engine);
-        m.y_m += uwb_xy_noise_m * standard_normal(engine);
-        m.theta_rad = wrap_angle(m.theta_rad + uwb_theta_noise_rad * standard_normal(engine));
+        model::Pose2 m = model::between(truth_of(own, e), truth_of(other, e));
+        m.x += uwb_xy_noise_m * standard_normal(engine);
+        m.y += uwb_xy_noise_m * standard_normal(engine);
+        m.theta = wrap_angle(m.theta + uwb_theta_noise_rad * standard_normal(engine));
         uwb.push_back({own, other, m});
       }
     }
@@ -72,12 +59,12 @@ Errors run(double uwb_xy_noise_m, double uwb_theta_noise_rad, double odometry_no
     graph.optimize();
     if (e >= static_cast<int>(window)) {
       for (const PairMeasurement& m : uwb) {
-        const RelativePose truth = between(truth_of(m.own, e), truth_of(m.other, e));
-        const RelativePose est = graph.latest_relative(m.own, m.other);
-        raw_sq += std::pow(std::hypot(m.pose.x_m - truth.x_m, m.pose.y_m - truth.y_m), 2);
-        win_sq += std::pow(std::hypot(est.x_m - truth.x_m, est.y_m - truth.y_m), 2);
-        raw_h += std::pow(wrap_angle(m.pose.theta_rad - truth.theta_rad), 2);
-        win_h += std::pow(wrap_angle(est.theta_rad - truth.theta_rad), 2);
+        const model::Pose2 truth = model::between(truth_of(m.own, e), truth_of(m.other, e));
+        const model::Pose2 est = graph.latest_relative(m.own, m.other);
+        raw_sq += std::pow(std::hypot(m.pose.x - truth.x, m.pose.y - truth.y), 2);
+        win_sq += std::pow(std::hypot(est.x - truth.x, est.y - truth.y), 2);
+        raw_h += std::pow(wrap_angle(m.pose.theta - truth.theta), 2);
+        win_h += std::pow(wrap_angle(est.theta - truth.theta), 2);
         ++counted;
       }
     }
@@ -109,15 +96,15 @@ TEST(SlidingWindowGraph, BadInputIsRejectedAndChangesNothing) {
   EXPECT_THROW(SlidingWindowGraph(3, 30, bad), std::invalid_argument);
 
   SlidingWindowGraph graph(3, 5, WindowWeights{});
-  const std::vector<RelativePose> still(3);
-  graph.add_epoch(still, {{0, 1, RelativePose{2.0, 0.0, 0.0}}});
-  EXPECT_THROW(graph.add_epoch(std::vector<RelativePose>(2), {}), std::invalid_argument);
-  EXPECT_THROW(graph.add_epoch(still, {{1, 1, RelativePose{}}}), std::invalid_argument);
-  EXPECT_THROW(graph.add_epoch(still, {{0, 3, RelativePose{}}}), std::invalid_argument);
-  EXPECT_THROW(graph.add_epoch(still, {{0, 1, RelativePose{std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0}}}),
+  const std::vector<model::Pose2> still(3);
+  graph.add_epoch(still, {{0, 1, model::Pose2{2.0, 0.0, 0.0}}});
+  EXPECT_THROW(graph.add_epoch(std::vector<model::Pose2>(2), {}), std::invalid_argument);
+  EXPECT_THROW(graph.add_epoch(still, {{1, 1, model::Pose2{}}}), std::invalid_argument);
+  EXPECT_THROW(graph.add_epoch(still, {{0, 3, model::Pose2{}}}), std::invalid_argument);
+  EXPECT_THROW(graph.add_epoch(still, {{0, 1, model::Pose2{std::numeric_limits<double>::quiet_NaN(), 0.0, 0.0}}}),
                std::invalid_argument);
   try {
-    graph.add_epoch({RelativePose{}, RelativePose{0.0, std::numeric_limits<double>::quiet_NaN(), 0.0}, RelativePose{}}, {});
+    graph.add_epoch({model::Pose2{}, model::Pose2{0.0, std::numeric_limits<double>::quiet_NaN(), 0.0}, model::Pose2{}}, {});
     FAIL() << "accepted NaN odometry";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "add_epoch: odometry of robot 1 is not finite (got x=0, y=nan, theta=0)");
@@ -125,8 +112,8 @@ TEST(SlidingWindowGraph, BadInputIsRejectedAndChangesNothing) {
   EXPECT_EQ(graph.epochs(), 1u);
   EXPECT_THROW(graph.latest_relative(0, 3), std::invalid_argument);
   EXPECT_THROW(SlidingWindowGraph(3, 5, WindowWeights{}).latest_relative(0, 1), std::invalid_argument);
-  const RelativePose r = graph.latest_relative(0, 1);
-  EXPECT_DOUBLE_EQ(r.x_m, 2.0);
+  const model::Pose2 r = graph.latest_relative(0, 1);
+  EXPECT_DOUBLE_EQ(r.x, 2.0);
   for (int e = 0; e < 10; ++e) {
     graph.add_epoch(still, {});
   }
