@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Layering rules (docs/architecture.md), checked on the source tree by grep: no build needed.
+#   1. Nothing under components/ includes sim/ or links a sim/ target: the robot and geometry
+#      model the components share with the simulator lives below both, in common/model/.
+#   2. Only the DDS runtime includes Fast DDS headers (fastdds/, fastrtps/).
+# Usage: check_layering.sh SOURCE_ROOT. Exit 0 when clean, else 1 with one line per violation.
+set -euo pipefail
+
+# The one directory (relative to the source root) whose files may include Fast DDS headers.
+FASTDDS_ALLOWED_DIR="runtime/"
+# Files outside it that may, and why: latency_bench measures raw Fast DDS against the runtime.
+FASTDDS_ALLOWED_FILES=("bench/latency_bench.cpp")
+
+root=${1:?usage: check_layering.sh SOURCE_ROOT}
+cd "$root"
+
+# Source files of the tree: git's view (tracked + untracked, ignoring build trees) in a checkout,
+# else every file outside .git and build*/ directories.
+if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
+  mapfile -t files < <(git ls-files --cached --others --exclude-standard)
+else
+  mapfile -t files < <(find . \( -name .git -o -type d -name 'build*' \) -prune -o -type f -print | sed 's|^\./||')
+fi
+sources=() cmake_lists=()
+for f in "${files[@]}"; do
+  [[ -f $f ]] || continue  # deleted but not yet staged
+  case $f in
+    *.cpp|*.hpp|*.h|*.cc|*.cxx|*.hh|*.ipp|*.inl) sources+=("$f") ;;
+    */CMakeLists.txt|CMakeLists.txt) cmake_lists+=("$f") ;;
+  esac
+done
+
+failed=0
+violation() { echo "layering: $1"; failed=1; }
+include_of() {  # include_of REGEX FILE...: "file:line:text" of every #include whose path matches REGEX
+  local pattern=$1
+  shift
+  (($# == 0)) || grep -nHE "^[[:space:]]*#[[:space:]]*include[[:space:]]*[<\"]($pattern)" -- "$@" || true
+}
+
+# Rule 1a: no #include of sim/ from components/.
+component_sources=()
+for f in "${sources[@]}"; do [[ $f == components/* ]] && component_sources+=("$f"); done
+while IFS= read -r hit; do
+  [[ -n $hit ]] && violation "$hit: components/ must not include sim/ (shared robot model: common/model/)"
+done < <(include_of '(\.\./)*sim/' "${component_sources[@]}")
+
+# Rule 1b: no CMake target of sim/ named in a components/ CMakeLists.txt (comments stripped).
+sim_targets=()
+for f in "${cmake_lists[@]}"; do
+  [[ $f == sim/* ]] || continue
+  mapfile -t -O "${#sim_targets[@]}" sim_targets < <(sed 's/#.*//' "$f" | tr '\n' ' ' |
+    grep -oE '(robodds_library|add_library|add_executable)\([[:space:]]*[A-Za-z0-9_]+' | sed -E 's/.*\([[:space:]]*//')
+done
+for f in "${cmake_lists[@]}"; do
+  if [[ $f != components/* ]] || ((${#sim_targets[@]} == 0)); then
+    continue
+  fi
+  while IFS= read -r hit; do
+    [[ -n $hit ]] && violation "$f:$hit: components/ must not depend on a sim/ target"
+  done < <(sed 's/#.*//' "$f" | grep -nowF "${sim_targets[@]/#/-e}" || true)
+done
+
+# Rule 2: Fast DDS headers only under FASTDDS_ALLOWED_DIR (and the listed exceptions).
+outside=()
+for f in "${sources[@]}"; do
+  [[ $f == "$FASTDDS_ALLOWED_DIR"* ]] && continue
+  for allowed in "${FASTDDS_ALLOWED_FILES[@]}"; do [[ $f == "$allowed" ]] && continue 2; done
+  outside+=("$f")
+done
+while IFS= read -r hit; do
+  [[ -n $hit ]] && violation "$hit: only $FASTDDS_ALLOWED_DIR includes Fast DDS headers"
+done < <(include_of 'fastdds/|fastrtps/' "${outside[@]}")
+
+if ((failed == 0)); then
+  echo "layering: ok (${#sources[@]} source files, ${#sim_targets[@]} sim targets)"
+fi
+exit "$failed"
