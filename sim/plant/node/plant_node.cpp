@@ -1,4 +1,4 @@
-// Adapter: VelocityCommand -> Twist -> diff_drive -> RobotState. No maths beyond unit plumbing.
+// Adapter: VelocityCommand -> Twist -> diff-drive kinematics (common/model) -> RobotState. No maths beyond unit plumbing.
 #include "sim/plant/node/plant_node.hpp"
 
 #include <cmath>
