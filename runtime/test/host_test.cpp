@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/error.hpp"
 #include "runtime/testing/node_harness.hpp"
+#include "runtime/topic_catalog.hpp"
 
 namespace robodds {
 namespace {
@@ -153,9 +155,21 @@ TEST(HostLoop, AnInputWaitTimesOutNamingComponentTopicInstanceAndStep) {
   EXPECT_TRUE(seen->empty());
 }
 
-/// Outputs of a two-stage pipeline (producer -> relay with delay 1 -> estimate/pose).
-std::vector<std::pair<std::uint64_t, double>> pipeline_outputs(std::size_t window) {
+/// Outputs of a two-stage pipeline (producer -> relay with delay 1 -> estimate/pose), and in
+/// *max_outstanding the most ticks the coordinator had sent but not seen acknowledged.
+std::vector<std::pair<std::uint64_t, double>> pipeline_outputs(std::size_t window, std::uint64_t* max_outstanding) {
   NodeHarness h(kScenario);
+  auto ticks = std::make_shared<std::uint64_t>(0);
+  auto acks = std::make_shared<std::uint64_t>(0);
+  *max_outstanding = 0;
+  const TopicInfo& clock = topic_info("sim/clock");
+  const TopicInfo& done = topic_info("sim/step_done");
+  auto tick_reader = h.bus().reader(clock.name, clock.type_name, "lockstep_local", [=](const void*) {
+    ++*ticks;
+    *max_outstanding = std::max(*max_outstanding, *ticks - *acks);
+  }, [](const std::string&) {});
+  auto ack_reader = h.bus().reader(done.name, done.type_name, "lockstep_local", [=](const void*) { ++*acks; },
+                                   [](const std::string&) {});
   add_producer(h);
   auto input = std::make_shared<Input<idl::RobotState>*>(nullptr);
   auto out = std::make_shared<Output<idl::PoseEstimate>*>(nullptr);
@@ -185,11 +199,15 @@ std::vector<std::pair<std::uint64_t, double>> pipeline_outputs(std::size_t windo
 }
 
 TEST(HostLoop, ALockstepWindowAboveOneGivesTheSameOutputs) {
-  const auto strict = pipeline_outputs(1);
+  std::uint64_t outstanding = 0;
+  const auto strict = pipeline_outputs(1, &outstanding);
+  EXPECT_EQ(outstanding, 1u) << "window 1: the next tick waits for the acknowledgement";
   ASSERT_EQ(strict.size(), 22u);
   EXPECT_DOUBLE_EQ(strict[2].second, 1.0) << "step 1 reads robot 1's state of step 0";
-  EXPECT_EQ(pipeline_outputs(4), strict);
-  EXPECT_EQ(pipeline_outputs(16), strict);
+  EXPECT_EQ(pipeline_outputs(4, &outstanding), strict);
+  EXPECT_EQ(outstanding, 4u) << "window 4: four ticks sent before the first acknowledgement";
+  EXPECT_EQ(pipeline_outputs(16, &outstanding), strict);
+  EXPECT_EQ(outstanding, 11u) << "every tick of the run at once";
 }
 
 TEST(HostLoop, AThrowingComponentFailsTheRunWithItsName) {
