@@ -69,7 +69,6 @@ thread_local std::vector<ActiveDelivery> active_deliveries;
 struct MemoryBus::State {
   struct Subscriber {
     std::uint64_t id = 0;
-    std::string profile;
     SampleCallback on_sample;
   };
   struct Topic {
@@ -222,7 +221,7 @@ std::shared_ptr<ReaderHandle> MemoryBus::reader(const std::string& topic, const 
     std::lock_guard<std::mutex> lock(state_->mutex);
     State::Topic& entry = state_->topic_of(topic, type_name);
     id = state_->next_subscriber++;
-    entry.subscribers.push_back(State::Subscriber{id, profile, on_sample});
+    entry.subscribers.push_back(State::Subscriber{id, on_sample});
     State::rebuild_callbacks(entry);
     if (profile == kTransientLocalProfile) {
       for (const auto& [key, sample] : entry.retained) {

@@ -11,8 +11,8 @@
 // - Writers with the transient-local `mission` profile keep the newest sample of each
 //   instance (idl::instance_key); a callback added later on a `mission` reader gets them at
 //   once, in key order. Every other profile is volatile: a late reader gets nothing old.
-// Not thread-safe across concurrent writers on different threads in the ordering sense (the
-// host's executor is the only writer), but safe to call from any thread.
+// Safe to call from any thread; the one-order guarantee is per writing thread (in the tests the
+// host's executor thread does all the writing).
 
 #include <memory>
 #include <string>
