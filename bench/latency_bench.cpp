@@ -63,7 +63,7 @@
 
 #include "robodds/idl/robodds.h"
 #include "robodds/idl/roboddsPubSubTypes.h"
-#include "runtime/dds_bus.hpp"
+#include "runtime/dds/bus.hpp"
 #include "runtime/error.hpp"
 #include "runtime/io.hpp"
 #include "runtime/log.hpp"
@@ -142,7 +142,7 @@ class RawParticipant {
       throw std::runtime_error("cannot create a participant on domain " + std::to_string(o.domain));
     }
     auto* type = new robodds::idl::RobotStatePubSubType();
-    type->auto_fill_type_object(false);  // as runtime/type_support.cpp
+    type->auto_fill_type_object(false);  // as runtime/dds/type_support.cpp
     type->auto_fill_type_information(false);
     type_ = dds::TypeSupport(type);
     type_.register_type(participant_);

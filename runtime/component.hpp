@@ -59,7 +59,7 @@ class ComponentContext {
   const Scenario& scenario() const { return *run_.scenario; }
   /// Robots this component serves, with their initial poses.
   std::vector<RobotSpec> robots() const;
-  /// Instance keys of those robots (for InputOptions::expected).
+  /// Instance keys of those robots (for Subscription::instances).
   std::vector<std::uint64_t> robot_keys() const;
   /// Seed of the random stream `stream` of this component (scenario seed + name + stream).
   std::uint64_t seed_for(const std::string& stream) const;
@@ -72,9 +72,13 @@ class ComponentContext {
   void set_rate_hz(double rate_hz, const std::string& key);
   std::uint64_t period_steps() const { return state_->period_steps; }
 
+  /// Subscribes to `topic` (ConfigError if it is not in the catalog or carries another type).
   template <class Msg>
-  Input<Msg>& subscribe(const std::string& topic, InputOptions options = {}) {
+  Input<Msg>& subscribe(const std::string& topic, const Subscription& subscription) {
     const TopicInfo& info = checked_topic<Msg>(topic);
+    InputOptions options;
+    options.expected = subscription.expected();
+    options.delay_steps = subscription.delay_steps();
     options.key_names = info.key;
     auto input = std::make_unique<Input<Msg>>(topic, spec_.name, state_, run_.notifier, std::move(options));
     Input<Msg>* raw = input.get();

@@ -16,6 +16,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "runtime/bus.hpp"
@@ -35,12 +36,45 @@ struct StepState {
   TimeMode mode = TimeMode::kLockstep;
 };
 
+/// What a component chooses when it subscribes: which instances it needs and how many steps
+/// late it reads them, e.g.
+///   ctx.subscribe<idl::VelocityCommand>("plant/cmd", Subscription::instances(ctx.robot_keys()).delayed(1))
+class Subscription {
+ public:
+  /// Needs these instances (instance_key values, e.g. robot ids from ctx.robot_keys()) at every
+  /// due step: in lockstep the component runs only once each has delivered up to the step it
+  /// reads. Samples of other instances are ignored. An empty list is any_instance().
+  static Subscription instances(std::vector<std::uint64_t> keys) {
+    Subscription s;
+    s.expected_ = std::move(keys);
+    return s;
+  }
+  /// Takes every instance and waits for none: reads whatever has arrived, which is not
+  /// deterministic across deployments (monitoring only).
+  static Subscription any_instance() { return Subscription{}; }
+  /// Reads samples of step <= m - steps at step m (1 closes a loop: the plant integrates the
+  /// command of the previous step). Default 0.
+  Subscription delayed(std::uint64_t steps) const {
+    Subscription s = *this;
+    s.delay_steps_ = steps;
+    return s;
+  }
+
+  const std::vector<std::uint64_t>& expected() const { return expected_; }
+  std::uint64_t delay_steps() const { return delay_steps_; }
+
+ private:
+  Subscription() = default;
+  std::vector<std::uint64_t> expected_;
+  std::uint64_t delay_steps_ = 0;
+};
+
+/// Runtime-internal: how an Input is set up. ComponentContext::subscribe() builds it from a
+/// Subscription and the topic catalog; the host builds its tick/ack inputs directly.
 struct InputOptions {
-  /// Instances (instance_key values, e.g. robot ids) the consumer needs at every due step.
-  /// Samples of other instances are ignored. Empty: take every instance, gate on none.
+  /// Instances (instance_key values) needed at every due step; empty: every instance, gate on none.
   std::vector<std::uint64_t> expected;
-  /// Read samples of step <= m - delay_steps (1 closes a loop: the plant reads the command of
-  /// the previous step).
+  /// Read samples of step <= m - delay_steps.
   std::uint64_t delay_steps = 0;
   /// Host-level inputs (ticks, acks) see every sample regardless of the component's step.
   bool ignore_step = false;

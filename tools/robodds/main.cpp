@@ -13,8 +13,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "runtime/dds_bus.hpp"
-#include "runtime/discovery.hpp"
+#include "runtime/dds/bus.hpp"
+#include "runtime/dds/discovery.hpp"
 #include "runtime/error.hpp"
 #include "runtime/host.hpp"
 #include "runtime/log.hpp"

@@ -24,7 +24,7 @@ class OdometrySensorNode : public Component {
     for (const RobotSpec& robot : ctx.robots()) {
       robots_.emplace(robot.id, Robot{RandomEngine(ctx.seed_for("robot" + std::to_string(robot.id))), TwistAccumulator{}});
     }
-    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", InputOptions{ctx.robot_keys(), 0, false, "", {}});
+    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(ctx.robot_keys()));
     out_ = &ctx.advertise<idl::Odometry>("sensor/odometry");
     step_s_ = ctx.step_s();
   }

@@ -43,8 +43,8 @@ class PfEstimatorNode : public Component {
       filters_.emplace(robot.id, std::make_unique<ParticleFilter>(params, ctx.seed_for("robot" + std::to_string(robot.id))));
     }
     const auto keys = ctx.robot_keys();
-    odometry_ = &ctx.subscribe<idl::Odometry>("sensor/odometry", InputOptions{keys, 0, false, "", {}});
-    fixes_ = &ctx.subscribe<idl::PositionMeasurement>("sensor/position", InputOptions{keys, 0, false, "", {}});
+    odometry_ = &ctx.subscribe<idl::Odometry>("sensor/odometry", Subscription::instances(keys));
+    fixes_ = &ctx.subscribe<idl::PositionMeasurement>("sensor/position", Subscription::instances(keys));
     out_ = &ctx.advertise<idl::PoseEstimate>("estimate/pose");
   }
 

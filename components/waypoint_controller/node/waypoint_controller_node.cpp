@@ -32,8 +32,8 @@ class WaypointControllerNode : public Component {
       trackers_.emplace(robot.id, WaypointTracker(params_));
     }
     const auto keys = ctx.robot_keys();
-    estimates_ = &ctx.subscribe<idl::PoseEstimate>("estimate/pose", InputOptions{keys, 0, false, "", {}});
-    missions_ = &ctx.subscribe<idl::WaypointMission>("mission/waypoints", InputOptions{keys, 0, false, "", {}});
+    estimates_ = &ctx.subscribe<idl::PoseEstimate>("estimate/pose", Subscription::instances(keys));
+    missions_ = &ctx.subscribe<idl::WaypointMission>("mission/waypoints", Subscription::instances(keys));
     cmd_out_ = &ctx.advertise<idl::VelocityCommand>("plant/cmd");
     status_out_ = &ctx.advertise<idl::ControllerStatus>("control/status");
   }

@@ -125,7 +125,7 @@ class EvaluatorNode : public Component {
       }
       idl::dispatch_type(info->type_name, [&](auto tag) {
         using Msg = typename decltype(tag)::type;
-        auto* input = &ctx.subscribe<Msg>(topic, InputOptions{keys_, 0, false, "", {}});
+        auto* input = &ctx.subscribe<Msg>(topic, Subscription::instances(keys_));
         recorders_.push_back(std::make_unique<Recorder<Msg>>(topic, input));
       });
     }

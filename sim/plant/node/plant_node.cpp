@@ -25,10 +25,8 @@ class PlantNode : public Component {
     for (const RobotSpec& robot : ctx.robots()) {
       robots_[robot.id] = Robot{model::Pose2{robot.x, robot.y, robot.theta}, model::Twist{}};
     }
-    InputOptions cmd_options;
-    cmd_options.expected = ctx.robot_keys();
-    cmd_options.delay_steps = 1;  // closes the loop: integrate the command of the previous step
-    commands_ = &ctx.subscribe<idl::VelocityCommand>("plant/cmd", cmd_options);
+    // delayed(1) closes the loop: integrate the command of the previous step.
+    commands_ = &ctx.subscribe<idl::VelocityCommand>("plant/cmd", Subscription::instances(ctx.robot_keys()).delayed(1));
     state_out_ = &ctx.advertise<idl::RobotState>("plant/state");
     mode_ = ctx.mode();
   }

@@ -13,7 +13,7 @@ class TruthEstimatorNode : public Component {
     ctx.set_rate_hz(ctx.params().get_double("rate_hz"), "rate_hz");
     inject_nan_at_step_ = ctx.params().get_int("inject_nan_at_step");
     keys_ = ctx.robot_keys();
-    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", InputOptions{keys_, 0, false, "", {}});
+    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(keys_));
     out_ = &ctx.advertise<idl::PoseEstimate>("estimate/pose");
   }
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "runtime/bus.hpp"
-#include "runtime/dds_match_report.hpp"
+#include "runtime/dds/match_report.hpp"
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;

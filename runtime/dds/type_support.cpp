@@ -1,4 +1,4 @@
-#include "runtime/type_support.hpp"
+#include "runtime/dds/type_support.hpp"
 
 #include "robodds/idl/roboddsPubSubTypes.h"
 #include "robodds/idl/robodds_visit.hpp"

@@ -1,5 +1,5 @@
-#include "runtime/discovery.hpp"
-#include "runtime/dds_qos_files.hpp"
+#include "runtime/dds/discovery.hpp"
+#include "runtime/dds/qos_files.hpp"
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>

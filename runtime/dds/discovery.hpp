@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/dds_bus.hpp"
+#include "runtime/dds/bus.hpp"
 
 namespace robodds {
 

@@ -31,7 +31,7 @@ class DdsBus : public Bus {
 /// the file and the rejected element, or a missing profile, and RunError if DDS fails.
 std::unique_ptr<DdsBus> make_dds_bus(const DdsOptions& options);
 
-// The QoS files (defined in runtime/dds_qos_files.cpp).
+// The QoS files (defined in runtime/dds/qos_files.cpp).
 
 /// Loads the QoS files into the process-wide profile store (idempotent per file); ConfigError on
 /// a malformed file, naming the file and Fast DDS's reason.

@@ -1,4 +1,4 @@
-#include "runtime/dds_text.hpp"
+#include "runtime/dds/text.hpp"
 
 #include <sstream>
 

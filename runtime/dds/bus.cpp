@@ -1,4 +1,4 @@
-#include "runtime/dds_bus.hpp"
+#include "runtime/dds/bus.hpp"
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "runtime/dds_listeners.hpp"
-#include "runtime/dds_match_report.hpp"
-#include "runtime/dds_qos_files.hpp"
+#include "runtime/dds/listeners.hpp"
+#include "runtime/dds/match_report.hpp"
+#include "runtime/dds/qos_files.hpp"
 #include "runtime/error.hpp"
-#include "runtime/type_support.hpp"
+#include "runtime/dds/type_support.hpp"
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;

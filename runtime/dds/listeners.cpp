@@ -1,4 +1,4 @@
-#include "runtime/dds_listeners.hpp"
+#include "runtime/dds/listeners.hpp"
 
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
@@ -7,9 +7,9 @@
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <fastdds/rtps/common/InstanceHandle.h>
 
-#include "runtime/dds_text.hpp"
+#include "runtime/dds/text.hpp"
 #include "runtime/log.hpp"
-#include "runtime/type_support.hpp"
+#include "runtime/dds/type_support.hpp"
 
 namespace robodds {
 namespace rtps = eprosima::fastrtps::rtps;

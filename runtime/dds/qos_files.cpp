@@ -1,4 +1,4 @@
-#include "runtime/dds_qos_files.hpp"
+#include "runtime/dds/qos_files.hpp"
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/log/Log.hpp>
@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/dds_text.hpp"
+#include "runtime/dds/text.hpp"
 #include "runtime/error.hpp"
 
 namespace robodds {

@@ -1,9 +1,9 @@
-#include "runtime/dds_match_report.hpp"
+#include "runtime/dds/match_report.hpp"
 
 #include <algorithm>
 #include <sstream>
 
-#include "runtime/dds_text.hpp"
+#include "runtime/dds/text.hpp"
 #include "runtime/log.hpp"
 
 namespace robodds {

@@ -1,0 +1,112 @@
+// The way-point controller node on the in-memory bus: estimate/pose + mission/waypoints in,
+// plant/cmd + control/status out.
+#include "components/waypoint_controller/node/waypoint_controller_node.hpp"
+
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "robodds/idl/robodds.h"
+#include "runtime/io.hpp"
+#include "runtime/testing/node_harness.hpp"
+
+namespace robodds::waypoint {
+namespace {
+
+using robodds::testing::NodeHarness;
+using robodds::testing::of_instance;
+
+// Steps 0..5 at 100 Hz, one robot.
+const char* kScenario = R"(name: waypoint_controller_node
+step_s: 0.01
+duration_s: 0.05
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: controller, type: waypoint_controller}
+)";
+
+void add_controller(NodeHarness& h) {
+  h.registry().add({"waypoint_controller", "", "components/waypoint_controller/config/waypoint_controller.params.yaml",
+                    make_waypoint_controller_node});
+}
+
+idl::WaypointMission mission(const std::vector<std::pair<double, double>>& points) {
+  idl::WaypointMission m;
+  m.robot_id(1);
+  for (const auto& [x, y] : points) {
+    idl::Waypoint w;
+    w.x(x);
+    w.y(y);
+    m.waypoints().push_back(w);
+  }
+  return m;
+}
+
+idl::PoseEstimate estimate(double x, double y, double theta, bool valid) {
+  idl::PoseEstimate e;
+  e.robot_id(1);
+  e.x(x);
+  e.y(y);
+  e.theta(theta);
+  e.valid(valid);
+  return e;
+}
+
+TEST(WaypointControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
+  NodeHarness h(kScenario);
+  add_controller(h);
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
+    }
+    h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, false), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 6u) << "a command at every step, even without a usable estimate";
+  ASSERT_EQ(status.size(), 6u);
+  for (std::size_t i = 0; i < commands.size(); ++i) {
+    EXPECT_EQ(commands[i].header().step(), i);
+    EXPECT_EQ(commands[i].robot_id(), 1u);
+    EXPECT_DOUBLE_EQ(commands[i].v(), 0.0);
+    EXPECT_DOUBLE_EQ(commands[i].omega(), 0.0);
+    EXPECT_EQ(status[i].waypoints_total(), 0u) << "no tracking step was taken";
+    EXPECT_DOUBLE_EQ(status[i].epsilon(), 0.1);
+  }
+}
+
+TEST(WaypointControllerNode, DrivesToTheWaypointAndSwitchesWithinEpsilon) {
+  NodeHarness h(kScenario);
+  add_controller(h);
+  // The robot faces +x; the first way-point is 1 m ahead until step 3, when the estimate is
+  // 0.05 m from it (< epsilon 0.1 m).
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{1.0, 0.0}, {5.0, 0.0}}), 0, kNeverAgain);
+    }
+    const double x = step < 3 ? 0.0 : 0.95;
+    h.publish("estimate/pose", estimate(x, 0.0, 0.0, true), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(status.size(), 6u);
+  // A way-point 1 m straight ahead: forward gains, v = kd * d = 1 m/s.
+  EXPECT_NEAR(commands[0].v(), 1.0, 1e-12);
+  EXPECT_EQ(status[0].waypoint_index(), 0u);
+  EXPECT_EQ(status[0].waypoints_total(), 2u);
+  EXPECT_NEAR(status[0].distance_to_waypoint(), 1.0, 1e-12);
+  EXPECT_FALSE(status[2].switched());
+  EXPECT_TRUE(status[3].switched());
+  EXPECT_EQ(status[3].waypoints_reached(), 1u);
+  EXPECT_NEAR(status[3].switch_distance(), 0.05, 1e-12);
+  EXPECT_EQ(status[4].waypoint_index(), 1u);
+  EXPECT_NEAR(status[4].distance_to_final(), 4.05, 1e-12);
+  EXPECT_FALSE(status[5].done());
+}
+
+}  // namespace
+}  // namespace robodds::waypoint
