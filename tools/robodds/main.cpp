@@ -19,7 +19,7 @@
 #include "runtime/host.hpp"
 #include "runtime/log.hpp"
 #include "runtime/sample_format.hpp"
-#include "tools/robodds/builtin_components.hpp"
+#include "runtime/registry.hpp"
 #include "tools/robodds/deploy_command.hpp"
 #include "tools/robodds/process_group.hpp"
 

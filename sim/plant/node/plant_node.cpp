@@ -5,6 +5,7 @@
 #include <map>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 #include "sim/plant/diff_drive.hpp"
 #include "sim/plant/plant_params.hpp"
 
@@ -89,3 +90,6 @@ class PlantNode : public Component {
 std::unique_ptr<Component> make_plant_node() { return std::make_unique<PlantNode>(); }
 
 }  // namespace robodds::plant
+
+ROBODDS_REGISTER_COMPONENT(plant, "differential-drive plant (paper 1 eq. 1): plant/cmd -> plant/state",
+                           "sim/plant/config/plant.params.yaml", robodds::plant::make_plant_node);
