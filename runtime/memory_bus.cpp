@@ -9,13 +9,14 @@
 
 #include "robodds/idl/robodds_visit.hpp"
 #include "runtime/error.hpp"
+#include "runtime/qos_profiles.hpp"
 
 namespace robodds {
 namespace {
 
 // The one transient-local profile (deploy/qos/robodds_qos.xml): a reader that appears after
 // the mission was written still gets it.
-constexpr const char* kTransientLocalProfile = "mission";
+constexpr const char* kTransientLocalProfile = kMissionProfile;
 
 /// What the bus needs to know about a sample it only sees as `const void*`.
 struct TypeOps {

@@ -1,6 +1,9 @@
 #pragma once
-// Component types by name. Registration is explicit (register_builtin_components() in the
-// components library) rather than by static initialisers, which static linking drops.
+// Component types by name. A component registers itself in its own folder: its node .cpp says
+// ROBODDS_REGISTER_COMPONENT(...) and its CMakeLists.txt calls robodds_component(NAME ...)
+// (cmake/RobotddsHelpers.cmake). Registration is explicit rather than by static initialisers,
+// which static linking drops: CMake generates registered_components.cpp (build tree), which
+// calls each component's registration function in name order from register_builtin_components().
 
 #include <functional>
 #include <memory>
@@ -29,4 +32,29 @@ class ComponentRegistry {
   std::vector<ComponentType> types_;
 };
 
+/// Registers every component type built with robodds_component(), sorted by type name. Defined
+/// by the generated registered_components.cpp of the library `robodds_registered_components`
+/// (tools/robodds/CMakeLists.txt); link that library to call it.
+void register_builtin_components(ComponentRegistry& registry);
+
 }  // namespace robodds
+
+/// Defines robodds::component_registration::register_<type_name>(ComponentRegistry&), which adds
+/// the component type `type_name` (a bare identifier, e.g. position_sensor; the scenario's `type`)
+/// with a one-line description, its defaults file (relative to the repository root / share dir)
+/// and its factory (std::unique_ptr<Component>()). Write it once, at global scope (outside any
+/// namespace; elsewhere it does not compile), in the component's node .cpp, and name the same
+/// type_name in the folder's robodds_component(NAME ...) call, which makes the generated
+/// registered_components.cpp call the function. Example:
+///   ROBODDS_REGISTER_COMPONENT(position_sensor, "noisy absolute position: plant/state -> sensor/position",
+///                              "components/position_sensor/config/position_sensor.params.yaml",
+///                              robodds::position_sensor::make_position_sensor_node);
+#define ROBODDS_REGISTER_COMPONENT(type_name, description, defaults_file, factory)                      \
+  namespace robodds::component_registration {                                                          \
+  void register_##type_name(::robodds::ComponentRegistry& registry);                                    \
+  }                                                                                                     \
+  void ::robodds::component_registration::register_##type_name(::robodds::ComponentRegistry& registry) { \
+    registry.add({#type_name, description, defaults_file, factory});                                    \
+  }                                                                                                     \
+  static_assert(sizeof(description) > 1 && sizeof(defaults_file) > 1,                                   \
+                "ROBODDS_REGISTER_COMPONENT(" #type_name "): description and defaults file must not be empty")

@@ -6,20 +6,20 @@ namespace robodds {
 
 const std::vector<TopicInfo>& topic_catalog() {
   static const std::vector<TopicInfo> topics = {
-      {"sim/clock", "robodds::idl::SimTick", "lockstep", "-", "coordinator (robodds run)", "every host"},
-      {"sim/step_done", "robodds::idl::StepDone", "lockstep", "member", "every host", "coordinator"},
-      {"plant/state", "robodds::idl::RobotState", "state", "robot_id", "plant", "sensors, truth_estimator, evaluator"},
-      {"plant/cmd", "robodds::idl::VelocityCommand", "command", "robot_id", "waypoint_controller, open_loop_commander", "plant, evaluator"},
-      {"sensor/position", "robodds::idl::PositionMeasurement", "sensor", "robot_id", "position_sensor", "pf_estimator, evaluator"},
-      {"sensor/odometry", "robodds::idl::Odometry", "sensor", "robot_id", "odometry_sensor", "pf_estimator, evaluator"},
-      {"sensor/range", "robodds::idl::RangeMeasurement", "sensor", "robot_id, target_id", "range sensor", "range-rate observer"},
-      {"sensor/uwb", "robodds::idl::UwbRanges", "sensor", "robot_id, peer_id", "UWB sensor", "relative estimator"},
-      {"estimate/pose", "robodds::idl::PoseEstimate", "state", "robot_id", "pf_estimator, truth_estimator", "waypoint_controller, evaluator"},
-      {"estimate/relative_pose", "robodds::idl::RelativePoseEstimate", "state", "robot_id, peer_id", "UWB estimator", "evaluator"},
-      {"observer/range_rate", "robodds::idl::RangeRateEstimate", "state", "robot_id, target_id", "range-rate observer", "guidance controller"},
-      {"mission/waypoints", "robodds::idl::WaypointMission", "mission", "robot_id", "mission_source", "waypoint_controller, evaluator"},
-      {"mission/target", "robodds::idl::TargetAssignment", "mission", "robot_id", "mission source", "guidance controller"},
-      {"control/status", "robodds::idl::ControllerStatus", "state", "robot_id", "controllers", "evaluator, CLI"},
+      {"sim/clock", "robodds::idl::SimTick", QosClass::kLockstep, "-", "coordinator (`robodds run`)", "every host"},
+      {"sim/step_done", "robodds::idl::StepDone", QosClass::kLockstep, "member", "every host", "coordinator"},
+      {"plant/state", "robodds::idl::RobotState", QosClass::kState, "robot_id", "plant", "sensors, truth_estimator, evaluator"},
+      {"plant/cmd", "robodds::idl::VelocityCommand", QosClass::kCommand, "robot_id", "waypoint_controller, open_loop_commander", "plant, evaluator"},
+      {"sensor/position", "robodds::idl::PositionMeasurement", QosClass::kSensor, "robot_id", "position_sensor", "pf_estimator, evaluator"},
+      {"sensor/odometry", "robodds::idl::Odometry", QosClass::kSensor, "robot_id", "odometry_sensor", "pf_estimator, evaluator"},
+      {"sensor/range", "robodds::idl::RangeMeasurement", QosClass::kSensor, "robot_id, target_id", "range sensor", "range-rate observer"},
+      {"sensor/uwb", "robodds::idl::UwbRanges", QosClass::kSensor, "robot_id, peer_id", "UWB sensor", "relative estimator"},
+      {"estimate/pose", "robodds::idl::PoseEstimate", QosClass::kState, "robot_id", "pf_estimator, truth_estimator", "waypoint_controller, evaluator"},
+      {"estimate/relative_pose", "robodds::idl::RelativePoseEstimate", QosClass::kState, "robot_id, peer_id", "UWB estimator", "evaluator"},
+      {"observer/range_rate", "robodds::idl::RangeRateEstimate", QosClass::kState, "robot_id, target_id", "range-rate observer", "guidance controller"},
+      {"mission/waypoints", "robodds::idl::WaypointMission", QosClass::kMission, "robot_id", "mission_source", "waypoint_controller, evaluator"},
+      {"mission/target", "robodds::idl::TargetAssignment", QosClass::kMission, "robot_id", "mission source", "guidance controller"},
+      {"control/status", "robodds::idl::ControllerStatus", QosClass::kState, "robot_id", "controllers", "evaluator, CLI"},
   };
   return topics;
 }
@@ -45,10 +45,14 @@ const TopicInfo& topic_info(const std::string& name) {
 }
 
 std::string qos_profile_for(const TopicInfo& topic, TimeMode mode, bool single_process) {
-  if (mode == TimeMode::kLockstep && topic.qos_class != "mission") {
-    return single_process ? "lockstep_local" : "lockstep";
+  if (mode == TimeMode::kLockstep && topic.qos_class != QosClass::kMission) {
+    return single_process ? kLockstepLocalProfile : kLockstepProfile;
   }
-  return topic.qos_class;
+  return to_string(topic.qos_class);
+}
+
+std::string monitor_profile_for(const TopicInfo& topic) {
+  return topic.qos_class == QosClass::kMission ? kMissionProfile : kMonitorProfile;
 }
 
 }  // namespace robodds

@@ -6,16 +6,17 @@
 #include <vector>
 
 #include "runtime/bus.hpp"
+#include "runtime/qos_profiles.hpp"
 
 namespace robodds {
 
 struct TopicInfo {
   std::string name;
   std::string type_name;  // e.g. robodds::idl::RobotState
-  std::string qos_class;  // sensor | state | command | mission | lockstep
-  std::string key;        // e.g. "robot_id"
-  std::string producers;
-  std::string consumers;
+  QosClass qos_class;     // the real-time profile; lockstep substitutes (qos_profile_for)
+  std::string key;        // key members in IDL order, e.g. "robot_id, peer_id"; "-" = unkeyed
+  std::string producers;  // free text (markdown), shown only in docs/topics.md
+  std::string consumers;  // free text (markdown), shown only in docs/topics.md
 };
 
 const std::vector<TopicInfo>& topic_catalog();
@@ -31,8 +32,9 @@ const TopicInfo& topic_info(const std::string& name);
 /// topics use `lockstep_local` (intra-process delivery is lossless without the reliable protocol).
 std::string qos_profile_for(const TopicInfo& topic, TimeMode mode, bool single_process);
 
-/// Participant/data profile names the runtime needs from the QoS file.
-inline constexpr const char* kDefaultParticipantProfile = "robodds.participant";
-inline constexpr const char* kMonitorProfile = "monitor";
+/// QoS profile of a passive reader of the topic (`robodds echo`): `monitor`, which matches
+/// writers of every profile, except `mission` for missions so a late reader still gets the
+/// last mission (transient local).
+std::string monitor_profile_for(const TopicInfo& topic);
 
 }  // namespace robodds

@@ -6,13 +6,14 @@
 #include <vector>
 
 #include "runtime/bus.hpp"
+#include "runtime/qos_profiles.hpp"
 
 namespace robodds {
 
 struct DdsOptions {
   int domain_id = 0;
   std::vector<std::string> qos_files;  // loaded in order; the first must define the data profiles
-  std::string participant_profile = "robodds.participant";
+  std::string participant_profile = kDefaultParticipantProfile;
   std::string participant_name = "robodds";
 };
 

@@ -98,7 +98,7 @@ void check_discovery_servers(const dds::DomainParticipantQos& qos, const std::st
 }  // namespace
 
 const std::vector<std::string>& required_data_profiles() {
-  static const std::vector<std::string> profiles = {"sensor", "state", "command", "mission", "lockstep", "lockstep_local", "monitor"};
+  static const std::vector<std::string> profiles = data_profile_names();
   return profiles;
 }
 

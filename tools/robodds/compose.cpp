@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "runtime/error.hpp"
+#include "runtime/qos_profiles.hpp"
 
 namespace robodds {
 namespace {
@@ -123,12 +124,12 @@ class ComposeWriter {
 
   std::string participant_profile() const {
     if (server()) {
-      return "robodds.participant.discovery_client";
+      return kDiscoveryClientParticipantProfile;
     }
     // Bridge: containers do not share /dev/shm, so shared memory can only fail between them
     // ("topics visible, no data" when Fast DDS takes a peer for local): UDP only.
     // Host network: the default SHM + UDP profile, made to work by ipc: host.
-    return bridge() ? "robodds.participant.udp_only" : "robodds.participant";
+    return bridge() ? kUdpOnlyParticipantProfile : kDefaultParticipantProfile;
   }
 
   /// The second QoS file (robodds_qos.xml is always loaded first, from the share dir).

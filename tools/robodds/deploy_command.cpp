@@ -7,7 +7,6 @@
 #include "runtime/error.hpp"
 #include "runtime/registry.hpp"
 #include "runtime/scenario.hpp"
-#include "tools/robodds/builtin_components.hpp"
 #include "tools/robodds/compose.hpp"
 
 namespace robodds {

@@ -19,7 +19,7 @@
 #include "runtime/host.hpp"
 #include "runtime/log.hpp"
 #include "runtime/sample_format.hpp"
-#include "tools/robodds/builtin_components.hpp"
+#include "runtime/registry.hpp"
 #include "tools/robodds/deploy_command.hpp"
 #include "tools/robodds/process_group.hpp"
 
@@ -529,7 +529,7 @@ int main(int argc, char** argv) {
       idl::dispatch_type(info.type_name, [&](auto tag) {
         using Msg = typename decltype(tag)::type;
         // Missions are transient local: read them with the mission profile to get the last one.
-        bus->reader(echo_topic, info.type_name, info.qos_class == "mission" ? "mission" : kMonitorProfile,
+        bus->reader(echo_topic, info.type_name, monitor_profile_for(info),
                     [&](const void* sample) {
                       const Msg& m = *static_cast<const Msg*>(sample);
                       std::lock_guard<std::mutex> lock(mutex);

@@ -6,6 +6,7 @@
 #include "components/odometry_sensor/odometry_model.hpp"
 #include "components/odometry_sensor/twist_accumulator.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 
 namespace robodds::odometry_sensor {
 namespace {
@@ -67,3 +68,6 @@ class OdometrySensorNode : public Component {
 std::unique_ptr<Component> make_odometry_sensor_node() { return std::make_unique<OdometrySensorNode>(); }
 
 }  // namespace robodds::odometry_sensor
+
+ROBODDS_REGISTER_COMPONENT(odometry_sensor, "wheel odometry with noise and slip: plant/state -> sensor/odometry",
+                           "components/odometry_sensor/config/odometry_sensor.params.yaml", robodds::odometry_sensor::make_odometry_sensor_node);

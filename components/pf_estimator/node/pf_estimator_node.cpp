@@ -8,6 +8,7 @@
 #include "common/param_checks.hpp"
 #include "components/pf_estimator/particle_filter.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 
 namespace robodds::pf {
 namespace {
@@ -115,3 +116,6 @@ class PfEstimatorNode : public Component {
 std::unique_ptr<Component> make_pf_estimator_node() { return std::make_unique<PfEstimatorNode>(); }
 
 }  // namespace robodds::pf
+
+ROBODDS_REGISTER_COMPONENT(pf_estimator, "paper 1 particle filter, full pose: sensor/odometry + sensor/position -> estimate/pose",
+                           "components/pf_estimator/config/pf_estimator.params.yaml", robodds::pf::make_pf_estimator_node);

@@ -5,6 +5,7 @@
 #include "common/random.hpp"
 #include "components/position_sensor/position_model.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 
 namespace robodds::position_sensor {
 namespace {
@@ -54,3 +55,6 @@ class PositionSensorNode : public Component {
 std::unique_ptr<Component> make_position_sensor_node() { return std::make_unique<PositionSensorNode>(); }
 
 }  // namespace robodds::position_sensor
+
+ROBODDS_REGISTER_COMPONENT(position_sensor, "noisy absolute position: plant/state -> sensor/position",
+                           "components/position_sensor/config/position_sensor.params.yaml", robodds::position_sensor::make_position_sensor_node);

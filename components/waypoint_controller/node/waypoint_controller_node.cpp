@@ -5,6 +5,7 @@
 
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 
 namespace robodds::waypoint {
 namespace {
@@ -91,3 +92,6 @@ class WaypointControllerNode : public Component {
 std::unique_ptr<Component> make_waypoint_controller_node() { return std::make_unique<WaypointControllerNode>(); }
 
 }  // namespace robodds::waypoint
+
+ROBODDS_REGISTER_COMPONENT(waypoint_controller, "paper 1 way-point tracking: estimate/pose + mission/waypoints -> plant/cmd, control/status",
+                           "components/waypoint_controller/config/waypoint_controller.params.yaml", robodds::waypoint::make_waypoint_controller_node);

@@ -68,6 +68,7 @@
 #include "runtime/io.hpp"
 #include "runtime/log.hpp"
 #include "runtime/notifier.hpp"
+#include "runtime/qos_profiles.hpp"
 
 #ifndef ROBODDS_SOURCE_DIR
 #define ROBODDS_SOURCE_DIR "."
@@ -108,8 +109,8 @@ struct Options {
   int warmup = 1000;
   int domain = -1;
   std::string qos_file = std::string(ROBODDS_SOURCE_DIR) + "/deploy/qos/robodds_qos.xml";
-  std::string profile = "state";
-  std::string participant_profile = "robodds.participant";
+  std::string profile = robodds::kStateProfile;
+  std::string participant_profile = robodds::kDefaultParticipantProfile;
 };
 
 /// One side of the exchange: writes on one topic, waits for samples on the other.

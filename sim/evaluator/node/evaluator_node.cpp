@@ -11,6 +11,7 @@
 #include "common/json_writer.hpp"
 #include "common/param_checks.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 #include "runtime/sample_format.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
@@ -262,3 +263,6 @@ class EvaluatorNode : public Component {
 std::unique_ptr<Component> make_evaluator_node() { return std::make_unique<EvaluatorNode>(); }
 
 }  // namespace robodds::evaluator
+
+ROBODDS_REGISTER_COMPONENT(evaluator, "records topics to CSV and writes summary.json",
+                           "sim/evaluator/config/evaluator.params.yaml", robodds::evaluator::make_evaluator_node);

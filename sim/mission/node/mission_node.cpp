@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 
 namespace robodds::mission {
 namespace {
@@ -54,3 +55,6 @@ class MissionNode : public Component {
 std::unique_ptr<Component> make_mission_node() { return std::make_unique<MissionNode>(); }
 
 }  // namespace robodds::mission
+
+ROBODDS_REGISTER_COMPONENT(mission_source, "publishes the way-point mission (transient local) -> mission/waypoints",
+                           "sim/mission/config/mission_source.params.yaml", robodds::mission::make_mission_node);

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 #include "sim/open_loop/open_loop_commander.hpp"
 
 namespace robodds::open_loop {
@@ -55,3 +56,6 @@ class OpenLoopNode : public Component {
 std::unique_ptr<Component> make_open_loop_node() { return std::make_unique<OpenLoopNode>(); }
 
 }  // namespace robodds::open_loop
+
+ROBODDS_REGISTER_COMPONENT(open_loop_commander, "open-loop velocity commands -> plant/cmd",
+                           "sim/open_loop/config/open_loop_commander.params.yaml", robodds::open_loop::make_open_loop_node);

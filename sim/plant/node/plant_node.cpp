@@ -6,6 +6,7 @@
 
 #include "common/model/diff_drive_kinematics.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 #include "sim/plant/plant_params.hpp"
 
 namespace robodds::plant {
@@ -87,3 +88,6 @@ class PlantNode : public Component {
 std::unique_ptr<Component> make_plant_node() { return std::make_unique<PlantNode>(); }
 
 }  // namespace robodds::plant
+
+ROBODDS_REGISTER_COMPONENT(plant, "differential-drive plant (paper 1 eq. 1): plant/cmd -> plant/state",
+                           "sim/plant/config/plant.params.yaml", robodds::plant::make_plant_node);

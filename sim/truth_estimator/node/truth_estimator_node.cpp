@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 
 namespace robodds::truth_estimator {
 namespace {
@@ -48,3 +49,6 @@ class TruthEstimatorNode : public Component {
 std::unique_ptr<Component> make_truth_estimator_node() { return std::make_unique<TruthEstimatorNode>(); }
 
 }  // namespace robodds::truth_estimator
+
+ROBODDS_REGISTER_COMPONENT(truth_estimator, "ideal estimator: plant/state -> estimate/pose (true pose)",
+                           "sim/truth_estimator/config/truth_estimator.params.yaml", robodds::truth_estimator::make_truth_estimator_node);
