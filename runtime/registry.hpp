@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "common/param_doc.hpp"
 #include "runtime/component.hpp"
 
 namespace robodds {
@@ -16,6 +17,9 @@ struct ComponentType {
   std::string description;
   std::string defaults_file;  // relative to the share dir, e.g. sim/plant/config/plant.params.yaml
   std::function<std::unique_ptr<Component>()> create;
+  /// Its parameters from its parameter table: the key set, types and defaults the host reads
+  /// (defaults_file is their generated, documented copy), and `robodds components --params`.
+  std::function<params::ParamDoc()> params;
 };
 
 class ComponentRegistry {

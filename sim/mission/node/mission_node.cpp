@@ -4,6 +4,8 @@
 #include <vector>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/param_table_reader.hpp"
+#include "sim/mission/node/mission_source_params.hpp"
 
 namespace robodds::mission {
 namespace {
@@ -11,13 +13,7 @@ namespace {
 class MissionNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
-    waypoints_ = ctx.params().get_point_list("waypoints");
-    if (waypoints_.empty()) {
-      ctx.params().fail("waypoints: the mission needs at least one way-point");
-    }
-    if (waypoints_.size() > 256) {
-      ctx.params().fail("waypoints: at most 256 way-points fit in a WaypointMission");
-    }
+    waypoints_ = read_params(ctx.params(), mission_source_param_table()).waypoints;  // 1 to 256, checked
     for (const RobotSpec& robot : ctx.robots()) {
       robots_.push_back(robot.id);
     }

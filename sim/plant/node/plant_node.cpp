@@ -5,6 +5,8 @@
 #include <map>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/param_table_reader.hpp"
+#include "sim/plant/node/plant_params.hpp"
 #include "sim/plant/diff_drive.hpp"
 #include "sim/plant/plant_params.hpp"
 
@@ -15,11 +17,9 @@ class PlantNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
     auto& p = ctx.params();
-    params_.wheel_base_m = p.get_double("wheel_base_m");
-    params_.limits.max_speed_mps = p.get_double("max_speed_mps");
-    params_.limits.max_turn_rate_radps = p.get_double("max_turn_rate_radps");
-    params_.command_timeout_s = p.get_double("command_timeout_s");
-    const double rate_hz = p.get_double("rate_hz");
+    const PlantNodeParams node_params = read_params(p, plant_param_table());
+    params_ = node_params.plant;
+    const double rate_hz = node_params.rate_hz;
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {

@@ -3,6 +3,8 @@
 #include <limits>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/param_table_reader.hpp"
+#include "sim/truth_estimator/node/truth_estimator_params.hpp"
 
 namespace robodds::truth_estimator {
 namespace {
@@ -10,8 +12,9 @@ namespace {
 class TruthEstimatorNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
-    ctx.set_rate_hz(ctx.params().get_double("rate_hz"), "rate_hz");
-    inject_nan_at_step_ = ctx.params().get_int("inject_nan_at_step");
+    const TruthEstimatorParams params = read_params(ctx.params(), truth_estimator_param_table());
+    ctx.set_rate_hz(params.rate_hz, "rate_hz");
+    inject_nan_at_step_ = params.inject_nan_at_step;
     keys_ = ctx.robot_keys();
     truth_ = &ctx.subscribe<idl::RobotState>("plant/state", InputOptions{keys_, 0, false, "", {}});
     out_ = &ctx.advertise<idl::PoseEstimate>("estimate/pose");
