@@ -41,9 +41,10 @@ TEST_P(ParamsFileTest, CheckedInDefaultsFileIsTheRenderedTable) {
   std::ostringstream checked_in;
   checked_in << in.rdbuf();
   const std::string diff = params_file_diff(checked_in.str(), expected_params_file(type));
-  EXPECT_EQ(diff, "") << type.defaults_file << " differs from the parameter table of '" << type.name
+  EXPECT_TRUE(diff.empty()) << type.defaults_file << " differs from the parameter table of '" << type.name
                       << "' (- file, + table):\n"
-                      << diff << "Edit the table, not the file, and run " << kRegenerateParamsCommand;
+                      << diff << "Change the C++ (the parameter table, or the struct's member initialiser for a default), not the file, "
+                      << "and run " << kRegenerateParamsCommand;
 }
 
 TEST_P(ParamsFileTest, EveryParameterHasADescription) {
