@@ -9,6 +9,7 @@
 #include <deque>
 #include <vector>
 
+#include "common/param_table.hpp"
 #include "components/uwb_relative_pose/relative_pose.hpp"
 
 namespace robodds::uwb {
@@ -22,6 +23,9 @@ struct WindowWeights {
   /// Throws std::invalid_argument "key: requirement (got value)"; each must be > 0 and finite.
   void validate() const;
 };
+
+/// Keys, units, ranges and descriptions of WindowWeights (defaults: the initialisers above).
+const params::ParamTable<WindowWeights>& window_weights_param_table();
 
 /// One UWB relative pose of eq. (1): robot `other` in robot `own`'s frame.
 struct PairMeasurement {
