@@ -15,7 +15,7 @@ namespace robodds {
 struct ComponentType {
   std::string name;
   std::string description;
-  std::string defaults_file;  // relative to the share dir, e.g. sim/plant/config/plant.params.yaml
+  std::string defaults_file;  // generated from `params`, relative to the share dir, e.g. sim/plant/config/plant.params.yaml
   std::function<std::unique_ptr<Component>()> create;
   /// Its parameters from its parameter table: the key set, types and defaults the host reads
   /// (defaults_file is their generated, documented copy), and `robodds components --params`.
