@@ -9,6 +9,7 @@
 
 #include "robodds/idl/robodds.h"
 #include "runtime/log.hpp"
+#include "runtime/param_table_reader.hpp"
 
 namespace robodds {
 namespace {
@@ -79,7 +80,10 @@ struct Host::Impl {
     for (const std::string& name : options.components) {
       const ComponentSpec& spec = run.scenario->component(name);
       const ComponentType& type = registry.get(spec.type);
-      const FlatParams defaults = load_param_file(run.share_dir + "/" + type.defaults_file);
+      if (!type.params) {
+        throw ConfigError("component type '" + type.name + "' has no parameter table (ComponentType::params)");
+      }
+      const FlatParams defaults = default_params(type.params(), "defaults of " + type.name);
       auto slot = std::make_unique<Slot>();
       slot->spec = &spec;
       slot->state.mode = run.mode;

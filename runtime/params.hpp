@@ -1,10 +1,10 @@
 #pragma once
-// Component parameters. Values come from the component's documented defaults file
-// (components/<name>/config/<name>.params.yaml) with scenario overrides on top. Every key
+// Component parameters. Values come from the component's parameter table (its defaults,
+// default_params() in runtime/param_table_reader.hpp) with scenario overrides on top. Every key
 // remembers the file it came from, so each error names file, key and reason.
 //
-// A component reads each key once into its plain parameter struct and calls validate();
-// afterwards the runtime checks that every key of the defaults file was read (catches typos).
+// A component reads every key once into its plain parameter struct (read_params(reader, table))
+// and calls validate(); afterwards the runtime checks that every key was read.
 
 #include <array>
 #include <cstdint>

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "common/param_doc.hpp"
 #include "runtime/component.hpp"
 
 namespace robodds {
@@ -17,8 +18,11 @@ namespace robodds {
 struct ComponentType {
   std::string name;
   std::string description;
-  std::string defaults_file;  // relative to the share dir, e.g. sim/plant/config/plant.params.yaml
+  std::string defaults_file;  // generated from `params`, relative to the share dir, e.g. sim/plant/config/plant.params.yaml
   std::function<std::unique_ptr<Component>()> create;
+  /// Its parameters from its parameter table: the key set, types and defaults the host reads
+  /// (defaults_file is their generated, documented copy), and `robodds components --params`.
+  std::function<params::ParamDoc()> params;
 };
 
 class ComponentRegistry {
@@ -42,19 +46,30 @@ void register_builtin_components(ComponentRegistry& registry);
 /// Defines robodds::component_registration::register_<type_name>(ComponentRegistry&), which adds
 /// the component type `type_name` (a bare identifier, e.g. position_sensor; the scenario's `type`)
 /// with a one-line description, its defaults file (relative to the repository root / share dir)
-/// and its factory (std::unique_ptr<Component>()). Write it once, at global scope (outside any
+/// its factory (std::unique_ptr<Component>()) and its parameter table (params::ParamDoc(), the
+/// one source of its parameters' defaults, units, ranges and descriptions). Write it once, at global scope (outside any
 /// namespace; elsewhere it does not compile), in the component's node .cpp, and name the same
 /// type_name in the folder's robodds_component(NAME ...) call, which makes the generated
 /// registered_components.cpp call the function. Example:
 ///   ROBODDS_REGISTER_COMPONENT(position_sensor, "noisy absolute position: plant/state -> sensor/position",
 ///                              "components/position_sensor/config/position_sensor.params.yaml",
-///                              robodds::position_sensor::make_position_sensor_node);
-#define ROBODDS_REGISTER_COMPONENT(type_name, description, defaults_file, factory)                      \
-  namespace robodds::component_registration {                                                          \
-  void register_##type_name(::robodds::ComponentRegistry& registry);                                    \
-  }                                                                                                     \
-  void ::robodds::component_registration::register_##type_name(::robodds::ComponentRegistry& registry) { \
-    registry.add({#type_name, description, defaults_file, factory});                                    \
-  }                                                                                                     \
-  static_assert(sizeof(description) > 1 && sizeof(defaults_file) > 1,                                   \
+///                              robodds::position_sensor::make_position_sensor_node,
+///                              robodds::position_sensor::position_sensor_params_doc);
+#define ROBODDS_REGISTER_COMPONENT(type_name, description, defaults_file, factory, params_doc)                 \
+  namespace robodds::component_registration {                                                                  \
+  void register_##type_name(::robodds::ComponentRegistry& registry);                                           \
+  }                                                                                                            \
+  void ::robodds::component_registration::register_##type_name(::robodds::ComponentRegistry& registry) {       \
+    registry.add({#type_name, description, defaults_file, factory, params_doc});                               \
+  }                                                                                                            \
+  static_assert(sizeof(description) > 1 && sizeof(defaults_file) > 1,                                          \
                 "ROBODDS_REGISTER_COMPONENT(" #type_name "): description and defaults file must not be empty")
+
+/// Declares the registration function of component type `type_name` (defined by its
+/// ROBODDS_REGISTER_COMPONENT), at global scope, for code that registers one type by hand: a
+/// node's unit test calls robodds::component_registration::register_<type_name>(registry).
+#define ROBODDS_DECLARE_COMPONENT(type_name)                       \
+  namespace robodds::component_registration {                      \
+  void register_##type_name(::robodds::ComponentRegistry& registry); \
+  }                                                                \
+  static_assert(true, "ROBODDS_DECLARE_COMPONENT needs a semicolon")

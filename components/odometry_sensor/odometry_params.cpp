@@ -1,15 +1,24 @@
 #include "components/odometry_sensor/odometry_params.hpp"
 
-#include "common/param_checks.hpp"
 
 namespace robodds::odometry_sensor {
 
-void OdometryParams::validate() const {
-  param_checks::require_positive("rate_hz", rate_hz);
-  param_checks::require_positive("wheel_base_m", wheel_base_m);
-  param_checks::require_non_negative("wheel_speed_noise_std_mps", wheel_speed_noise_std_mps);
-  param_checks::require_in_open_interval("left_slip", left_slip, -0.5, 0.5);
-  param_checks::require_in_open_interval("right_slip", right_slip, -0.5, 0.5);
+const params::ParamTable<OdometryParams>& odometry_sensor_param_table() {
+  static const params::ParamTable<OdometryParams> table =
+      params::ParamTable<OdometryParams>(
+          "Wheel odometry: mean wheel rim speeds over each interval (what encoders count), with a\n"
+          "per-wheel scale error (slip) and white noise, converted to v and omega.")
+          .add("rate_hz", &OdometryParams::rate_hz, "Hz", params::positive(), "readings per second; must divide the simulation rate")
+          .add("wheel_base_m", &OdometryParams::wheel_base_m, "m", params::positive(), "distance between the wheels")
+          .add("wheel_speed_noise_std_mps", &OdometryParams::wheel_speed_noise_std_mps, "m/s", params::non_negative(),
+               "white noise on each wheel's measured speed")
+          .add("left_slip", &OdometryParams::left_slip, "fraction", params::in_open_interval(-0.5, 0.5),
+               "the left wheel reads (1 + slip) x its true speed")
+          .add("right_slip", &OdometryParams::right_slip, "fraction", params::in_open_interval(-0.5, 0.5),
+               "the right wheel reads (1 + slip) x its true speed");
+  return table;
 }
+
+void OdometryParams::validate() const { odometry_sensor_param_table().check_ranges(*this); }
 
 }  // namespace robodds::odometry_sensor

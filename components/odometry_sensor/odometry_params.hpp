@@ -1,5 +1,8 @@
 #pragma once
 // Parameters of the simulated wheel odometry of a differential-drive robot.
+// Defaults: the member initialisers; keys, units, ranges, descriptions: odometry_sensor_param_table().
+
+#include "common/param_table.hpp"
 
 namespace robodds::odometry_sensor {
 
@@ -21,5 +24,9 @@ struct OdometryParams {
   /// the field name so the runtime can point at the parameter file that set it.
   void validate() const;
 };
+
+/// Every parameter of the odometry_sensor component (config/odometry_sensor.params.yaml is
+/// generated from it).
+const params::ParamTable<OdometryParams>& odometry_sensor_param_table();
 
 }  // namespace robodds::odometry_sensor

@@ -10,14 +10,9 @@ namespace robodds::pf {
 namespace {
 
 using param_checks::reject;
-using param_checks::require_finite;
-using param_checks::require_non_negative;
-using param_checks::require_positive;
 
 void require_ordered(std::string_view min_key, double min_value, std::string_view max_key,
                      double max_value) {
-  require_finite(min_key, min_value);
-  require_finite(max_key, max_value);
   if (!(max_value > min_value)) {
     reject(max_key, "must be > " + std::string(min_key) + " = " + shortest_text(min_value), max_value);
   }
@@ -55,21 +50,51 @@ std::string to_string(InitMode mode) {
   return mode == InitMode::kFirstFix ? "first_fix" : "uniform_area";
 }
 
+const params::ParamTable<PfParams>& pf_param_table() {
+  using params::finite;
+  using params::non_negative;
+  using params::positive;
+  using params::shown_as;
+  static const params::ParamTable<PfParams> table =
+      params::ParamTable<PfParams>()
+          .add("num_particles", &PfParams::num_particles, "", params::at_least(1), "M, the number of particles")
+          .add("resample_threshold", &PfParams::resample_threshold, "particles", shown_as(positive(), "(0, num_particles]"),
+               "N_s: resample when the effective sample size N_eff < N_s")
+          .add_enum("resampling", &PfParams::resampling, resampling_scheme_from_string, to_string,
+                    {"systematic", "residual"}, "how a degenerate particle set is redrawn")
+          .add("measurement_std_m", &PfParams::measurement_std_m, "m", positive(),
+               "s_x = s_y in eq. (5); 1.51 ~ sqrt(2.28) matches the sensor")
+          .add("odom_v_std_mps", &PfParams::odom_v_std_mps, "m/s", non_negative(),
+               "noise added to the odometry speed per particle and prediction")
+          .add("odom_omega_std_radps", &PfParams::odom_omega_std_radps, "rad/s", non_negative(),
+               "noise added to the odometry turn rate per particle and prediction")
+          .add("process_pos_std_m", &PfParams::process_pos_std_m, "m", non_negative(),
+               "extra x and y diffusion per prediction")
+          .add("process_theta_std_rad", &PfParams::process_theta_std_rad, "rad", non_negative(),
+               "extra heading diffusion per prediction")
+          .add("regularization_scale", &PfParams::regularization_scale, "", non_negative("0 = plain resampling, as the paper"),
+               "x the optimal kernel bandwidth of the jitter after resampling")
+          .add_enum("init_mode", &PfParams::init_mode, init_mode_from_string, to_string, {"uniform_area", "first_fix"},
+                    "uniform over the init area (the paper) or around the first position fix")
+          .add("init_area_min_x", &PfParams::init_area_min_x, "m", finite(), "uniform_area: smallest x of the area, world frame")
+          .add("init_area_max_x", &PfParams::init_area_max_x, "m", shown_as(finite(), "> init_area_min_x"), "uniform_area: largest x")
+          .add("init_area_min_y", &PfParams::init_area_min_y, "m", finite(), "uniform_area: smallest y")
+          .add("init_area_max_y", &PfParams::init_area_max_y, "m", shown_as(finite(), "> init_area_min_y"), "uniform_area: largest y")
+          .add("init_theta_known", &PfParams::init_theta_known, "", params::any<bool>(),
+               "true: every particle starts with init_theta_rad (the paper's assumption)")
+          .add("init_theta_rad", &PfParams::init_theta_rad, "rad", finite(), "initial heading if known, world frame")
+          .add("init_fix_std_m", &PfParams::init_fix_std_m, "m", positive(), "spread around the first fix (first_fix mode)");
+  return table;
+}
+
 void PfParams::validate() const {
-  param_checks::require_at_least("num_particles", num_particles, 1);
-  require_finite("resample_threshold", resample_threshold);
-  if (!(resample_threshold > 0.0) || resample_threshold > num_particles) {
+  pf_param_table().check_ranges(*this);
+  if (resample_threshold > num_particles) {
     reject("resample_threshold", "must be in (0, num_particles]", resample_threshold);
   }
   if (resampling != ResamplingScheme::kSystematic && resampling != ResamplingScheme::kResidual) {
     reject("resampling", "must be systematic or residual", static_cast<int>(resampling));
   }
-  require_positive("measurement_std_m", measurement_std_m);
-  require_non_negative("odom_v_std_mps", odom_v_std_mps);
-  require_non_negative("odom_omega_std_radps", odom_omega_std_radps);
-  require_non_negative("process_pos_std_m", process_pos_std_m);
-  require_non_negative("process_theta_std_rad", process_theta_std_rad);
-  require_non_negative("regularization_scale", regularization_scale);
   if (init_mode != InitMode::kUniformArea && init_mode != InitMode::kFirstFix) {
     reject("init_mode", "must be uniform_area or first_fix", static_cast<int>(init_mode));
   }
@@ -77,8 +102,6 @@ void PfParams::validate() const {
   // only init_mode is switched.
   require_ordered("init_area_min_x", init_area_min_x, "init_area_max_x", init_area_max_x);
   require_ordered("init_area_min_y", init_area_min_y, "init_area_max_y", init_area_max_y);
-  require_finite("init_theta_rad", init_theta_rad);
-  require_positive("init_fix_std_m", init_fix_std_m);
 }
 
 }  // namespace robodds::pf

@@ -1,15 +1,18 @@
 #pragma once
 // Parameters of the particle-filter pose estimator (paper 1, section 2). Pure data plus
-// validation: no YAML here. Field names are also the YAML keys used by the node, so validate()
-// starts each error message with the key it rejects, e.g. "num_particles: must be >= 1 (got 0)".
+// validation: no YAML here. The defaults are the member initialisers; keys, units, ranges and
+// descriptions are in pf_param_table() (pf_params.cpp), the one source of the node's keys and of
+// config/pf_estimator.params.yaml. validate() starts each error message with the key it
+// rejects, e.g. "num_particles: must be >= 1 (got 0)".
 //
 // Units: SI throughout (m, s, rad). Noise values are standard deviations, not variances.
 // "Per prediction" values are applied once per predict() call, so they should be tuned for the
 // odometry rate that drives the filter (50 Hz in the reference scenario).
 
-#include <cmath>
 #include <string>
 #include <string_view>
+
+#include "common/param_table.hpp"
 
 namespace robodds::pf {
 
@@ -40,8 +43,8 @@ struct PfParams {
   double resample_threshold = 500.0;
   ResamplingScheme resampling = ResamplingScheme::kSystematic;
 
-  /// s_x = s_y of eq. (5), m (> 0). Default: the paper's measurement variance 2.28 m^2.
-  double measurement_std_m = std::sqrt(2.28);
+  /// s_x = s_y of eq. (5), m (> 0). Default: 1.51 ~ sqrt(2.28), the paper's measurement variance.
+  double measurement_std_m = 1.51;
 
   /// Std of the noise added to the measured forward speed, per particle and prediction, m/s (>= 0).
   double odom_v_std_mps = 0.05;
@@ -59,21 +62,25 @@ struct PfParams {
   /// paper's plain resampling. Extension beyond the paper, needed to learn an unknown heading.
   double regularization_scale = 0.5;
 
-  InitMode init_mode = InitMode::kUniformArea;
-  /// Initial area for kUniformArea, world frame, m (max > min on each axis).
-  double init_area_min_x = -10.0;
-  double init_area_max_x = 10.0;
-  double init_area_min_y = -10.0;
-  double init_area_max_y = 10.0;
+  InitMode init_mode = InitMode::kFirstFix;
+  /// Initial area for kUniformArea, world frame, m (max > min on each axis): the paper's field.
+  double init_area_min_x = 0.0;
+  double init_area_max_x = 100.0;
+  double init_area_min_y = 0.0;
+  double init_area_max_y = 100.0;
   /// If true every particle starts with heading init_theta_rad (rad, world frame, CCW from +x);
   /// otherwise headings are uniform in (-pi, pi] and learned from motion.
   bool init_theta_known = false;
   double init_theta_rad = 0.0;
   /// Std of the initial x/y spread around the first fix for kFirstFix, m (> 0).
-  double init_fix_std_m = std::sqrt(2.28);
+  double init_fix_std_m = 1.51;
 
-  /// Throws std::invalid_argument naming the first offending key. Every value must be finite.
+  /// Throws std::invalid_argument naming the first offending key: the table's ranges, then
+  /// resample_threshold <= num_particles, known enum values and min < max of the init area.
   void validate() const;
 };
+
+/// Keys (= field names), units, ranges and descriptions of PfParams.
+const params::ParamTable<PfParams>& pf_param_table();
 
 }  // namespace robodds::pf

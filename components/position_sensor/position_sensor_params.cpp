@@ -1,13 +1,21 @@
 #include "components/position_sensor/position_sensor_params.hpp"
 
-#include "common/param_checks.hpp"
 
 namespace robodds::position_sensor {
 
-void PositionSensorParams::validate() const {
-  param_checks::require_positive("rate_hz", rate_hz);
-  param_checks::require_non_negative("noise_var_x_m2", noise_var_x_m2);
-  param_checks::require_non_negative("noise_var_y_m2", noise_var_y_m2);
+const params::ParamTable<PositionSensorParams>& position_sensor_param_table() {
+  static const params::ParamTable<PositionSensorParams> table =
+      params::ParamTable<PositionSensorParams>(
+          "Absolute position sensor (paper 1, Step 1): true position + independent Gaussian noise.")
+          .add("rate_hz", &PositionSensorParams::rate_hz, "Hz", params::positive(),
+               "sampling rate; must divide the simulation rate")
+          .add("noise_var_x_m2", &PositionSensorParams::noise_var_x_m2, "m^2", params::non_negative(),
+               "noise variance along x (paper 1: 2.28)")
+          .add("noise_var_y_m2", &PositionSensorParams::noise_var_y_m2, "m^2", params::non_negative(),
+               "noise variance along y");
+  return table;
 }
+
+void PositionSensorParams::validate() const { position_sensor_param_table().check_ranges(*this); }
 
 }  // namespace robodds::position_sensor

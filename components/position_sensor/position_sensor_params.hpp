@@ -1,5 +1,8 @@
 #pragma once
 // Parameters of the simulated absolute position sensor (a GPS-like fix of the robot's x/y).
+// Defaults: the member initialisers; keys, units, ranges, descriptions: position_sensor_param_table().
+
+#include "common/param_table.hpp"
 
 namespace robodds::position_sensor {
 
@@ -15,5 +18,9 @@ struct PositionSensorParams {
   /// the field name so the runtime can point at the parameter file that set it.
   void validate() const;
 };
+
+/// Every parameter of the position_sensor component (config/position_sensor.params.yaml is
+/// generated from it).
+const params::ParamTable<PositionSensorParams>& position_sensor_param_table();
 
 }  // namespace robodds::position_sensor

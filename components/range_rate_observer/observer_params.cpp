@@ -1,21 +1,36 @@
 #include "components/range_rate_observer/observer_params.hpp"
 
-#include "common/param_checks.hpp"
 
 namespace robodds::range_rate {
 
-void SuperTwistingParams::validate() const {
-  param_checks::require_in_open_interval("a", a, 0.0, 2.5);  // paper 2, section 1.2
-  param_checks::require_positive("b", b);
-  param_checks::require_positive("c", c);
-  param_checks::require_non_negative("d", d, "0 = plain super-twisting");
-  param_checks::require_non_negative("restart_jump_m", restart_jump_m, "0 = never restart");
+const params::ParamTable<SuperTwistingParams>& super_twisting_param_table() {
+  using P = SuperTwistingParams;
+  static const params::ParamTable<P> table =
+      params::ParamTable<P>("Sliding-mode range-rate observer of paper 2, eq. (1) as read in README.md.")
+          .add("a", &P::a, "m^(1/2)/s", params::in_open_interval(0.0, 2.5),
+               "gain on |e|^(1/2) sgn(e); range of the paper's Lyapunov analysis (section 1.2)")
+          .add("b", &P::b, "m/s^2", params::positive(),
+               "gain on sgn(e); above the largest |range acceleration| to follow")
+          .add("c", &P::c, "1/s^2", params::positive(), "gain on e in the rate equation")
+          .add("d", &P::d, "1/s", params::non_negative("0 = plain super-twisting"), "linear gain on e, J of eq. (3)")
+          .add("restart_jump_m", &P::restart_jump_m, "m", params::non_negative("0 = never restart"),
+               "a range step the rate misses by more than this restarts the observer");
+  return table;
 }
 
-void LinearObserverParams::validate() const {
-  param_checks::require_positive("k1", k1);
-  param_checks::require_positive("k2", k2);
-  param_checks::require_non_negative("restart_jump_m", restart_jump_m, "0 = never restart");
+const params::ParamTable<LinearObserverParams>& linear_observer_param_table() {
+  using P = LinearObserverParams;
+  static const params::ParamTable<P> table =
+      params::ParamTable<P>("Linear baseline range-rate observer, eq. (9) as read in README.md.")
+          .add("k1", &P::k1, "1/s", params::positive(), "gain on the range error in the range equation")
+          .add("k2", &P::k2, "1/s^2", params::positive(), "gain on the range error in the rate equation")
+          .add("restart_jump_m", &P::restart_jump_m, "m", params::non_negative("0 = never restart"),
+               "a range step the rate misses by more than this restarts the observer");
+  return table;
 }
+
+void SuperTwistingParams::validate() const { super_twisting_param_table().check_ranges(*this); }
+
+void LinearObserverParams::validate() const { linear_observer_param_table().check_ranges(*this); }
 
 }  // namespace robodds::range_rate

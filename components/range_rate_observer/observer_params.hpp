@@ -1,10 +1,13 @@
 #pragma once
 // Parameters of the range-rate observers of paper 2 (Lin & Zhang 2020, "A range rate observer
 // based on ranging signal"). Pure data plus validation: field names are the YAML keys, and
-// validate() starts each message with the key it rejects.
+// validate() starts each message with the key it rejects. Defaults: the member initialisers;
+// keys, units, ranges, descriptions: the parameter tables below (one source for a future node).
 //
 // Units: range in m, range rate in m/s, time in s. The gains act on the range error e = s - s_hat
 // (m), so a is in m^(1/2)/s, b in m/s^2, c in 1/s^2, d in 1/s; k1 in 1/s and k2 in 1/s^2.
+
+#include "common/param_table.hpp"
 
 namespace robodds::range_rate {
 
@@ -41,5 +44,8 @@ struct LinearObserverParams {
 
   void validate() const;
 };
+
+const params::ParamTable<SuperTwistingParams>& super_twisting_param_table();
+const params::ParamTable<LinearObserverParams>& linear_observer_param_table();
 
 }  // namespace robodds::range_rate

@@ -91,19 +91,42 @@ SolverResult solve_from(const UwbArray& own, const UwbArray& other, const Eigen:
 
 }  // namespace
 
-RobustLoss robust_loss_from_string(const std::string& text) {
+RobustLoss robust_loss_from_string(std::string_view text) {
   if (text == "none") return RobustLoss::kNone;
   if (text == "huber") return RobustLoss::kHuber;
   if (text == "soft_l1") return RobustLoss::kSoftL1;
   param_checks::reject("loss", "must be none, huber or soft_l1", text);
 }
 
-void SolverOptions::validate() const {
-  param_checks::require_positive("loss_scale_m", loss_scale_m);
-  param_checks::require_at_least("start_directions", start_directions, 1);
-  param_checks::require_at_least("start_headings", start_headings, 1);
-  param_checks::require_at_least("max_iterations", max_iterations, 1);
+std::string to_string(RobustLoss loss) {
+  switch (loss) {
+    case RobustLoss::kNone:
+      return "none";
+    case RobustLoss::kHuber:
+      return "huber";
+    case RobustLoss::kSoftL1:
+      return "soft_l1";
+  }
+  return "unknown";
 }
+
+const params::ParamTable<SolverOptions>& solver_param_table() {
+  using O = SolverOptions;
+  static const params::ParamTable<O> table =
+      params::ParamTable<O>("Single-epoch UWB-array relative pose (paper 3, eq. 1), Levenberg-Marquardt.")
+          .add_enum("loss", &O::loss, robust_loss_from_string, to_string, {"none", "huber", "soft_l1"},
+                    "robust loss on the range residuals (none = the paper)")
+          .add("loss_scale_m", &O::loss_scale_m, "m", params::positive(),
+               "residuals beyond this count linearly (about 2-3 x the range noise std)")
+          .add("start_directions", &O::start_directions, "", params::at_least(1),
+               "cold start: directions on the circle of the mean range")
+          .add("start_headings", &O::start_headings, "", params::at_least(1), "cold start: headings per direction")
+          .add("max_iterations", &O::max_iterations, "", params::at_least(1),
+               "Levenberg-Marquardt iterations per start");
+  return table;
+}
+
+void SolverOptions::validate() const { solver_param_table().check_ranges(*this); }
 
 SolverResult solve_relative_pose(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m,
                                  const std::optional<model::Pose2>& initial, const SolverOptions& options) {

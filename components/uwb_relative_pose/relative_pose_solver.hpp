@@ -6,9 +6,11 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <Eigen/Core>
 
+#include "common/param_table.hpp"
 #include "components/uwb_relative_pose/relative_pose.hpp"
 #include "components/uwb_relative_pose/uwb_array.hpp"
 
@@ -21,7 +23,8 @@ enum class RobustLoss {
 };
 
 /// "none" / "huber" / "soft_l1"; throws std::invalid_argument("loss: ...") otherwise.
-RobustLoss robust_loss_from_string(const std::string& text);
+RobustLoss robust_loss_from_string(std::string_view text);
+std::string to_string(RobustLoss loss);
 
 struct SolverOptions {
   RobustLoss loss = RobustLoss::kHuber;
@@ -37,6 +40,9 @@ struct SolverOptions {
   /// Throws std::invalid_argument "key: requirement (got value)".
   void validate() const;
 };
+
+/// Keys, units, ranges and descriptions of SolverOptions (defaults: the initialisers above).
+const params::ParamTable<SolverOptions>& solver_param_table();
 
 struct SolverResult {
   model::Pose2 pose;

@@ -41,12 +41,20 @@ model::Pose2 inverse(const model::Pose2& a_b) { return model::between(a_b, model
 
 }  // namespace
 
-void WindowWeights::validate() const {
-  param_checks::require_positive("odometry_xy_std_m", odometry_xy_std_m);
-  param_checks::require_positive("odometry_theta_std_rad", odometry_theta_std_rad);
-  param_checks::require_positive("uwb_xy_std_m", uwb_xy_std_m);
-  param_checks::require_positive("uwb_theta_std_rad", uwb_theta_std_rad);
+const params::ParamTable<WindowWeights>& window_weights_param_table() {
+  using W = WindowWeights;
+  static const params::ParamTable<W> table =
+      params::ParamTable<W>("Sliding-window pose graph of paper 3, eq. (2): constant information matrices.")
+          .add("odometry_xy_std_m", &W::odometry_xy_std_m, "m", params::positive(), "odometry increment position std per epoch")
+          .add("odometry_theta_std_rad", &W::odometry_theta_std_rad, "rad", params::positive(),
+               "odometry increment heading std per epoch")
+          .add("uwb_xy_std_m", &W::uwb_xy_std_m, "m", params::positive(), "single-epoch UWB relative position std")
+          .add("uwb_theta_std_rad", &W::uwb_theta_std_rad, "rad", params::positive(),
+               "single-epoch UWB relative heading std");
+  return table;
 }
+
+void WindowWeights::validate() const { window_weights_param_table().check_ranges(*this); }
 
 SlidingWindowGraph::SlidingWindowGraph(std::size_t num_robots, std::size_t window, WindowWeights weights)
     : num_robots_(num_robots), window_(window), weights_(weights) {

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "common/model/pose2.hpp"
+#include "common/param_table.hpp"
 
 namespace robodds::uwb {
 
@@ -22,6 +23,9 @@ struct WindowWeights {
   /// Throws std::invalid_argument "key: requirement (got value)"; each must be > 0 and finite.
   void validate() const;
 };
+
+/// Keys, units, ranges and descriptions of WindowWeights (defaults: the initialisers above).
+const params::ParamTable<WindowWeights>& window_weights_param_table();
 
 /// One UWB relative pose of eq. (1): robot `other` in robot `own`'s frame.
 struct PairMeasurement {

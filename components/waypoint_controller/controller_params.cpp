@@ -14,12 +14,6 @@ std::string format_gains(const GainSet& gains) {
   return "kd=" + shortest_text(gains.kd) + ", ka=" + shortest_text(gains.ka) + ", ksigma=" + shortest_text(gains.ksigma);
 }
 
-void require_finite_gains(const std::string& key, const GainSet& gains) {
-  param_checks::require_finite(key + ".kd", gains.kd);
-  param_checks::require_finite(key + ".ka", gains.ka);
-  param_checks::require_finite(key + ".ksigma", gains.ksigma);
-}
-
 /// Throws "key: violates <inequality> (got <gains>)" unless holds.
 void require_inequality(bool holds, const char* key, const char* inequality, const GainSet& gains) {
   if (!holds) {
@@ -66,15 +60,38 @@ void check_backward_gains(const GainSet& g) {
 
 }  // namespace
 
+const params::ParamTable<ControllerParams>& controller_param_table() {
+  using C = ControllerParams;
+  const auto gains = params::shown_as(params::finite(), "eq. (11), (16)");
+  static const params::ParamTable<ControllerParams> table =
+      params::ParamTable<ControllerParams>()
+          .group("forward_gains", "used while |alpha| <= pi/2")
+          .add("forward_gains.kd", &C::forward_gains, &GainSet::kd, "1/s", gains, "v = kd * d")
+          .add("forward_gains.ka", &C::forward_gains, &GainSet::ka, "1/s", gains, "omega gain on alpha")
+          .add("forward_gains.ksigma", &C::forward_gains, &GainSet::ksigma, "1/s", gains,
+               "omega gain on sigma (times sgn*)")
+          .group("backward_gains", "used while |alpha| > pi/2: the robot backs up (kd < 0)")
+          .add("backward_gains.kd", &C::backward_gains, &GainSet::kd, "1/s", gains, "v = kd * d")
+          .add("backward_gains.ka", &C::backward_gains, &GainSet::ka, "1/s", gains, "omega gain on alpha")
+          .add("backward_gains.ksigma", &C::backward_gains, &GainSet::ksigma, "1/s", gains,
+               "omega gain on sigma (times sgn*)")
+          .add("epsilon_m", &C::epsilon_m, "m", params::positive(),
+               "switch to the next way-point when the distance is <= epsilon (eq. 19)")
+          .add("max_speed_mps", &C::max_speed_mps, "m/s", params::non_negative("0 = no limit"),
+               "optional |v| limit (the paper: 0)")
+          .add("max_turn_rate_radps", &C::max_turn_rate_radps, "rad/s", params::non_negative("0 = no limit"),
+               "optional |omega| limit (the paper: 0)")
+          .add("confidence_switch_sigmas", &C::confidence_switch_sigmas, "", params::non_negative("0 = off"),
+               "kappa: also switch once the way-point is inside the kappa-sigma ellipse of the estimate")
+          .add("stop_when_done", &C::stop_when_done, "", params::any<bool>(),
+               "command zero once the last way-point is reached (false = the paper: the law stays active)");
+  return table;
+}
+
 void ControllerParams::validate() const {
-  require_finite_gains("forward_gains", forward_gains);
+  controller_param_table().check_ranges(*this);
   check_forward_gains(forward_gains);
-  require_finite_gains("backward_gains", backward_gains);
   check_backward_gains(backward_gains);
-  param_checks::require_positive("epsilon_m", epsilon_m);
-  param_checks::require_non_negative("max_speed_mps", max_speed_mps, "0 = no limit");
-  param_checks::require_non_negative("max_turn_rate_radps", max_turn_rate_radps, "0 = no limit");
-  param_checks::require_non_negative("confidence_switch_sigmas", confidence_switch_sigmas, "0 = off");
 }
 
 }  // namespace robodds::waypoint

@@ -1,6 +1,9 @@
 #pragma once
 // Parameters of the way-point controller of paper 1, section 3 (control law eq. 10, gain
 // conditions eq. 11 and 16, switching eq. 19). SI units: metres, seconds, radians.
+// Defaults: the member initialisers; keys, units, ranges, descriptions: controller_param_table().
+
+#include "common/param_table.hpp"
 
 namespace robodds::waypoint {
 
@@ -35,12 +38,14 @@ struct ControllerParams {
   /// The paper keeps it active (small heading corrections after t = 100 s in its Fig. 4); with
   /// an estimated pose the bearing alpha of a way-point a few cm away is pure estimate noise,
   /// and ka = 20 turns that noise into omega swings of tens of rad/s at standstill.
-  bool stop_when_done = false;
+  bool stop_when_done = true;
 
   /// Throws std::invalid_argument "key: reason (got ...)" for the first bad field. Gain sets
   /// are checked against eq. (11) and eq. (16) as read in README.md (forward set with
   /// sgn* = +1, backward set with sgn* = -1); the message names the violated inequality.
   void validate() const;
 };
+
+const params::ParamTable<ControllerParams>& controller_param_table();
 
 }  // namespace robodds::waypoint

@@ -35,8 +35,11 @@
 
 namespace robodds::testing {
 
-/// Defaults file of test-defined component types (relative to the source dir): no parameters.
-inline constexpr const char* kNoParamsFile = "runtime/testing/no_params.params.yaml";
+/// Defaults file of test-defined component types: none (they have no parameters).
+inline constexpr const char* kNoParamsFile = "(none: a test component)";
+
+/// The parameter table of test-defined component types: empty.
+inline params::ParamDoc no_params() { return {}; }
 
 /// A test-defined component: `configure` declares its inputs/outputs, `step` runs at each due step.
 class ScriptComponent : public Component {
@@ -74,7 +77,7 @@ class NodeHarness {
                          feed_(info.step);
                        }
                      });
-                   }});
+                   }, no_params});
     // Next to the scenario file, named after the running test case like it.
     output_dir_ = scenario_file_.substr(0, scenario_file_.size() - std::string("scenario.yaml").size()) + "out";
     std::filesystem::remove_all(output_dir_);
@@ -104,7 +107,7 @@ class NodeHarness {
                   std::function<void(const StepInfo&)> step) {
     registry_.add({type, "test script", kNoParamsFile, [configure, step] {
                      return std::make_unique<ScriptComponent>(configure, step);
-                   }});
+                   }, no_params});
   }
 
   /// Runs `feed(step)` at every step, before the components under test.

@@ -2,6 +2,8 @@
 // Open-loop command profile for smoke scenarios. Pure: time in s, SI units.
 #include <cstddef>
 
+#include "common/param_table.hpp"
+
 namespace robodds::open_loop {
 
 struct OpenLoopParams {
@@ -12,6 +14,9 @@ struct OpenLoopParams {
   double phase_per_robot_rad = 1.0;
   void validate() const;  // throws std::invalid_argument("key: reason")
 };
+
+/// Keys, units, ranges and descriptions of OpenLoopParams (defaults: the initialisers above).
+const params::ParamTable<OpenLoopParams>& open_loop_param_table();
 
 struct TwistCommand {
   double v = 0.0;      // m/s

@@ -1,14 +1,22 @@
 #include "sim/plant/plant_params.hpp"
 
-#include "common/param_checks.hpp"
 
 namespace robodds::plant {
 
-void PlantParams::validate() const {
-  param_checks::require_positive("wheel_base_m", wheel_base_m);
-  param_checks::require_non_negative("max_speed_mps", limits.max_speed_mps, "0 = unlimited");
-  param_checks::require_non_negative("max_turn_rate_radps", limits.max_turn_rate_radps, "0 = unlimited");
-  param_checks::require_positive("command_timeout_s", command_timeout_s);
+const params::ParamTable<PlantParams>& plant_model_param_table() {
+  static const params::ParamTable<PlantParams> table =
+      params::ParamTable<PlantParams>()
+          .add("wheel_base_m", &PlantParams::wheel_base_m, "m", params::positive(),
+               "D in eq. (1): distance between the wheels (WHEEL_SPEEDS commands)")
+          .add("max_speed_mps", &PlantParams::limits, &model::TwistLimits::max_speed_mps, "m/s",
+               params::non_negative("0 = unlimited"), "|v| limit applied to commands (the paper: 0)")
+          .add("max_turn_rate_radps", &PlantParams::limits, &model::TwistLimits::max_turn_rate_radps, "rad/s",
+               params::non_negative("0 = unlimited"), "|omega| limit (the paper: 0)")
+          .add("command_timeout_s", &PlantParams::command_timeout_s, "s", params::positive(),
+               "real time only: a command older than this stops the robot");
+  return table;
 }
+
+void PlantParams::validate() const { plant_model_param_table().check_ranges(*this); }
 
 }  // namespace robodds::plant

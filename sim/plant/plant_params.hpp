@@ -1,5 +1,8 @@
 #pragma once
+// Plant parameters. Defaults: the member initialisers; keys, units, ranges, descriptions:
+// plant_model_param_table().
 #include "common/model/twist.hpp"
+#include "common/param_table.hpp"
 
 namespace robodds::plant {
 
@@ -11,5 +14,7 @@ struct PlantParams {
   /// Throws std::invalid_argument("key: reason").
   void validate() const;
 };
+
+const params::ParamTable<PlantParams>& plant_model_param_table();
 
 }  // namespace robodds::plant

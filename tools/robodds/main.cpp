@@ -21,6 +21,7 @@
 #include "runtime/sample_format.hpp"
 #include "runtime/registry.hpp"
 #include "tools/robodds/deploy_command.hpp"
+#include "tools/robodds/params_files.hpp"
 #include "tools/robodds/process_group.hpp"
 
 #ifndef ROBODDS_SOURCE_DIR
@@ -336,6 +337,10 @@ int main(int argc, char** argv) {
   echo_cmd->add_option("--timeout", echo_timeout, "s; fail if no sample arrives in time (0 = wait forever)");
   echo_dds.add_to(echo_cmd);
   auto* list_cmd = app.add_subcommand("components", "list the registered component types");
+  std::string params_of;
+  bool params_yaml = false;
+  list_cmd->add_option("--params", params_of, "print this type's parameters: key, type, default, unit, range, description");
+  list_cmd->add_flag("--yaml", params_yaml, "with --params: print its defaults file (config/<name>.params.yaml)");
   auto* report_cmd = app.add_subcommand("report", "(re)generate the plots of a run from its CSVs");
   std::string report_dir;
   report_cmd->add_option("out_dir", report_dir, "output directory of a run")->required();
@@ -573,6 +578,10 @@ int main(int argc, char** argv) {
     if (list_cmd->parsed()) {
       ComponentRegistry registry;
       register_builtin_components(registry);
+      if (!params_of.empty()) {
+        std::fputs(component_params_text(registry, params_of, params_yaml).c_str(), stdout);
+        return 0;
+      }
       for (const ComponentType& type : registry.types()) {
         std::printf("%-22s %s\n%-22s params: %s\n", type.name.c_str(), type.description.c_str(), "", type.defaults_file.c_str());
       }

@@ -6,6 +6,7 @@
 #include "components/odometry_sensor/odometry_model.hpp"
 #include "components/odometry_sensor/twist_accumulator.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
 
 namespace robodds::odometry_sensor {
@@ -15,11 +16,7 @@ class OdometrySensorNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
     auto& p = ctx.params();
-    params_.rate_hz = p.get_double("rate_hz");
-    params_.wheel_base_m = p.get_double("wheel_base_m");
-    params_.wheel_speed_noise_std_mps = p.get_double("wheel_speed_noise_std_mps");
-    params_.left_slip = p.get_double("left_slip");
-    params_.right_slip = p.get_double("right_slip");
+    params_ = read_params(p, odometry_sensor_param_table());
     p.validate(params_);
     ctx.set_rate_hz(params_.rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {
@@ -65,9 +62,12 @@ class OdometrySensorNode : public Component {
 
 }  // namespace
 
+params::ParamDoc odometry_sensor_params_doc() { return odometry_sensor_param_table().doc(); }
+
 std::unique_ptr<Component> make_odometry_sensor_node() { return std::make_unique<OdometrySensorNode>(); }
 
 }  // namespace robodds::odometry_sensor
 
 ROBODDS_REGISTER_COMPONENT(odometry_sensor, "wheel odometry with noise and slip: plant/state -> sensor/odometry",
-                           "components/odometry_sensor/config/odometry_sensor.params.yaml", robodds::odometry_sensor::make_odometry_sensor_node);
+                           "components/odometry_sensor/config/odometry_sensor.params.yaml", robodds::odometry_sensor::make_odometry_sensor_node,
+                           robodds::odometry_sensor::odometry_sensor_params_doc);

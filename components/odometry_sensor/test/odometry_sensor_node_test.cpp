@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
+
+ROBODDS_DECLARE_COMPONENT(odometry_sensor);
 
 namespace robodds::odometry_sensor {
 namespace {
@@ -25,8 +28,7 @@ components:
 
 TEST(OdometrySensorNode, ReportsTheMeanTwistOverEachIntervalStampedAndKeyed) {
   NodeHarness h(kScenario);
-  h.registry().add({"odometry_sensor", "", "components/odometry_sensor/config/odometry_sensor.params.yaml",
-                    make_odometry_sensor_node});
+  robodds::component_registration::register_odometry_sensor(h.registry());
   // The plant's state of step m carries the twist applied over step m: v = 1 + m, omega = 0.5.
   h.feed([&h](std::uint64_t step) {
     idl::RobotState s;

@@ -5,9 +5,10 @@
 #include <map>
 #include <memory>
 
-#include "common/param_checks.hpp"
+#include "components/pf_estimator/node/pf_estimator_params.hpp"
 #include "components/pf_estimator/particle_filter.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
 
 namespace robodds::pf {
@@ -17,27 +18,10 @@ class PfEstimatorNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
     auto& p = ctx.params();
-    const double rate_hz = p.get_double("rate_hz");
-    PfParams params;
-    params.num_particles = static_cast<int>(p.get_int("num_particles"));
-    params.resample_threshold = p.get_double("resample_threshold");
-    params.resampling = p.get_parsed("resampling", resampling_scheme_from_string);
-    params.measurement_std_m = p.get_double("measurement_std_m");
-    params.odom_v_std_mps = p.get_double("odom_v_std_mps");
-    params.odom_omega_std_radps = p.get_double("odom_omega_std_radps");
-    params.process_pos_std_m = p.get_double("process_pos_std_m");
-    params.process_theta_std_rad = p.get_double("process_theta_std_rad");
-    params.regularization_scale = p.get_double("regularization_scale");
-    params.init_mode = p.get_parsed("init_mode", init_mode_from_string);
-    params.init_area_min_x = p.get_double("init_area_min_x");
-    params.init_area_max_x = p.get_double("init_area_max_x");
-    params.init_area_min_y = p.get_double("init_area_min_y");
-    params.init_area_max_y = p.get_double("init_area_max_y");
-    params.init_theta_known = p.get_bool("init_theta_known");
-    params.init_theta_rad = p.get_double("init_theta_rad");
-    params.init_fix_std_m = p.get_double("init_fix_std_m");
-    valid_max_std_m_ = p.get_double("valid_max_position_std_m");
-    p.check([this] { param_checks::require_positive("valid_max_position_std_m", valid_max_std_m_); });
+    const PfEstimatorNodeParams node_params = read_params(p, pf_estimator_param_table());
+    const PfParams& params = node_params.filter;
+    const double rate_hz = node_params.rate_hz;
+    valid_max_std_m_ = node_params.valid_max_position_std_m;
     p.validate(params);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {
@@ -115,7 +99,10 @@ class PfEstimatorNode : public Component {
 
 std::unique_ptr<Component> make_pf_estimator_node() { return std::make_unique<PfEstimatorNode>(); }
 
+params::ParamDoc pf_estimator_params_doc() { return pf_estimator_param_table().doc(); }
+
 }  // namespace robodds::pf
 
 ROBODDS_REGISTER_COMPONENT(pf_estimator, "paper 1 particle filter, full pose: sensor/odometry + sensor/position -> estimate/pose",
-                           "components/pf_estimator/config/pf_estimator.params.yaml", robodds::pf::make_pf_estimator_node);
+                           "components/pf_estimator/config/pf_estimator.params.yaml", robodds::pf::make_pf_estimator_node,
+                           robodds::pf::pf_estimator_params_doc);

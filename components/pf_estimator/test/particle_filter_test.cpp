@@ -22,8 +22,23 @@ constexpr double kDeg = kPi / 180.0;
 // Paper 1: measurement variance 2.28 m^2 per axis.
 const double kFixStd = std::sqrt(2.28);
 
-PfParams first_fix_params() {
+// The paper's set-up, which these tests were written for: uniform particles over a 20 m x 20 m
+// area and the sensor's std sqrt(2.28). Set explicitly: the struct's defaults are the scenarios'
+// (first_fix, a 100 m field, 1.51 m) since the parameter table became the one source.
+PfParams uniform_area_params() {
   PfParams params;
+  params.init_mode = InitMode::kUniformArea;
+  params.init_area_min_x = -10.0;
+  params.init_area_max_x = 10.0;
+  params.init_area_min_y = -10.0;
+  params.init_area_max_y = 10.0;
+  params.measurement_std_m = kFixStd;
+  params.init_fix_std_m = kFixStd;
+  return params;
+}
+
+PfParams first_fix_params() {
+  PfParams params = uniform_area_params();
   params.init_mode = InitMode::kFirstFix;
   return params;
 }
@@ -107,7 +122,7 @@ TEST(ParticleFilter, RejectsInvalidParams) {
 }
 
 TEST(ParticleFilter, UniformAreaModeStartsInsideTheAreaWithUniformHeading) {
-  PfParams params;
+  PfParams params = uniform_area_params();
   params.init_area_min_x = 2.0;
   params.init_area_max_x = 4.0;
   params.init_area_min_y = -7.0;
@@ -128,7 +143,7 @@ TEST(ParticleFilter, UniformAreaModeStartsInsideTheAreaWithUniformHeading) {
 }
 
 TEST(ParticleFilter, KnownHeadingIsGivenToEveryParticle) {
-  PfParams params;
+  PfParams params = uniform_area_params();
   params.init_theta_known = true;
   params.init_theta_rad = 3.0 * kPi;  // wrapped to pi
   const ParticleFilter filter(params, 3);
@@ -200,7 +215,7 @@ TEST(ParticleFilter, PredictionNoiseSpreadsTheCloudAndKeepsHeadingWrapped) {
 }
 
 TEST(ParticleFilter, ZeroTimeStepChangesNothing) {
-  ParticleFilter filter(PfParams{}, 7);
+  ParticleFilter filter(uniform_area_params(), 7);
   const ParticleSet before = filter.particles();
   filter.predict(1.0, 1.0, 0.0);
   EXPECT_TRUE((filter.particles().x == before.x).all());
@@ -351,8 +366,8 @@ TEST(ParticleFilter, ResamplingDecisionAlwaysMatchesTheThreshold) {
 // ---- invalid input ----
 
 TEST(ParticleFilter, NonFiniteInputThrowsAndLeavesTheStateUntouched) {
-  ParticleFilter filter(PfParams{}, 13);
-  ParticleFilter twin(PfParams{}, 13);
+  ParticleFilter filter(uniform_area_params(), 13);
+  ParticleFilter twin(uniform_area_params(), 13);
   filter.update(1.0, 1.0);
   twin.update(1.0, 1.0);
   EXPECT_THROW(filter.predict(kNan, 0.0, 0.1), std::invalid_argument);
@@ -394,7 +409,7 @@ TEST(ParticleFilter, ConvergesOnAStaticTargetFromTheUniformPrior) {
   double sum_error = 0.0;
   const int seeds = 10;
   for (int seed = 0; seed < seeds; ++seed) {
-    ParticleFilter filter(PfParams{}, derive_seed(static_cast<std::uint64_t>(seed), "static"));
+    ParticleFilter filter(uniform_area_params(), derive_seed(static_cast<std::uint64_t>(seed), "static"));
     RandomEngine world(derive_seed(static_cast<std::uint64_t>(seed), "static-world"));
     const double target_x = 3.0;
     const double target_y = -2.0;

@@ -7,7 +7,10 @@
 #include <cmath>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
+
+ROBODDS_DECLARE_COMPONENT(pf_estimator);
 
 namespace robodds::pf {
 namespace {
@@ -33,7 +36,7 @@ double fix_y(std::uint32_t robot) { return robot == 1 ? 20.0 : 60.0; }
 
 TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
   NodeHarness h(kScenario);
-  h.registry().add({"pf_estimator", "", "components/pf_estimator/config/pf_estimator.params.yaml", make_pf_estimator_node});
+  robodds::component_registration::register_pf_estimator(h.registry());
   h.feed([&h](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
       idl::Odometry odometry;  // standing still

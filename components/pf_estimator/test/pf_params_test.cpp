@@ -29,13 +29,14 @@ void expect_rejected_with_key(const std::string& key, const std::function<void(P
   EXPECT_EQ(message.rfind(key + ":", 0), 0u) << "message: " << message;
 }
 
-TEST(PfParams, DefaultsAreValidAndMatchThePaper) {
+TEST(PfParams, DefaultsAreValidAndThoseOfTheScenarios) {
   const PfParams params;
   EXPECT_NO_THROW(params.validate());
   EXPECT_EQ(params.num_particles, 1000);
   EXPECT_DOUBLE_EQ(params.resample_threshold, 500.0);
-  EXPECT_DOUBLE_EQ(params.measurement_std_m * params.measurement_std_m, 2.28);
+  EXPECT_EQ(params.measurement_std_m, 1.51);  // ~ sqrt(2.28), the paper's measurement variance
   EXPECT_EQ(params.resampling, ResamplingScheme::kSystematic);
+  EXPECT_EQ(params.init_mode, InitMode::kFirstFix);  // the paper's uniform_area is an option
 }
 
 TEST(PfParams, MessageHasKeyRequirementAndValue) {

@@ -5,6 +5,7 @@
 #include "common/random.hpp"
 #include "components/position_sensor/position_model.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
 
 namespace robodds::position_sensor {
@@ -14,9 +15,7 @@ class PositionSensorNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
     auto& p = ctx.params();
-    params_.rate_hz = p.get_double("rate_hz");
-    params_.noise_var_x_m2 = p.get_double("noise_var_x_m2");
-    params_.noise_var_y_m2 = p.get_double("noise_var_y_m2");
+    params_ = read_params(p, position_sensor_param_table());
     p.validate(params_);
     ctx.set_rate_hz(params_.rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {
@@ -52,9 +51,12 @@ class PositionSensorNode : public Component {
 
 }  // namespace
 
+params::ParamDoc position_sensor_params_doc() { return position_sensor_param_table().doc(); }
+
 std::unique_ptr<Component> make_position_sensor_node() { return std::make_unique<PositionSensorNode>(); }
 
 }  // namespace robodds::position_sensor
 
 ROBODDS_REGISTER_COMPONENT(position_sensor, "noisy absolute position: plant/state -> sensor/position",
-                           "components/position_sensor/config/position_sensor.params.yaml", robodds::position_sensor::make_position_sensor_node);
+                           "components/position_sensor/config/position_sensor.params.yaml", robodds::position_sensor::make_position_sensor_node,
+                           robodds::position_sensor::position_sensor_params_doc);

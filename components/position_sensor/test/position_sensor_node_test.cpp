@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
+
+ROBODDS_DECLARE_COMPONENT(position_sensor);
 
 namespace robodds::position_sensor {
 namespace {
@@ -34,8 +37,7 @@ idl::RobotState truth(std::uint32_t robot, std::uint64_t step) {
 
 TEST(PositionSensorNode, SamplesTheTruePositionAtItsRateStampedAndKeyed) {
   NodeHarness h(kScenario);
-  h.registry().add({"position_sensor", "", "components/position_sensor/config/position_sensor.params.yaml",
-                    make_position_sensor_node});
+  robodds::component_registration::register_position_sensor(h.registry());
   h.feed([&h](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
       h.publish("plant/state", truth(robot, step), step, step + 1);

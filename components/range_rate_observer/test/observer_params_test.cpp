@@ -54,5 +54,18 @@ TEST(LinearObserverParams, DefaultsAreValidAndBadGainsNamed) {
   EXPECT_EQ(validation_error(p), "k2: must be > 0 and finite (got nan)");
 }
 
+TEST(ObserverParamTables, DocumentEveryFieldWithItsDefault) {
+  const params::ParamDoc doc = super_twisting_param_table().doc();
+  ASSERT_EQ(doc.params.size(), 5u);
+  EXPECT_EQ(doc.params[0].key, "a");
+  EXPECT_EQ(doc.params[0].default_yaml, "2.12");
+  EXPECT_EQ(doc.params[0].range, "(0, 2.5)");
+  EXPECT_EQ(doc.params[3].range, ">= 0 (0 = plain super-twisting)");
+  const params::ParamDoc linear = linear_observer_param_table().doc();
+  ASSERT_EQ(linear.params.size(), 3u);
+  EXPECT_EQ(linear.params[1].key, "k2");
+  EXPECT_EQ(linear.params[1].default_yaml, "2.25");
+}
+
 }  // namespace
 }  // namespace robodds::range_rate

@@ -156,5 +156,17 @@ TEST(SolveRelativePose, BadInputNamesWhatIsWrong) {
   EXPECT_THROW(robust_loss_from_string("cauchy"), std::invalid_argument);
 }
 
+TEST(SolverParamTable, LossNamesRoundTripAndEveryOptionIsDocumented) {
+  for (const RobustLoss loss : {RobustLoss::kNone, RobustLoss::kHuber, RobustLoss::kSoftL1}) {
+    EXPECT_EQ(robust_loss_from_string(to_string(loss)), loss);
+  }
+  const params::ParamDoc doc = solver_param_table().doc();
+  ASSERT_EQ(doc.params.size(), 5u);
+  EXPECT_EQ(doc.params[0].key, "loss");
+  EXPECT_EQ(doc.params[0].default_yaml, "huber");
+  EXPECT_EQ(doc.params[0].range, "none | huber | soft_l1");
+  EXPECT_EQ(doc.params[2].range, ">= 1");
+}
+
 }  // namespace
 }  // namespace robodds::uwb

@@ -5,28 +5,21 @@
 
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 #include "robodds/idl/robodds.h"
+#include "components/waypoint_controller/node/waypoint_controller_params.hpp"
+#include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
 
 namespace robodds::waypoint {
 namespace {
 
-GainSet read_gains(ParamReader& p, const std::string& prefix) {
-  return GainSet{p.get_double(prefix + ".kd"), p.get_double(prefix + ".ka"), p.get_double(prefix + ".ksigma")};
-}
-
 class WaypointControllerNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
     auto& p = ctx.params();
-    const double rate_hz = p.get_double("rate_hz");
-    params_.forward_gains = read_gains(p, "forward_gains");
-    params_.backward_gains = read_gains(p, "backward_gains");
-    params_.epsilon_m = p.get_double("epsilon_m");
-    params_.max_speed_mps = p.get_double("max_speed_mps");
-    params_.max_turn_rate_radps = p.get_double("max_turn_rate_radps");
-    params_.confidence_switch_sigmas = p.get_double("confidence_switch_sigmas");
-    params_.stop_when_done = p.get_bool("stop_when_done");
-    require_valid_ = p.get_bool("require_valid_estimate");
+    const WaypointControllerNodeParams node_params = read_params(p, waypoint_controller_param_table());
+    const double rate_hz = node_params.rate_hz;
+    params_ = node_params.controller;
+    require_valid_ = node_params.require_valid_estimate;
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {
@@ -94,4 +87,5 @@ std::unique_ptr<Component> make_waypoint_controller_node() { return std::make_un
 }  // namespace robodds::waypoint
 
 ROBODDS_REGISTER_COMPONENT(waypoint_controller, "paper 1 way-point tracking: estimate/pose + mission/waypoints -> plant/cmd, control/status",
-                           "components/waypoint_controller/config/waypoint_controller.params.yaml", robodds::waypoint::make_waypoint_controller_node);
+                           "components/waypoint_controller/config/waypoint_controller.params.yaml", robodds::waypoint::make_waypoint_controller_node,
+                           robodds::waypoint::waypoint_controller_params_doc);

@@ -93,6 +93,7 @@ class WaypointClosedLoop : public ::testing::TestWithParam<TableOneCase> {};
 TEST_P(WaypointClosedLoop, ReachesAllWaypointsWithinEpsilonLikeTableOne) {
   const TableOneCase c = GetParam();
   ControllerParams params;
+  params.stop_when_done = false;  // the paper: the law stays active on the last way-point
   params.epsilon_m = c.epsilon_m;
   const RunResult run = run_paper_mission(params, 400.0);
   ASSERT_TRUE(run.done);
@@ -119,6 +120,7 @@ INSTANTIATE_TEST_SUITE_P(TableOne, WaypointClosedLoop,
 
 TEST(WaypointClosedLoopLimited, StillReachesAllWaypointsWithUnitLimits) {
   ControllerParams params;
+  params.stop_when_done = false;  // the paper: the law stays active on the last way-point
   params.epsilon_m = 0.1;
   params.max_speed_mps = 1.0;
   params.max_turn_rate_radps = 1.0;

@@ -44,6 +44,7 @@ TEST(WaypointControllerParams, DefaultsAreThePapersGainsAndPass) {
   EXPECT_EQ(params.epsilon_m, 0.1);
   EXPECT_EQ(params.max_speed_mps, 0.0);
   EXPECT_EQ(params.max_turn_rate_radps, 0.0);
+  EXPECT_TRUE(params.stop_when_done);  // not the paper's: the scenarios' (YAML) value since issue 8
 }
 
 TEST(WaypointControllerParams, PapersTableOneThresholdsAndLimitsPass) {

@@ -8,7 +8,10 @@
 
 #include "robodds/idl/robodds.h"
 #include "runtime/io.hpp"
+#include "runtime/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
+
+ROBODDS_DECLARE_COMPONENT(waypoint_controller);
 
 namespace robodds::waypoint {
 namespace {
@@ -28,8 +31,7 @@ components:
 )";
 
 void add_controller(NodeHarness& h) {
-  h.registry().add({"waypoint_controller", "", "components/waypoint_controller/config/waypoint_controller.params.yaml",
-                    make_waypoint_controller_node});
+  robodds::component_registration::register_waypoint_controller(h.registry());
 }
 
 idl::WaypointMission mission(const std::vector<std::pair<double, double>>& points) {

@@ -22,8 +22,16 @@ std::vector<Eigen::Vector2d> line_mission() {
   return {Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(10.0, 0.0), Eigen::Vector2d(20.0, 0.0)};
 }
 
+// The paper's behaviour at the last way-point: the law stays active there (stop_when_done,
+// whose default is true since the parameter table became the one source of defaults).
+ControllerParams paper_params() {
+  ControllerParams params;
+  params.stop_when_done = false;
+  return params;
+}
+
 WaypointTracker line_tracker() {
-  WaypointTracker tracker;  // epsilon 0.1 m
+  WaypointTracker tracker(paper_params());  // epsilon 0.1 m
   tracker.set_mission(line_mission());
   return tracker;
 }
@@ -253,7 +261,7 @@ TEST(WaypointTracker, StopWhenDoneCommandsZeroAfterTheLastWaypoint) {
 }
 
 TEST(WaypointTracker, WithoutStopWhenDoneTheLawStaysActiveAtTheLastWaypoint) {
-  WaypointTracker tracker;  // the paper's behaviour
+  WaypointTracker tracker(paper_params());
   tracker.set_mission({Eigen::Vector2d(0.0, 0.0)});
   EXPECT_TRUE(tracker.step(0.05, 0.0, 1.0).status.done);
   EXPECT_NE(tracker.step(0.5, 0.3, -2.0).command.omega, 0.0);

@@ -9,10 +9,11 @@
 
 #include "common/angle.hpp"
 #include "common/json_writer.hpp"
-#include "common/param_checks.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
 #include "runtime/sample_format.hpp"
+#include "sim/evaluator/node/evaluator_params.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
 
@@ -115,9 +116,9 @@ class EvaluatorNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
     auto& p = ctx.params();
-    const std::vector<std::string> topics = p.get_string_list("topics");
-    metrics_after_s_ = p.get_double("metrics_after_s");
-    p.check([this] { param_checks::require_non_negative("metrics_after_s", metrics_after_s_); });
+    const EvaluatorParams params = read_params(p, evaluator_param_table());
+    const std::vector<std::string>& topics = params.topics;
+    metrics_after_s_ = params.metrics_after_s;
     keys_ = ctx.robot_keys();
     for (const std::string& topic : topics) {
       const TopicInfo* info = find_topic(topic);
@@ -255,7 +256,7 @@ class EvaluatorNode : public Component {
   const Scenario* scenario_ = nullptr;
   std::string output_dir_;
   double step_s_ = 0.01;
-  double metrics_after_s_ = 5.0;
+  double metrics_after_s_ = 0.0;  // s, EvaluatorParams::metrics_after_s
 };
 
 }  // namespace
@@ -265,4 +266,5 @@ std::unique_ptr<Component> make_evaluator_node() { return std::make_unique<Evalu
 }  // namespace robodds::evaluator
 
 ROBODDS_REGISTER_COMPONENT(evaluator, "records topics to CSV and writes summary.json",
-                           "sim/evaluator/config/evaluator.params.yaml", robodds::evaluator::make_evaluator_node);
+                           "sim/evaluator/config/evaluator.params.yaml", robodds::evaluator::make_evaluator_node,
+                           robodds::evaluator::evaluator_params_doc);

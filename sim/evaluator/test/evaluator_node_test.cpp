@@ -13,7 +13,10 @@
 
 #include "robodds/idl/robodds.h"
 #include "runtime/error.hpp"
+#include "runtime/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
+
+ROBODDS_DECLARE_COMPONENT(evaluator);
 
 namespace robodds::evaluator {
 namespace {
@@ -32,7 +35,7 @@ components:
 )";
 
 void add_evaluator(NodeHarness& h) {
-  h.registry().add({"evaluator", "", "sim/evaluator/config/evaluator.params.yaml", make_evaluator_node});
+  robodds::component_registration::register_evaluator(h.registry());
 }
 
 std::vector<std::string> lines_of(const std::string& path) {

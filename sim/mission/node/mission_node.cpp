@@ -4,7 +4,9 @@
 #include <vector>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "sim/mission/node/mission_source_params.hpp"
 
 namespace robodds::mission {
 namespace {
@@ -12,13 +14,7 @@ namespace {
 class MissionNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
-    waypoints_ = ctx.params().get_point_list("waypoints");
-    if (waypoints_.empty()) {
-      ctx.params().fail("waypoints: the mission needs at least one way-point");
-    }
-    if (waypoints_.size() > 256) {
-      ctx.params().fail("waypoints: at most 256 way-points fit in a WaypointMission");
-    }
+    waypoints_ = read_params(ctx.params(), mission_source_param_table()).waypoints;  // 1 to 256, checked
     for (const RobotSpec& robot : ctx.robots()) {
       robots_.push_back(robot.id);
     }
@@ -57,4 +53,5 @@ std::unique_ptr<Component> make_mission_node() { return std::make_unique<Mission
 }  // namespace robodds::mission
 
 ROBODDS_REGISTER_COMPONENT(mission_source, "publishes the way-point mission (transient local) -> mission/waypoints",
-                           "sim/mission/config/mission_source.params.yaml", robodds::mission::make_mission_node);
+                           "sim/mission/config/mission_source.params.yaml", robodds::mission::make_mission_node,
+                           robodds::mission::mission_source_params_doc);

@@ -7,7 +7,10 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/error.hpp"
 #include "runtime/io.hpp"
+#include "runtime/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
+
+ROBODDS_DECLARE_COMPONENT(mission_source);
 
 namespace robodds::mission {
 namespace {
@@ -26,7 +29,7 @@ components:
 )";
 
 void add_mission(NodeHarness& h) {
-  h.registry().add({"mission_source", "", "sim/mission/config/mission_source.params.yaml", make_mission_node});
+  robodds::component_registration::register_mission_source(h.registry());
 }
 
 TEST(MissionNode, PublishesEachRobotsMissionOnceAsFinal) {

@@ -4,7 +4,9 @@
 #include <vector>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "sim/open_loop/node/open_loop_commander_params.hpp"
 #include "sim/open_loop/open_loop_commander.hpp"
 
 namespace robodds::open_loop {
@@ -14,13 +16,10 @@ class OpenLoopNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
     auto& p = ctx.params();
-    const double rate_hz = p.get_double("rate_hz");
-    params_.v_mps = p.get_double("v_mps");
-    params_.omega_bias_radps = p.get_double("omega_bias_radps");
-    params_.omega_amplitude_radps = p.get_double("omega_amplitude_radps");
-    params_.omega_period_s = p.get_double("omega_period_s");
-    params_.phase_per_robot_rad = p.get_double("phase_per_robot_rad");
-    inject_nan_at_step_ = p.get_int("inject_nan_at_step");
+    const OpenLoopNodeParams node_params = read_params(p, open_loop_commander_param_table());
+    const double rate_hz = node_params.rate_hz;
+    params_ = node_params.profile;
+    inject_nan_at_step_ = node_params.inject_nan_at_step;
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {
@@ -58,4 +57,5 @@ std::unique_ptr<Component> make_open_loop_node() { return std::make_unique<OpenL
 }  // namespace robodds::open_loop
 
 ROBODDS_REGISTER_COMPONENT(open_loop_commander, "open-loop velocity commands -> plant/cmd",
-                           "sim/open_loop/config/open_loop_commander.params.yaml", robodds::open_loop::make_open_loop_node);
+                           "sim/open_loop/config/open_loop_commander.params.yaml", robodds::open_loop::make_open_loop_node,
+                           robodds::open_loop::open_loop_commander_params_doc);

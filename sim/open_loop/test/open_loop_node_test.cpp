@@ -8,6 +8,9 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/testing/node_harness.hpp"
 #include "sim/open_loop/open_loop_commander.hpp"
+#include "runtime/registry.hpp"
+
+ROBODDS_DECLARE_COMPONENT(open_loop_commander);
 
 namespace robodds::open_loop {
 namespace {
@@ -29,7 +32,7 @@ components:
 
 TEST(OpenLoopNode, PublishesTheCommanderLawPerRobotAtItsRate) {
   NodeHarness h(kScenario);
-  h.registry().add({"open_loop_commander", "", "sim/open_loop/config/open_loop_commander.params.yaml", make_open_loop_node});
+  robodds::component_registration::register_open_loop_commander(h.registry());
   const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
   h.run({"commander"});
 

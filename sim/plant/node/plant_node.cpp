@@ -6,7 +6,9 @@
 
 #include "common/model/diff_drive_kinematics.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "sim/plant/node/plant_params.hpp"
 #include "sim/plant/plant_params.hpp"
 
 namespace robodds::plant {
@@ -16,11 +18,9 @@ class PlantNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
     auto& p = ctx.params();
-    params_.wheel_base_m = p.get_double("wheel_base_m");
-    params_.limits.max_speed_mps = p.get_double("max_speed_mps");
-    params_.limits.max_turn_rate_radps = p.get_double("max_turn_rate_radps");
-    params_.command_timeout_s = p.get_double("command_timeout_s");
-    const double rate_hz = p.get_double("rate_hz");
+    const PlantNodeParams node_params = read_params(p, plant_param_table());
+    params_ = node_params.plant;
+    const double rate_hz = node_params.rate_hz;
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {
@@ -90,4 +90,5 @@ std::unique_ptr<Component> make_plant_node() { return std::make_unique<PlantNode
 }  // namespace robodds::plant
 
 ROBODDS_REGISTER_COMPONENT(plant, "differential-drive plant (paper 1 eq. 1): plant/cmd -> plant/state",
-                           "sim/plant/config/plant.params.yaml", robodds::plant::make_plant_node);
+                           "sim/plant/config/plant.params.yaml", robodds::plant::make_plant_node,
+                           robodds::plant::plant_params_doc);

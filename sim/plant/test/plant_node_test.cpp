@@ -7,7 +7,10 @@
 #include <limits>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
+
+ROBODDS_DECLARE_COMPONENT(plant);
 
 namespace robodds::plant {
 namespace {
@@ -28,7 +31,7 @@ components:
 )";
 
 void add_plant(NodeHarness& h) {
-  h.registry().add({"plant", "", "sim/plant/config/plant.params.yaml", make_plant_node});
+  robodds::component_registration::register_plant(h.registry());
 }
 
 idl::VelocityCommand velocity(std::uint32_t robot, double v, double omega) {

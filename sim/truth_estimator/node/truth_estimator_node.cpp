@@ -3,7 +3,9 @@
 #include <limits>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "sim/truth_estimator/node/truth_estimator_params.hpp"
 
 namespace robodds::truth_estimator {
 namespace {
@@ -11,8 +13,9 @@ namespace {
 class TruthEstimatorNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
-    ctx.set_rate_hz(ctx.params().get_double("rate_hz"), "rate_hz");
-    inject_nan_at_step_ = ctx.params().get_int("inject_nan_at_step");
+    const TruthEstimatorParams params = read_params(ctx.params(), truth_estimator_param_table());
+    ctx.set_rate_hz(params.rate_hz, "rate_hz");
+    inject_nan_at_step_ = params.inject_nan_at_step;
     keys_ = ctx.robot_keys();
     truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(keys_));
     out_ = &ctx.advertise<idl::PoseEstimate>("estimate/pose");
@@ -51,4 +54,5 @@ std::unique_ptr<Component> make_truth_estimator_node() { return std::make_unique
 }  // namespace robodds::truth_estimator
 
 ROBODDS_REGISTER_COMPONENT(truth_estimator, "ideal estimator: plant/state -> estimate/pose (true pose)",
-                           "sim/truth_estimator/config/truth_estimator.params.yaml", robodds::truth_estimator::make_truth_estimator_node);
+                           "sim/truth_estimator/config/truth_estimator.params.yaml", robodds::truth_estimator::make_truth_estimator_node,
+                           robodds::truth_estimator::truth_estimator_params_doc);

@@ -7,7 +7,10 @@
 #include <cmath>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
+
+ROBODDS_DECLARE_COMPONENT(truth_estimator);
 
 namespace robodds::truth_estimator {
 namespace {
@@ -28,7 +31,7 @@ components:
 
 TEST(TruthEstimatorNode, PublishesTheTruePoseOfTheSameStepPerRobot) {
   NodeHarness h(kScenario);
-  h.registry().add({"truth_estimator", "", "sim/truth_estimator/config/truth_estimator.params.yaml", make_truth_estimator_node});
+  robodds::component_registration::register_truth_estimator(h.registry());
   h.feed([&h](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
       idl::RobotState s;

@@ -1,0 +1,18 @@
+#include "components/pf_estimator/node/pf_estimator_params.hpp"
+
+namespace robodds::pf {
+
+const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table() {
+  static const params::ParamTable<PfEstimatorNodeParams> table =
+      params::ParamTable<PfEstimatorNodeParams>(
+          "Particle-filter pose estimator (paper 1 eq. 4-7, extended to the full pose [x, y, theta]).\n"
+          "Prediction: the constant-v/omega arc driven by odometry; update: Gaussian position likelihood.")
+          .add("rate_hz", &PfEstimatorNodeParams::rate_hz, "Hz", params::positive(),
+               "estimate publication rate; must divide the simulation rate")
+          .include(&PfEstimatorNodeParams::filter, pf_param_table())
+          .add("valid_max_position_std_m", &PfEstimatorNodeParams::valid_max_position_std_m, "m", params::positive(),
+               "the estimate is valid once sqrt(trace of its xy covariance) is below this");
+  return table;
+}
+
+}  // namespace robodds::pf

@@ -1,0 +1,22 @@
+#include "components/waypoint_controller/node/waypoint_controller_params.hpp"
+
+#include "components/waypoint_controller/node/waypoint_controller_node.hpp"
+
+namespace robodds::waypoint {
+
+const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_param_table() {
+  static const params::ParamTable<WaypointControllerNodeParams> table =
+      params::ParamTable<WaypointControllerNodeParams>(
+          "Way-point controller of paper 1 (eq. 8-19). Gains are checked against eq. (11) and (16) at\n"
+          "start-up. Defaults are the paper's, except stop_when_done.")
+          .add("rate_hz", &WaypointControllerNodeParams::rate_hz, "Hz", params::positive(),
+               "control rate; must divide the simulation rate")
+          .include(&WaypointControllerNodeParams::controller, controller_param_table())
+          .add("require_valid_estimate", &WaypointControllerNodeParams::require_valid_estimate, "", params::any<bool>(),
+               "command zero while the pose estimate says it is not valid yet");
+  return table;
+}
+
+params::ParamDoc waypoint_controller_params_doc() { return waypoint_controller_param_table().doc(); }
+
+}  // namespace robodds::waypoint

@@ -1,0 +1,9 @@
+#!/usr/bin/env bash
+# Rewrites every component's config/<name>.params.yaml from its parameter table (the one source
+# of keys, defaults, units, ranges and descriptions). Run after editing a table; the unit test
+# robodds_params_files_test fails until the checked-in files match.
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+BUILD="${ROBODDS_BUILD_DIR:-$ROOT/build}"
+cmake --build "$BUILD" --target robodds_regenerate_params
+"$BUILD/tools/robodds/robodds_regenerate_params" "$ROOT"

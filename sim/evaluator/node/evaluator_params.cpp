@@ -1,0 +1,21 @@
+#include "sim/evaluator/node/evaluator_params.hpp"
+
+#include "sim/evaluator/node/evaluator_node.hpp"
+
+namespace robodds::evaluator {
+
+const params::ParamTable<EvaluatorParams>& evaluator_param_table() {
+  static const params::ParamTable<EvaluatorParams> table =
+      params::ParamTable<EvaluatorParams>(
+          "Records the listed topics for every served robot into <out>/<topic with / as _>.csv and\n"
+          "computes the scenario's metrics into <out>/summary.json at the end of the run.")
+          .add("topics", &EvaluatorParams::topics, "", params::any<std::vector<std::string>>(),
+               "topics to record (each needs a producer per robot)")
+          .add("metrics_after_s", &EvaluatorParams::metrics_after_s, "s", params::non_negative(),
+               "error statistics ignore samples before this time (filter start-up)");
+  return table;
+}
+
+params::ParamDoc evaluator_params_doc() { return evaluator_param_table().doc(); }
+
+}  // namespace robodds::evaluator

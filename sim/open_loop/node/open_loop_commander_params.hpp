@@ -1,0 +1,23 @@
+#pragma once
+// Every parameter of the open_loop_commander component: the command profile (OpenLoopParams) plus the node's own. The table is the one source of the keys,
+// defaults (the member initialisers), units, ranges and descriptions;
+// config/open_loop_commander.params.yaml is generated from it.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/param_table.hpp"
+#include "sim/open_loop/open_loop_commander.hpp"
+
+namespace robodds::open_loop {
+
+struct OpenLoopNodeParams {
+  double rate_hz = 50.0;
+  OpenLoopParams profile;
+  std::int64_t inject_nan_at_step = -1;
+};
+
+const params::ParamTable<OpenLoopNodeParams>& open_loop_commander_param_table();
+
+}  // namespace robodds::open_loop
