@@ -298,6 +298,7 @@ struct Host::Impl {
           }
           if (all_done) {
             if (tick_is_final) {
+              run.figures = RunFigures{tick_step + 1, seconds_since(start)};
               finish_components(tick_step, static_cast<double>(tick_step) * run.scenario->step_s);
               host_done = true;
             }
@@ -404,6 +405,7 @@ struct Host::Impl {
         std::this_thread::sleep_for(std::chrono::nanoseconds(std::min<std::int64_t>(sleep_ns, 50000000)));
       }
     }
+    run.figures = RunFigures{last + 1, seconds_since(start)};
     finish_components(last, static_cast<double>(last) * step_s);
     return RunStats{last + 1, seconds_since(start)};
   }
