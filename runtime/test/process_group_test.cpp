@@ -67,6 +67,14 @@ TEST(ProcessGroup, WaitAllNamesAFailureAndAcceptsSuccess) {
   EXPECT_NE(error.find("group 'b' was killed by signal 15"), std::string::npos) << error;
 }
 
+/// The command name of `pid` ("" when it is gone).
+std::string command_of(pid_t pid) {
+  std::ifstream comm("/proc/" + std::to_string(pid) + "/comm");
+  std::string name;
+  comm >> name;
+  return name;
+}
+
 /// True once `pid` is gone or a zombie (dead, not yet reaped by its new parent).
 bool is_dead(pid_t pid) {
   std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
@@ -88,6 +96,10 @@ TEST(ProcessGroup, ChildrenDieWithTheirParent) {
     std::ifstream children("/proc/" + std::to_string(getpid()) + "/task/" + std::to_string(getpid()) + "/children");
     pid_t sleeper = 0;
     children >> sleeper;
+    // Die only once the sleeper runs `sleep`: dying earlier is caught by spawn's own check.
+    for (int i = 0; i < 500 && command_of(sleeper) != "sleep"; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
     (void)!write(pipe_fds[1], &sleeper, sizeof(sleeper));
     _exit(0);
   }
@@ -97,6 +109,7 @@ TEST(ProcessGroup, ChildrenDieWithTheirParent) {
   close(pipe_fds[0]);
   waitpid(middle, nullptr, 0);
   ASSERT_GT(sleeper, 0);
+  ASSERT_EQ(command_of(sleeper), "sleep") << "the sleeper never started";
   bool dead = false;
   for (int i = 0; i < 500 && !dead; ++i) {
     dead = is_dead(sleeper);
