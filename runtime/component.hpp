@@ -37,6 +37,13 @@ class Component {
   virtual void on_finish(const StepInfo& /*info*/) {}
 };
 
+/// Wall-clock figures of the run so far, for summary.json's "run" section: the host fills them
+/// just before on_finish() (ticks = steps done, wall_time_s = s since this host's run began).
+struct RunFigures {
+  std::uint64_t ticks = 0;
+  double wall_time_s = 0.0;
+};
+
 /// What the host knows about the run, shared by all components of a process.
 struct RunContext {
   const Scenario* scenario = nullptr;
@@ -46,6 +53,9 @@ struct RunContext {
   std::string output_dir;   // where the evaluator writes CSVs and summary.json
   std::string share_dir;    // repository root or install prefix (params defaults, QoS files)
   bool single_process = false;  // every component of the run lives in this process (co-located)
+  std::string deploy_label;     // how the run is deployed ("colocated", "processes"); empty: a host
+                                // started on its own, whose evaluator writes no "run" section
+  RunFigures figures;           // filled by the host before on_finish()
 };
 
 class ComponentContext {
@@ -66,6 +76,9 @@ class ComponentContext {
   double step_s() const { return run_.scenario->step_s; }
   TimeMode mode() const { return run_.mode; }
   const std::string& output_dir() const { return run_.output_dir; }
+  const std::string& deploy_label() const { return run_.deploy_label; }
+  /// The run's figures; valid in on_finish().
+  const RunFigures& run_figures() const { return run_.figures; }
 
   /// Runs the component every round(1 / (rate_hz * step_s)) steps; the rate must divide the
   /// simulation rate (ConfigError naming `key` otherwise).

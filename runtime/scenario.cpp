@@ -254,4 +254,21 @@ Scenario load_scenario(const std::string& path) {
   return ScenarioParser(path).parse(root);
 }
 
+void apply_param_overrides(Scenario& scenario, const FlatParams& overrides, const std::string& file) {
+  for (const auto& [key, entry] : overrides) {
+    const std::size_t dot = key.find('.');
+    const std::string component = key.substr(0, dot);
+    bool found = false;
+    for (ComponentSpec& c : scenario.components) {
+      if (c.name == component && dot != std::string::npos) {
+        c.overrides[key.substr(dot + 1)] = entry;
+        found = true;
+      }
+    }
+    if (!found) {
+      throw ConfigError(located(file, key, "expected <component>.<parameter> of a scenario component"));
+    }
+  }
+}
+
 }  // namespace robodds

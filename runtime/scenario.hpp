@@ -51,4 +51,10 @@ struct Scenario {
 /// Loads and validates a scenario (throws ConfigError naming file, key and reason).
 Scenario load_scenario(const std::string& path);
 
+/// Puts `overrides` (keys "<component>.<parameter>", e.g. from load_param_file() of a
+/// `robodds host --params` file) on top of the scenario's parameter overrides. A key naming no
+/// scenario component is a ConfigError naming the overrides' file and the key. Whether the
+/// parameter exists is checked later, against the component type's defaults (merge_params()).
+void apply_param_overrides(Scenario& scenario, const FlatParams& overrides, const std::string& file);
+
 }  // namespace robodds

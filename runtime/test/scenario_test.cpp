@@ -86,3 +86,36 @@ TEST(Scenario, MissingFileIsNamed) {
 
 }  // namespace
 }  // namespace robodds
+
+namespace robodds {
+namespace {
+
+TEST(ApplyParamOverrides, PutsOverridesOnTopOfTheScenarios) {
+  Scenario s = load_scenario(test_support::write_test_file("ok.yaml", kValid));
+  const std::string file = test_support::write_test_file("over.yaml", "plant:\n  wheel_base_m: 0.5\n  gains: {kd: 2}\n");
+  apply_param_overrides(s, load_param_file(file), file);
+  const ComponentSpec& plant = s.component("plant");
+  ASSERT_EQ(plant.overrides.count("wheel_base_m"), 1u);
+  EXPECT_EQ(plant.overrides.at("wheel_base_m").yaml, "0.5");
+  EXPECT_EQ(plant.overrides.at("wheel_base_m").file, file);
+  ASSERT_EQ(plant.overrides.count("gains.kd"), 1u);
+  EXPECT_EQ(plant.overrides.at("gains.kd").yaml, "2");
+  EXPECT_TRUE(s.component("position_sensor").overrides.empty());
+}
+
+TEST(ApplyParamOverrides, UnknownComponentIsNamedWithTheFile) {
+  Scenario s = load_scenario(test_support::write_test_file("ok.yaml", kValid));
+  const std::string file = test_support::write_test_file("over.yaml", "controller:\n  gain: 1\n");
+  try {
+    apply_param_overrides(s, load_param_file(file), file);
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("controller.gain"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("expected <component>.<parameter> of a scenario component"), std::string::npos)
+        << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace robodds

@@ -7,12 +7,16 @@
 #include <vector>
 
 #include "runtime/error.hpp"
+#include "runtime/host_args.hpp"
 #include "runtime/qos_profiles.hpp"
 
 namespace robodds {
 namespace {
 
 using C = ComposeConstants;
+
+/// The run id is the same for every service of a run; compose takes it from the environment.
+const ArgPlaceholders kRunIdFromEnvironment = {{"--run-id", "${ROBODDS_RUN_ID:-1}"}};
 
 /// A YAML scalar: plain when unambiguous, otherwise double-quoted. Quoting anything with ':',
 /// '$', spaces or a number/boolean look keeps compose from reading a string as another type.
@@ -199,7 +203,10 @@ class ComposeWriter {
     Service coordinator;
     coordinator.name = C::kCoordinatorService;
     coordinator.comment = "lockstep coordinator: ticks sim/clock, waits for every group's sim/step_done; exits 0 when the run completes";
-    coordinator.command = {"--scenario", scenario_in_image, "--coordinate", "--run-id", "${ROBODDS_RUN_ID:-1}"};
+    HostArgs coordinator_args;
+    coordinator_args.scenario = scenario_in_image;
+    coordinator_args.coordinate = true;
+    coordinator.command = to_argv(coordinator_args, kRunIdFromEnvironment);
     coordinator.volumes = common_mounts;
     coordinator.depends_on = after_server;
     result.push_back(coordinator);
@@ -212,7 +219,11 @@ class ComposeWriter {
         members += (members.empty() ? "" : ", ") + name + " (" + scenario_.component(name).type + ")";
       }
       host.comment = "group " + group.name + ": " + members;
-      host.command = {"--scenario", scenario_in_image, "--group", group.name, "--run-id", "${ROBODDS_RUN_ID:-1}", "--out", out_dir()};
+      HostArgs host_args;
+      host_args.scenario = scenario_in_image;
+      host_args.group = group.name;
+      host_args.out = out_dir();
+      host.command = to_argv(host_args, kRunIdFromEnvironment);
       host.volumes = common_mounts;
       for (const std::string& name : group.components) {
         const std::string mount = read_only_mount(options_.params_files.at(scenario_.component(name).type));

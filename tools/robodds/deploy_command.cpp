@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "runtime/error.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/launch.hpp"
 #include "runtime/scenario.hpp"
 #include "tools/robodds/compose.hpp"
 
@@ -38,7 +38,7 @@ void require_in_repo(const fs::path& root, const std::string& repo_path, const s
 
 }  // namespace
 
-DeployCommand::DeployCommand(CLI::App& app) {
+DeployCommand::DeployCommand(CLI::App& app, const CommandEnv& env) : env_(env) {
   deploy_ = app.add_subcommand("deploy", "generate deployment files from a scenario");
   deploy_->require_subcommand(1);
   CLI::App* compose = deploy_->add_subcommand("compose", "docker-compose file: one service per group of the scenario + coordinator");
@@ -50,9 +50,9 @@ DeployCommand::DeployCommand(CLI::App& app) {
   compose->add_option("-o,--output", output_, "write here (default: stdout, with paths for a file in deploy/compose/)");
 }
 
-int DeployCommand::run(const std::string& repo_root) const {
+int DeployCommand::run() {
   const Scenario scenario = load_scenario(scenario_file_);
-  const fs::path root = fs::canonical(repo_root);
+  const fs::path root = fs::canonical(share_dir());
   const fs::path scenario_abs = fs::canonical(scenario_file_);
   if (!is_inside(scenario_abs, root)) {
     throw ConfigError(located(scenario_file_, "", "is outside the repository " + root.string() +
@@ -66,9 +66,7 @@ int DeployCommand::run(const std::string& repo_root) const {
   if (!output_.empty()) {
     options.repo_dir = repo_dir_seen_from(fs::weakly_canonical(fs::absolute(output_)).parent_path(), root);
   }
-  ComponentRegistry registry;
-  register_builtin_components(registry);
-  for (const ComponentType& type : registry.types()) {
+  for (const ComponentType& type : env_.registry.types()) {
     options.params_files[type.name] = type.defaults_file;
   }
 
@@ -98,6 +96,10 @@ int DeployCommand::run(const std::string& repo_root) const {
   std::printf("wrote %s (%zu groups + coordinator%s)\n", output_.c_str(), scenario.groups.size(),
               options.discovery == ComposeDiscovery::kServer ? " + discovery server" : "");
   return 0;
+}
+
+std::unique_ptr<Command> add_deploy_command(CLI::App& app, const CommandEnv& env) {
+  return std::make_unique<DeployCommand>(app, env);
 }
 
 }  // namespace robodds

@@ -2,24 +2,25 @@
 // `robodds deploy compose SCENARIO [--discovery multicast|server] [--network bridge|host] [-o FILE]`:
 // command-line wiring and path handling around the pure generator in compose.hpp.
 
-#include <CLI/CLI.hpp>
-
 #include <string>
+
+#include "tools/robodds/command.hpp"
 
 namespace robodds {
 
-class DeployCommand {
+class DeployCommand : public Command {
  public:
   /// Registers `deploy` and its `compose` subcommand on the application.
-  explicit DeployCommand(CLI::App& app);
+  DeployCommand(CLI::App& app, const CommandEnv& env);
 
-  bool parsed() const { return deploy_->parsed(); }
+  bool parsed() const override { return deploy_->parsed(); }
 
-  /// Generates the compose file. repo_root is the source tree (share dir) that holds the
-  /// scenario, the QoS files and the parameter files. Throws ConfigError on bad input.
-  int run(const std::string& repo_root) const;
+  /// Generates the compose file from the source tree (share dir) that holds the scenario, the
+  /// QoS files and the parameter files. Throws ConfigError on bad input.
+  int run() override;
 
  private:
+  const CommandEnv& env_;
   CLI::App* deploy_ = nullptr;
   std::string scenario_file_;
   std::string discovery_ = "multicast";

@@ -132,6 +132,7 @@ class EvaluatorNode : public Component {
       });
     }
     scenario_ = &ctx.scenario();
+    context_ = &ctx;
     output_dir_ = ctx.output_dir();
     step_s_ = ctx.step_s();
   }
@@ -220,6 +221,7 @@ class EvaluatorNode : public Component {
     }
     json.end_object();
     json.end_object();
+    write_run_section(json);
     json.end_object();
     const std::string path = output_dir_ + "/summary.json";
     std::ofstream out(path, std::ios::binary);
@@ -227,6 +229,23 @@ class EvaluatorNode : public Component {
     if (!out) {
       throw RunError("evaluator: cannot write " + path);
     }
+  }
+
+  /// How the run went on the wall clock (kept apart from "metrics", which are deterministic).
+  /// A host started on its own knows no deployment and writes none.
+  void write_run_section(JsonWriter& json) const {
+    if (context_->deploy_label().empty()) {
+      return;
+    }
+    const RunFigures& run = context_->run_figures();
+    const double ticks_per_s = run.wall_time_s > 0 ? static_cast<double>(run.ticks) / run.wall_time_s : 0.0;
+    json.begin_object("run");
+    json.value("deploy", context_->deploy_label());
+    json.value("mode", context_->mode() == TimeMode::kRealtime ? "realtime" : "lockstep");
+    json.value("wall_time_s", std::round(run.wall_time_s * 1e6) / 1e6);  // us, like the runner's log
+    json.value("ticks", static_cast<std::int64_t>(run.ticks));
+    json.value("ticks_per_s", std::round(ticks_per_s * 10.0) / 10.0);
+    json.end_object();
   }
 
   void write_waypoint_metrics(JsonWriter& json, std::uint32_t id, const Track& truth) const {
@@ -254,6 +273,7 @@ class EvaluatorNode : public Component {
   std::vector<std::unique_ptr<RecorderBase>> recorders_;
   Histories histories_;
   const Scenario* scenario_ = nullptr;
+  const ComponentContext* context_ = nullptr;  // owned by the host, which keeps it while it runs us
   std::string output_dir_;
   double step_s_ = 0.01;
   double metrics_after_s_ = 0.0;  // s, EvaluatorParams::metrics_after_s

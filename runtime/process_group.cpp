@@ -1,4 +1,4 @@
-#include "tools/robodds/process_group.hpp"
+#include "runtime/process_group.hpp"
 
 #include <chrono>
 #include <csignal>
@@ -8,6 +8,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "common/number_text.hpp"
 #include "runtime/error.hpp"
 
 namespace robodds {
@@ -30,7 +31,7 @@ void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>
       args.push_back(const_cast<char*>(a.c_str()));
     }
     args.push_back(nullptr);
-    execv(args[0], args.data());
+    execvp(args[0], args.data());
     std::fprintf(stderr, "[error] cannot execute %s: %s\n", args[0], std::strerror(errno));
     _exit(127);
   }
@@ -89,6 +90,33 @@ void ProcessGroup::wait_all(double timeout_s) {
       throw RunError("group '" + child.name + "' " + describe_exit(child));
     }
   }
+}
+
+int run_to_exit(const std::string& what, const std::vector<std::string>& argv, double timeout_s) {
+  ProcessGroup group;  // terminates the child if anything below throws
+  group.spawn(what, argv);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  while (true) {
+    const int status = group.poll_exit_status(0);
+    if (status >= 0) {
+      return status;
+    }
+    if (std::chrono::steady_clock::now() > deadline) {
+      throw RunError(what + " did not finish within " + shortest_text(timeout_s) + " s");
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+int ProcessGroup::poll_exit_status(std::size_t index) {
+  Child& child = children_.at(index);
+  if (!child.exited && waitpid(child.pid, &child.status, WNOHANG) == child.pid) {
+    child.exited = true;
+  }
+  if (!child.exited) {
+    return -1;
+  }
+  return WIFSIGNALED(child.status) ? 128 + WTERMSIG(child.status) : WEXITSTATUS(child.status);
 }
 
 void ProcessGroup::terminate_all(double grace_s) {

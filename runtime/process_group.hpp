@@ -1,6 +1,7 @@
 #pragma once
-// Child host processes of `robodds run --deploy processes`: spawned with a parent-death signal
-// (no orphans even if the runner is killed), polled without blocking, and always reaped.
+// Child processes (the hosts of `robodds run --deploy processes`, the plotting script): spawned
+// with a parent-death signal (no orphans even if the runner is killed), polled without
+// blocking, and always reaped.
 
 #include <string>
 #include <sys/types.h>
@@ -11,7 +12,8 @@ namespace robodds {
 class ProcessGroup {
  public:
   ~ProcessGroup();
-  /// Starts `argv` (argv[0] = executable path) as the process of group `name`.
+  /// Starts `argv` as the process of group `name`; argv[0] is an executable path, or a name
+  /// looked up in $PATH.
   void spawn(const std::string& name, const std::vector<std::string>& argv);
   /// Throws RunError naming the group if a child has exited before being expected to.
   void check_alive();
@@ -20,6 +22,8 @@ class ProcessGroup {
   std::size_t reap_finished();
   /// Waits up to timeout_s for every child to exit; throws RunError naming a group that failed.
   void wait_all(double timeout_s);
+  /// Exit code of the index-th spawned child (128 + signal if killed), -1 while it runs.
+  int poll_exit_status(std::size_t index);
   /// SIGTERM, then SIGKILL after grace_s, then reaps.
   void terminate_all(double grace_s);
 
@@ -33,5 +37,9 @@ class ProcessGroup {
   std::string describe_exit(const Child& child) const;
   std::vector<Child> children_;
 };
+
+/// Runs `argv` to its end and returns its exit code (128 + signal if killed; 127 if it cannot
+/// be executed). After timeout_s it is terminated and RunError names `what` and the timeout.
+int run_to_exit(const std::string& what, const std::vector<std::string>& argv, double timeout_s);
 
 }  // namespace robodds

@@ -1,0 +1,144 @@
+#include "runtime/host_args.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include "common/number_text.hpp"
+
+namespace robodds {
+namespace {
+
+std::string join(const std::vector<std::string>& items) {
+  std::string text;
+  for (const std::string& item : items) {
+    text += (text.empty() ? "" : ",") + item;
+  }
+  return text;
+}
+
+/// Appends "--name value" when the value differs from the default or has a placeholder.
+class ArgvWriter {
+ public:
+  explicit ArgvWriter(const ArgPlaceholders& placeholders) : placeholders_(placeholders) {}
+
+  void option(const std::string& name, const std::string& value, bool is_default) {
+    const auto placeholder = placeholders_.find(name);
+    if (placeholder != placeholders_.end()) {
+      argv_.insert(argv_.end(), {name, placeholder->second});
+    } else if (!is_default) {
+      argv_.insert(argv_.end(), {name, value});
+    }
+  }
+  void flag(const std::string& name, bool set) {
+    if (set) {
+      argv_.push_back(name);
+    }
+  }
+  std::vector<std::string> take() { return std::move(argv_); }
+
+ private:
+  const ArgPlaceholders& placeholders_;
+  std::vector<std::string> argv_;
+};
+
+}  // namespace
+
+bool DdsArgs::operator==(const DdsArgs& o) const {
+  return domain == o.domain && qos_files == o.qos_files && participant_profile == o.participant_profile;
+}
+
+bool LockstepArgs::operator==(const LockstepArgs& o) const {
+  return input_timeout_s == o.input_timeout_s && start_timeout_s == o.start_timeout_s && lockstep_window == o.lockstep_window;
+}
+
+bool HostArgs::operator==(const HostArgs& o) const {
+  return scenario == o.scenario && group == o.group && components == o.components && params == o.params &&
+         member == o.member && coordinate == o.coordinate && members == o.members && run_id == o.run_id && out == o.out &&
+         deploy == o.deploy && realtime == o.realtime && epoch_ns == o.epoch_ns && duration_s == o.duration_s &&
+         seed == o.seed && log_level == o.log_level && dds == o.dds && lockstep == o.lockstep;
+}
+
+std::vector<std::string> to_argv(const HostArgs& args, const ArgPlaceholders& placeholders) {
+  const HostArgs defaults;
+  ArgvWriter w(placeholders);
+  w.option("--scenario", args.scenario, args.scenario.empty());
+  w.option("--group", args.group, args.group.empty());
+  w.option("--components", join(args.components), args.components.empty());
+  w.option("--params", args.params, args.params.empty());
+  w.option("--member", args.member, args.member.empty());
+  w.flag("--coordinate", args.coordinate);
+  w.option("--members", join(args.members), args.members.empty());
+  w.option("--run-id", std::to_string(args.run_id), args.run_id == defaults.run_id);
+  w.option("--out", args.out, args.out.empty());
+  w.option("--deploy", args.deploy, args.deploy.empty());
+  w.flag("--realtime", args.realtime);
+  w.option("--epoch-ns", std::to_string(args.epoch_ns), args.epoch_ns == defaults.epoch_ns);
+  w.option("--duration", args.duration_s ? shortest_text(*args.duration_s) : "", !args.duration_s);
+  w.option("--seed", args.seed ? std::to_string(*args.seed) : "", !args.seed);
+  w.option("--log", args.log_level, args.log_level.empty());
+  w.option("--domain", std::to_string(args.dds.domain), args.dds.domain == defaults.dds.domain);
+  std::vector<std::string> argv = w.take();
+  for (const std::string& file : args.dds.qos_files) {
+    argv.insert(argv.end(), {"--qos", file});
+  }
+  ArgvWriter rest(placeholders);
+  rest.option("--participant-profile", args.dds.participant_profile, args.dds.participant_profile.empty());
+  rest.option("--input-timeout", shortest_text(args.lockstep.input_timeout_s),
+              args.lockstep.input_timeout_s == defaults.lockstep.input_timeout_s);
+  rest.option("--start-timeout", shortest_text(args.lockstep.start_timeout_s),
+              args.lockstep.start_timeout_s == defaults.lockstep.start_timeout_s);
+  rest.option("--lockstep-window", std::to_string(args.lockstep.lockstep_window),
+              args.lockstep.lockstep_window == defaults.lockstep.lockstep_window);
+  for (std::string& arg : rest.take()) {
+    argv.push_back(std::move(arg));
+  }
+  return argv;
+}
+
+void add_dds_options(CLI::App* app, DdsArgs& args) {
+  app->add_option("--domain", args.domain, "DDS domain id (default: $ROBODDS_DOMAIN_ID or 0)")->check(CLI::Range(0, 232));
+  app->add_option("--qos", args.qos_files,
+                  "QoS profile XML file(s) (default: deploy/qos/robodds_qos.xml, plus $ROBODDS_QOS_FILE if set)");
+  app->add_option("--participant-profile", args.participant_profile,
+                  "participant profile (default: $ROBODDS_PARTICIPANT_PROFILE or robodds.participant)");
+}
+
+void add_lockstep_options(CLI::App* app, LockstepArgs& args) {
+  app->add_option("--input-timeout", args.input_timeout_s, "s, lockstep: max wait for a component's inputs at one step");
+  app->add_option("--start-timeout", args.start_timeout_s, "s, max wait for peers to start");
+  app->add_option("--lockstep-window", args.lockstep_window,
+                  "lockstep coordinator: ticks outstanding at once (1 = each tick waits for all acknowledgements; "
+                  "more pipelines the groups, same results)")
+      ->check(CLI::Range(1, 64));
+}
+
+HostArgOptions add_host_options(CLI::App* app, HostArgs& args) {
+  HostArgOptions options;
+  options.scenario = app->add_option("--scenario", args.scenario, "scenario YAML (robots, step, parameters, groups)");
+  options.group = app->add_option("--group", args.group, "run the components of this group");
+  options.components =
+      app->add_option("--components", args.components, "run these component instances (comma separated)")->delimiter(',');
+  app->add_option("--params", args.params, "YAML map component -> parameter overrides (on top of the scenario's)");
+  app->add_option("--member", args.member, "name in acknowledgements (default: the group)");
+  app->add_flag("--coordinate", args.coordinate, "also publish ticks (a standalone lockstep host)");
+  app->add_option("--members", args.members,
+                  "with --coordinate: groups whose acknowledgements to wait for (default: this host's group, "
+                  "or every group of the scenario when the host runs no component)")
+      ->delimiter(',');
+  app->add_option("--run-id", args.run_id, "run id given by robodds run");
+  app->add_option("--out", args.out, "output directory for the evaluator");
+  app->add_option("--deploy", args.deploy,
+                  "deployment label for the \"run\" section of summary.json (set by robodds run; default: no run section)");
+  app->add_flag("--realtime", args.realtime, "wall-clock timers instead of lockstep");
+  app->add_option("--epoch-ns", args.epoch_ns, "real time: wall clock (ns) of step 0");
+  app->add_option_function<double>(
+         "--duration", [&args](const double& seconds) { args.duration_s = seconds; }, "override the scenario duration (s)")
+      ->check(CLI::PositiveNumber);
+  app->add_option_function<std::uint64_t>(
+      "--seed", [&args](const std::uint64_t& seed) { args.seed = seed; }, "override the scenario seed");
+  app->add_option("--log", args.log_level, "log level: debug, info, warn, error (default: the global --log)");
+  add_dds_options(app, args.dds);
+  add_lockstep_options(app, args.lockstep);
+  return options;
+}
+
+}  // namespace robodds

@@ -1,0 +1,79 @@
+#pragma once
+// The command line of `robodds host`, owned by one struct: the process runner and the compose
+// generator render it to an argv, `robodds host` parses it back. Both sides use this file, so
+// an option cannot be spelled one way by the writer and another by the reader.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace CLI {
+class App;
+class Option;
+}  // namespace CLI
+
+namespace robodds {
+
+/// DDS options of every subcommand (flags override the environment; see resolve_dds()).
+struct DdsArgs {
+  int domain = -1;                      // -1: $ROBODDS_DOMAIN_ID or 0
+  std::vector<std::string> qos_files;   // empty: deploy/qos/robodds_qos.xml (+ $ROBODDS_QOS_FILE)
+  std::string participant_profile;      // empty: $ROBODDS_PARTICIPANT_PROFILE or robodds.participant
+  bool operator==(const DdsArgs& other) const;
+};
+
+/// Lockstep timeouts and the coordinator's window (`robodds run` and `robodds host`).
+struct LockstepArgs {
+  double input_timeout_s = 10.0;    // s, max wait for a component's inputs at one step
+  double start_timeout_s = 30.0;    // s, max wait for peers to start
+  std::size_t lockstep_window = 1;  // coordinator: ticks outstanding at once (1 = strict)
+  bool operator==(const LockstepArgs& other) const;
+};
+
+/// Every option of `robodds host`. Defaults are the parser's defaults: to_argv() writes only
+/// the fields that differ from them, so a rendered command line stays short and stable.
+struct HostArgs {
+  std::string scenario;                 // scenario YAML file
+  std::string group;                    // run the components of this group ...
+  std::vector<std::string> components;  // ... or these component instances
+  std::string params;                   // YAML map component.parameter -> value (over the scenario's)
+  std::string member;                   // name in acknowledgements (empty: the group)
+  bool coordinate = false;              // also publish ticks (a standalone lockstep host)
+  std::vector<std::string> members;     // with coordinate: groups whose acknowledgements to wait for
+  std::uint64_t run_id = 1;             // ticks of other runs are ignored
+  std::string out;                      // output directory for the evaluator
+  std::string deploy;                   // deployment label of summary.json's "run" section (empty: none)
+  bool realtime = false;                // wall-clock timers instead of lockstep
+  std::int64_t epoch_ns = 0;            // real time: wall clock (ns) of step 0 (0 = now)
+  std::optional<double> duration_s;     // override the scenario duration (s)
+  std::optional<std::uint64_t> seed;    // override the scenario seed
+  std::string log_level;                // empty: the global --log (or $ROBODDS_LOG)
+  DdsArgs dds;
+  LockstepArgs lockstep;
+  bool operator==(const HostArgs& other) const;
+};
+
+/// Option name -> text written instead of the field's value, even when the value is the
+/// default. The compose generator uses it for values compose substitutes at start, e.g.
+/// {"--run-id", "${ROBODDS_RUN_ID:-1}"}.
+using ArgPlaceholders = std::map<std::string, std::string>;
+
+/// The arguments after `robodds host` (no executable, no subcommand), in a fixed order.
+std::vector<std::string> to_argv(const HostArgs& args, const ArgPlaceholders& placeholders = {});
+
+/// The options add_host_options() registered, for a caller that needs more (e.g. required()).
+struct HostArgOptions {
+  CLI::Option* scenario = nullptr;
+  CLI::Option* group = nullptr;
+  CLI::Option* components = nullptr;
+};
+
+/// Registers every HostArgs option on `app`, writing into `args` (which must outlive parsing).
+/// Nothing is required here: the caller decides (robodds host requires --scenario).
+HostArgOptions add_host_options(CLI::App* app, HostArgs& args);
+void add_dds_options(CLI::App* app, DdsArgs& args);
+void add_lockstep_options(CLI::App* app, LockstepArgs& args);
+
+}  // namespace robodds

@@ -1,0 +1,72 @@
+#pragma once
+// Pieces of the host shared by host.cpp, lockstep_host.cpp and lockstep_coordinator.cpp: one
+// hosted component with its step bookkeeping, and the small time/text helpers of their error
+// messages. Not a public API: components and tools use runtime/host.hpp.
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "runtime/component.hpp"
+
+namespace robodds::host_detail {
+
+using Clock = std::chrono::steady_clock;
+
+inline double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+/// Seconds with one decimal, as every timeout message prints them.
+inline std::string fmt_s(double seconds) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.1f", seconds);
+  return buf;
+}
+
+/// "; DDS: ..." naming unmatched topics and incompatible QoS, so a wait that timed out because
+/// peers never matched says so (empty when everything matched).
+inline std::string dds_report(Bus& bus) {
+  const std::string report = bus.match_report();
+  return report.empty() ? "" : "; " + report;
+}
+
+/// Sim time of `step` in ns: the stamp of every sample of that step.
+inline std::int64_t sim_stamp_ns(std::uint64_t step, double step_s) {
+  return static_cast<std::int64_t>(std::llround(static_cast<double>(step) * step_s * 1e9));
+}
+
+/// One component of this host and where it is in the run.
+struct ComponentSlot {
+  const ComponentSpec* spec = nullptr;
+  std::unique_ptr<Component> component;
+  std::unique_ptr<ComponentContext> context;
+  StepState state;
+  bool pending = false;         // lockstep: due at the current tick and not yet run
+  bool has_run = false;
+  std::uint64_t last_run_step = 0;
+  Clock::time_point last_run_wall;
+
+  /// on_step(); a component's exception becomes a RunError naming it and the step.
+  void run(std::uint64_t step, double time_s, double dt_s) {
+    try {
+      component->on_step(StepInfo{step, time_s, dt_s, state.stamp_ns});
+    } catch (const std::exception& e) {
+      throw RunError("component '" + spec->name + "' failed at step " + std::to_string(step) + ": " + e.what());
+    }
+    has_run = true;
+    last_run_step = step;
+  }
+
+  /// on_finish(); a component's exception becomes a RunError naming it.
+  void finish(std::uint64_t step, double time_s) {
+    try {
+      component->on_finish(StepInfo{step, time_s, 0.0, state.stamp_ns});
+    } catch (const std::exception& e) {
+      throw RunError("component '" + spec->name + "' failed while finishing: " + e.what());
+    }
+  }
+};
+
+}  // namespace robodds::host_detail

@@ -1,0 +1,275 @@
+#include "runtime/launch.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <filesystem>
+#include <system_error>
+#include <thread>
+#include <unistd.h>
+
+#include "runtime/error.hpp"
+#include "runtime/log.hpp"
+#include "runtime/process_group.hpp"
+#include "runtime/topic_catalog.hpp"
+
+#ifndef ROBODDS_SOURCE_DIR
+#define ROBODDS_SOURCE_DIR "."
+#endif
+
+namespace robodds {
+namespace {
+
+std::string env_or(const char* name, const std::string& fallback) {
+  const char* value = std::getenv(name);
+  return value != nullptr && *value != '\0' ? value : fallback;
+}
+
+std::string self_exe() {
+  char buf[4096];
+  const ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
+  if (n <= 0) {
+    throw RunError("cannot find the robodds executable (/proc/self/exe)");
+  }
+  buf[n] = '\0';
+  return buf;
+}
+
+std::vector<std::string> all_members(const Scenario& scenario) {
+  std::vector<std::string> members;
+  for (const GroupSpec& g : scenario.groups) {
+    members.push_back(g.name);
+  }
+  return members;
+}
+
+std::vector<std::string> all_components(const Scenario& scenario) {
+  std::vector<std::string> names;
+  for (const ComponentSpec& c : scenario.components) {
+    names.push_back(c.name);
+  }
+  return names;
+}
+
+std::uint64_t make_run_id() {
+  return (static_cast<std::uint64_t>(std::time(nullptr)) << 20) ^ static_cast<std::uint64_t>(getpid());
+}
+
+void apply(const LockstepArgs& lockstep, HostOptions& options) {
+  options.input_timeout_s = lockstep.input_timeout_s;
+  options.start_timeout_s = lockstep.start_timeout_s;
+  options.lockstep_window = lockstep.lockstep_window;
+}
+
+TimeMode time_mode(bool realtime) { return realtime ? TimeMode::kRealtime : TimeMode::kLockstep; }
+
+RunStats run_colocated(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& launch) {
+  HostOptions options;
+  options.member = "colocated";
+  options.components = all_components(scenario);
+  options.coordinator = true;
+  options.members = {"colocated"};
+  options.single_process = true;
+  apply(launch.lockstep, options);
+  options.progress = launch.progress;
+  options.stop = launch.stop;
+  return run_in_process(registry, scenario, launch.dds, options,
+                        InProcessRun{time_mode(launch.realtime), launch.out_dir, to_string(Deploy::kColocated)});
+}
+
+/// The command line of the child host of `group`.
+std::vector<std::string> child_argv(const Scenario& scenario, const LaunchOptions& launch, const std::string& group,
+                                    std::uint64_t run_id, std::int64_t epoch_ns) {
+  HostArgs args;
+  args.scenario = launch.scenario_file;
+  args.group = group;
+  args.run_id = run_id;
+  args.out = launch.out_dir;
+  args.deploy = to_string(Deploy::kProcesses);
+  args.realtime = launch.realtime;
+  args.epoch_ns = launch.realtime ? epoch_ns : 0;
+  args.seed = scenario.seed;
+  args.duration_s = scenario.duration_s;
+  args.log_level = launch.log_level;
+  args.dds.domain = launch.dds.domain_id;
+  args.dds.qos_files = launch.dds.qos_files;
+  args.dds.participant_profile = launch.dds.participant_profile;
+  args.lockstep.input_timeout_s = launch.lockstep.input_timeout_s;
+  args.lockstep.start_timeout_s = launch.lockstep.start_timeout_s;
+  std::vector<std::string> argv = {self_exe(), "host"};
+  for (std::string& arg : to_argv(args)) {
+    argv.push_back(std::move(arg));
+  }
+  return argv;
+}
+
+RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& launch) {
+  // Validate everything in this process first so that bad input fails before spawning.
+  for (const ComponentSpec& c : scenario.components) {
+    registry.get(c.type);
+  }
+  const std::uint64_t run_id = make_run_id();
+  timespec ts{};
+  clock_gettime(CLOCK_REALTIME, &ts);
+  const std::int64_t epoch_ns = (static_cast<std::int64_t>(ts.tv_sec) + 2) * 1000000000LL;  // start in 2 s
+  ProcessGroup children;
+  for (const GroupSpec& group : scenario.groups) {
+    children.spawn(group.name, child_argv(scenario, launch, group.name, run_id, epoch_ns));
+  }
+  RunStats stats;
+  if (launch.realtime) {
+    const auto start = std::chrono::steady_clock::now();
+    const double limit = 2.0 + scenario.duration_s + launch.lockstep.start_timeout_s;
+    while (children.reap_finished() > 0) {
+      if (launch.stop != nullptr && launch.stop->load()) {
+        throw RunError("interrupted by a signal");
+      }
+      if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > limit) {
+        throw RunError("real-time run did not finish within " + std::to_string(limit) + " s");
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    stats.steps = scenario.last_step() + 1;
+    stats.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return stats;
+  }
+  // Lockstep: this process is the coordinator alone (no components), the children the hosts.
+  HostOptions options;
+  options.coordinator = true;
+  options.members = all_members(scenario);
+  options.run_id = run_id;
+  apply(launch.lockstep, options);
+  options.progress = launch.progress;
+  options.poll = [&children] { children.check_alive(); };
+  options.stop = launch.stop;
+  stats = run_in_process(registry, scenario, launch.dds, options, InProcessRun{TimeMode::kLockstep, launch.out_dir, ""});
+  children.wait_all(30.0);
+  return stats;
+}
+
+}  // namespace
+
+const char* to_string(Deploy deploy) { return deploy == Deploy::kProcesses ? "processes" : "colocated"; }
+
+std::string share_dir() { return env_or("ROBODDS_SHARE_DIR", ROBODDS_SOURCE_DIR); }
+
+DdsOptions resolve_dds(const DdsArgs& args, const std::string& participant_name) {
+  DdsOptions o;
+  const std::string env_domain = env_or("ROBODDS_DOMAIN_ID", "0");
+  try {
+    o.domain_id = args.domain >= 0 ? args.domain : std::stoi(env_domain);
+  } catch (const std::exception&) {
+    throw ConfigError("ROBODDS_DOMAIN_ID: expected an integer 0..232, got '" + env_domain + "'");
+  }
+  if (o.domain_id < 0 || o.domain_id > 232) {
+    throw ConfigError("ROBODDS_DOMAIN_ID: " + std::to_string(o.domain_id) + " is outside 0..232");
+  }
+  if (!args.qos_files.empty()) {
+    o.qos_files = args.qos_files;
+  } else {
+    o.qos_files.push_back(share_dir() + "/deploy/qos/robodds_qos.xml");
+    const std::string extra = env_or("ROBODDS_QOS_FILE", "");
+    if (!extra.empty() && extra != o.qos_files.front()) {
+      o.qos_files.push_back(extra);
+    }
+  }
+  o.participant_profile = !args.participant_profile.empty()
+                              ? args.participant_profile
+                              : env_or("ROBODDS_PARTICIPANT_PROFILE", kDefaultParticipantProfile);
+  o.participant_name = participant_name;
+  return o;
+}
+
+RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scenario, const DdsOptions& dds,
+                        HostOptions options, const InProcessRun& in_process) {
+  auto bus = make_dds_bus(dds);
+  Notifier notifier;
+  RunContext run;
+  run.scenario = &scenario;
+  run.bus = bus.get();
+  run.notifier = &notifier;
+  run.mode = in_process.mode;
+  run.output_dir = in_process.out_dir;
+  run.share_dir = share_dir();
+  run.single_process = options.single_process;
+  run.deploy_label = in_process.deploy_label;
+  Host host(registry, run, options);
+  // The readers call into the host's inputs and the notifier: delete them first, also on a throw.
+  struct ReaderCloser {
+    DdsBus& bus;
+    ~ReaderCloser() { bus.close_readers(); }
+  } closer{*bus};
+  host.configure();
+  bus->start();
+  const RunStats stats = host.run();
+  bus->flush(std::chrono::milliseconds(2000));
+  return stats;
+}
+
+RunStats launch_run(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& options) {
+  return options.deploy == Deploy::kColocated ? run_colocated(registry, scenario, options)
+                                              : run_as_processes(registry, scenario, options);
+}
+
+void run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop) {
+  Scenario scenario = load_scenario(args.scenario);
+  if (args.seed) {
+    scenario.seed = *args.seed;
+  }
+  if (args.duration_s) {
+    scenario.duration_s = *args.duration_s;
+  }
+  if (!args.params.empty()) {
+    apply_param_overrides(scenario, load_param_file(args.params), args.params);
+  }
+  HostOptions options;
+  if (!args.group.empty()) {
+    options.components = scenario.group(args.group).components;
+    options.member = args.group;
+  } else if (!args.components.empty()) {
+    for (const std::string& c : args.components) {
+      scenario.component(c);
+    }
+    options.components = args.components;
+    options.member = "host";
+  } else if (args.coordinate) {
+    options.member = "coordinator";  // a coordinator alone (e.g. on its own machine): ticks only
+  } else {
+    throw ConfigError("robodds host: give --group or --components (or --coordinate alone)");
+  }
+  if (!args.member.empty()) {
+    options.member = args.member;
+  }
+  options.run_id = args.run_id;
+  options.coordinator = args.coordinate;
+  options.members = !args.members.empty()         ? args.members
+                    : options.components.empty() ? all_members(scenario)
+                                                 : std::vector<std::string>{options.member};
+  options.realtime_epoch_ns = args.epoch_ns;
+  apply(args.lockstep, options);
+  options.stop = stop;
+  run_in_process(registry, scenario, resolve_dds(args.dds, "robodds-" + options.member), options,
+                 InProcessRun{time_mode(args.realtime), args.out, args.deploy});
+}
+
+void make_output_dir(const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) {
+    throw ConfigError(located(dir, "", "cannot create the output directory: " + error.message()));
+  }
+}
+
+int draw_plots(const std::string& out_dir, double timeout_s) {
+  const std::string script = share_dir() + "/sim/report/report.py";
+  std::fflush(stdout);  // our buffered output first, then the child's
+  try {
+    return run_to_exit("python3 " + script, {"python3", script, out_dir}, timeout_s);
+  } catch (const RunError& e) {
+    log::warn("report", e.what());
+    return 1;
+  }
+}
+
+}  // namespace robodds

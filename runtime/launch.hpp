@@ -1,0 +1,73 @@
+#pragma once
+// Launching runs: a scenario's components in this process (co-located, or the share of one
+// `robodds host`), or one child `robodds host` per deployment group with this process as the
+// lockstep coordinator; plus the small process chores around a run (output directory, plots).
+// The CLI only parses its options into these structs and calls these functions.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "runtime/dds/bus.hpp"
+#include "runtime/host.hpp"
+#include "runtime/host_args.hpp"
+#include "runtime/registry.hpp"
+#include "runtime/scenario.hpp"
+
+namespace robodds {
+
+enum class Deploy { kColocated, kProcesses };
+
+/// "colocated" / "processes": the --deploy value and the "deploy" of summary.json's run section.
+const char* to_string(Deploy deploy);
+
+/// What `robodds run` asks for.
+struct LaunchOptions {
+  std::string scenario_file;  // given to the child hosts (they load it themselves)
+  Deploy deploy = Deploy::kColocated;
+  bool realtime = false;      // wall-clock timers instead of lockstep
+  std::string out_dir;        // where the evaluator writes
+  DdsOptions dds;             // resolved; the child hosts get the same domain, profile and files
+  LockstepArgs lockstep;
+  std::string log_level;      // of the child hosts
+  std::function<void(std::uint64_t step, std::uint64_t last_step)> progress;
+  const std::atomic<bool>* stop = nullptr;  // set by a signal handler
+};
+
+/// Runs `scenario` (already loaded, with the run's --seed and --duration applied) to its end.
+/// The figures are this process's: the co-located host, the lockstep coordinator, or the wait
+/// for the children of a real-time run across processes. ConfigError on bad input (checked
+/// before any child starts), RunError on a failed or timed-out run.
+RunStats launch_run(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& options);
+
+/// `robodds host`: runs what `args` selects (a group, components, and/or the coordinator) in
+/// this process until the run ends.
+void run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop);
+
+/// Where this process runs components: the bus, the run's context and its host.
+struct InProcessRun {
+  TimeMode mode = TimeMode::kLockstep;
+  std::string out_dir;
+  std::string deploy_label;  // non-empty: the evaluator writes summary.json's "run" section
+};
+
+/// Creates a DDS bus and a Host for `options.components` and runs them to the end.
+RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scenario, const DdsOptions& dds,
+                        HostOptions options, const InProcessRun& run);
+
+/// The DDS options of `args`, the environment filling what is not given:
+/// $ROBODDS_DOMAIN_ID (ConfigError if not 0..232), $ROBODDS_QOS_FILE, $ROBODDS_PARTICIPANT_PROFILE.
+DdsOptions resolve_dds(const DdsArgs& args, const std::string& participant_name);
+
+/// Repository root or install prefix: $ROBODDS_SHARE_DIR, else the source tree it was built from.
+std::string share_dir();
+
+/// Creates `dir` and its parents (ConfigError naming it if that fails).
+void make_output_dir(const std::string& dir);
+
+/// Draws a run's plots: `python3 sim/report/report.py OUT_DIR` as a child process (stdout and
+/// stderr shared), waited for at most timeout_s. Returns the script's exit code.
+int draw_plots(const std::string& out_dir, double timeout_s = 600.0);
+
+}  // namespace robodds

@@ -1,0 +1,146 @@
+#include "runtime/lockstep_host.hpp"
+
+#include "runtime/log.hpp"
+
+namespace robodds {
+
+using host_detail::Clock;
+using host_detail::dds_report;
+using host_detail::fmt_s;
+using host_detail::seconds_since;
+using host_detail::sim_stamp_ns;
+
+LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& slots)
+    : run_(run), options_(options), slots_(slots) {
+  state_.mode = run.mode;
+  const TopicInfo& clock = topic_info("sim/clock");
+  const TopicInfo& done = topic_info("sim/step_done");
+  const std::string profile = qos_profile_for(clock, run.mode, run.single_process);
+  InputOptions tick_options;
+  tick_options.ignore_step = true;
+  tick_input_ = std::make_unique<Input<idl::SimTick>>(clock.name, options.member, &state_, run.notifier, tick_options);
+  auto* raw = tick_input_.get();
+  const std::uint64_t run_id = options.run_id;
+  tick_reader_ = run.bus->reader(clock.name, clock.type_name, profile,
+                                 [raw, run_id](const void* s) {
+                                   const auto& tick = *static_cast<const idl::SimTick*>(s);
+                                   if (tick.run_id() == run_id) {  // ignore ticks of other runs
+                                     raw->on_sample(tick);
+                                   }
+                                 },
+                                 [this](const std::string& e) { log::warn(options_.member, "sim/clock: " + e); });
+  ack_output_ = std::make_unique<Output<idl::StepDone>>(run.bus->writer(done.name, done.type_name, profile), &state_);
+}
+
+void LockstepHost::begin(Clock::time_point start) {
+  start_ = start;
+  waiting_since_ = start;
+}
+
+bool LockstepHost::step() {
+  bool progressed = false;
+  if (!tick_active_) {
+    progressed = take_tick();
+  }
+  if (tick_active_) {
+    progressed = run_due_components() || progressed;
+  }
+  return progressed;
+}
+
+bool LockstepHost::take_tick() {
+  for (idl::SimTick& tick : tick_input_->take_new(0)) {
+    if (tick.run_id() == options_.run_id) {
+      tick_queue_.push_back(std::move(tick));
+    }
+  }
+  if (tick_queue_.empty()) {
+    const double limit = first_tick_ ? options_.start_timeout_s : options_.tick_timeout_s;
+    if (seconds_since(waiting_since_) > limit) {
+      throw RunError(options_.member + ": no tick on sim/clock for " + fmt_s(limit) + " s " +
+                     (first_tick_ ? "after start" : "after step " + std::to_string(tick_step_)) +
+                     ": is the coordinator (robodds run) alive and on the same domain?" + dds_report(*run_.bus));
+    }
+    return false;
+  }
+  const idl::SimTick tick = tick_queue_.front();
+  tick_queue_.pop_front();
+  tick_active_ = true;
+  tick_step_ = tick.header().step();
+  tick_is_final_ = tick.final_tick();
+  components_run_ = 0;
+  first_tick_ = false;
+  for (auto& slot : slots_) {
+    slot->pending = tick_step_ % slot->state.period_steps == 0;
+    slot->state.step = tick_step_;
+    slot->state.stamp_ns = sim_stamp_ns(tick_step_, run_.scenario->step_s);
+  }
+  waiting_since_ = Clock::now();
+  return true;
+}
+
+bool LockstepHost::run_due_components() {
+  const double step_s = run_.scenario->step_s;
+  bool progressed = false;
+  bool all_done = true;
+  for (auto& slot : slots_) {
+    if (!slot->pending) {
+      continue;
+    }
+    std::string missing;
+    const InputBase* blocking = nullptr;
+    for (const auto& input : slot->context->inputs()) {
+      if (!input->ready(tick_step_, &missing)) {
+        blocking = input.get();
+        break;
+      }
+    }
+    if (blocking != nullptr) {
+      all_done = false;
+      if (seconds_since(waiting_since_) > options_.input_timeout_s) {
+        throw RunError("lockstep: component '" + slot->spec->name + "' waited " + fmt_s(options_.input_timeout_s) +
+                       " s at step " + std::to_string(tick_step_) + " for topic " + blocking->topic() + ", " + missing +
+                       dds_report(*run_.bus));
+      }
+      continue;
+    }
+    const double time_s = static_cast<double>(tick_step_) * step_s;
+    const double dt_s = slot->has_run ? static_cast<double>(tick_step_ - slot->last_run_step) * step_s : 0.0;
+    slot->run(tick_step_, time_s, dt_s);
+    slot->pending = false;
+    ++components_run_;
+    progressed = true;
+  }
+  if (!all_done) {
+    return progressed;
+  }
+  if (tick_is_final_) {
+    run_.figures = RunFigures{tick_step_ + 1, seconds_since(start_)};
+    for (auto& slot : slots_) {
+      slot->finish(tick_step_, static_cast<double>(tick_step_) * step_s);
+    }
+    done_ = true;
+  }
+  publish_ack(tick_step_, components_run_, "");
+  tick_active_ = false;
+  steps_done_ = tick_step_ + 1;
+  waiting_since_ = Clock::now();
+  return true;
+}
+
+void LockstepHost::publish_failure(const std::string& error) { publish_ack(tick_step_, 0, error); }
+
+void LockstepHost::publish_ack(std::uint64_t step, std::uint64_t components_run, const std::string& error) {
+  idl::StepDone ack;
+  ack.member(options_.member);
+  ack.run_id(options_.run_id);
+  ack.components_run(static_cast<std::uint32_t>(components_run));
+  ack.failed(!error.empty());
+  ack.error(error.substr(0, 500));
+  state_.step = step;
+  state_.period_steps = 1;
+  state_.stamp_ns = sim_stamp_ns(step, run_.scenario->step_s);
+  ack_output_->publish(ack);
+}
+
+}  // namespace robodds

@@ -1,0 +1,137 @@
+#include "runtime/host_args.hpp"
+
+#include <gtest/gtest.h>
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+#include <limits>
+
+namespace robodds {
+namespace {
+
+/// Parses `argv` (the arguments after `robodds host`) the way `robodds host` does.
+HostArgs parse(const std::vector<std::string>& argv) {
+  HostArgs args;
+  CLI::App app;
+  add_host_options(&app, args);
+  std::vector<const char*> raw = {"host"};
+  for (const std::string& a : argv) {
+    raw.push_back(a.c_str());
+  }
+  app.parse(static_cast<int>(raw.size()), raw.data());
+  return args;
+}
+
+HostArgs every_field_set() {
+  HostArgs a;
+  a.scenario = "sim/scenarios/paper1_ideal.yaml";
+  a.group = "estimator";
+  a.components = {"plant", "position_sensor"};
+  a.params = "/tmp/over rides.yaml";  // a space: one argv element, no quoting
+  a.member = "m1";
+  a.coordinate = true;
+  a.members = {"sim", "estimator"};
+  a.run_id = std::numeric_limits<std::uint64_t>::max();
+  a.out = "out/x";
+  a.deploy = "processes";
+  a.realtime = true;
+  a.epoch_ns = 1764633600123456789LL;
+  a.duration_s = 0.1 + 0.2;  // not a short decimal: must survive the text round trip exactly
+  a.seed = 0;                // given, although 0
+  a.log_level = "debug";
+  a.dds.domain = 102;
+  a.dds.qos_files = {"a.xml", "b.xml"};
+  a.dds.participant_profile = "robodds.participant.udp_only";
+  a.lockstep.input_timeout_s = 2.5;
+  a.lockstep.start_timeout_s = 1.0 / 3.0;
+  a.lockstep.lockstep_window = 8;
+  return a;
+}
+
+TEST(HostArgs, RenderThenParseGivesTheSameStruct) {
+  const HostArgs original = every_field_set();
+  const HostArgs parsed = parse(to_argv(original));
+  EXPECT_TRUE(parsed == original);
+  // Field by field, so that a failure names the field (and operator== cannot hide one).
+  EXPECT_EQ(parsed.scenario, original.scenario);
+  EXPECT_EQ(parsed.components, original.components);
+  EXPECT_EQ(parsed.params, original.params);
+  EXPECT_EQ(parsed.members, original.members);
+  EXPECT_EQ(parsed.run_id, original.run_id);
+  EXPECT_EQ(parsed.deploy, original.deploy);
+  EXPECT_EQ(parsed.epoch_ns, original.epoch_ns);
+  EXPECT_EQ(parsed.duration_s, original.duration_s);
+  EXPECT_EQ(parsed.seed, original.seed);
+  EXPECT_EQ(parsed.log_level, original.log_level);
+  EXPECT_TRUE(parsed.dds == original.dds);
+  EXPECT_EQ(parsed.lockstep.start_timeout_s, original.lockstep.start_timeout_s);
+  EXPECT_EQ(parsed.lockstep.lockstep_window, original.lockstep.lockstep_window);
+}
+
+TEST(HostArgs, EachFieldAloneSurvivesTheRoundTrip) {
+  // A field that to_argv forgets, or that operator== ignores, shows up here as a difference
+  // from the default after the round trip.
+  const HostArgs full = every_field_set();
+  const std::vector<std::function<void(HostArgs&)>> set_one = {
+      [&](HostArgs& a) { a.scenario = full.scenario; },   [&](HostArgs& a) { a.group = full.group; },
+      [&](HostArgs& a) { a.components = full.components; }, [&](HostArgs& a) { a.params = full.params; },
+      [&](HostArgs& a) { a.member = full.member; },       [&](HostArgs& a) { a.coordinate = true; },
+      [&](HostArgs& a) { a.members = full.members; },     [&](HostArgs& a) { a.run_id = 7; },
+      [&](HostArgs& a) { a.out = full.out; },             [&](HostArgs& a) { a.deploy = full.deploy; },
+      [&](HostArgs& a) { a.realtime = true; },            [&](HostArgs& a) { a.epoch_ns = full.epoch_ns; },
+      [&](HostArgs& a) { a.duration_s = full.duration_s; }, [&](HostArgs& a) { a.seed = 5; },
+      [&](HostArgs& a) { a.log_level = "warn"; },         [&](HostArgs& a) { a.dds.domain = 0; },
+      [&](HostArgs& a) { a.dds.qos_files = {"q.xml"}; },  [&](HostArgs& a) { a.dds.participant_profile = "p"; },
+      [&](HostArgs& a) { a.lockstep.input_timeout_s = 3; }, [&](HostArgs& a) { a.lockstep.start_timeout_s = 4; },
+      [&](HostArgs& a) { a.lockstep.lockstep_window = 2; },
+  };
+  for (std::size_t i = 0; i < set_one.size(); ++i) {
+    HostArgs one;
+    set_one[i](one);
+    EXPECT_FALSE(one == HostArgs{}) << "field " << i << " is not compared";
+    const std::vector<std::string> argv = to_argv(one);
+    EXPECT_FALSE(argv.empty()) << "field " << i << " is not rendered";
+    EXPECT_TRUE(parse(argv) == one) << "field " << i << " does not survive: " << ::testing::PrintToString(argv);
+  }
+}
+
+TEST(HostArgs, DefaultsRenderNothing) {
+  EXPECT_TRUE(to_argv(HostArgs{}).empty());
+  EXPECT_TRUE(parse({}) == HostArgs{});
+}
+
+TEST(HostArgs, FixedOrderAndPlaceholders) {
+  HostArgs a;
+  a.scenario = "/opt/robodds/s.yaml";
+  a.group = "sim";
+  a.out = "/opt/robodds/out/s";
+  const ArgPlaceholders run_id = {{"--run-id", "${ROBODDS_RUN_ID:-1}"}};
+  // A placeholder is written even for a default value (compose needs the variable).
+  EXPECT_EQ(to_argv(a, run_id), (std::vector<std::string>{"--scenario", "/opt/robodds/s.yaml", "--group", "sim", "--run-id",
+                                                           "${ROBODDS_RUN_ID:-1}", "--out", "/opt/robodds/out/s"}));
+  HostArgs coordinator;
+  coordinator.scenario = "s.yaml";
+  coordinator.coordinate = true;
+  EXPECT_EQ(to_argv(coordinator, run_id),
+            (std::vector<std::string>{"--scenario", "s.yaml", "--coordinate", "--run-id", "${ROBODDS_RUN_ID:-1}"}));
+}
+
+TEST(HostArgs, ParserRequiresNothingByItself) {
+  HostArgs args;
+  CLI::App app;
+  const HostArgOptions options = add_host_options(&app, args);
+  const char* argv[] = {"host", "--coordinate"};
+  EXPECT_NO_THROW(app.parse(2, argv));
+  ASSERT_NE(options.scenario, nullptr);
+  EXPECT_FALSE(options.scenario->get_required());
+}
+
+TEST(HostArgs, ParserChecksRanges) {
+  EXPECT_THROW(parse({"--domain", "233"}), CLI::ValidationError);
+  EXPECT_THROW(parse({"--lockstep-window", "0"}), CLI::ValidationError);
+  EXPECT_THROW(parse({"--duration", "0"}), CLI::ValidationError);
+}
+
+}  // namespace
+}  // namespace robodds

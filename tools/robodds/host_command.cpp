@@ -1,0 +1,37 @@
+// `robodds host`: some of a scenario's components (and/or the lockstep coordinator) in this
+// process; the options are HostArgs (runtime/host_args.hpp), which the runner renders.
+#include "runtime/launch.hpp"
+#include "runtime/log.hpp"
+#include "tools/robodds/command.hpp"
+
+namespace robodds {
+namespace {
+
+class HostCommand : public Command {
+ public:
+  HostCommand(CLI::App& app, const CommandEnv& env) : env_(env) {
+    cmd_ = app.add_subcommand("host", "run some of a scenario's components in this process");
+    add_host_options(cmd_, args_).scenario->required();
+  }
+
+  bool parsed() const override { return cmd_->parsed(); }
+
+  int run() override {
+    if (!args_.log_level.empty()) {
+      log::set_level(log::parse_level(args_.log_level));
+    }
+    run_host(env_.registry, args_, &env_.stop);
+    return 0;
+  }
+
+ private:
+  const CommandEnv& env_;
+  CLI::App* cmd_ = nullptr;
+  HostArgs args_;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> add_host_command(CLI::App& app, const CommandEnv& env) { return std::make_unique<HostCommand>(app, env); }
+
+}  // namespace robodds
