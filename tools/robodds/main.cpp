@@ -19,6 +19,7 @@
 #include "runtime/host.hpp"
 #include "runtime/log.hpp"
 #include "runtime/sample_format.hpp"
+#include "runtime/share_dir.hpp"
 #include "tools/robodds/builtin_components.hpp"
 #include "tools/robodds/deploy_command.hpp"
 #include "tools/robodds/process_group.hpp"
@@ -47,7 +48,7 @@ std::string env_or(const char* name, const std::string& fallback) {
   return value != nullptr && *value != '\0' ? value : fallback;
 }
 
-std::string share_dir() { return env_or("ROBODDS_SHARE_DIR", ROBODDS_SOURCE_DIR); }
+std::string share_dir() { return share_dir_of_this_process(ROBODDS_SOURCE_DIR); }
 
 std::string self_exe() {
   char buf[4096];
