@@ -36,3 +36,30 @@ function(robodds_benchmark name)
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} benchmark::benchmark robodds_warnings)
 endfunction()
+
+# Install layout. runtime/share_dir.hpp finds an installed share dir as
+# <dir of the executable>/../share/robodds, so these two are fixed (not GNUInstallDirs cache
+# variables a packager could move apart).
+set(ROBODDS_INSTALL_BIN_DIR bin)
+set(ROBODDS_INSTALL_SHARE_DIR share/robodds)
+
+# robodds_install_share(FILES f...)
+# Installs files of the calling folder into the share dir at their path relative to the
+# repository root, which is where the runtime looks for them: e.g. config/pf_estimator.params.yaml
+# called from components/pf_estimator goes to share/robodds/components/pf_estimator/config/.
+# Install component "runtime" (what the Debian package holds).
+function(robodds_install_share)
+  cmake_parse_arguments(ARG "" "" "FILES" ${ARGN})
+  if(ARG_UNPARSED_ARGUMENTS OR NOT ARG_FILES)
+    message(FATAL_ERROR "robodds_install_share: expected FILES f..., got: ${ARGN}")
+  endif()
+  foreach(file IN LISTS ARG_FILES)
+    get_filename_component(absolute "${file}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
+    if(NOT EXISTS "${absolute}")
+      message(FATAL_ERROR "robodds_install_share: ${absolute} does not exist")
+    endif()
+    file(RELATIVE_PATH relative "${PROJECT_SOURCE_DIR}" "${absolute}")
+    get_filename_component(relative_dir "${relative}" DIRECTORY)
+    install(FILES "${absolute}" DESTINATION "${ROBODDS_INSTALL_SHARE_DIR}/${relative_dir}" COMPONENT runtime)
+  endforeach()
+endfunction()
