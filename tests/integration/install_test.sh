@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# The installed tree works on its own: `cmake --install BUILD --prefix P` gives P/bin/robodds and
+# P/share/robodds/..., and the installed binary, started outside the source tree with
+# ROBODDS_SHARE_DIR unset, finds its QoS profiles and parameter defaults in P/share/robodds
+# (runtime/share_dir.hpp) and produces byte for byte what the build-tree binary produces:
+#   1. `P/bin/robodds run` of plant_smoke, co-located;
+#   2. one group (sensing) hosted by the installed binary, the other groups and the lockstep
+#      coordinator by the build-tree binary;
+#   3. the installed binary reads P/share/robodds, not the source tree it was built from: with an
+#      installed defaults file removed it fails naming that file; ROBODDS_SHARE_DIR still wins.
+# Extra argument: the build directory to install from.
+source "$(dirname "$0")/lib.sh"
+BUILD="$4"
+PREFIX="$WORK/prefix"
+INSTALLED="$PREFIX/bin/robodds"
+SHARE="$PREFIX/share/robodds"
+S="$SRC/sim/scenarios/plant_smoke.yaml"
+S_INSTALLED="$SHARE/sim/scenarios/plant_smoke.yaml"
+unset ROBODDS_SHARE_DIR
+
+cmake --install "$BUILD" --prefix "$PREFIX" >"$WORK/install.log" 2>&1 || fail "cmake --install failed: $(cat "$WORK/install.log")"
+for f in bin/robodds share/robodds/deploy/qos/robodds_qos.xml share/robodds/sim/report/report.py \
+         share/robodds/sim/scenarios/plant_smoke.yaml share/robodds/components/pf_estimator/config/pf_estimator.params.yaml \
+         share/robodds/sim/plant/config/plant.params.yaml; do
+  [[ -e "$PREFIX/$f" ]] || fail "cmake --install did not install $f: $(find "$PREFIX" -type f)"
+done
+cmp "$S" "$S_INSTALLED" || fail "the installed scenario differs from the source one"
+
+"$ROBODDS" --log warn run "$S" --domain "$DOMAIN" --out "$WORK/reference" --no-plots >"$WORK/reference.log" 2>&1 ||
+  fail "build-tree co-located run failed: $(cat "$WORK/reference.log")"
+
+# 1. Co-located, from a directory outside the source tree, results relative to it.
+mkdir -p "$WORK/elsewhere"
+(cd "$WORK/elsewhere" && "$INSTALLED" --log warn run "$S_INSTALLED" --domain "$DOMAIN" --out out/plant_smoke --no-plots) \
+  >"$WORK/installed.log" 2>&1 || fail "installed co-located run failed: $(cat "$WORK/installed.log")"
+same_outputs "$WORK/reference" "$WORK/elsewhere/out/plant_smoke"
+echo "ok: installed co-located run byte-identical to the build-tree run ($N_CSV CSVs)"
+
+# 2. The sensing group from the installed binary, the rest from the build tree.
+out="$WORK/groups"
+C=(--run-id "$$" --domain "$DOMAIN" --start-timeout 20 --input-timeout 20)
+pids=()
+for g in control sim evaluation; do
+  "$ROBODDS" --log warn host --scenario "$S" --group "$g" --out "$out" "${C[@]}" >"$WORK/group.$g.log" 2>&1 &
+  pids+=("$!")
+  cleanup_pids+=("$!")
+done
+(cd "$WORK/elsewhere" && exec "$INSTALLED" --log warn host --scenario "$S_INSTALLED" --group sensing --out "$out" "${C[@]}") \
+  >"$WORK/group.sensing.log" 2>&1 &
+pids+=("$!")
+cleanup_pids+=("$!")
+rc=0
+timeout -k 5 120 "$ROBODDS" --log warn host --scenario "$S" --coordinate "${C[@]}" >"$WORK/coordinator.log" 2>&1 || rc=$?
+for pid in "${pids[@]}"; do
+  wait "$pid" || rc=$((rc == 0 ? 1 : rc))
+done
+[[ $rc -eq 0 ]] || fail "run with an installed group host failed (exit $rc): $(tail -n 3 "$WORK"/group.*.log "$WORK/coordinator.log")"
+same_outputs "$WORK/reference" "$out"
+echo "ok: installed sensing group with build-tree groups and coordinator byte-identical to co-located ($N_CSV CSVs)"
+
+# 3. The share dir really is the installed one: without an installed default the installed
+#    binary fails and names the installed path (the source tree still has the file).
+DEFAULTS="$SHARE/sim/plant/config/plant.params.yaml"
+mv "$DEFAULTS" "$DEFAULTS.moved"
+(cd "$WORK/elsewhere" && expect_error 2 "$DEFAULTS: cannot open parameter file" -- \
+  "$INSTALLED" run "$S_INSTALLED" --domain "$DOMAIN" --duration 0.1 --out out/missing --no-plots)
+# ROBODDS_SHARE_DIR overrides the installed tree (here: back to the source tree).
+ROBODDS_SHARE_DIR="$SRC" "$INSTALLED" --log warn run "$S_INSTALLED" --domain "$DOMAIN" --duration 0.1 \
+  --out "$WORK/env_share" --no-plots >"$WORK/env_share.log" 2>&1 ||
+  fail "installed binary with ROBODDS_SHARE_DIR=source tree failed: $(cat "$WORK/env_share.log")"
+mv "$DEFAULTS.moved" "$DEFAULTS"
+echo "ok: the installed binary reads $SHARE; ROBODDS_SHARE_DIR overrides it"
