@@ -13,8 +13,8 @@ string(JOIN "\n" CPACK_PACKAGE_DESCRIPTION
   "topics (Fast DDS 2.9): co-located, as separate processes or across machines,"
   "in deterministic lockstep or in real time. The package holds the robodds"
   "binary with every built-in component and, in /usr/share/robodds, the QoS"
-  "profiles, the components' parameter defaults, the example scenarios, the"
-  "compose files and the plotting script.")
+  "profiles, the components' parameter defaults, the example scenarios and the"
+  "plotting script.")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_STRIP_FILES ON)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # robodds_<version>_<arch>.deb
