@@ -3,9 +3,10 @@
 # P/share/robodds/..., and the installed binary, started outside the source tree with
 # ROBODDS_SHARE_DIR unset, finds its QoS profiles and parameter defaults in P/share/robodds
 # (runtime/share_dir.hpp) and produces byte for byte what the build-tree binary produces:
-#   1. `P/bin/robodds run` of plant_smoke, co-located;
-#   2. one group (sensing) hosted by the installed binary, the other groups and the lockstep
-#      coordinator by the build-tree binary;
+#   0. every registered component's defaults file (`robodds components`) is installed;
+#   1. `P/bin/robodds run` of plant_smoke, co-located, is byte-identical to the build-tree run;
+#   2. so is a run with one group (sensing) hosted by the installed binary, the other groups and
+#      the lockstep coordinator by the build-tree binary;
 #   3. the installed binary reads P/share/robodds, not the source tree it was built from: with an
 #      installed defaults file removed it fails naming that file; ROBODDS_SHARE_DIR still wins.
 # Extra argument: the build directory to install from.
@@ -25,6 +26,13 @@ for f in bin/robodds share/robodds/deploy/qos/robodds_qos.xml share/robodds/sim/
   [[ -e "$PREFIX/$f" ]] || fail "cmake --install did not install $f: $(find "$PREFIX" -type f)"
 done
 cmp "$S" "$S_INSTALLED" || fail "the installed scenario differs from the source one"
+# Every registered component's defaults file is installed (a new component folder that forgot
+# robodds_install_share fails here, not on a robot).
+defaults=$("$INSTALLED" components | grep -oE '[A-Za-z0-9_./-]+\.params\.yaml' | sort -u) || fail "robodds components listed no defaults file"
+for f in $defaults; do
+  [[ -f "$SHARE/$f" ]] || fail "defaults file $f of a registered component is not installed (robodds_install_share in its folder)"
+done
+echo "ok: $(wc -w <<<"$defaults") defaults files of registered components installed"
 
 "$ROBODDS" --log warn run "$S" --domain "$DOMAIN" --out "$WORK/reference" --no-plots >"$WORK/reference.log" 2>&1 ||
   fail "build-tree co-located run failed: $(cat "$WORK/reference.log")"
