@@ -16,6 +16,9 @@ string(JOIN "\n" CPACK_PACKAGE_DESCRIPTION
   "profiles, the components' parameter defaults, the example scenarios and the"
   "plotting script.")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
+# Only install component "runtime" goes into the package (build dir; project; component; subdir),
+# so a later install() without COMPONENT cannot slip test or benchmark files in.
+set(CPACK_INSTALL_CMAKE_PROJECTS "${CMAKE_BINARY_DIR};${PROJECT_NAME};runtime;/")
 set(CPACK_STRIP_FILES ON)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)  # robodds_<version>_<arch>.deb
 set(CPACK_DEBIAN_PACKAGE_SECTION science)
