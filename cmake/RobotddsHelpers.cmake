@@ -37,12 +37,40 @@ function(robodds_benchmark name)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} benchmark::benchmark robodds_warnings)
 endfunction()
 
+# Install layout. runtime/share_dir.hpp finds an installed share dir as
+# <dir of the executable>/../share/robodds, so these two are fixed (not GNUInstallDirs cache
+# variables a packager could move apart).
+set(ROBODDS_INSTALL_BIN_DIR bin)
+set(ROBODDS_INSTALL_SHARE_DIR share/robodds)
+
+# robodds_install_share(FILES f...)
+# Installs files of the calling folder into the share dir at their path relative to the
+# repository root, which is where the runtime looks for them: e.g. config/pf_estimator.params.yaml
+# called from components/pf_estimator goes to share/robodds/components/pf_estimator/config/.
+# Install component "runtime" (what the Debian package holds).
+function(robodds_install_share)
+  cmake_parse_arguments(ARG "" "" "FILES" ${ARGN})
+  if(ARG_UNPARSED_ARGUMENTS OR NOT ARG_FILES)
+    message(FATAL_ERROR "robodds_install_share: expected FILES f..., got: ${ARGN}")
+  endif()
+  foreach(file IN LISTS ARG_FILES)
+    get_filename_component(absolute "${file}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
+    if(NOT EXISTS "${absolute}")
+      message(FATAL_ERROR "robodds_install_share: ${absolute} does not exist")
+    endif()
+    file(RELATIVE_PATH relative "${PROJECT_SOURCE_DIR}" "${absolute}")
+    get_filename_component(relative_dir "${relative}" DIRECTORY)
+    install(FILES "${absolute}" DESTINATION "${ROBODDS_INSTALL_SHARE_DIR}/${relative_dir}" COMPONENT runtime)
+  endforeach()
+endfunction()
+
 # robodds_component(NAME type [LIBRARY target] NODE_SOURCES s... [DEPS d...] [NODE_TESTS t...])
 # A component type, registered from its own folder: builds the node library LIBRARY (default
 # robodds_<type>_node; it links robodds_runtime_core) and adds the type to the set that
 # robodds_registered_components_library() registers. Each NODE_TESTS file is a unit test of the
-# node on the in-memory bus (runtime/testing/node_harness.hpp), named after the file. The node sources must contain
-# ROBODDS_REGISTER_COMPONENT(type, ...) (runtime/registry.hpp) with the same type name.
+# node on the in-memory bus (runtime/testing/node_harness.hpp), named after the file. The node
+# sources must contain ROBODDS_REGISTER_COMPONENT(type, ...) (runtime/registry.hpp) with the same
+# type name; config/<type>.params.yaml (the generated defaults file) is installed into the share dir.
 # Nothing happens without the DDS runtime (-DROBODDS_WITH_DDS=OFF).
 function(robodds_component)
   cmake_parse_arguments(ARG "" "NAME;LIBRARY" "NODE_SOURCES;DEPS;NODE_TESTS" ${ARGN})
@@ -67,6 +95,7 @@ function(robodds_component)
   set_property(GLOBAL APPEND PROPERTY ROBODDS_COMPONENTS ${ARG_NAME})
   set_property(GLOBAL PROPERTY ROBODDS_COMPONENT_LIBRARY_${ARG_NAME} ${ARG_LIBRARY})
   set_property(GLOBAL PROPERTY ROBODDS_COMPONENT_DIR_${ARG_NAME} ${CMAKE_CURRENT_SOURCE_DIR})
+  robodds_install_share(FILES config/${ARG_NAME}.params.yaml)
   foreach(test_source IN LISTS ARG_NODE_TESTS)
     get_filename_component(test_name ${test_source} NAME_WE)
     robodds_unit_test(${test_name} SOURCES ${test_source} DEPS ${ARG_LIBRARY} robodds_node_harness)

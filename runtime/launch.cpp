@@ -12,6 +12,7 @@
 #include "runtime/error.hpp"
 #include "runtime/log.hpp"
 #include "runtime/process_group.hpp"
+#include "runtime/share_dir.hpp"
 #include "runtime/topic_catalog.hpp"
 
 #ifndef ROBODDS_SOURCE_DIR
@@ -152,7 +153,7 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
 
 const char* to_string(Deploy deploy) { return deploy == Deploy::kProcesses ? "processes" : "colocated"; }
 
-std::string share_dir() { return env_or("ROBODDS_SHARE_DIR", ROBODDS_SOURCE_DIR); }
+std::string share_dir() { return share_dir_of_this_process(ROBODDS_SOURCE_DIR); }
 
 DdsOptions resolve_dds(const DdsArgs& args, const std::string& participant_name) {
   DdsOptions o;

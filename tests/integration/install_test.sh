@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# The installed tree works on its own: `cmake --install BUILD --prefix P` gives P/bin/robodds and
+# P/share/robodds/..., and the installed binary, started outside the source tree with
+# ROBODDS_SHARE_DIR unset, finds its QoS profiles (and report.py) in P/share/robodds
+# (runtime/share_dir.hpp) and produces byte for byte what the build-tree binary produces:
+#   0. every registered component's defaults file (`robodds components`) is installed;
+#   1. `P/bin/robodds run` of plant_smoke, co-located, is byte-identical to the build-tree run;
+#   2. so is a run with one group (sensing) hosted by the installed binary, the other groups and
+#      the lockstep coordinator by the build-tree binary;
+#   3. the installed binary reads P/share/robodds, not the source tree it was built from: with an
+#      installed QoS profile file broken it fails naming that file; ROBODDS_SHARE_DIR still wins.
+# Extra argument: the build directory to install from.
+source "$(dirname "$0")/lib.sh"
+BUILD="$4"
+PREFIX="$WORK/prefix"
+INSTALLED="$PREFIX/bin/robodds"
+SHARE="$PREFIX/share/robodds"
+S="$SRC/sim/scenarios/plant_smoke.yaml"
+S_INSTALLED="$SHARE/sim/scenarios/plant_smoke.yaml"
+unset ROBODDS_SHARE_DIR
+
+cmake --install "$BUILD" --prefix "$PREFIX" >"$WORK/install.log" 2>&1 || fail "cmake --install failed: $(cat "$WORK/install.log")"
+for f in bin/robodds share/robodds/deploy/qos/robodds_qos.xml share/robodds/sim/report/report.py \
+         share/robodds/sim/scenarios/plant_smoke.yaml share/robodds/components/pf_estimator/config/pf_estimator.params.yaml \
+         share/robodds/sim/plant/config/plant.params.yaml; do
+  [[ -e "$PREFIX/$f" ]] || fail "cmake --install did not install $f: $(find "$PREFIX" -type f)"
+done
+cmp "$S" "$S_INSTALLED" || fail "the installed scenario differs from the source one"
+# Every registered component's defaults file is installed (a new component folder that forgot
+# robodds_install_share fails here, not on a robot).
+defaults=$("$INSTALLED" components | grep -oE '[A-Za-z0-9_./-]+\.params\.yaml' | sort -u) || fail "robodds components listed no defaults file"
+for f in $defaults; do
+  [[ -f "$SHARE/$f" ]] || fail "defaults file $f of a registered component is not installed (robodds_install_share in its folder)"
+done
+echo "ok: $(wc -w <<<"$defaults") defaults files of registered components installed"
+
+"$ROBODDS" --log warn run "$S" --domain "$DOMAIN" --out "$WORK/reference" --no-plots >"$WORK/reference.log" 2>&1 ||
+  fail "build-tree co-located run failed: $(cat "$WORK/reference.log")"
+
+# 1. Co-located, from a directory outside the source tree, results relative to it.
+mkdir -p "$WORK/elsewhere"
+(cd "$WORK/elsewhere" && "$INSTALLED" --log warn run "$S_INSTALLED" --domain "$DOMAIN" --out out/plant_smoke --no-plots) \
+  >"$WORK/installed.log" 2>&1 || fail "installed co-located run failed: $(cat "$WORK/installed.log")"
+same_outputs "$WORK/reference" "$WORK/elsewhere/out/plant_smoke"
+echo "ok: installed co-located run byte-identical to the build-tree run ($N_CSV CSVs)"
+
+# 2. The sensing group from the installed binary, the rest from the build tree.
+out="$WORK/groups"
+C=(--run-id "$$" --domain "$DOMAIN" --start-timeout 20 --input-timeout 20)
+pids=()
+for g in control sim evaluation; do
+  "$ROBODDS" --log warn host --scenario "$S" --group "$g" --out "$out" "${C[@]}" >"$WORK/group.$g.log" 2>&1 &
+  pids+=("$!")
+  cleanup_pids+=("$!")
+done
+(cd "$WORK/elsewhere" && exec "$INSTALLED" --log warn host --scenario "$S_INSTALLED" --group sensing --out "$out" "${C[@]}") \
+  >"$WORK/group.sensing.log" 2>&1 &
+pids+=("$!")
+cleanup_pids+=("$!")
+rc=0
+timeout -k 5 120 "$ROBODDS" --log warn host --scenario "$S" --coordinate "${C[@]}" >"$WORK/coordinator.log" 2>&1 || rc=$?
+for pid in "${pids[@]}"; do
+  wait "$pid" || rc=$((rc == 0 ? 1 : rc))
+done
+[[ $rc -eq 0 ]] || fail "run with an installed group host failed (exit $rc): $(tail -n 3 "$WORK"/group.*.log "$WORK/coordinator.log")"
+same_outputs "$WORK/reference" "$out"
+echo "ok: installed sensing group with build-tree groups and coordinator byte-identical to co-located ($N_CSV CSVs)"
+
+# 3. The share dir really is the installed one: with the installed QoS profile file broken (the
+#    source tree's is intact) the installed binary fails and names the installed path.
+QOS="$SHARE/deploy/qos/robodds_qos.xml"
+cp "$QOS" "$QOS.saved"
+echo '<dds><profiles><broken' >"$QOS"
+(cd "$WORK/elsewhere" && expect_error 2 "$QOS" -- \
+  "$INSTALLED" run "$S_INSTALLED" --domain "$DOMAIN" --duration 0.1 --out out/missing --no-plots)
+# ROBODDS_SHARE_DIR overrides the installed tree (here: back to the source tree).
+ROBODDS_SHARE_DIR="$SRC" "$INSTALLED" --log warn run "$S_INSTALLED" --domain "$DOMAIN" --duration 0.1 \
+  --out "$WORK/env_share" --no-plots >"$WORK/env_share.log" 2>&1 ||
+  fail "installed binary with ROBODDS_SHARE_DIR=source tree failed: $(cat "$WORK/env_share.log")"
+mv "$QOS.saved" "$QOS"
+echo "ok: the installed binary reads $SHARE; ROBODDS_SHARE_DIR overrides it"
