@@ -96,10 +96,26 @@ function(robodds_component)
   set_property(GLOBAL PROPERTY ROBODDS_COMPONENT_LIBRARY_${ARG_NAME} ${ARG_LIBRARY})
   set_property(GLOBAL PROPERTY ROBODDS_COMPONENT_DIR_${ARG_NAME} ${CMAKE_CURRENT_SOURCE_DIR})
   robodds_install_share(FILES config/${ARG_NAME}.params.yaml)
+  robodds_component_executable(${ARG_NAME} ${ARG_LIBRARY})
   foreach(test_source IN LISTS ARG_NODE_TESTS)
     get_filename_component(test_name ${test_source} NAME_WE)
     robodds_unit_test(${test_name} SOURCES ${test_source} DEPS ${ARG_LIBRARY} robodds_node_harness)
   endforeach()
+endfunction()
+
+# robodds_component_executable(TYPE NODE_LIBRARY)
+# The standalone executable robodds-<type> (underscores become dashes): the generic host with
+# this one component, for a robot without a scenario file (tools/component/component_main.hpp).
+# Its main is generated into the build tree; it goes to <build>/bin/ and is installed into bin/.
+function(robodds_component_executable type node_library)
+  string(REPLACE "_" "-" executable "robodds-${type}")
+  set(ROBODDS_COMPONENT_TYPE ${type})
+  configure_file(${PROJECT_SOURCE_DIR}/cmake/component_main.cpp.in
+                 ${CMAKE_CURRENT_BINARY_DIR}/${executable}_main.cpp @ONLY)
+  add_executable(${executable} ${CMAKE_CURRENT_BINARY_DIR}/${executable}_main.cpp)
+  target_link_libraries(${executable} PRIVATE ${node_library} robodds_component_main robodds_warnings)
+  set_target_properties(${executable} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/bin)
+  install(TARGETS ${executable} RUNTIME DESTINATION ${ROBODDS_INSTALL_BIN_DIR} COMPONENT runtime)
 endfunction()
 
 # robodds_registered_components_library(NAME)

@@ -54,7 +54,8 @@ bool HostArgs::operator==(const HostArgs& o) const {
   return scenario == o.scenario && group == o.group && components == o.components && params == o.params &&
          member == o.member && coordinate == o.coordinate && members == o.members && run_id == o.run_id && out == o.out &&
          deploy == o.deploy && realtime == o.realtime && epoch_ns == o.epoch_ns && duration_s == o.duration_s &&
-         seed == o.seed && log_level == o.log_level && dds == o.dds && lockstep == o.lockstep;
+         seed == o.seed && log_level == o.log_level && type == o.type && name == o.name && robots == o.robots &&
+         step_s == o.step_s && dds == o.dds && lockstep == o.lockstep;
 }
 
 std::vector<std::string> to_argv(const HostArgs& args, const ArgPlaceholders& placeholders) {
@@ -75,6 +76,12 @@ std::vector<std::string> to_argv(const HostArgs& args, const ArgPlaceholders& pl
   w.option("--duration", args.duration_s ? shortest_text(*args.duration_s) : "", !args.duration_s);
   w.option("--seed", args.seed ? std::to_string(*args.seed) : "", !args.seed);
   w.option("--log", args.log_level, args.log_level.empty());
+  w.option("--type", args.type, args.type.empty());
+  w.option("--name", args.name, args.name.empty());
+  for (const std::string& robot : args.robots) {
+    w.option("--robot", robot, false);
+  }
+  w.option("--step", args.step_s ? shortest_text(*args.step_s) : "", !args.step_s);
   w.option("--domain", std::to_string(args.dds.domain), args.dds.domain == defaults.dds.domain);
   std::vector<std::string> argv = w.take();
   for (const std::string& file : args.dds.qos_files) {
@@ -111,19 +118,10 @@ void add_lockstep_options(CLI::App* app, LockstepArgs& args) {
       ->check(CLI::Range(1, 64));
 }
 
-HostArgOptions add_host_options(CLI::App* app, HostArgs& args) {
-  HostArgOptions options;
-  options.scenario = app->add_option("--scenario", args.scenario, "scenario YAML (robots, step, parameters, groups)");
-  options.group = app->add_option("--group", args.group, "run the components of this group");
-  options.components =
-      app->add_option("--components", args.components, "run these component instances (comma separated)")->delimiter(',');
-  app->add_option("--params", args.params, "YAML map component -> parameter overrides (on top of the scenario's)");
-  app->add_option("--member", args.member, "name in acknowledgements (default: the group)");
-  app->add_flag("--coordinate", args.coordinate, "also publish ticks (a standalone lockstep host)");
-  app->add_option("--members", args.members,
-                  "with --coordinate: groups whose acknowledgements to wait for (default: this host's group, "
-                  "or every group of the scenario when the host runs no component)")
-      ->delimiter(',');
+namespace {
+
+/// The options of a run that `robodds host` and a component executable share.
+void add_run_options(CLI::App* app, HostArgs& args) {
   app->add_option("--run-id", args.run_id, "run id given by robodds run");
   app->add_option("--out", args.out, "output directory for the evaluator");
   app->add_option("--deploy", args.deploy,
@@ -131,13 +129,55 @@ HostArgOptions add_host_options(CLI::App* app, HostArgs& args) {
   app->add_flag("--realtime", args.realtime, "wall-clock timers instead of lockstep");
   app->add_option("--epoch-ns", args.epoch_ns, "real time: wall clock (ns) of step 0");
   app->add_option_function<double>(
-         "--duration", [&args](const double& seconds) { args.duration_s = seconds; }, "override the scenario duration (s)")
+         "--duration", [&args](const double& seconds) { args.duration_s = seconds; },
+         "override the scenario duration (s; a component without a scenario: until stopped)")
       ->check(CLI::PositiveNumber);
   app->add_option_function<std::uint64_t>(
-      "--seed", [&args](const std::uint64_t& seed) { args.seed = seed; }, "override the scenario seed");
+      "--seed", [&args](const std::uint64_t& seed) { args.seed = seed; },
+      "override the scenario seed (a component without a scenario: 1)");
   app->add_option("--log", args.log_level, "log level: debug, info, warn, error (default: the global --log)");
   add_dds_options(app, args.dds);
   add_lockstep_options(app, args.lockstep);
+}
+
+/// The options of one component without a scenario file (but its type).
+void add_standalone_options(CLI::App* app, HostArgs& args) {
+  app->add_option("--name", args.name, "without a scenario: instance name (default: the type); seeds derive from it");
+  app->add_option("--robot", args.robots,
+                  "without a scenario: a robot the component serves, ID or ID:X,Y,THETA (initial pose, m, m, rad); repeat for several");
+  app->add_option_function<double>(
+         "--step", [&args](const double& seconds) { args.step_s = seconds; },
+         "without a scenario: simulation step (s, default 0.01)")
+      ->check(CLI::PositiveNumber);
+}
+
+}  // namespace
+
+void add_component_options(CLI::App* app, HostArgs& args) {
+  add_standalone_options(app, args);
+  app->add_option("--params", args.params,
+                  "YAML file of this component's parameters over its defaults (keys as in its defaults file)");
+  app->add_option("--member", args.member, "lockstep: name in acknowledgements (default: the instance name)");
+  add_run_options(app, args);
+}
+
+HostArgOptions add_host_options(CLI::App* app, HostArgs& args) {
+  HostArgOptions options;
+  options.scenario = app->add_option("--scenario", args.scenario, "scenario YAML (robots, step, parameters, groups)");
+  options.group = app->add_option("--group", args.group, "run the components of this group");
+  options.components =
+      app->add_option("--components", args.components, "run these component instances (comma separated)")->delimiter(',');
+  options.type = app->add_option("--type", args.type, "run one component of this type without a scenario file");
+  app->add_option("--params", args.params,
+                  "YAML map component.parameter -> value over the scenario's (with --type: the component's own keys)");
+  app->add_option("--member", args.member, "name in acknowledgements (default: the group, or the instance name)");
+  app->add_flag("--coordinate", args.coordinate, "also publish ticks (a standalone lockstep host)");
+  app->add_option("--members", args.members,
+                  "with --coordinate: groups whose acknowledgements to wait for (default: this host's group, "
+                  "or every group of the scenario when the host runs no component)")
+      ->delimiter(',');
+  add_standalone_options(app, args);
+  add_run_options(app, args);
   return options;
 }
 

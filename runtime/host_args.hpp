@@ -50,6 +50,12 @@ struct HostArgs {
   std::optional<double> duration_s;     // override the scenario duration (s)
   std::optional<std::uint64_t> seed;    // override the scenario seed
   std::string log_level;                // empty: the global --log (or $ROBODDS_LOG)
+  // One component without a scenario file (a component executable robodds-<type>, or
+  // `robodds host --type`): the host makes a one-component scenario (standalone_scenario()).
+  std::string type;                     // registered component type (instead of --scenario)
+  std::string name;                     // its instance name (empty: the type): seeds, logs, acks
+  std::vector<std::string> robots;      // robots it serves: "ID" or "ID:X,Y,THETA" (m, m, rad)
+  std::optional<double> step_s;         // s, simulation step (default kStandaloneStepS)
   DdsArgs dds;
   LockstepArgs lockstep;
   bool operator==(const HostArgs& other) const;
@@ -60,6 +66,12 @@ struct HostArgs {
 /// {"--run-id", "${ROBODDS_RUN_ID:-1}"}.
 using ArgPlaceholders = std::map<std::string, std::string>;
 
+/// Step of a standalone component when --step is not given (s): the shipped scenarios' step.
+inline constexpr double kStandaloneStepS = 0.01;
+/// Duration of a standalone component when --duration is not given (s): "until stopped" (a
+/// lockstep host ends with the coordinator's final tick; a real-time one with SIGINT/SIGTERM).
+inline constexpr double kUntilStoppedS = 1e9;
+
 /// The arguments after `robodds host` (no executable, no subcommand), in a fixed order.
 std::vector<std::string> to_argv(const HostArgs& args, const ArgPlaceholders& placeholders = {});
 
@@ -68,11 +80,17 @@ struct HostArgOptions {
   CLI::Option* scenario = nullptr;
   CLI::Option* group = nullptr;
   CLI::Option* components = nullptr;
+  CLI::Option* type = nullptr;
 };
 
 /// Registers every HostArgs option on `app`, writing into `args` (which must outlive parsing).
 /// Nothing is required here: the caller decides (robodds host requires --scenario).
 HostArgOptions add_host_options(CLI::App* app, HostArgs& args);
+/// Registers what a component executable (robodds-<type>) accepts: the options of one
+/// component without a scenario file (--robot, --name, --step, --params of its own keys) and
+/// the run options it shares with `robodds host` (--realtime, --out, --run-id, --member,
+/// --duration, --seed, --log, DDS and lockstep options). `args.type` is the caller's.
+void add_component_options(CLI::App* app, HostArgs& args);
 void add_dds_options(CLI::App* app, DdsArgs& args);
 void add_lockstep_options(CLI::App* app, LockstepArgs& args);
 

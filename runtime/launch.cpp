@@ -13,6 +13,7 @@
 #include "runtime/log.hpp"
 #include "runtime/process_group.hpp"
 #include "runtime/share_dir.hpp"
+#include "runtime/standalone_scenario.hpp"
 #include "runtime/topic_catalog.hpp"
 
 #ifndef ROBODDS_SOURCE_DIR
@@ -213,7 +214,24 @@ RunStats launch_run(const ComponentRegistry& registry, const Scenario& scenario,
                                               : run_as_processes(registry, scenario, options);
 }
 
-void run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop) {
+namespace {
+
+/// The scenario a host runs: the scenario file with the command line's overrides, or (--type)
+/// one component without a scenario file.
+Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) {
+  if (!args.type.empty()) {
+    if (!args.scenario.empty() || !args.group.empty() || !args.components.empty()) {
+      throw ConfigError("robodds host: --type runs one component without a scenario; it does not go with --scenario, --group or --components");
+    }
+    registry.get(args.type);  // an unknown type names the known ones
+    return standalone_scenario(args);
+  }
+  if (args.scenario.empty()) {
+    throw ConfigError("robodds host: --scenario is required (or --type: one component without a scenario file)");
+  }
+  if (!args.robots.empty() || !args.name.empty() || args.step_s) {
+    throw ConfigError("robodds host: --robot, --name and --step describe a component without a scenario (--type); the scenario has its own");
+  }
   Scenario scenario = load_scenario(args.scenario);
   if (args.seed) {
     scenario.seed = *args.seed;
@@ -224,8 +242,18 @@ void run_host(const ComponentRegistry& registry, const HostArgs& args, const std
   if (!args.params.empty()) {
     apply_param_overrides(scenario, load_param_file(args.params), args.params);
   }
+  return scenario;
+}
+
+}  // namespace
+
+void run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop) {
+  const Scenario scenario = host_scenario(registry, args);
   HostOptions options;
-  if (!args.group.empty()) {
+  if (!args.type.empty()) {
+    options.components = {scenario.components.front().name};
+    options.member = scenario.groups.front().name;
+  } else if (!args.group.empty()) {
     options.components = scenario.group(args.group).components;
     options.member = args.group;
   } else if (!args.components.empty()) {

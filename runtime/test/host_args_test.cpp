@@ -46,6 +46,10 @@ HostArgs every_field_set() {
   a.lockstep.input_timeout_s = 2.5;
   a.lockstep.start_timeout_s = 1.0 / 3.0;
   a.lockstep.lockstep_window = 8;
+  a.type = "pf_estimator";
+  a.name = "estimator";
+  a.robots = {"1", "2:50,10,0.5"};
+  a.step_s = 0.1 + 0.7;  // not a short decimal either
   return a;
 }
 
@@ -58,6 +62,9 @@ TEST(HostArgs, RenderThenParseGivesTheSameStruct) {
   EXPECT_EQ(parsed.components, original.components);
   EXPECT_EQ(parsed.params, original.params);
   EXPECT_EQ(parsed.members, original.members);
+  EXPECT_EQ(parsed.robots, original.robots);
+  EXPECT_EQ(parsed.step_s, original.step_s);
+  EXPECT_EQ(parsed.type, original.type);
   EXPECT_EQ(parsed.run_id, original.run_id);
   EXPECT_EQ(parsed.deploy, original.deploy);
   EXPECT_EQ(parsed.epoch_ns, original.epoch_ns);

@@ -3,10 +3,11 @@
 # P/share/robodds/..., and the installed binary, started outside the source tree with
 # ROBODDS_SHARE_DIR unset, finds its QoS profiles (and report.py) in P/share/robodds
 # (runtime/share_dir.hpp) and produces byte for byte what the build-tree binary produces:
-#   0. every registered component's defaults file (`robodds components`) is installed;
+#   0. every registered component's defaults file and executable robodds-<type> is installed;
 #   1. `P/bin/robodds run` of plant_smoke, co-located, is byte-identical to the build-tree run;
-#   2. so is a run with one group (sensing) hosted by the installed binary, the other groups and
-#      the lockstep coordinator by the build-tree binary;
+#   2. so is a run whose sensing group is the installed component executable
+#      P/bin/robodds-position-sensor, started without the scenario file (robots, name, seed on
+#      its command line), the other groups and the lockstep coordinator from the build tree;
 #   3. the installed binary reads P/share/robodds, not the source tree it was built from: with an
 #      installed QoS profile file broken it fails naming that file; ROBODDS_SHARE_DIR still wins.
 # Extra argument: the build directory to install from.
@@ -30,9 +31,15 @@ cmp "$S" "$S_INSTALLED" || fail "the installed scenario differs from the source 
 # robodds_install_share fails here, not on a robot).
 defaults=$("$INSTALLED" components | grep -oE '[A-Za-z0-9_./-]+\.params\.yaml' | sort -u) || fail "robodds components listed no defaults file"
 for f in $defaults; do
-  [[ -f "$SHARE/$f" ]] || fail "defaults file $f of a registered component is not installed (robodds_install_share in its folder)"
+  [[ -f "$SHARE/$f" ]] || fail "defaults file $f of a registered component is not installed (robodds_component in its folder)"
 done
 echo "ok: $(wc -w <<<"$defaults") defaults files of registered components installed"
+# ... and so is its executable robodds-<type>.
+types=$("$INSTALLED" components | grep -oE '^[a-z][a-z0-9_]*') || fail "robodds components listed no type"
+for t in $types; do
+  [[ -x "$PREFIX/bin/robodds-${t//_/-}" ]] || fail "component executable robodds-${t//_/-} is not installed"
+done
+echo "ok: $(wc -w <<<"$types") component executables installed"
 
 "$ROBODDS" --log warn run "$S" --domain "$DOMAIN" --out "$WORK/reference" --no-plots >"$WORK/reference.log" 2>&1 ||
   fail "build-tree co-located run failed: $(cat "$WORK/reference.log")"
@@ -53,8 +60,11 @@ for g in control sim evaluation; do
   pids+=("$!")
   cleanup_pids+=("$!")
 done
-(cd "$WORK/elsewhere" && exec "$INSTALLED" --log warn host --scenario "$S_INSTALLED" --group sensing --out "$out" "${C[@]}") \
-  >"$WORK/group.sensing.log" 2>&1 &
+# The sensing group is the installed component executable, without the scenario file: the same
+# instance name, seed and robots as in plant_smoke, in the group the coordinator waits for.
+SENSOR="$PREFIX/bin/robodds-position-sensor"
+(cd "$WORK/elsewhere" && exec "$SENSOR" --name position_sensor --member sensing --seed 42 \
+  --robot 1 --robot 2 --robot 3 "${C[@]}") >"$WORK/group.sensing.log" 2>&1 &
 pids+=("$!")
 cleanup_pids+=("$!")
 rc=0
@@ -64,7 +74,14 @@ for pid in "${pids[@]}"; do
 done
 [[ $rc -eq 0 ]] || fail "run with an installed group host failed (exit $rc): $(tail -n 3 "$WORK"/group.*.log "$WORK/coordinator.log")"
 same_outputs "$WORK/reference" "$out"
-echo "ok: installed sensing group with build-tree groups and coordinator byte-identical to co-located ($N_CSV CSVs)"
+echo "ok: installed robodds-position-sensor (no scenario file) with build-tree groups and coordinator byte-identical to co-located ($N_CSV CSVs)"
+
+# The component executable's own input handling: --help lists its parameters; a bad parameter
+# file names file and key; no robot is one clear error.
+"$SENSOR" --help | grep -q "noise_var_x_m2" || fail "robodds-position-sensor --help does not list its parameters"
+printf 'rate_hz: -1\n' >"$WORK/bad_sensor.yaml"
+expect_error 2 "$WORK/bad_sensor.yaml.*rate_hz" -- "$SENSOR" --robot 1 --params "$WORK/bad_sensor.yaml" --domain "$DOMAIN"
+expect_error 2 "give the robots it serves with --robot" -- "$SENSOR" --domain "$DOMAIN"
 
 # 3. The share dir really is the installed one: with the installed QoS profile file broken (the
 #    source tree's is intact) the installed binary fails and names the installed path.

@@ -1,0 +1,103 @@
+#include "runtime/standalone_scenario.hpp"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include "runtime/error.hpp"
+
+namespace robodds {
+namespace {
+
+[[noreturn]] void bad_robot(const std::string& text, const std::string& reason) {
+  throw ConfigError("--robot '" + text + "': " + reason + " (expected ID or ID:X,Y,THETA, e.g. 1 or 1:50,10,0)");
+}
+
+/// A whole decimal number that fits `limit`, or nothing.
+bool parse_id(const std::string& text, std::uint64_t limit, std::uint64_t* value) {
+  if (text.empty() || text.size() > 10 || text.find_first_not_of("0123456789") != std::string::npos) {
+    return false;
+  }
+  *value = std::stoull(text);
+  return *value <= limit;
+}
+
+double parse_coordinate(const std::string& robot, const std::string& text, const char* what) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(value)) {
+    bad_robot(robot, std::string(what) + " '" + text + "' is not a finite number");
+  }
+  return value;
+}
+
+}  // namespace
+
+RobotSpec parse_robot(const std::string& text) {
+  const std::size_t colon = text.find(':');
+  std::uint64_t id = 0;
+  if (!parse_id(text.substr(0, colon), 0xffffffffULL, &id)) {
+    bad_robot(text, "the id is not a whole number 0..4294967295");
+  }
+  RobotSpec robot;
+  robot.id = static_cast<std::uint32_t>(id);
+  if (colon == std::string::npos) {
+    return robot;
+  }
+  std::vector<std::string> parts;
+  std::stringstream pose(text.substr(colon + 1));
+  for (std::string part; std::getline(pose, part, ',');) {
+    parts.push_back(part);
+  }
+  if (parts.size() != 3 || text.back() == ',') {
+    bad_robot(text, "the pose needs three numbers X,Y,THETA");
+  }
+  robot.x = parse_coordinate(text, parts[0], "X");
+  robot.y = parse_coordinate(text, parts[1], "Y");
+  robot.theta = parse_coordinate(text, parts[2], "THETA");
+  return robot;
+}
+
+Scenario standalone_scenario(const HostArgs& args) {
+  if (args.type.empty()) {
+    throw ConfigError("a component without a scenario needs its type (--type)");
+  }
+  if (args.robots.empty()) {
+    throw ConfigError(args.type + ": give the robots it serves with --robot ID (or ID:X,Y,THETA), e.g. --robot 1");
+  }
+  Scenario scenario;
+  scenario.file = "(command line of " + args.type + ")";
+  scenario.name = args.type;
+  scenario.description = "component " + args.type + " without a scenario file";
+  scenario.step_s = args.step_s.value_or(kStandaloneStepS);
+  scenario.duration_s = args.duration_s.value_or(kUntilStoppedS);
+  scenario.seed = args.seed.value_or(1);
+  if (!(scenario.step_s > 0.0) || !std::isfinite(scenario.step_s)) {
+    throw ConfigError("--step: must be a positive number of seconds");
+  }
+  std::set<std::uint32_t> ids;
+  ComponentSpec component;
+  component.name = args.name.empty() ? args.type : args.name;
+  component.type = args.type;
+  for (const std::string& text : args.robots) {
+    const RobotSpec robot = parse_robot(text);
+    if (!ids.insert(robot.id).second) {
+      bad_robot(text, "robot " + std::to_string(robot.id) + " is given twice");
+    }
+    scenario.robots.push_back(robot);
+    component.robots.push_back(robot.id);
+  }
+  if (!args.params.empty()) {
+    component.overrides = load_param_file(args.params);
+  }
+  scenario.components.push_back(component);
+  scenario.groups.push_back(GroupSpec{args.member.empty() ? component.name : args.member, {component.name}});
+  return scenario;
+}
+
+}  // namespace robodds

@@ -1,0 +1,54 @@
+#include "tools/cli/cli_main.hpp"
+
+#include <csignal>
+#include <cstdio>
+#include <string>
+
+#include "runtime/error.hpp"
+
+namespace robodds::cli {
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+void on_signal(int) { g_stop = true; }
+
+}  // namespace
+
+const std::atomic<bool>& install_stop_handlers() {
+  struct sigaction action {};
+  action.sa_handler = on_signal;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+  return g_stop;
+}
+
+int parse_and_run(CLI::App& app, int argc, char** argv, const std::function<int()>& run) {
+  const std::string program = app.get_name().empty() ? "robodds" : app.get_name();
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::Success& e) {  // --help and friends: CLI11 prints and exits 0
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    // Bad command line = bad input: one line and exit code 2, like every other ConfigError.
+    const std::string help = app.get_subcommands().empty() ? program + " --help"
+                                                           : program + " " + app.get_subcommands().front()->get_name() + " --help";
+    std::fprintf(stderr, "%s: error: %s (see %s)\n", program.c_str(), e.what(), help.c_str());
+    return 2;
+  }
+  try {
+    return run();
+  } catch (const ConfigError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    return 2;
+  } catch (const RunError& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    return g_stop ? 130 : 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    return 1;
+  }
+}
+
+}  // namespace robodds::cli

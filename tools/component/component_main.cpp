@@ -1,0 +1,43 @@
+#include "tools/component/component_main.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+
+#include "common/param_doc.hpp"
+#include "runtime/host_args.hpp"
+#include "runtime/launch.hpp"
+#include "runtime/log.hpp"
+#include "tools/cli/cli_main.hpp"
+
+namespace robodds {
+
+int component_main(int argc, char** argv, const char* type, void (*register_type)(ComponentRegistry&)) {
+  const std::atomic<bool>& stop = cli::install_stop_handlers();
+  ComponentRegistry registry;
+  register_type(registry);
+  const ComponentType& component = registry.get(type);
+  std::string program = "robodds-" + component.name;
+  std::replace(program.begin(), program.end(), '_', '-');
+
+  CLI::App app{program + ": " + component.description + "\n(one component without a scenario file; in lockstep it "
+                   "joins a run whose coordinator waits for its --member, by default its --name)",
+               program};
+  HostArgs args;
+  args.type = component.name;
+  add_component_options(&app, args);
+  app.footer("Parameters (--params FILE overrides them; defaults file: " + component.defaults_file + "):\n" +
+             params::describe_params(component.params()));
+  return cli::parse_and_run(app, argc, argv, [&] {
+    const char* env_log = std::getenv("ROBODDS_LOG");
+    log::set_level(log::parse_level(!args.log_level.empty()                   ? args.log_level
+                                    : env_log != nullptr && *env_log != '\0' ? std::string(env_log)
+                                                                              : std::string("info")));
+    run_host(registry, args, &stop);
+    return 0;
+  });
+}
+
+}  // namespace robodds
