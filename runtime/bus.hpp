@@ -1,6 +1,6 @@
 #pragma once
 // The runtime's view of DDS, free of Fast DDS headers: typed I/O (io.hpp) and the host talk
-// to these interfaces; runtime/dds/bus.cpp implements them with Fast DDS. Samples cross this
+// to these interfaces; runtime/dds/dds_bus.cpp implements them with Fast DDS. Samples cross this
 // boundary as `const void*` pointing at the generated C++ type named by `type_name`.
 
 #include <chrono>

@@ -9,7 +9,7 @@
 #include <functional>
 #include <string>
 
-#include "runtime/dds/bus.hpp"
+#include "runtime/dds/dds_bus.hpp"
 #include "runtime/host.hpp"
 #include "runtime/host_args.hpp"
 #include "runtime/registry.hpp"

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/dds/bus.hpp"
+#include "runtime/dds/dds_bus.hpp"
 
 namespace robodds {
 

@@ -1,11 +1,11 @@
 #pragma once
 // Loading and checking the QoS profile files (runtime-internal; includes Fast DDS). The
 // Fast-DDS-free entry points (load_qos_files, required_data_profiles) are declared in
-// runtime/dds/bus.hpp.
+// runtime/dds/dds_bus.hpp.
 
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 
-#include "runtime/dds/bus.hpp"
+#include "runtime/dds/dds_bus.hpp"
 
 namespace robodds {
 

@@ -4,15 +4,15 @@
 
 #include <thread>
 
-#include "runtime/test/loopback_bus.hpp"
+#include "runtime/memory_bus.hpp"
 
 namespace robodds {
 namespace {
 
-/// A coordinator for members {"a", "b"} on a loopback bus, with a recorder of its ticks and a
+/// A coordinator for members {"a", "b"} on the in-memory bus, with a recorder of its ticks and a
 /// way to acknowledge as a member.
 struct CoordinatorFixture : ::testing::Test {
-  test_support::LoopbackBus bus;
+  MemoryBus bus;
   Notifier notifier;
   Scenario scenario;
   RunContext run;

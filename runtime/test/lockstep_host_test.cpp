@@ -4,7 +4,7 @@
 
 #include <thread>
 
-#include "runtime/test/loopback_bus.hpp"
+#include "runtime/memory_bus.hpp"
 
 namespace robodds {
 namespace {
@@ -21,10 +21,10 @@ class Recorder : public Component {
   bool* finished_;
 };
 
-/// One component ("recorder", every `period` steps) behind a LockstepHost on a loopback bus,
+/// One component ("recorder", every `period` steps) behind a LockstepHost on the in-memory bus,
 /// a tick publisher standing in for the coordinator, and a recorder of the acknowledgements.
 struct HostFixture : ::testing::Test {
-  test_support::LoopbackBus bus;
+  MemoryBus bus;
   Notifier notifier;
   Scenario scenario;
   ComponentSpec spec;

@@ -11,45 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "common/line_diff.hpp"
 #include "runtime/error.hpp"
 
 namespace robodds {
 namespace {
 
-std::vector<std::string> lines_of(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    lines.push_back(line);
-  }
-  return lines;
-}
-
-/// A line diff (longest common subsequence): "-" lines only in `from`, "+" lines only in `to`.
-std::string line_diff(const std::string& from, const std::string& to) {
-  const std::vector<std::string> a = lines_of(from);
-  const std::vector<std::string> b = lines_of(to);
-  std::vector<std::vector<std::size_t>> common(a.size() + 1, std::vector<std::size_t>(b.size() + 1, 0));
-  for (std::size_t i = a.size(); i-- > 0;) {
-    for (std::size_t j = b.size(); j-- > 0;) {
-      common[i][j] = a[i] == b[j] ? common[i + 1][j + 1] + 1 : std::max(common[i + 1][j], common[i][j + 1]);
-    }
-  }
-  std::string diff;
-  std::size_t i = 0;
-  std::size_t j = 0;
-  while (i < a.size() || j < b.size()) {
-    if (i < a.size() && j < b.size() && a[i] == b[j]) {
-      ++i;
-      ++j;
-    } else if (i < a.size() && (j == b.size() || common[i + 1][j] >= common[i][j + 1])) {
-      diff += "- " + a[i++] + "\n";
-    } else {
-      diff += "+ " + b[j++] + "\n";
-    }
-  }
-  return diff;
-}
 
 TEST(TopicTable, DocsTopicsMdMatchesTheCatalog) {
   const std::string path = std::string(ROBODDS_SOURCE_DIR) + "/docs/topics.md";
@@ -92,10 +59,6 @@ TEST(TopicTable, MissingMarkerNamesTheDoc) {
   } catch (const ConfigError& e) {
     EXPECT_THAT(e.what(), testing::StartsWith("docs/topics.md: expected the line '<!-- topic table"));
   }
-}
-
-TEST(TopicTable, LineDiffMarksRemovedAndAddedLines) {
-  EXPECT_EQ(line_diff("a\nb\nc\n", "a\nx\nc\n"), "- b\n+ x\n");
 }
 
 }  // namespace

@@ -59,7 +59,7 @@ INSTANTIATE_TEST_SUITE_P(AllComponents, ParamsFileTest, ::testing::ValuesIn(regi
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
 TEST(ParamsFileDiff, ShowsRemovedAndAddedLines) {
-  EXPECT_EQ(params_file_diff("a: 1\nb: 2\nc: 3\n", "a: 1\nb: 5\nc: 3\n"), "-b: 2\n+b: 5\n");
+  EXPECT_EQ(params_file_diff("a: 1\nb: 2\nc: 3\n", "a: 1\nb: 5\nc: 3\n"), "- b: 2\n+ b: 5\n");
   EXPECT_EQ(params_file_diff("a: 1\n", "a: 1\n"), "");
 }
 

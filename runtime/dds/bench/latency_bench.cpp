@@ -63,7 +63,7 @@
 
 #include "robodds/idl/robodds.h"
 #include "robodds/idl/roboddsPubSubTypes.h"
-#include "runtime/dds/bus.hpp"
+#include "runtime/dds/dds_bus.hpp"
 #include "runtime/error.hpp"
 #include "runtime/io.hpp"
 #include "runtime/log.hpp"

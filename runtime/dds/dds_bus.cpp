@@ -1,4 +1,4 @@
-#include "runtime/dds/bus.hpp"
+#include "runtime/dds/dds_bus.hpp"
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
