@@ -15,15 +15,20 @@ function(robodds_library name)
   target_link_libraries(${name} PUBLIC ${ARG_DEPS} PRIVATE robodds_warnings)
 endfunction()
 
-# robodds_unit_test(NAME SOURCES s... [DEPS d...])
+# robodds_unit_test(NAME SOURCES s... [DEPS d...] [READS_SOURCE_TREE])
 # A GoogleTest executable; every TEST becomes its own ctest entry (label "unit").
+# READS_SOURCE_TREE: the test reads checked-in files (docs, XML, defaults files) from
+# ROBODDS_SOURCE_DIR, defined as the repository root.
 function(robodds_unit_test name)
   if(NOT ROBODDS_BUILD_TESTS)
     return()
   endif()
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  cmake_parse_arguments(ARG "READS_SOURCE_TREE" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock robodds_warnings)
+  if(ARG_READS_SOURCE_TREE)
+    target_compile_definitions(${name} PRIVATE ROBODDS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  endif()
   gtest_discover_tests(${name} TEST_PREFIX "${name}." DISCOVERY_MODE PRE_TEST PROPERTIES LABELS unit)
 endfunction()
 

@@ -5,9 +5,13 @@
 #include <thread>
 
 #include "runtime/memory_bus.hpp"
+#include "runtime/topic_catalog.hpp"
 
 namespace robodds {
 namespace {
+
+/// The profile the host and the coordinator use for a lockstep topic (not co-located).
+std::string profile_of(const std::string& topic) { return qos_profile_for(topic_info(topic), TimeMode::kLockstep, false); }
 
 /// A coordinator for members {"a", "b"} on the in-memory bus, with a recorder of its ticks and a
 /// way to acknowledge as a member.
@@ -31,12 +35,12 @@ struct CoordinatorFixture : ::testing::Test {
     run.notifier = &notifier;
     options.members = {"a", "b"};
     options.run_id = 9;
-    tick_reader = bus.reader("sim/clock", "", "", [this](const void* s) {
+    tick_reader = bus.reader("sim/clock", topic_info("sim/clock").type_name, profile_of("sim/clock"), [this](const void* s) {
       const auto& tick = *static_cast<const idl::SimTick*>(s);
       ticks.push_back(tick.header().step());
       final_flags.push_back(tick.final_tick());
     }, nullptr);
-    ack_output = std::make_unique<Output<idl::StepDone>>(bus.writer("sim/step_done", "", ""), &ack_state);
+    ack_output = std::make_unique<Output<idl::StepDone>>(bus.writer("sim/step_done", topic_info("sim/step_done").type_name, profile_of("sim/step_done")), &ack_state);
   }
 
   void ack(const std::string& member, std::uint64_t step, const std::string& error = "", std::uint64_t run_id = 9) {

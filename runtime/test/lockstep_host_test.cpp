@@ -5,9 +5,13 @@
 #include <thread>
 
 #include "runtime/memory_bus.hpp"
+#include "runtime/topic_catalog.hpp"
 
 namespace robodds {
 namespace {
+
+/// The profile the host and the coordinator use for a lockstep topic (not co-located).
+std::string profile_of(const std::string& topic) { return qos_profile_for(topic_info(topic), TimeMode::kLockstep, false); }
 
 class Recorder : public Component {
  public:
@@ -49,9 +53,9 @@ struct HostFixture : ::testing::Test {
     options.member = "m";
     options.components = {"recorder"};
     options.run_id = 9;
-    ack_reader = bus.reader("sim/step_done", "", "",
+    ack_reader = bus.reader("sim/step_done", topic_info("sim/step_done").type_name, profile_of("sim/step_done"),
                             [this](const void* s) { acks.push_back(*static_cast<const idl::StepDone*>(s)); }, nullptr);
-    tick_output = std::make_unique<Output<idl::SimTick>>(bus.writer("sim/clock", "", ""), &tick_state);
+    tick_output = std::make_unique<Output<idl::SimTick>>(bus.writer("sim/clock", topic_info("sim/clock").type_name, profile_of("sim/clock")), &tick_state);
   }
 
   host_detail::ComponentSlot& add_slot(std::uint64_t period_steps) {

@@ -7,8 +7,8 @@
 #include <string>
 
 #include "common/param_doc.hpp"
-#include "runtime/host_args.hpp"
-#include "runtime/launch.hpp"
+#include "runtime/launch/host_args.hpp"
+#include "runtime/launch/launch.hpp"
 #include "runtime/log.hpp"
 #include "tools/cli/cli_main.hpp"
 

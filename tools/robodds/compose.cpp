@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "runtime/error.hpp"
-#include "runtime/host_args.hpp"
+#include "runtime/launch/host_args.hpp"
 #include "runtime/qos_profiles.hpp"
 
 namespace robodds {

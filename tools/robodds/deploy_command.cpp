@@ -5,7 +5,7 @@
 #include <fstream>
 
 #include "runtime/error.hpp"
-#include "runtime/launch.hpp"
+#include "runtime/launch/launch.hpp"
 #include "runtime/scenario.hpp"
 #include "tools/robodds/compose.hpp"
 

@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <mutex>
 
-#include "runtime/launch.hpp"
+#include "runtime/launch/launch.hpp"
 #include "runtime/log.hpp"
 #include "runtime/notifier.hpp"
 #include "runtime/sample_format.hpp"

@@ -1,5 +1,5 @@
 // `robodds report OUT_DIR`: (re)draws the plots of a run from its CSVs.
-#include "runtime/launch.hpp"
+#include "runtime/launch/launch.hpp"
 #include "tools/robodds/command.hpp"
 
 namespace robodds {

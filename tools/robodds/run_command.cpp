@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <unistd.h>
 
-#include "runtime/launch.hpp"
+#include "runtime/launch/launch.hpp"
 #include "runtime/log.hpp"
 #include "tools/robodds/command.hpp"
 #include "tools/robodds/summary_table.hpp"

@@ -2,7 +2,7 @@
 #include <cstdio>
 
 #include "runtime/dds/discovery.hpp"
-#include "runtime/launch.hpp"
+#include "runtime/launch/launch.hpp"
 #include "tools/robodds/command.hpp"
 
 namespace robodds {

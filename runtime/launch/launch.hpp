@@ -11,7 +11,7 @@
 
 #include "runtime/dds/dds_bus.hpp"
 #include "runtime/host.hpp"
-#include "runtime/host_args.hpp"
+#include "runtime/launch/host_args.hpp"
 #include "runtime/registry.hpp"
 #include "runtime/scenario.hpp"
 

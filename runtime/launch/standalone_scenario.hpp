@@ -6,7 +6,7 @@
 // a scenario, the component's output is the same as there (its random streams derive from the
 // scenario seed and its instance name).
 
-#include "runtime/host_args.hpp"
+#include "runtime/launch/host_args.hpp"
 #include "runtime/scenario.hpp"
 
 namespace robodds {

@@ -1,4 +1,4 @@
-#include "runtime/standalone_scenario.hpp"
+#include "runtime/launch/standalone_scenario.hpp"
 
 #include <cmath>
 #include <set>

@@ -1,4 +1,4 @@
-#include "runtime/host_args.hpp"
+#include "runtime/launch/host_args.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "runtime/launch.hpp"
+#include "runtime/launch/launch.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -11,9 +11,9 @@
 
 #include "runtime/error.hpp"
 #include "runtime/log.hpp"
-#include "runtime/process_group.hpp"
+#include "runtime/launch/process_group.hpp"
 #include "runtime/share_dir.hpp"
-#include "runtime/standalone_scenario.hpp"
+#include "runtime/launch/standalone_scenario.hpp"
 #include "runtime/topic_catalog.hpp"
 
 #ifndef ROBODDS_SOURCE_DIR

@@ -1,4 +1,4 @@
-#include "runtime/process_group.hpp"
+#include "runtime/launch/process_group.hpp"
 
 #include <gtest/gtest.h>
 
