@@ -55,6 +55,15 @@ TEST_P(ParamsFileTest, EveryParameterHasADescription) {
   }
 }
 
+// What `robodds components --params NAME` prints: one row per key, starting with the key and its type.
+TEST_P(ParamsFileTest, ParamsTableHasARowPerKey) {
+  const std::string table = component_params_text(registry(), GetParam(), false);
+  for (const params::ParamInfo& info : registry().get(GetParam()).params().params) {
+    EXPECT_NE(table.find("\n" + info.key + " "), std::string::npos) << GetParam() << ": no row for " << info.key << " in\n" << table;
+    EXPECT_FALSE(info.type.empty()) << GetParam() << ": " << info.key << " has no type";
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(AllComponents, ParamsFileTest, ::testing::ValuesIn(registered_names()),
                          [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
 
