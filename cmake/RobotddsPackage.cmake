@@ -12,9 +12,10 @@ string(JOIN "\n" CPACK_PACKAGE_DESCRIPTION
   "robodds runs estimation and control components that talk only through DDS"
   "topics (Fast DDS 2.9): co-located, as separate processes or across machines,"
   "in deterministic lockstep or in real time. The package holds the robodds"
-  "binary with every built-in component and, in /usr/share/robodds, the QoS"
-  "profiles, the components' parameter defaults, the example scenarios and the"
-  "plotting script.")
+  "binary with every built-in component, one executable robodds-<type> per"
+  "component (that component alone, without a scenario file) and, in"
+  "/usr/share/robodds, the QoS profiles, the components' documented parameter"
+  "defaults, the example scenarios and the plotting script.")
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 # Only install component "runtime" goes into the package (build dir; project; component; subdir),
 # so a later install() without COMPONENT cannot slip test or benchmark files in.
