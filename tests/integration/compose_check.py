@@ -47,16 +47,10 @@ def dockerfile_entrypoint(src):
     return yaml.safe_load(match.group(1)) if match else None
 
 
-def params_files(robodds):
-    """Component type -> parameter defaults file, from `robodds components`."""
+def registered_types(robodds):
+    """The component types `robodds components` lists."""
     out = subprocess.run([robodds, "components"], capture_output=True, text=True, check=True).stdout
-    files, current = {}, None
-    for line in out.splitlines():
-        if line and not line[0].isspace():
-            current = line.split()[0]
-        elif "params:" in line and current:
-            files[current] = line.split("params:", 1)[1].strip()
-    return files
+    return {line.split()[0] for line in out.splitlines() if line and not line[0].isspace()}
 
 
 def scenario_groups(path):
@@ -95,7 +89,7 @@ def profiles_in(xml_path):
     return set(re.findall(r'<participant\s+profile_name="([^"]+)"', open(xml_path).read()))
 
 
-def check_robodds_service(name, service, src, types_to_params, groups, network_mode):
+def check_robodds_service(name, service, src, types, groups, network_mode):
     mounts = bind_mounts(service)
     for target, (source, read_only) in mounts.items():
         if source is None:
@@ -147,13 +141,8 @@ def check_robodds_service(name, service, src, types_to_params, groups, network_m
         fail(f"{name}: group '{group}' is not a group of the scenario ({', '.join(groups)})")
         return None
     for type_ in groups[group]:
-        params = types_to_params.get(type_)
-        if params is None:
+        if type_ not in types:
             fail(f"{name}: component type '{type_}' is not registered")
-            continue
-        mounted = host_path(SHARE + "/" + params, mounts)
-        if mounted is None or os.path.realpath(mounted) != os.path.join(src, params) or not os.path.isfile(mounted):
-            fail(f"{name}: parameter file {params} of '{type_}' is not mounted from the repository")
     if "--run-id" not in command or "--out" not in command:
         fail(f"{name}: expected --run-id and --out in {command}")
     return group
@@ -165,7 +154,7 @@ def check(robodds, src, compose_file):
     entrypoint = dockerfile_entrypoint(src)
     if entrypoint != ["robodds", "host"]:
         fail(f"Dockerfile ENTRYPOINT is {entrypoint}, expected [robodds, host]")
-    types_to_params = params_files(robodds)
+    types = registered_types(robodds)
     scenario_file = None
     for service in services.values():
         command = service.get("command") or []
@@ -191,7 +180,7 @@ def check(robodds, src, compose_file):
             fail(f"{name}: neither the host network nor a user-defined network")
         if name == "discovery":
             continue
-        group = check_robodds_service(name, service, src, types_to_params, groups, network_mode)
+        group = check_robodds_service(name, service, src, types, groups, network_mode)
         if group is not None:
             seen_groups.append(group)
     if sorted(seen_groups) != sorted(groups):

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # deploy/compose/*.yml: valid for docker-compose, consistent with the repository (groups,
-# profiles, parameter files, image), identical to what `robodds deploy compose` generates now,
+# profiles, image), identical to what `robodds deploy compose` generates now,
 # and the commands they run complete a lockstep run that is byte-identical to the co-located
 # one. No container engine is needed: `docker-compose config` validates without one, and the
 # services' commands are run as local processes.

@@ -101,9 +101,10 @@ class ComposeWriter {
                                                         "' cannot be mounted (empty or contains '$')"));
     }
     for (const ComponentSpec& component : scenario_.components) {
-      if (options_.params_files.count(component.type) == 0) {
+      const std::vector<std::string>& types = options_.component_types;
+      if (std::find(types.begin(), types.end(), component.type) == types.end()) {
         std::string known;
-        for (const auto& [type, file] : options_.params_files) {
+        for (const std::string& type : types) {
           known += (known.empty() ? "" : ", ") + type;
         }
         throw ConfigError(located(scenario_.file, "components." + component.name,
@@ -225,12 +226,6 @@ class ComposeWriter {
       host_args.out = out_dir();
       host.command = to_argv(host_args, kRunIdFromEnvironment);
       host.volumes = common_mounts;
-      for (const std::string& name : group.components) {
-        const std::string mount = read_only_mount(options_.params_files.at(scenario_.component(name).type));
-        if (std::find(host.volumes.begin(), host.volumes.end(), mount) == host.volumes.end()) {
-          host.volumes.push_back(mount);
-        }
-      }
       // Every host gets --out, as with `robodds run --deploy processes`; the evaluator writes there.
       host.volumes.push_back("results:" + std::string(C::kShareDir) + "/out");
       host.depends_on = after_server;

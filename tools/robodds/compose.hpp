@@ -7,6 +7,7 @@
 
 #include <map>
 #include <string>
+#include <vector>
 
 #include "runtime/scenario.hpp"
 
@@ -23,9 +24,9 @@ struct ComposeOptions {
   /// The repository root as seen from the compose file's directory (build context and the
   /// host side of every bind mount), e.g. "../.." for a file in deploy/compose/.
   std::string repo_dir = "../..";
-  /// Component type -> its parameter defaults file relative to the repository root
-  /// (ComponentType::defaults_file). A scenario component whose type is missing is an error.
-  std::map<std::string, std::string> params_files;
+  /// The registered component types; a scenario component of another type is an error. (No
+  /// parameter file is mounted: defaults are compiled in, scenario overrides are in the scenario.)
+  std::vector<std::string> component_types;
 };
 
 /// Fixed names and addresses of the generated deployments (also used by the tests and docs).

@@ -37,10 +37,7 @@ ComposeOptions options_for(ComposeDiscovery discovery, ComposeNetwork network) {
   o.discovery = discovery;
   o.network = network;
   o.scenario_path = "sim/scenarios/demo.yaml";
-  o.params_files = {{"plant", "sim/plant/config/plant.params.yaml"},
-                    {"position_sensor", "components/position_sensor/config/position_sensor.params.yaml"},
-                    {"odometry_sensor", "components/odometry_sensor/config/odometry_sensor.params.yaml"},
-                    {"open_loop_commander", "sim/open_loop/config/open_loop_commander.params.yaml"}};
+  o.component_types = {"plant", "position_sensor", "odometry_sensor", "open_loop_commander"};
   return o;
 }
 
@@ -104,13 +101,12 @@ TEST(Compose, SharedImageBuiltFromTheRepository) {
   EXPECT_THAT(block, HasSubstr("    image: \"robodds:latest\"\n    build:\n      context: ../..\n      dockerfile: deploy/docker/Dockerfile\n"));
 }
 
-TEST(Compose, MountsQosScenarioAndOnlyTheGroupsParameterFilesReadOnly) {
+TEST(Compose, MountsQosAndScenarioReadOnlyAndNoParameterFile) {
   const std::string sensing = service_block(generate(), "sensing");
   EXPECT_THAT(sensing, HasSubstr("      - \"../../deploy/qos:/opt/robodds/deploy/qos:ro\"\n"));
   EXPECT_THAT(sensing, HasSubstr("      - \"../../sim/scenarios/demo.yaml:/opt/robodds/sim/scenarios/demo.yaml:ro\"\n"));
-  EXPECT_THAT(sensing, HasSubstr("components/position_sensor/config/position_sensor.params.yaml:ro\"\n"));
-  EXPECT_THAT(sensing, HasSubstr("components/odometry_sensor/config/odometry_sensor.params.yaml:ro\"\n"));
-  EXPECT_THAT(sensing, Not(HasSubstr("plant.params.yaml")));
+  // Parameter defaults are compiled into the components; the scenario carries the overrides.
+  EXPECT_THAT(sensing, Not(HasSubstr("params.yaml")));
   EXPECT_THAT(sensing, HasSubstr("      - \"results:/opt/robodds/out\"\n"));
 }
 

@@ -67,7 +67,7 @@ int DeployCommand::run() {
     options.repo_dir = repo_dir_seen_from(fs::weakly_canonical(fs::absolute(output_)).parent_path(), root);
   }
   for (const ComponentType& type : env_.registry.types()) {
-    options.params_files[type.name] = type.defaults_file;
+    options.component_types.push_back(type.name);
   }
 
   const std::string text = generate_compose(scenario, options);  // validates groups and types first
@@ -78,9 +78,6 @@ int DeployCommand::run() {
     require_in_repo(root, options.network == ComposeNetwork::kBridge ? ComposeConstants::kBridgeDiscoveryClientXml
                                                                      : "deploy/qos/discovery_client.xml",
                     "discovery client profile");
-  }
-  for (const ComponentSpec& component : scenario.components) {
-    require_in_repo(root, options.params_files.at(component.type), "parameter file of component '" + component.name + "'");
   }
 
   if (output_.empty()) {
