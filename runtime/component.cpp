@@ -33,7 +33,17 @@ void ComponentContext::set_rate_hz(double rate_hz, const std::string& key) {
   state_->period_steps = static_cast<std::uint64_t>(rounded);
 }
 
-void ComponentRegistry::add(ComponentType type) { types_.push_back(std::move(type)); }
+void ComponentRegistry::add(ComponentType type) {
+  if (type.name.empty() || !type.create || !type.params) {
+    throw ConfigError("component type '" + type.name + "': a registration needs a name, a factory and a parameter table");
+  }
+  for (const ComponentType& known : types_) {
+    if (known.name == type.name) {
+      throw ConfigError("component type '" + type.name + "' is registered twice");
+    }
+  }
+  types_.push_back(std::move(type));
+}
 
 const ComponentType& ComponentRegistry::get(const std::string& name) const {
   std::string known;

@@ -51,7 +51,6 @@ struct RunContext {
   Notifier* notifier = nullptr;
   TimeMode mode = TimeMode::kLockstep;
   std::string output_dir;   // where the evaluator writes CSVs and summary.json
-  std::string share_dir;    // repository root or install prefix (params defaults, QoS files)
   bool single_process = false;  // every component of the run lives in this process (co-located)
   std::string deploy_label;     // how the run is deployed ("colocated", "processes"); empty: a host
                                 // started on its own, whose evaluator writes no "run" section

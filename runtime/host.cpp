@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "runtime/host_slot.hpp"
+#include "runtime/log.hpp"
 #include "runtime/lockstep_coordinator.hpp"
 #include "runtime/lockstep_host.hpp"
 #include "runtime/param_table_reader.hpp"
@@ -45,9 +46,6 @@ struct Host::Impl {
     for (const std::string& name : options.components) {
       const ComponentSpec& spec = run.scenario->component(name);
       const ComponentType& type = registry.get(spec.type);
-      if (!type.params) {
-        throw ConfigError("component type '" + type.name + "' has no parameter table (ComponentType::params)");
-      }
       const FlatParams defaults = default_params(type.params(), "defaults of " + type.name);
       auto slot = std::make_unique<ComponentSlot>();
       slot->spec = &spec;
@@ -115,7 +113,12 @@ struct Host::Impl {
     const Clock::time_point start = Clock::now();
     std::vector<std::uint64_t> next_due(slots.size(), 0);
     std::uint64_t reported = 0;
+    std::uint64_t last_run = 0;  // the last step the components ran at
     while (true) {
+      if (options.stop_ends_run && options.stop != nullptr && options.stop->load()) {
+        log::info(options.member, "stopped by a signal after step " + std::to_string(last_run) + ": finishing");
+        break;
+      }
       check_stop();
       if (options.poll) {
         options.poll();
@@ -128,8 +131,10 @@ struct Host::Impl {
       }
       const auto current = static_cast<std::uint64_t>(elapsed_s / step_s);
       if (current > last) {
+        last_run = last;
         break;
       }
+      last_run = current;
       std::uint64_t soonest = last + 1;
       for (std::size_t i = 0; i < slots.size(); ++i) {
         ComponentSlot& slot = *slots[i];
@@ -153,11 +158,11 @@ struct Host::Impl {
         std::this_thread::sleep_for(std::chrono::nanoseconds(std::min<std::int64_t>(sleep_ns, 50000000)));
       }
     }
-    run.figures = RunFigures{last + 1, seconds_since(start)};
+    run.figures = RunFigures{last_run + 1, seconds_since(start)};
     for (auto& slot : slots) {
-      slot->finish(last, static_cast<double>(last) * step_s);
+      slot->finish(last_run, static_cast<double>(last_run) * step_s);
     }
-    return RunStats{last + 1, seconds_since(start)};
+    return RunStats{last_run + 1, seconds_since(start)};
   }
 };
 

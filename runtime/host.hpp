@@ -29,6 +29,9 @@ struct HostOptions {
   std::function<void()> poll;               // called every loop iteration; may throw (child died)
   std::function<void(std::uint64_t step, std::uint64_t last_step)> progress;
   const std::atomic<bool>* stop = nullptr;  // set by a signal handler
+  /// Real time: `stop` ends the run normally (components finish, no error) instead of
+  /// interrupting it. For hosts that run until stopped (a component executable on a robot).
+  bool stop_ends_run = false;
 };
 
 struct RunStats {

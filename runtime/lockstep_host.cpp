@@ -1,5 +1,6 @@
 #include "runtime/lockstep_host.hpp"
 
+#include "common/number_text.hpp"
 #include "runtime/log.hpp"
 
 namespace robodds {
@@ -65,6 +66,12 @@ bool LockstepHost::take_tick() {
   }
   const idl::SimTick tick = tick_queue_.front();
   tick_queue_.pop_front();
+  if (tick.step_s() != run_.scenario->step_s) {
+    // A host that does not load the coordinator's scenario (a component executable with its
+    // own --step) would otherwise integrate and stamp with the wrong dt, silently.
+    throw RunError(options_.member + ": the coordinator's step is " + shortest_text(tick.step_s()) + " s, this host's " +
+                   shortest_text(run_.scenario->step_s) + " s (--step or the scenario's step_s must agree)");
+  }
   tick_active_ = true;
   tick_step_ = tick.header().step();
   tick_is_final_ = tick.final_tick();

@@ -7,9 +7,7 @@
 #include <unistd.h>
 
 namespace robodds {
-namespace {
 
-/// The path of the running executable, or "" when /proc is not available.
 std::string this_executable() {
   char buf[4096];
   const ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
@@ -18,8 +16,6 @@ std::string this_executable() {
   }
   return std::string(buf, static_cast<std::size_t>(n));
 }
-
-}  // namespace
 
 std::string find_share_dir(const char* env_share_dir, const std::string& executable_path,
                            const std::string& source_dir) {

@@ -26,6 +26,10 @@ inline constexpr const char* kShareDirMarker = "deploy/qos/robodds_qos.xml";
 std::string find_share_dir(const char* env_share_dir, const std::string& executable_path,
                            const std::string& source_dir);
 
+/// The path of the running executable (/proc/self/exe, symbolic links resolved), or "" when
+/// /proc is not available.
+std::string this_executable();
+
 /// find_share_dir for this process: $ROBODDS_SHARE_DIR and the executable /proc/self/exe
 /// (symbolic links resolved, so a link to an installed binary finds that binary's share dir).
 std::string share_dir_of_this_process(const std::string& source_dir);

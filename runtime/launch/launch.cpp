@@ -28,14 +28,13 @@ std::string env_or(const char* name, const std::string& fallback) {
   return value != nullptr && *value != '\0' ? value : fallback;
 }
 
+/// The robodds executable, which the child hosts run.
 std::string self_exe() {
-  char buf[4096];
-  const ssize_t n = readlink("/proc/self/exe", buf, sizeof(buf) - 1);
-  if (n <= 0) {
+  const std::string path = this_executable();
+  if (path.empty()) {
     throw RunError("cannot find the robodds executable (/proc/self/exe)");
   }
-  buf[n] = '\0';
-  return buf;
+  return path;
 }
 
 std::vector<std::string> all_members(const Scenario& scenario) {
@@ -193,7 +192,6 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   run.notifier = &notifier;
   run.mode = in_process.mode;
   run.output_dir = in_process.out_dir;
-  run.share_dir = share_dir();
   run.single_process = options.single_process;
   run.deploy_label = in_process.deploy_label;
   Host host(registry, run, options);
@@ -276,6 +274,9 @@ void run_host(const ComponentRegistry& registry, const HostArgs& args, const std
                     : options.components.empty() ? all_members(scenario)
                                                  : std::vector<std::string>{options.member};
   options.realtime_epoch_ns = args.epoch_ns;
+  // A component without a scenario and without --duration runs until stopped: in real time a
+  // signal is its normal end (on_finish runs, exit 0); in lockstep the final tick is.
+  options.stop_ends_run = !args.type.empty() && !args.duration_s;
   apply(args.lockstep, options);
   options.stop = stop;
   run_in_process(registry, scenario, resolve_dds(args.dds, "robodds-" + options.member), options,

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
 #include <map>
 #include <optional>
 #include <stdexcept>
@@ -228,6 +229,44 @@ TEST(HostLoop, AThrowingComponentFailsTheRunWithItsName) {
   }
   ASSERT_FALSE(acks.empty());
   EXPECT_TRUE(acks.back().failed()) << "the host tells the coordinator why it stops";
+}
+
+// A host that runs until stopped (a component executable on a robot, real time): the stop
+// signal is its normal end, components finish; without stop_ends_run it is an interruption.
+TEST(HostLoop, RealTimeStopEndsTheRunOnlyWhenAskedTo) {
+  for (const bool stop_ends_run : {true, false}) {
+    NodeHarness h(R"(name: until_stopped
+step_s: 0.01
+duration_s: 1000.0
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: ticker, type: ticker}
+)");
+    std::atomic<bool> stop{false};
+    int steps = 0;
+    bool finished = false;
+    h.add_script("ticker", nullptr,
+                 [&](const StepInfo&) {
+                   if (++steps == 3) {
+                     stop = true;  // as the signal handler would
+                   }
+                 },
+                 [&](const StepInfo&) { finished = true; });
+    h.set_mode(TimeMode::kRealtime);
+    h.options().stop = &stop;
+    h.options().stop_ends_run = stop_ends_run;
+    if (stop_ends_run) {
+      const RunStats stats = h.run({"ticker"});
+      EXPECT_TRUE(finished);
+      EXPECT_GE(steps, 3);
+      EXPECT_LT(stats.steps, 1000u);  // ended long before duration_s
+    } else {
+      EXPECT_THROW(h.run({"ticker"}), RunError);
+      EXPECT_FALSE(finished);
+    }
+  }
 }
 
 }  // namespace

@@ -68,10 +68,10 @@ struct HostFixture : ::testing::Test {
     return *slots.back();
   }
 
-  void tick(std::uint64_t step, std::uint64_t run_id = 9) {
+  void tick(std::uint64_t step, std::uint64_t run_id = 9, double step_s = 0.0) {
     idl::SimTick t;
     t.run_id(run_id);
-    t.step_s(scenario.step_s);
+    t.step_s(step_s > 0.0 ? step_s : scenario.step_s);
     t.final_tick(step == scenario.last_step());
     tick_state.step = step;
     tick_output->publish(t);
@@ -108,6 +108,20 @@ TEST_F(HostFixture, TicksOfOtherRunsAreIgnored) {
   tick(0, 8);
   EXPECT_FALSE(host.step());
   EXPECT_TRUE(acks.empty());
+  EXPECT_TRUE(steps_run.empty());
+}
+
+TEST_F(HostFixture, ATickWithAnotherStepIsAnError) {
+  add_slot(1);
+  LockstepHost host(run, options, slots);
+  host.begin(std::chrono::steady_clock::now());
+  tick(0, 9, 0.02);
+  try {
+    host.step();
+    FAIL() << "expected a RunError";
+  } catch (const RunError& e) {
+    EXPECT_STREQ(e.what(), "m: the coordinator's step is 0.02 s, this host's 0.01 s (--step or the scenario's step_s must agree)");
+  }
   EXPECT_TRUE(steps_run.empty());
 }
 

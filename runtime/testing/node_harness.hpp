@@ -29,10 +29,6 @@
 #include "runtime/topic_catalog.hpp"
 #include "tests/support/temp_file.hpp"
 
-#ifndef ROBODDS_SOURCE_DIR
-#error "robodds_node_harness defines ROBODDS_SOURCE_DIR (the parameter defaults are read from there)"
-#endif
-
 namespace robodds::testing {
 
 /// Defaults file of test-defined component types: none (they have no parameters).
@@ -41,11 +37,13 @@ inline constexpr const char* kNoParamsFile = "(none: a test component)";
 /// The parameter table of test-defined component types: empty.
 inline params::ParamDoc no_params() { return {}; }
 
-/// A test-defined component: `configure` declares its inputs/outputs, `step` runs at each due step.
+/// A test-defined component: `configure` declares its inputs/outputs, `step` runs at each due
+/// step, `finish` (optional) once after the last.
 class ScriptComponent : public Component {
  public:
-  ScriptComponent(std::function<void(ComponentContext&)> configure, std::function<void(const StepInfo&)> step)
-      : configure_(std::move(configure)), step_(std::move(step)) {}
+  ScriptComponent(std::function<void(ComponentContext&)> configure, std::function<void(const StepInfo&)> step,
+                  std::function<void(const StepInfo&)> finish = nullptr)
+      : configure_(std::move(configure)), step_(std::move(step)), finish_(std::move(finish)) {}
   void configure(ComponentContext& ctx) override {
     if (configure_) {
       configure_(ctx);
@@ -56,10 +54,16 @@ class ScriptComponent : public Component {
       step_(info);
     }
   }
+  void on_finish(const StepInfo& info) override {
+    if (finish_) {
+      finish_(info);
+    }
+  }
 
  private:
   std::function<void(ComponentContext&)> configure_;
   std::function<void(const StepInfo&)> step_;
+  std::function<void(const StepInfo&)> finish_;
 };
 
 class NodeHarness {
@@ -104,11 +108,14 @@ class NodeHarness {
 
   /// Registers a test-defined component type without parameters.
   void add_script(const std::string& type, std::function<void(ComponentContext&)> configure,
-                  std::function<void(const StepInfo&)> step) {
-    registry_.add({type, "test script", kNoParamsFile, [configure, step] {
-                     return std::make_unique<ScriptComponent>(configure, step);
+                  std::function<void(const StepInfo&)> step, std::function<void(const StepInfo&)> finish = nullptr) {
+    registry_.add({type, "test script", kNoParamsFile, [configure, step, finish] {
+                     return std::make_unique<ScriptComponent>(configure, step, finish);
                    }, no_params});
   }
+
+  /// The time mode of run() (default lockstep).
+  void set_mode(TimeMode mode) { mode_ = mode; }
 
   /// Runs `feed(step)` at every step, before the components under test.
   void feed(std::function<void(std::uint64_t step)> feed) { feed_ = std::move(feed); }
@@ -143,9 +150,8 @@ class NodeHarness {
     run.scenario = &scenario_;
     run.bus = &bus_;
     run.notifier = &notifier_;
-    run.mode = TimeMode::kLockstep;
+    run.mode = mode_;
     run.output_dir = output_dir_;
-    run.share_dir = ROBODDS_SOURCE_DIR;
     run.single_process = true;
     HostOptions options = options_;
     options.components = {"feeder"};
@@ -160,6 +166,7 @@ class NodeHarness {
   Scenario scenario_;
   ComponentRegistry registry_;
   HostOptions options_;
+  TimeMode mode_ = TimeMode::kLockstep;
   Notifier notifier_;
   MemoryBus bus_;
   std::string output_dir_;

@@ -2,6 +2,7 @@
 
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "runtime/error.hpp"
@@ -14,6 +15,11 @@ std::atomic<bool> g_stop{false};
 void on_signal(int) { g_stop = true; }
 
 }  // namespace
+
+std::string log_level_from_environment() {
+  const char* level = std::getenv("ROBODDS_LOG");
+  return level != nullptr && *level != '\0' ? level : "info";
+}
 
 const std::atomic<bool>& install_stop_handlers() {
   struct sigaction action {};

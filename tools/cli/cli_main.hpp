@@ -9,8 +9,12 @@
 
 #include <atomic>
 #include <functional>
+#include <string>
 
 namespace robodds::cli {
+
+/// The default log level: $ROBODDS_LOG if set and not empty, else "info".
+std::string log_level_from_environment();
 
 /// Installs the SIGINT/SIGTERM handlers once and returns the flag they set.
 const std::atomic<bool>& install_stop_handlers();

@@ -3,7 +3,6 @@
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
-#include <cstdlib>
 #include <string>
 
 #include "common/param_doc.hpp"
@@ -31,10 +30,7 @@ int component_main(int argc, char** argv, const char* type, void (*register_type
   app.footer("Parameters (--params FILE overrides them; defaults file: " + component.defaults_file + "):\n" +
              params::describe_params(component.params()));
   return cli::parse_and_run(app, argc, argv, [&] {
-    const char* env_log = std::getenv("ROBODDS_LOG");
-    log::set_level(log::parse_level(!args.log_level.empty()                   ? args.log_level
-                                    : env_log != nullptr && *env_log != '\0' ? std::string(env_log)
-                                                                              : std::string("info")));
+    log::set_level(log::parse_level(!args.log_level.empty() ? args.log_level : cli::log_level_from_environment()));
     run_host(registry, args, &stop);
     return 0;
   });

@@ -2,8 +2,6 @@
 // line and dispatches to one Command per subcommand (tools/robodds/*_command.cpp).
 #include <CLI/CLI.hpp>
 
-#include <cstdlib>
-
 #include "runtime/log.hpp"
 #include "runtime/registry.hpp"
 #include "tools/cli/cli_main.hpp"
@@ -14,8 +12,7 @@ int main(int argc, char** argv) {
   const std::atomic<bool>& stop = cli::install_stop_handlers();
   CLI::App app{"robodds: deterministic DDS component system (run scenarios, host components, inspect topics)", "robodds"};
   app.require_subcommand(1);
-  const char* env_log = std::getenv("ROBODDS_LOG");
-  std::string log_level = env_log != nullptr && *env_log != '\0' ? env_log : "info";
+  std::string log_level = cli::log_level_from_environment();
   app.add_option("--log", log_level, "log level: debug, info, warn, error");
 
   ComponentRegistry registry;

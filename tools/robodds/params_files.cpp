@@ -5,19 +5,14 @@
 
 namespace robodds {
 
-std::string expected_params_file(const ComponentType& type) {
-  if (!type.params) {
-    throw ConfigError("component type '" + type.name + "' has no parameter table (ComponentType::params)");
-  }
-  return params::render_params_yaml(type.params());
-}
+std::string expected_params_file(const ComponentType& type) { return params::render_params_yaml(type.params()); }
 
 std::string component_params_text(const ComponentRegistry& registry, const std::string& name, bool yaml) {
   const ComponentType& type = registry.get(name);
   if (yaml) {
     return expected_params_file(type);
   }
-  const params::ParamDoc doc = type.params ? type.params() : params::ParamDoc{};
+  const params::ParamDoc doc = type.params();
   std::string text = type.name + ": " + type.description + "\n";
   if (!doc.summary.empty()) {
     text += doc.summary + "\n";

@@ -69,5 +69,5 @@ std::unique_ptr<Component> make_odometry_sensor_node() { return std::make_unique
 }  // namespace robodds::odometry_sensor
 
 ROBODDS_REGISTER_COMPONENT(odometry_sensor, "wheel odometry with noise and slip: plant/state -> sensor/odometry",
-                           "components/odometry_sensor/config/odometry_sensor.params.yaml", robodds::odometry_sensor::make_odometry_sensor_node,
+                           robodds::odometry_sensor::make_odometry_sensor_node,
                            robodds::odometry_sensor::odometry_sensor_params_doc);

@@ -104,5 +104,5 @@ params::ParamDoc pf_estimator_params_doc() { return pf_estimator_param_table().d
 }  // namespace robodds::pf
 
 ROBODDS_REGISTER_COMPONENT(pf_estimator, "paper 1 particle filter, full pose: sensor/odometry + sensor/position -> estimate/pose",
-                           "components/pf_estimator/config/pf_estimator.params.yaml", robodds::pf::make_pf_estimator_node,
+                           robodds::pf::make_pf_estimator_node,
                            robodds::pf::pf_estimator_params_doc);

@@ -58,5 +58,5 @@ std::unique_ptr<Component> make_position_sensor_node() { return std::make_unique
 }  // namespace robodds::position_sensor
 
 ROBODDS_REGISTER_COMPONENT(position_sensor, "noisy absolute position: plant/state -> sensor/position",
-                           "components/position_sensor/config/position_sensor.params.yaml", robodds::position_sensor::make_position_sensor_node,
+                           robodds::position_sensor::make_position_sensor_node,
                            robodds::position_sensor::position_sensor_params_doc);

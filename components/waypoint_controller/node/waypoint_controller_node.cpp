@@ -87,5 +87,5 @@ std::unique_ptr<Component> make_waypoint_controller_node() { return std::make_un
 }  // namespace robodds::waypoint
 
 ROBODDS_REGISTER_COMPONENT(waypoint_controller, "paper 1 way-point tracking: estimate/pose + mission/waypoints -> plant/cmd, control/status",
-                           "components/waypoint_controller/config/waypoint_controller.params.yaml", robodds::waypoint::make_waypoint_controller_node,
+                           robodds::waypoint::make_waypoint_controller_node,
                            robodds::waypoint::waypoint_controller_params_doc);

@@ -286,5 +286,5 @@ std::unique_ptr<Component> make_evaluator_node() { return std::make_unique<Evalu
 }  // namespace robodds::evaluator
 
 ROBODDS_REGISTER_COMPONENT(evaluator, "records topics to CSV and writes summary.json",
-                           "sim/evaluator/config/evaluator.params.yaml", robodds::evaluator::make_evaluator_node,
+                           robodds::evaluator::make_evaluator_node,
                            robodds::evaluator::evaluator_params_doc);

@@ -53,5 +53,5 @@ std::unique_ptr<Component> make_mission_node() { return std::make_unique<Mission
 }  // namespace robodds::mission
 
 ROBODDS_REGISTER_COMPONENT(mission_source, "publishes the way-point mission (transient local) -> mission/waypoints",
-                           "sim/mission/config/mission_source.params.yaml", robodds::mission::make_mission_node,
+                           robodds::mission::make_mission_node,
                            robodds::mission::mission_source_params_doc);

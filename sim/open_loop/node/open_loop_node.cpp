@@ -57,5 +57,5 @@ std::unique_ptr<Component> make_open_loop_node() { return std::make_unique<OpenL
 }  // namespace robodds::open_loop
 
 ROBODDS_REGISTER_COMPONENT(open_loop_commander, "open-loop velocity commands -> plant/cmd",
-                           "sim/open_loop/config/open_loop_commander.params.yaml", robodds::open_loop::make_open_loop_node,
+                           robodds::open_loop::make_open_loop_node,
                            robodds::open_loop::open_loop_commander_params_doc);

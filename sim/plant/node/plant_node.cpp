@@ -90,5 +90,5 @@ std::unique_ptr<Component> make_plant_node() { return std::make_unique<PlantNode
 }  // namespace robodds::plant
 
 ROBODDS_REGISTER_COMPONENT(plant, "differential-drive plant (paper 1 eq. 1): plant/cmd -> plant/state",
-                           "sim/plant/config/plant.params.yaml", robodds::plant::make_plant_node,
+                           robodds::plant::make_plant_node,
                            robodds::plant::plant_params_doc);

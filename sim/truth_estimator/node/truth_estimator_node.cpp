@@ -54,5 +54,5 @@ std::unique_ptr<Component> make_truth_estimator_node() { return std::make_unique
 }  // namespace robodds::truth_estimator
 
 ROBODDS_REGISTER_COMPONENT(truth_estimator, "ideal estimator: plant/state -> estimate/pose (true pose)",
-                           "sim/truth_estimator/config/truth_estimator.params.yaml", robodds::truth_estimator::make_truth_estimator_node,
+                           robodds::truth_estimator::make_truth_estimator_node,
                            robodds::truth_estimator::truth_estimator_params_doc);
