@@ -46,7 +46,7 @@ struct Host::Impl {
     for (const std::string& name : options.components) {
       const ComponentSpec& spec = run.scenario->component(name);
       const ComponentType& type = registry.get(spec.type);
-      const FlatParams defaults = default_params(type.params(), "defaults of " + type.name);
+      const FlatParams defaults = default_params(type.params(), "built-in defaults of " + type.name);
       auto slot = std::make_unique<ComponentSlot>();
       slot->spec = &spec;
       slot->state.mode = run.mode;

@@ -16,7 +16,7 @@
 namespace robodds {
 
 /// The table's defaults as FlatParams, each remembering `origin` as its "file" (what an error
-/// about a value nobody overrode names), e.g. "defaults of plant".
+/// about a value nobody overrode names), e.g. "built-in defaults of plant".
 FlatParams default_params(const params::ParamDoc& doc, const std::string& origin);
 
 /// One key read as the given kind (enums as their name); type errors are ConfigErrors.

@@ -167,7 +167,7 @@ HostArgOptions add_host_options(CLI::App* app, HostArgs& args) {
   options.group = app->add_option("--group", args.group, "run the components of this group");
   options.components =
       app->add_option("--components", args.components, "run these component instances (comma separated)")->delimiter(',');
-  options.type = app->add_option("--type", args.type, "run one component of this type without a scenario file");
+  app->add_option("--type", args.type, "run one component of this type without a scenario file");
   app->add_option("--params", args.params,
                   "YAML map component.parameter -> value over the scenario's (with --type: the component's own keys)");
   app->add_option("--member", args.member, "name in acknowledgements (default: the group, or the instance name)");

@@ -80,11 +80,11 @@ struct HostArgOptions {
   CLI::Option* scenario = nullptr;
   CLI::Option* group = nullptr;
   CLI::Option* components = nullptr;
-  CLI::Option* type = nullptr;
 };
 
 /// Registers every HostArgs option on `app`, writing into `args` (which must outlive parsing).
-/// Nothing is required here: the caller decides (robodds host requires --scenario).
+/// Nothing is required here: run_host() checks the combination (--scenario with --group or
+/// --components, or --type; a coordinator alone).
 HostArgOptions add_host_options(CLI::App* app, HostArgs& args);
 /// Registers what a component executable (robodds-<type>) accepts: the options of one
 /// component without a scenario file (--robot, --name, --step, --params of its own keys) and

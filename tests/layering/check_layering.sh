@@ -52,6 +52,13 @@ for f in "${cmake_lists[@]}"; do
   [[ $f == sim/* ]] || continue
   mapfile -t -O "${#sim_targets[@]}" sim_targets < <(sed 's/#.*//' "$f" | tr '\n' ' ' |
     grep -oE '(robodds_library|add_library|add_executable)\([[:space:]]*[A-Za-z0-9_]+' | sed -E 's/.*\([[:space:]]*//')
+  # robodds_component(NAME t [LIBRARY l] ...) makes the node library (l, default robodds_t_node)
+  # and the executable robodds-<t with dashes>.
+  while IFS= read -r call; do
+    name=$(grep -oE '[[:space:](]NAME[[:space:]]+[A-Za-z0-9_]+' <<<"$call" | awk '{print $NF}' || true)
+    library=$(grep -oE '[[:space:]]LIBRARY[[:space:]]+[A-Za-z0-9_]+' <<<"$call" | awk '{print $NF}' || true)
+    [[ -n $name ]] && sim_targets+=("${library:-robodds_${name}_node}" "robodds-${name//_/-}")
+  done < <(sed 's/#.*//' "$f" | tr '\n' ' ' | grep -oE 'robodds_component\([^)]*\)')
 done
 for f in "${cmake_lists[@]}"; do
   if [[ $f != components/* ]] || ((${#sim_targets[@]} == 0)); then

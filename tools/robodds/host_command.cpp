@@ -11,8 +11,7 @@ class HostCommand : public Command {
  public:
   HostCommand(CLI::App& app, const CommandEnv& env) : env_(env) {
     cmd_ = app.add_subcommand("host", "run some of a scenario's components (or one component without a scenario) in this process");
-    const HostArgOptions options = add_host_options(cmd_, args_);
-    options.scenario->excludes(options.type);
+    add_host_options(cmd_, args_);  // run_host() says which combinations are wrong
   }
 
   bool parsed() const override { return cmd_->parsed(); }

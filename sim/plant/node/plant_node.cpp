@@ -8,7 +8,7 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
-#include "sim/plant/node/plant_params.hpp"
+#include "sim/plant/node/plant_node_params.hpp"
 #include "sim/plant/plant_params.hpp"
 
 namespace robodds::plant {

@@ -1,4 +1,4 @@
-#include "sim/plant/node/plant_params.hpp"
+#include "sim/plant/node/plant_node_params.hpp"
 
 #include "sim/plant/node/plant_node.hpp"
 

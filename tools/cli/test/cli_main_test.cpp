@@ -1,0 +1,56 @@
+#include "tools/cli/cli_main.hpp"
+
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "runtime/error.hpp"
+
+namespace robodds::cli {
+namespace {
+
+/// parse_and_run on `args` (after the program name) with a --count option, running `run`.
+int run_with(const std::vector<std::string>& args, const std::function<int()>& run) {
+  CLI::App app{"test", "robodds-test"};
+  int count = 0;
+  app.add_option("--count", count);
+  std::vector<const char*> argv = {"robodds-test"};
+  for (const std::string& a : args) {
+    argv.push_back(a.c_str());
+  }
+  return parse_and_run(app, static_cast<int>(argv.size()), const_cast<char**>(argv.data()), run);
+}
+
+TEST(CliMain, ExitCodesNameTheKindOfFailure) {
+  EXPECT_EQ(run_with({}, [] { return 0; }), 0);
+  EXPECT_EQ(run_with({"--count", "3"}, [] { return 7; }), 7);  // the command's own code
+  EXPECT_EQ(run_with({}, []() -> int { throw ConfigError("bad input"); }), 2);
+  EXPECT_EQ(run_with({}, []() -> int { throw RunError("run failed"); }), 1);
+  EXPECT_EQ(run_with({}, []() -> int { throw std::runtime_error("other"); }), 1);
+}
+
+TEST(CliMain, CommandLineMistakesAreBadInputAndDoNotRun) {
+  bool ran = false;
+  EXPECT_EQ(run_with({"--count", "x"}, [&] { ran = true; return 0; }), 2);
+  EXPECT_EQ(run_with({"--nonsense"}, [&] { ran = true; return 0; }), 2);
+  EXPECT_FALSE(ran);
+  testing::internal::CaptureStdout();
+  EXPECT_EQ(run_with({"--help"}, [&] { ran = true; return 0; }), 0);
+  EXPECT_NE(testing::internal::GetCapturedStdout().find("--count"), std::string::npos);
+  EXPECT_FALSE(ran);
+}
+
+TEST(CliMain, LogLevelComesFromTheEnvironmentOrIsInfo) {
+  unsetenv("ROBODDS_LOG");
+  EXPECT_EQ(log_level_from_environment(), "info");
+  setenv("ROBODDS_LOG", "", 1);
+  EXPECT_EQ(log_level_from_environment(), "info");
+  setenv("ROBODDS_LOG", "debug", 1);
+  EXPECT_EQ(log_level_from_environment(), "debug");
+  unsetenv("ROBODDS_LOG");
+}
+
+}  // namespace
+}  // namespace robodds::cli
