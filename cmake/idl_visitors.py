@@ -6,7 +6,7 @@ For every struct T it emits
 which calls v(name, value) for each leaf field, nested structs flattened with '.' and fixed
 arrays expanded as name[i]. Sequences are passed whole (the visitor recurses into struct
 elements with visit_fields). For every top-level topic type (a struct with a `header`) it also
-emits type_name<T>(), instance_key(const T&), instance_label(const T&) and dispatch_type(),
+emits type_name<T>(), key_names<T>(), instance_key(const T&), instance_label(const T&) and dispatch_type(),
 which maps a registered type name to a TypeTag<T> call.
 
 Usage: idl_visitors.py INPUT.idl OUTPUT.hpp
@@ -89,6 +89,13 @@ def main():
     out.append("const char* type_name();")
     for s in topic_types:
         out.append(f'template <> inline const char* type_name<{s["name"]}>() {{ return "{ns}::{s["name"]}"; }}')
+    out.append("")
+    out.append("/// The @key member names of a topic type in IDL order, comma separated (\"-\" = unkeyed).")
+    out.append("template <class T>")
+    out.append("const char* key_names();")
+    for s in topic_types:
+        names = ", ".join(m["name"] for m in s["members"] if m["key"]) or "-"
+        out.append(f'template <> inline const char* key_names<{s["name"]}>() {{ return "{names}"; }}')
     out.append("")
     for s in topic_types:
         keys = [m for m in s["members"] if m["key"]]

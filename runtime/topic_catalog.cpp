@@ -1,25 +1,38 @@
 #include "runtime/topic_catalog.hpp"
 
+#include "robodds/idl/robodds_visit.hpp"
 #include "runtime/error.hpp"
 
 namespace robodds {
 
+namespace {
+
+/// One catalog entry of IDL type Msg: its type name and key come from the IDL (the generated
+/// idl::type_name<Msg>() and idl::key_names<Msg>()), so they cannot disagree with it.
+template <class Msg>
+TopicInfo topic(std::string name, QosClass qos_class, std::string producers, std::string consumers) {
+  return TopicInfo{std::move(name), idl::type_name<Msg>(), qos_class, idl::key_names<Msg>(), std::move(producers),
+                   std::move(consumers)};
+}
+
+}  // namespace
+
 const std::vector<TopicInfo>& topic_catalog() {
   static const std::vector<TopicInfo> topics = {
-      {"sim/clock", "robodds::idl::SimTick", QosClass::kLockstep, "-", "coordinator (`robodds run`)", "every host"},
-      {"sim/step_done", "robodds::idl::StepDone", QosClass::kLockstep, "member", "every host", "coordinator"},
-      {"plant/state", "robodds::idl::RobotState", QosClass::kState, "robot_id", "plant", "sensors, truth_estimator, evaluator"},
-      {"plant/cmd", "robodds::idl::VelocityCommand", QosClass::kCommand, "robot_id", "waypoint_controller, open_loop_commander", "plant, evaluator"},
-      {"sensor/position", "robodds::idl::PositionMeasurement", QosClass::kSensor, "robot_id", "position_sensor", "pf_estimator, evaluator"},
-      {"sensor/odometry", "robodds::idl::Odometry", QosClass::kSensor, "robot_id", "odometry_sensor", "pf_estimator, evaluator"},
-      {"sensor/range", "robodds::idl::RangeMeasurement", QosClass::kSensor, "robot_id, target_id", "range sensor", "range-rate observer"},
-      {"sensor/uwb", "robodds::idl::UwbRanges", QosClass::kSensor, "robot_id, peer_id", "UWB sensor", "relative estimator"},
-      {"estimate/pose", "robodds::idl::PoseEstimate", QosClass::kState, "robot_id", "pf_estimator, truth_estimator", "waypoint_controller, evaluator"},
-      {"estimate/relative_pose", "robodds::idl::RelativePoseEstimate", QosClass::kState, "robot_id, peer_id", "UWB estimator", "evaluator"},
-      {"observer/range_rate", "robodds::idl::RangeRateEstimate", QosClass::kState, "robot_id, target_id", "range-rate observer", "guidance controller"},
-      {"mission/waypoints", "robodds::idl::WaypointMission", QosClass::kMission, "robot_id", "mission_source", "waypoint_controller, evaluator"},
-      {"mission/target", "robodds::idl::TargetAssignment", QosClass::kMission, "robot_id", "mission source", "guidance controller"},
-      {"control/status", "robodds::idl::ControllerStatus", QosClass::kState, "robot_id", "controllers", "evaluator, CLI"},
+      topic<idl::SimTick>("sim/clock", QosClass::kLockstep, "coordinator (`robodds run`)", "every host"),
+      topic<idl::StepDone>("sim/step_done", QosClass::kLockstep, "every host", "coordinator"),
+      topic<idl::RobotState>("plant/state", QosClass::kState, "plant", "sensors, truth_estimator, evaluator"),
+      topic<idl::VelocityCommand>("plant/cmd", QosClass::kCommand, "waypoint_controller, open_loop_commander", "plant, evaluator"),
+      topic<idl::PositionMeasurement>("sensor/position", QosClass::kSensor, "position_sensor", "pf_estimator, evaluator"),
+      topic<idl::Odometry>("sensor/odometry", QosClass::kSensor, "odometry_sensor", "pf_estimator, evaluator"),
+      topic<idl::RangeMeasurement>("sensor/range", QosClass::kSensor, "range sensor", "range-rate observer"),
+      topic<idl::UwbRanges>("sensor/uwb", QosClass::kSensor, "UWB sensor", "relative estimator"),
+      topic<idl::PoseEstimate>("estimate/pose", QosClass::kState, "pf_estimator, truth_estimator", "waypoint_controller, evaluator"),
+      topic<idl::RelativePoseEstimate>("estimate/relative_pose", QosClass::kState, "UWB estimator", "evaluator"),
+      topic<idl::RangeRateEstimate>("observer/range_rate", QosClass::kState, "range-rate observer", "guidance controller"),
+      topic<idl::WaypointMission>("mission/waypoints", QosClass::kMission, "mission_source", "waypoint_controller, evaluator"),
+      topic<idl::TargetAssignment>("mission/target", QosClass::kMission, "mission source", "guidance controller"),
+      topic<idl::ControllerStatus>("control/status", QosClass::kState, "controllers", "evaluator, CLI"),
   };
   return topics;
 }
