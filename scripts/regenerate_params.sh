@@ -5,5 +5,6 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 BUILD="${ROBODDS_BUILD_DIR:-$ROOT/build}"
+[[ -f "$BUILD/CMakeCache.txt" ]] || { echo "regenerate_params.sh: no build in $BUILD; run scripts/build.sh first" >&2; exit 1; }
 cmake --build "$BUILD" --target robodds_regenerate_params
-"$BUILD/tools/robodds/robodds_regenerate_params" "$ROOT"
+"$BUILD/tools/regenerate/robodds_regenerate_params" "$ROOT"

@@ -5,5 +5,5 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 BUILD="${ROBODDS_BUILD_DIR:-$ROOT/build}"
 [[ -f "$BUILD/CMakeCache.txt" ]] || { echo "regenerate_topics_doc.sh: no build in $BUILD; run scripts/build.sh first" >&2; exit 1; }
-cmake --build "$BUILD" --target regenerate_topics_doc
-"$BUILD/tools/topics_doc/regenerate_topics_doc" "$ROOT/docs/topics.md"
+cmake --build "$BUILD" --target robodds_regenerate_topics_doc
+"$BUILD/tools/regenerate/robodds_regenerate_topics_doc" "$ROOT/docs/topics.md"
