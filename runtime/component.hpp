@@ -88,7 +88,7 @@ class ComponentContext {
   template <class Msg>
   Input<Msg>& subscribe(const std::string& topic, const Subscription& subscription) {
     const TopicInfo& info = checked_topic<Msg>(topic);
-    InputOptions options;
+    detail::InputOptions options;
     options.expected = subscription.expected();
     options.delay_steps = subscription.delay_steps();
     options.key_names = info.key;

@@ -69,8 +69,11 @@ class Subscription {
   std::uint64_t delay_steps_ = 0;
 };
 
-/// Runtime-internal: how an Input is set up. ComponentContext::subscribe() builds it from a
-/// Subscription and the topic catalog; the host builds its tick/ack inputs directly.
+namespace detail {
+
+/// Runtime-internal (components use Subscription): how an Input is set up.
+/// ComponentContext::subscribe() builds it from a Subscription and the topic catalog; the host
+/// builds its tick/ack inputs directly.
 struct InputOptions {
   /// Instances (instance_key values) needed at every due step; empty: every instance, gate on none.
   std::vector<std::uint64_t> expected;
@@ -84,9 +87,11 @@ struct InputOptions {
   std::map<std::uint64_t, std::string> labels;
 };
 
+}  // namespace detail
+
 class InputBase {
  public:
-  InputBase(std::string topic, std::string owner, const StepState* state, Notifier* notifier, InputOptions options)
+  InputBase(std::string topic, std::string owner, const StepState* state, Notifier* notifier, detail::InputOptions options)
       : topic_(std::move(topic)), owner_(std::move(owner)), state_(state), notifier_(notifier), options_(std::move(options)) {}
   virtual ~InputBase() = default;
 
@@ -160,7 +165,7 @@ class InputBase {
   std::string owner_;
   const StepState* state_;
   Notifier* notifier_;
-  InputOptions options_;
+  detail::InputOptions options_;
   std::set<std::uint64_t> expected_set_{options_.expected.begin(), options_.expected.end()};
   mutable std::mutex mutex_;
   std::map<std::uint64_t, Progress> progress_;

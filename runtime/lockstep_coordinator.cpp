@@ -26,7 +26,7 @@ LockstepCoordinator::LockstepCoordinator(const RunContext& run, const HostOption
   const TopicInfo& clock = topic_info("sim/clock");
   const TopicInfo& done = topic_info("sim/step_done");
   const std::string profile = qos_profile_for(clock, run.mode, run.single_process);
-  InputOptions ack_options;
+  detail::InputOptions ack_options;
   ack_options.ignore_step = true;
   for (const std::string& member : options.members) {
     ack_options.expected.push_back(member_key(member));

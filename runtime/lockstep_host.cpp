@@ -17,7 +17,7 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
   const TopicInfo& clock = topic_info("sim/clock");
   const TopicInfo& done = topic_info("sim/step_done");
   const std::string profile = qos_profile_for(clock, run.mode, run.single_process);
-  InputOptions tick_options;
+  detail::InputOptions tick_options;
   tick_options.ignore_step = true;
   tick_input_ = std::make_unique<Input<idl::SimTick>>(clock.name, options.member, &state_, run.notifier, tick_options);
   auto* raw = tick_input_.get();

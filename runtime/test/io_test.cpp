@@ -24,7 +24,7 @@ class InputTest : public ::testing::Test {
 };
 
 TEST_F(InputTest, WaitsUntilNextStepPassesTheConsumerStep) {
-  InputOptions options;
+  detail::InputOptions options;
   options.expected = {1, 2};
   options.key_names = "robot_id";
   Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, options);
@@ -40,7 +40,7 @@ TEST_F(InputTest, WaitsUntilNextStepPassesTheConsumerStep) {
 }
 
 TEST_F(InputTest, ReadsOnlySamplesUpToTheCurrentStepMinusDelay) {
-  InputOptions options;
+  detail::InputOptions options;
   options.expected = {1};
   options.delay_steps = 1;
   Input<idl::RobotState> input("plant/cmd", "test", &clock, &notifier, options);
@@ -57,7 +57,7 @@ TEST_F(InputTest, ReadsOnlySamplesUpToTheCurrentStepMinusDelay) {
 }
 
 TEST_F(InputTest, TakeNewReturnsEverySampleInOrderOnce) {
-  Input<idl::RobotState> input("sensor/odometry", "test", &clock, &notifier, InputOptions{{1}, 0, false, "robot_id", {}});
+  Input<idl::RobotState> input("sensor/odometry", "test", &clock, &notifier, detail::InputOptions{{1}, 0, false, "robot_id", {}});
   input.on_sample(state(1, 0, 2, 0.0));
   input.on_sample(state(1, 2, 4, 2.0));
   clock.step = 3;
@@ -68,7 +68,7 @@ TEST_F(InputTest, TakeNewReturnsEverySampleInOrderOnce) {
 }
 
 TEST_F(InputTest, NonFiniteSampleAdvancesTimeButIsDropped) {
-  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, InputOptions{{1}, 0, false, "robot_id", {}});
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, detail::InputOptions{{1}, 0, false, "robot_id", {}});
   input.on_sample(state(1, 0, 1, 1.0));
   input.on_sample(state(1, 1, 2, std::numeric_limits<double>::quiet_NaN()));
   clock.step = 1;
@@ -79,14 +79,14 @@ TEST_F(InputTest, NonFiniteSampleAdvancesTimeButIsDropped) {
 }
 
 TEST_F(InputTest, IgnoresUnexpectedInstances) {
-  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, InputOptions{{1}, 0, false, "robot_id", {}});
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, detail::InputOptions{{1}, 0, false, "robot_id", {}});
   input.on_sample(state(5, 0, 1, 1.0));
   EXPECT_TRUE(input.instances().empty());
 }
 
 TEST_F(InputTest, RealtimeIsAlwaysReadyAndReadsTheNewest) {
   clock.mode = TimeMode::kRealtime;
-  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, InputOptions{{1}, 1, false, "robot_id", {}});
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, detail::InputOptions{{1}, 1, false, "robot_id", {}});
   EXPECT_TRUE(input.ready(100, nullptr));
   input.on_sample(state(1, 7, 8, 3.0));
   ASSERT_NE(input.latest(1), nullptr);

@@ -275,8 +275,8 @@ class RuntimeLink : public Link {
   }
 
  private:
-  static robodds::InputOptions input_options() {
-    robodds::InputOptions o;
+  static robodds::detail::InputOptions input_options() {
+    robodds::detail::InputOptions o;
     o.expected = {kRobotId};
     o.key_names = "robot_id";
     return o;
