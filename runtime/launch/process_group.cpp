@@ -12,6 +12,14 @@
 #include "runtime/error.hpp"
 
 namespace robodds {
+namespace {
+
+std::chrono::steady_clock::time_point deadline_after(double seconds) {
+  return std::chrono::steady_clock::now() +
+         std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+}  // namespace
 
 ProcessGroup::~ProcessGroup() { terminate_all(2.0); }
 
@@ -73,18 +81,11 @@ std::size_t ProcessGroup::reap_finished() {
 }
 
 void ProcessGroup::wait_all(double timeout_s) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
+  const auto deadline = deadline_after(timeout_s);
   for (Child& child : children_) {
-    while (!child.exited) {
-      if (waitpid(child.pid, &child.status, WNOHANG) == child.pid) {
-        child.exited = true;
-        break;
-      }
-      if (std::chrono::steady_clock::now() > deadline) {
-        throw RunError("group '" + child.name + "' (pid " + std::to_string(child.pid) + ") did not exit within " +
-                       std::to_string(static_cast<int>(timeout_s)) + " s after the run");
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    if (!reap_by(child, deadline)) {
+      throw RunError("group '" + child.name + "' (pid " + std::to_string(child.pid) + ") did not exit within " +
+                     std::to_string(static_cast<int>(timeout_s)) + " s after the run");
     }
     if (!WIFEXITED(child.status) || WEXITSTATUS(child.status) != 0) {
       throw RunError("group '" + child.name + "' " + describe_exit(child));
@@ -125,22 +126,27 @@ void ProcessGroup::terminate_all(double grace_s) {
       kill(child.pid, SIGTERM);
     }
   }
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(grace_s);
+  const auto deadline = deadline_after(grace_s);
   for (Child& child : children_) {
-    while (!child.exited) {
-      if (waitpid(child.pid, &child.status, WNOHANG) == child.pid) {
-        child.exited = true;
-        break;
-      }
-      if (std::chrono::steady_clock::now() > deadline) {
-        kill(child.pid, SIGKILL);
-        waitpid(child.pid, &child.status, 0);
-        child.exited = true;
-        break;
-      }
+    if (!reap_by(child, deadline)) {
+      kill(child.pid, SIGKILL);
+      waitpid(child.pid, &child.status, 0);
+      child.exited = true;
+    }
+  }
+}
+
+bool ProcessGroup::reap_by(Child& child, std::chrono::steady_clock::time_point deadline) {
+  while (!child.exited) {
+    if (waitpid(child.pid, &child.status, WNOHANG) == child.pid) {
+      child.exited = true;
+    } else if (std::chrono::steady_clock::now() > deadline) {
+      return false;
+    } else {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
   }
+  return true;
 }
 
 }  // namespace robodds

@@ -3,6 +3,7 @@
 // with a parent-death signal (no orphans even if the runner is killed), polled without
 // blocking, and always reaped.
 
+#include <chrono>
 #include <string>
 #include <sys/types.h>
 #include <vector>
@@ -35,6 +36,8 @@ class ProcessGroup {
     int status = 0;
   };
   std::string describe_exit(const Child& child) const;
+  /// Waits (polling) until `child` has exited, at most until `deadline`; true if it has.
+  static bool reap_by(Child& child, std::chrono::steady_clock::time_point deadline);
   std::vector<Child> children_;
 };
 
