@@ -1,22 +1,23 @@
 #pragma once
 // Parameters of the simulated wheel odometry of a differential-drive robot.
-// Defaults: the member initialisers; keys, units, ranges, descriptions: odometry_sensor_param_table().
 
 #include "common/param_table.hpp"
 
 namespace robodds::odometry_sensor {
 
+// Units, ranges and one-line descriptions of these fields: odometry_sensor_param_table() in
+// odometry_params.cpp (the one source; `robodds components --params odometry_sensor` prints it).
+// Defaults: the member initialisers.
 struct OdometryParams {
-  /// Readings per second (Hz). Used by the node's timer; the model itself is per reading.
+  /// Used by the node's timer; the model itself is per reading.
   double rate_hz = 50.0;
-  /// Distance between the two wheels' contact points (m); converts between twist and wheel speeds.
+  /// Between the wheels' contact points; converts between twist and wheel speeds.
   double wheel_base_m = 0.5;
-  /// Standard deviation (m/s) of the zero-mean white Gaussian noise added to each wheel's
-  /// measured rim speed, independently per wheel and per reading (not scaled with dt).
+  /// Zero-mean Gaussian, on each wheel's measured rim speed, drawn independently per wheel and
+  /// per reading (not scaled with dt).
   double wheel_speed_noise_std_mps = 0.02;
-  /// Fractional scale error of each wheel's measured speed: measured = (1 + slip) * true,
-  /// e.g. 0.01 reads 1% fast. A systematic error the reading's claimed variance does not cover.
-  /// Must lie in (-0.5, 0.5).
+  /// A systematic scale error (e.g. 0.01 reads 1% fast) that the reading's claimed variance does
+  /// not cover.
   double left_slip = 0.0;
   double right_slip = 0.0;
 

@@ -1,16 +1,16 @@
 #pragma once
 // Parameters of the simulated absolute position sensor (a GPS-like fix of the robot's x/y).
-// Defaults: the member initialisers; keys, units, ranges, descriptions: position_sensor_param_table().
 
 #include "common/param_table.hpp"
 
 namespace robodds::position_sensor {
 
+// Units, ranges and one-line descriptions of these fields: position_sensor_param_table(), the one
+// source (`robodds components --params position_sensor` prints it). Defaults: the initialisers.
 struct PositionSensorParams {
-  /// Fixes per second (Hz). Used by the node's timer; the measurement model itself is per fix.
+  /// Used by the node's timer; the measurement model itself is per fix.
   double rate_hz = 10.0;
-  /// Variance of the independent zero-mean Gaussian noise on each world axis (m^2).
-  /// Paper 1, Step 1 uses 2.28 m^2 per axis.
+  /// Of independent zero-mean Gaussian noise on each world axis.
   double noise_var_x_m2 = 2.28;
   double noise_var_y_m2 = 2.28;
 

@@ -26,15 +26,16 @@ enum class RobustLoss {
 RobustLoss robust_loss_from_string(std::string_view text);
 std::string to_string(RobustLoss loss);
 
+// Units, ranges and one-line descriptions of these fields: solver_param_table() in
+// relative_pose_solver.cpp (the one source; its doc() prints them). Defaults: the member
+// initialisers.
 struct SolverOptions {
   RobustLoss loss = RobustLoss::kHuber;
-  /// m, > 0: residuals beyond this count linearly (about 2-3 x the range noise std).
   double loss_scale_m = 0.15;
-  /// Cold start (no initial pose): positions in this many directions on the circle of the mean
-  /// range, times as many headings (4 x 8 = 32 starts); the lowest cost wins. >= 1 each.
+  /// Only without an initial pose: start_directions x start_headings starts (8 x 4 = 32); the
+  /// lowest cost wins.
   int start_directions = 8;
   int start_headings = 4;
-  /// Levenberg-Marquardt iterations per start, >= 1.
   int max_iterations = 50;
 
   /// Throws std::invalid_argument "key: requirement (got value)".

@@ -15,12 +15,14 @@
 namespace robodds::uwb {
 
 /// Standard deviations behind the constant information matrices (diagonal, 1/sigma^2).
+/// Units, ranges and one-line descriptions of these fields: window_weights_param_table() in
+/// sliding_window.cpp (the one source; its doc() prints them). Defaults: the member initialisers.
 struct WindowWeights {
-  double odometry_xy_std_m = 0.02;       // per epoch increment, m
-  double odometry_theta_std_rad = 0.01;  // per epoch increment, rad
-  double uwb_xy_std_m = 0.3;             // single-epoch relative position, m
-  double uwb_theta_std_rad = 0.1;        // single-epoch relative heading, rad
-  /// Throws std::invalid_argument "key: requirement (got value)"; each must be > 0 and finite.
+  double odometry_xy_std_m = 0.02;
+  double odometry_theta_std_rad = 0.01;
+  double uwb_xy_std_m = 0.3;
+  double uwb_theta_std_rad = 0.1;
+  /// Throws std::invalid_argument "key: requirement (got value)".
   void validate() const;
 };
 

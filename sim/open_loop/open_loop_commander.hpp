@@ -6,6 +6,9 @@
 
 namespace robodds::open_loop {
 
+// Units, ranges and one-line descriptions of these fields: open_loop_param_table() in
+// open_loop_commander.cpp (the one source; `robodds components --params open_loop_commander`
+// prints it). Defaults: the member initialisers.
 struct OpenLoopParams {
   double v_mps = 1.0;
   double omega_bias_radps = 0.05;

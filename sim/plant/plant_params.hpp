@@ -1,15 +1,17 @@
 #pragma once
-// Plant parameters. Defaults: the member initialisers; keys, units, ranges, descriptions:
-// plant_model_param_table().
+// Parameters of the differential-drive plant model.
 #include "common/model/twist.hpp"
 #include "common/param_table.hpp"
 
 namespace robodds::plant {
 
+// Units, ranges and one-line descriptions of these fields: plant_model_param_table() in
+// plant_params.cpp (the one source; `robodds components --params plant` prints it). Defaults: the
+// member initialisers.
 struct PlantParams {
-  double wheel_base_m = 0.5;       // m, D of eq. (1)
-  model::TwistLimits limits;       // m/s, rad/s; 0 = unlimited
-  double command_timeout_s = 0.5;  // s, real time: older commands stop the robot
+  double wheel_base_m = 0.5;
+  model::TwistLimits limits;  // flat keys max_speed_mps, max_turn_rate_radps (not nested)
+  double command_timeout_s = 0.5;
 
   /// Throws std::invalid_argument("key: reason").
   void validate() const;

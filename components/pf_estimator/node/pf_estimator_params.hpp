@@ -1,17 +1,19 @@
 #pragma once
 // Every parameter of the pf_estimator component: the filter's (PfParams) plus the node's own.
-// The table is the one source of the keys, defaults and documentation
-// (config/pf_estimator.params.yaml is generated from it).
+// config/pf_estimator.params.yaml is generated from the table.
 
 #include "common/param_table.hpp"
 #include "components/pf_estimator/pf_params.hpp"
 
 namespace robodds::pf {
 
+// Units, ranges and one-line descriptions of these fields: pf_estimator_param_table() in
+// pf_estimator_params.cpp (the one source; `robodds components --params pf_estimator` prints it).
+// Defaults: the member initialisers.
 struct PfEstimatorNodeParams {
-  double rate_hz = 100.0;  // Hz, estimate publication rate
+  double rate_hz = 100.0;
   PfParams filter;
-  double valid_max_position_std_m = 3.0;  // m, threshold of the estimate's valid flag
+  double valid_max_position_std_m = 3.0;
 };
 
 const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table();

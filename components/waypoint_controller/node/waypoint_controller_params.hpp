@@ -1,7 +1,6 @@
 #pragma once
-// Every parameter of the waypoint_controller component: the controller's (ControllerParams) plus the node's own. The table is the one source of the keys,
-// defaults (the member initialisers), units, ranges and descriptions;
-// config/waypoint_controller.params.yaml is generated from it.
+// Every parameter of the waypoint_controller component: the controller's (ControllerParams) plus
+// the node's own. config/waypoint_controller.params.yaml is generated from the table.
 
 #include <cstdint>
 #include <string>
@@ -12,6 +11,9 @@
 
 namespace robodds::waypoint {
 
+// Units, ranges and one-line descriptions of these fields: waypoint_controller_param_table() in
+// waypoint_controller_params.cpp (the one source; `robodds components --params waypoint_controller`
+// prints it). Defaults: the member initialisers.
 struct WaypointControllerNodeParams {
   double rate_hz = 100.0;
   ControllerParams controller;

@@ -1,7 +1,6 @@
 #pragma once
-// Every parameter of the evaluator component. The table is the one source of the keys,
-// defaults (the member initialisers), units, ranges and descriptions;
-// config/evaluator.params.yaml is generated from it.
+// Every parameter of the evaluator component.
+// config/evaluator.params.yaml is generated from the table.
 
 #include <cstdint>
 #include <string>
@@ -11,6 +10,9 @@
 
 namespace robodds::evaluator {
 
+// Units, ranges and one-line descriptions of these fields: evaluator_param_table() in
+// evaluator_params.cpp (the one source; `robodds components --params evaluator` prints it).
+// Defaults: the member initialisers.
 struct EvaluatorParams {
   std::vector<std::string> topics{"plant/state", "plant/cmd", "sensor/position"};
   double metrics_after_s = 5.0;

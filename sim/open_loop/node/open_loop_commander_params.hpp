@@ -1,7 +1,6 @@
 #pragma once
-// Every parameter of the open_loop_commander component: the command profile (OpenLoopParams) plus the node's own. The table is the one source of the keys,
-// defaults (the member initialisers), units, ranges and descriptions;
-// config/open_loop_commander.params.yaml is generated from it.
+// Every parameter of the open_loop_commander component: the command profile (OpenLoopParams)
+// plus the node's own. config/open_loop_commander.params.yaml is generated from the table.
 
 #include <cstdint>
 #include <string>
@@ -12,6 +11,9 @@
 
 namespace robodds::open_loop {
 
+// Units, ranges and one-line descriptions of these fields: open_loop_commander_param_table() in
+// open_loop_commander_params.cpp (the one source; `robodds components --params open_loop_commander`
+// prints it). Defaults: the member initialisers.
 struct OpenLoopNodeParams {
   double rate_hz = 50.0;
   OpenLoopParams profile;

@@ -1,7 +1,6 @@
 #pragma once
-// Every parameter of the plant component: the plant's (PlantParams) plus the node's rate. The table is the one source of the keys,
-// defaults (the member initialisers), units, ranges and descriptions;
-// config/plant.params.yaml is generated from it.
+// Every parameter of the plant component: the plant's (PlantParams) plus the node's rate.
+// config/plant.params.yaml is generated from the table.
 
 #include <cstdint>
 #include <string>
@@ -12,6 +11,9 @@
 
 namespace robodds::plant {
 
+// Units, ranges and one-line descriptions of these fields: plant_param_table() in
+// plant_node_params.cpp (the one source; `robodds components --params plant` prints it). Defaults:
+// the member initialisers.
 struct PlantNodeParams {
   double rate_hz = 100.0;
   PlantParams plant;
