@@ -231,12 +231,7 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
     throw ConfigError("robodds host: --robot, --name and --step describe a component without a scenario (--type); the scenario has its own");
   }
   Scenario scenario = load_scenario(args.scenario);
-  if (args.seed) {
-    scenario.seed = *args.seed;
-  }
-  if (args.duration_s) {
-    scenario.duration_s = *args.duration_s;
-  }
+  apply_run_overrides(scenario, args.duration_s, args.seed);
   if (!args.params.empty()) {
     apply_param_overrides(scenario, load_param_file(args.params), args.params);
   }
