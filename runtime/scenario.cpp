@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <set>
 
+#include "common/number_text.hpp"
 #include "runtime/error.hpp"
 
 namespace robodds {
@@ -66,6 +68,7 @@ class ScenarioParser {
     if (s.duration_s <= 0.0) {
       fail("duration_s", "must be > 0");
     }
+    checked_last_step(s.step_s, s.duration_s, file_, "step_s");
     s.seed = scalar<std::uint64_t>(root["seed"], "seed", "a non-negative integer");
     parse_robots(root["robots"], s);
     parse_components(root["components"], s);
@@ -209,9 +212,37 @@ class ScenarioParser {
 
 }  // namespace
 
-std::uint64_t Scenario::last_step() const {
-  return static_cast<std::uint64_t>(std::llround(duration_s / step_s));
+std::uint64_t checked_last_step(double step_s, double duration_s, const std::string& file, const std::string& key) {
+  if (!(step_s > 0.0) || !std::isfinite(step_s)) {
+    throw ConfigError(located(file, key, "the step must be a positive, finite number of seconds (got " + shortest_text(step_s) + ")"));
+  }
+  if (!(duration_s > 0.0) || !std::isfinite(duration_s)) {
+    throw ConfigError(
+        located(file, key, "the duration must be a positive, finite number of seconds (got " + shortest_text(duration_s) + ")"));
+  }
+  const double last = std::round(duration_s / step_s);  // may be inf: compared as a double first
+  if (!(last <= static_cast<double>(kMaxLastStep))) {
+    char count[32];
+    std::snprintf(count, sizeof(count), "%.3g", last);
+    throw ConfigError(located(file, key,
+                              "duration " + shortest_text(duration_s) + " s at step " + shortest_text(step_s) + " s is " +
+                                  count + " steps, more than " + std::to_string(kMaxLastStep) +
+                                  " (2^40); use a longer step or a shorter duration"));
+  }
+  return static_cast<std::uint64_t>(last);
 }
+
+void apply_run_overrides(Scenario& scenario, const std::optional<double>& duration_s, const std::optional<std::uint64_t>& seed) {
+  if (duration_s) {
+    checked_last_step(scenario.step_s, *duration_s, "", "--duration");
+    scenario.duration_s = *duration_s;
+  }
+  if (seed) {
+    scenario.seed = *seed;
+  }
+}
+
+std::uint64_t Scenario::last_step() const { return checked_last_step(step_s, duration_s, file, "duration_s"); }
 
 const ComponentSpec& Scenario::component(const std::string& component_name) const {
   for (const ComponentSpec& c : components) {
@@ -243,6 +274,14 @@ const RobotSpec& Scenario::robot(std::uint32_t id) const {
 }
 
 Scenario load_scenario(const std::string& path) {
+  std::error_code error;
+  const std::filesystem::file_status status = std::filesystem::status(path, error);
+  if (std::filesystem::is_directory(status)) {
+    throw ConfigError(located(path, "", "is a directory, not a scenario file"));
+  }
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    throw ConfigError(located(path, "", "is not a regular file (a scenario is a YAML file)"));
+  }
   YAML::Node root;
   try {
     root = YAML::LoadFile(path);

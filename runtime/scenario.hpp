@@ -3,6 +3,7 @@
 // step, duration, seed, and the deployment grouping (which components share a process).
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -41,12 +42,27 @@ struct Scenario {
   std::vector<ComponentSpec> components;
   std::vector<GroupSpec> groups;
 
-  /// Index of the last step: steps 0..last_step() run, at times step * step_s.
+  /// Index of the last step: steps 0..last_step() run, at times step * step_s (checked_last_step()).
   std::uint64_t last_step() const;
   const ComponentSpec& component(const std::string& name) const;
   const GroupSpec& group(const std::string& name) const;
   const RobotSpec& robot(std::uint32_t id) const;
 };
+
+/// Most steps after step 0 a run may have: 2^40 (about 1.1e12: 35 years of simulated time at a
+/// 1 ms step, 13 days of wall time at a million ticks per second). A sanity bound far below where
+/// round(duration_s / step_s) stops fitting an integer (2^63), so that a slip such as
+/// `step_s: 1e-25` or `--duration 1e300` is a clear error, not an overflowed count.
+inline constexpr std::uint64_t kMaxLastStep = std::uint64_t{1} << 40;
+
+/// The one step-count rule: round(duration_s / step_s), the index of the last step. Throws
+/// ConfigError(located(file, key, reason)) unless step_s and duration_s are positive and finite
+/// and the last step is at most kMaxLastStep (the reason names both values and the count).
+std::uint64_t checked_last_step(double step_s, double duration_s, const std::string& file, const std::string& key);
+
+/// The command line's --duration and --seed over the scenario's (nullopt: keep the scenario's);
+/// a new duration is checked against the step (checked_last_step(), naming --duration).
+void apply_run_overrides(Scenario& scenario, const std::optional<double>& duration_s, const std::optional<std::uint64_t>& seed);
 
 /// Loads and validates a scenario (throws ConfigError naming file, key and reason).
 Scenario load_scenario(const std::string& path);

@@ -2,6 +2,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
 #include "common/number_text.hpp"
 
 namespace robodds {
@@ -40,7 +44,52 @@ class ArgvWriter {
   std::vector<std::string> argv_;
 };
 
+/// A positive, finite number of seconds (CLI::PositiveNumber lets "nan" through). The step count
+/// it gives with the step is checked later, in one place (checked_last_step()).
+CLI::Validator positive_seconds() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double value = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || !std::isfinite(value) || !(value > 0.0)) {
+          return "must be a positive, finite number of seconds (got " + text + ")";
+        }
+        return {};
+      },
+      "SECONDS");
+}
+
+/// A whole number 0..2^64-1 written in decimal digits (CLI11 would turn "-1" into 2^64-1).
+CLI::Validator seed_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        errno = 0;
+        char* end = nullptr;
+        const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
+        if (digits) {
+          std::strtoull(text.c_str(), &end, 10);
+        }
+        if (!digits || errno == ERANGE) {
+          return "must be a whole number 0..18446744073709551615 (got " + text + ")";
+        }
+        return {};
+      },
+      "SEED");
+}
+
 }  // namespace
+
+void add_duration_option(CLI::App* app, std::optional<double>& duration_s, const std::string& help) {
+  app->add_option_function<double>(
+         "--duration", [&duration_s](const double& seconds) { duration_s = seconds; }, help)
+      ->check(positive_seconds());
+}
+
+void add_seed_option(CLI::App* app, std::optional<std::uint64_t>& seed, const std::string& help) {
+  app->add_option_function<std::uint64_t>(
+         "--seed", [&seed](const std::uint64_t& value) { seed = value; }, help)
+      ->check(seed_number());
+}
 
 bool DdsArgs::operator==(const DdsArgs& o) const {
   return domain == o.domain && qos_files == o.qos_files && participant_profile == o.participant_profile;
@@ -128,13 +177,8 @@ void add_run_options(CLI::App* app, HostArgs& args) {
                   "deployment label for the \"run\" section of summary.json (set by robodds run; default: no run section)");
   app->add_flag("--realtime", args.realtime, "wall-clock timers instead of lockstep");
   app->add_option("--epoch-ns", args.epoch_ns, "real time: wall clock (ns) of step 0");
-  app->add_option_function<double>(
-         "--duration", [&args](const double& seconds) { args.duration_s = seconds; },
-         "override the scenario duration (s; a component without a scenario: until stopped)")
-      ->check(CLI::PositiveNumber);
-  app->add_option_function<std::uint64_t>(
-      "--seed", [&args](const std::uint64_t& seed) { args.seed = seed; },
-      "override the scenario seed (a component without a scenario: 1)");
+  add_duration_option(app, args.duration_s, "override the scenario duration (s; a component without a scenario: until stopped)");
+  add_seed_option(app, args.seed, "override the scenario seed (a component without a scenario: 1)");
   app->add_option("--log", args.log_level, "log level: debug, info, warn, error (default: the global --log)");
   add_dds_options(app, args.dds);
   add_lockstep_options(app, args.lockstep);
@@ -148,7 +192,7 @@ void add_standalone_options(CLI::App* app, HostArgs& args) {
   app->add_option_function<double>(
          "--step", [&args](const double& seconds) { args.step_s = seconds; },
          "without a scenario: simulation step (s, default 0.01)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_seconds());
 }
 
 }  // namespace

@@ -91,6 +91,10 @@ HostArgOptions add_host_options(CLI::App* app, HostArgs& args);
 /// the run options it shares with `robodds host` (--realtime, --out, --run-id, --member,
 /// --duration, --seed, --log, DDS and lockstep options). `args.type` is the caller's.
 void add_component_options(CLI::App* app, HostArgs& args);
+/// --duration: a positive, finite number of seconds (NaN, inf, 0 and negatives are CLI errors).
+void add_duration_option(CLI::App* app, std::optional<double>& duration_s, const std::string& help);
+/// --seed: a whole number 0..2^64-1 in decimal digits ("-1" and overflow are CLI errors).
+void add_seed_option(CLI::App* app, std::optional<std::uint64_t>& seed, const std::string& help);
 void add_dds_options(CLI::App* app, DdsArgs& args);
 void add_lockstep_options(CLI::App* app, LockstepArgs& args);
 

@@ -231,12 +231,7 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
     throw ConfigError("robodds host: --robot, --name and --step describe a component without a scenario (--type); the scenario has its own");
   }
   Scenario scenario = load_scenario(args.scenario);
-  if (args.seed) {
-    scenario.seed = *args.seed;
-  }
-  if (args.duration_s) {
-    scenario.duration_s = *args.duration_s;
-  }
+  apply_run_overrides(scenario, args.duration_s, args.seed);
   if (!args.params.empty()) {
     apply_param_overrides(scenario, load_param_file(args.params), args.params);
   }
@@ -247,6 +242,9 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
 
 void run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop) {
   const Scenario scenario = host_scenario(registry, args);
+  if (!args.out.empty() && args.deploy != to_string(Deploy::kProcesses)) {
+    make_output_dir(args.out);  // a child of `robodds run --deploy processes` gets a checked one
+  }
   HostOptions options;
   if (!args.type.empty()) {
     options.components = {scenario.components.front().name};
@@ -281,14 +279,6 @@ void run_host(const ComponentRegistry& registry, const HostArgs& args, const std
   options.stop = stop;
   run_in_process(registry, scenario, resolve_dds(args.dds, "robodds-" + options.member), options,
                  InProcessRun{time_mode(args.realtime), args.out, args.deploy});
-}
-
-void make_output_dir(const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) {
-    throw ConfigError(located(dir, "", "cannot create the output directory: " + error.message()));
-  }
 }
 
 int draw_plots(const std::string& out_dir, double timeout_s) {

@@ -12,6 +12,7 @@
 #include "runtime/dds/dds_bus.hpp"
 #include "runtime/host.hpp"
 #include "runtime/launch/host_args.hpp"
+#include "runtime/launch/output_dir.hpp"
 #include "runtime/registry.hpp"
 #include "runtime/scenario.hpp"
 
@@ -62,9 +63,6 @@ DdsOptions resolve_dds(const DdsArgs& args, const std::string& participant_name)
 
 /// Repository root or install prefix: $ROBODDS_SHARE_DIR, else the source tree it was built from.
 std::string share_dir();
-
-/// Creates `dir` and its parents (ConfigError naming it if that fails).
-void make_output_dir(const std::string& dir);
 
 /// Draws a run's plots: `python3 sim/report/report.py OUT_DIR` as a child process (stdout and
 /// stderr shared), waited for at most timeout_s. Returns the script's exit code.

@@ -1,5 +1,6 @@
 #include "runtime/launch/standalone_scenario.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
 #include <sstream>
@@ -75,11 +76,10 @@ Scenario standalone_scenario(const HostArgs& args) {
   scenario.name = args.type;
   scenario.description = "component " + args.type + " without a scenario file";
   scenario.step_s = args.step_s.value_or(kStandaloneStepS);
-  scenario.duration_s = args.duration_s.value_or(kUntilStoppedS);
+  // "Until stopped" is at most kMaxLastStep steps, so that a short --step still fits.
+  scenario.duration_s = args.duration_s.value_or(std::min(kUntilStoppedS, static_cast<double>(kMaxLastStep) * scenario.step_s));
   scenario.seed = args.seed.value_or(1);
-  if (!(scenario.step_s > 0.0) || !std::isfinite(scenario.step_s)) {
-    throw ConfigError("--step: must be a positive number of seconds");
-  }
+  checked_last_step(scenario.step_s, scenario.duration_s, "", "--step");
   std::set<std::uint32_t> ids;
   ComponentSpec component;
   component.name = args.name.empty() ? args.type : args.name;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 
 #include "runtime/error.hpp"
 #include "tests/support/temp_file.hpp"
@@ -82,6 +83,76 @@ TEST(Scenario, MissingFileIsNamed) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find("/nonexistent/s.yaml: cannot open"), std::string::npos);
   }
+}
+
+TEST(Scenario, DirectoryIsNamed) {
+  const std::string dir = ::testing::TempDir();
+  try {
+    load_scenario(dir);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()), dir + ": is a directory, not a scenario file");
+  }
+}
+
+TEST(Scenario, StepCountThatDoesNotFitIsNamed) {
+  std::string text = kValid;
+  text.replace(text.find("step_s: 0.01"), 12, "step_s: 1e-25");
+  EXPECT_NE(load_error(text).find(": step_s: duration 1 s at step 1e-25 s is 1e+25 steps, more than 1099511627776 (2^40)"),
+            std::string::npos)
+      << load_error(text);
+  std::string small = kValid;
+  small.replace(small.find("step_s: 0.01"), 12, "step_s: 1e-18");
+  EXPECT_NE(load_error(small).find("is 1e+18 steps, more than 1099511627776"), std::string::npos) << load_error(small);
+}
+
+TEST(CheckedLastStep, RoundsTheQuotient) {
+  EXPECT_EQ(checked_last_step(0.01, 1.0, "f", "k"), 100u);
+  EXPECT_EQ(checked_last_step(0.01, 0.004, "f", "k"), 0u);
+  EXPECT_EQ(checked_last_step(1.0, static_cast<double>(kMaxLastStep), "f", "k"), kMaxLastStep);
+}
+
+TEST(CheckedLastStep, TooManyStepsNonFiniteAndNonPositiveAreConfigErrorsNamingFileAndKey) {
+  const auto error = [](double step, double duration) {
+    try {
+      checked_last_step(step, duration, "s.yaml", "step_s");
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_EQ(error(1.0, static_cast<double>(kMaxLastStep) + 1.0),
+            "s.yaml: step_s: duration 1099511627777 s at step 1 s is 1.1e+12 steps, more than 1099511627776 (2^40); use a "
+            "longer step or a shorter duration");
+  EXPECT_NE(error(1e-25, 20.0).find("is 2e+26 steps"), std::string::npos);
+  EXPECT_NE(error(1e-300, 1e300).find("is inf steps"), std::string::npos);  // the quotient overflows a double
+  EXPECT_EQ(error(std::nan(""), 1.0), "s.yaml: step_s: the step must be a positive, finite number of seconds (got nan)");
+  EXPECT_EQ(error(0.0, 1.0), "s.yaml: step_s: the step must be a positive, finite number of seconds (got 0)");
+  EXPECT_EQ(error(0.01, std::nan("")), "s.yaml: step_s: the duration must be a positive, finite number of seconds (got nan)");
+  EXPECT_EQ(error(0.01, -5.0), "s.yaml: step_s: the duration must be a positive, finite number of seconds (got -5)");
+  EXPECT_NE(error(0.01, HUGE_VAL).find("(got inf)"), std::string::npos);
+}
+
+TEST(ApplyRunOverrides, SetsDurationAndSeedOrKeepsTheScenarios) {
+  Scenario s = load_scenario(write_test_file("ok.yaml", kValid));
+  apply_run_overrides(s, std::nullopt, std::nullopt);
+  EXPECT_EQ(s.duration_s, 1.0);
+  EXPECT_EQ(s.seed, 3u);
+  apply_run_overrides(s, 2.5, std::uint64_t{0});
+  EXPECT_EQ(s.duration_s, 2.5);
+  EXPECT_EQ(s.seed, 0u);
+  EXPECT_EQ(s.last_step(), 250u);
+}
+
+TEST(ApplyRunOverrides, ADurationGivingTooManyStepsNamesTheOptionAndKeepsTheScenario) {
+  Scenario s = load_scenario(write_test_file("ok.yaml", kValid));
+  try {
+    apply_run_overrides(s, 1e300, std::nullopt);
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("--duration: duration 1e+300 s at step 0.01 s is 1e+302 steps", 0), 0u) << e.what();
+  }
+  EXPECT_EQ(s.duration_s, 1.0);
 }
 
 }  // namespace

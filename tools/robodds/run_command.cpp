@@ -36,9 +36,9 @@ class RunCommand : public Command {
     cmd_->add_option("--deploy", deploy_, "colocated (one process) or processes (one per group)")
         ->check(CLI::IsMember({"colocated", "processes"}));
     cmd_->add_option("--out", out_dir_, "output directory (default out/<scenario name>)");
-    cmd_->add_option("--seed", seed_, "override the scenario seed")->each([this](const std::string&) { seed_given_ = true; });
+    add_seed_option(cmd_, seed_, "override the scenario seed");
     cmd_->add_flag("--realtime", realtime_, "wall-clock timers instead of lockstep");
-    cmd_->add_option("--duration", duration_s_, "override the scenario duration (s)")->check(CLI::PositiveNumber);
+    add_duration_option(cmd_, duration_s_, "override the scenario duration (s)");
     add_dds_options(cmd_, dds_);
     add_lockstep_options(cmd_, lockstep_);
     cmd_->add_flag("--no-plots", no_plots_, "do not draw the PNG plots at the end");
@@ -48,12 +48,7 @@ class RunCommand : public Command {
 
   int run() override {
     Scenario scenario = load_scenario(scenario_file_);
-    if (seed_given_) {
-      scenario.seed = seed_;
-    }
-    if (duration_s_ > 0.0) {
-      scenario.duration_s = duration_s_;
-    }
+    apply_run_overrides(scenario, duration_s_, seed_);
     LaunchOptions launch;
     launch.scenario_file = scenario_file_;
     launch.deploy = deploy_ == "processes" ? Deploy::kProcesses : Deploy::kColocated;
@@ -86,10 +81,9 @@ class RunCommand : public Command {
   std::string scenario_file_;
   std::string deploy_ = "colocated";
   std::string out_dir_;
-  std::uint64_t seed_ = 0;
-  bool seed_given_ = false;
+  std::optional<std::uint64_t> seed_;
   bool realtime_ = false;
-  double duration_s_ = 0.0;
+  std::optional<double> duration_s_;
   bool no_plots_ = false;
   DdsArgs dds_;
   LockstepArgs lockstep_;

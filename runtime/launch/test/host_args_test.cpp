@@ -140,5 +140,34 @@ TEST(HostArgs, ParserChecksRanges) {
   EXPECT_THROW(parse({"--duration", "0"}), CLI::ValidationError);
 }
 
+TEST(HostArgs, DurationAndStepRejectNanInfinityAndNegatives) {
+  for (const char* option : {"--duration", "--step"}) {
+    for (const char* bad : {"nan", "NaN", "inf", "-inf", "-1", "0", "1e400", "2s"}) {
+      EXPECT_THROW(parse({option, bad}), CLI::ValidationError) << option << " " << bad;
+    }
+  }
+  try {
+    parse({"--duration", "nan"});
+  } catch (const CLI::ValidationError& e) {
+    EXPECT_EQ(std::string(e.what()), "--duration: must be a positive, finite number of seconds (got nan)");
+  }
+  // Positive and finite passes; whether it fits the step is checked with the scenario (checked_last_step()).
+  EXPECT_EQ(parse({"--duration", "1e300"}).duration_s, 1e300);
+  EXPECT_EQ(parse({"--step", "1e-25"}).step_s, 1e-25);
+}
+
+TEST(HostArgs, SeedIsAWholeNumberThatFits) {
+  for (const char* bad : {"-1", "18446744073709551616", "99999999999999999999999", "1.5", "1e3", "+1", " 1", ""}) {
+    EXPECT_THROW(parse({"--seed", bad}), CLI::ParseError) << bad;
+  }
+  try {
+    parse({"--seed", "-1"});
+  } catch (const CLI::ValidationError& e) {
+    EXPECT_EQ(std::string(e.what()), "--seed: must be a whole number 0..18446744073709551615 (got -1)");
+  }
+  EXPECT_EQ(parse({"--seed", "18446744073709551615"}).seed, std::numeric_limits<std::uint64_t>::max());
+  EXPECT_EQ(parse({"--seed", "0"}).seed, 0u);
+}
+
 }  // namespace
 }  // namespace robodds

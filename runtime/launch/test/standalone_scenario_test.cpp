@@ -88,6 +88,21 @@ TEST(StandaloneScenario, NeedsRobotsAndAPositiveStep) {
             std::string::npos);
 }
 
+TEST(StandaloneScenario, StepCountMustFit) {
+  HostArgs tiny = pf_args();
+  tiny.step_s = 1e-25;
+  tiny.duration_s = 10.0;
+  EXPECT_EQ(config_error([&] { standalone_scenario(tiny); })
+                .rfind("--step: duration 10 s at step 1e-25 s is 1e+26 steps", 0),
+            0u)
+      << config_error([&] { standalone_scenario(tiny); });
+  // Until stopped (no --duration) is at most kMaxLastStep steps: a short step still runs.
+  HostArgs until_stopped = pf_args();
+  until_stopped.step_s = 1e-4;
+  const Scenario s = standalone_scenario(until_stopped);
+  EXPECT_EQ(s.last_step(), kMaxLastStep);
+}
+
 TEST(StandaloneScenario, MissingParamsFileIsNamed) {
   HostArgs args = pf_args();
   args.params = "/nonexistent/pf.yaml";

@@ -1,0 +1,37 @@
+#include "runtime/launch/output_dir.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#include "runtime/error.hpp"
+
+namespace robodds {
+
+void make_output_dir(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code error;
+  const fs::file_status status = fs::status(dir, error);
+  if (fs::exists(status) && !fs::is_directory(status)) {
+    throw ConfigError(located(dir, "", "the output directory is not a directory (a file of that name exists)"));
+  }
+  fs::create_directories(dir, error);
+  if (error) {
+    throw ConfigError(located(dir, "", "cannot create the output directory: " + error.message()));
+  }
+  // Writable? Try it: the mode bits do not tell (root writes into a 0555 directory; /proc and
+  // read-only mounts refuse everyone).
+  const std::string probe = dir + "/.robodds-write-probe-" + std::to_string(::getpid());
+  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  if (fd < 0) {
+    throw ConfigError(located(dir, "", std::string("the output directory is not writable: ") + std::strerror(errno)));
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+}  // namespace robodds
