@@ -30,4 +30,13 @@ const std::vector<std::string>& participant_profile_names() {
   return names;
 }
 
+std::vector<QosProfileRef> required_profiles(const std::string& participant_profile) {
+  std::vector<QosProfileRef> profiles = {{"participant", participant_profile}};
+  for (const std::string& name : data_profile_names()) {
+    profiles.push_back({"data_writer", name});
+    profiles.push_back({"data_reader", name});
+  }
+  return profiles;
+}
+
 }  // namespace robodds

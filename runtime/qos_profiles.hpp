@@ -37,4 +37,16 @@ const std::vector<std::string>& data_profile_names();
 /// Every participant profile above.
 const std::vector<std::string>& participant_profile_names();
 
+/// A profile the runtime can ask the QoS files for: its XML element and its profile_name.
+struct QosProfileRef {
+  std::string element;  // "participant", "data_writer" or "data_reader"
+  std::string name;
+  bool operator==(const QosProfileRef& other) const { return element == other.element && name == other.name; }
+};
+
+/// Every profile a bus with participant profile `participant_profile` can ask for, in the order
+/// they are checked before its participant is created: the participant profile, then each data
+/// profile as a data_writer and as a data_reader.
+std::vector<QosProfileRef> required_profiles(const std::string& participant_profile);
+
 }  // namespace robodds

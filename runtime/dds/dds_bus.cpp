@@ -1,7 +1,6 @@
 #include "runtime/dds/dds_bus.hpp"
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
-#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
@@ -18,6 +17,7 @@
 
 #include "runtime/dds/listeners.hpp"
 #include "runtime/dds/match_report.hpp"
+#include "runtime/dds/participant.hpp"
 #include "runtime/dds/qos_files.hpp"
 #include "runtime/error.hpp"
 #include "runtime/dds/type_support.hpp"
@@ -49,39 +49,24 @@ class DdsReader : public ReaderHandle {};
 class FastDdsBus : public DdsBus {
  public:
   explicit FastDdsBus(const DdsOptions& options) {
+    // Every profile this bus can ask for is checked before the participant exists: a bad QoS file
+    // creates nothing. Anything that throws after create_participant() leaves participant_ to
+    // delete what was built (it is declared after what its listeners point to).
     dds::DomainParticipantQos qos = checked_participant_qos(options);
-    auto* factory = dds::DomainParticipantFactory::get_instance();
     qos.name(options.participant_name);
     // Only discovery callbacks (participant names, remote QoS): with an empty mask no entity
     // status reaches this listener, so on_data_available stays with the readers' listeners.
-    participant_ = factory->create_participant(options.domain_id, qos, &peers_, dds::StatusMask::none());
-    if (participant_ == nullptr) {
-      throw RunError("could not create a DDS participant on domain " + std::to_string(options.domain_id) +
-                     " with profile '" + options.participant_profile + "'");
-    }
+    participant_ = create_participant(options.domain_id, qos, &peers_, dds::StatusMask::none(), options.participant_profile);
     publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
     subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
-    const std::string data_file = options.qos_files.empty() ? "(no QoS file)" : options.qos_files.front();
-    for (const std::string& profile : required_data_profiles()) {
-      dds::DataWriterQos wq;
-      dds::DataReaderQos rq;
-      if (publisher_->get_datawriter_qos_from_profile(profile, wq) != ReturnCode_t::RETCODE_OK) {
-        throw ConfigError(located(data_file, "data_writer profile '" + profile + "'", "not found"));
-      }
-      if (subscriber_->get_datareader_qos_from_profile(profile, rq) != ReturnCode_t::RETCODE_OK) {
-        throw ConfigError(located(data_file, "data_reader profile '" + profile + "'", "not found"));
-      }
+    if (publisher_ == nullptr || subscriber_ == nullptr) {
+      throw RunError("could not create a DDS publisher and subscriber on domain " + std::to_string(options.domain_id));
     }
   }
 
-  ~FastDdsBus() override {
-    if (participant_ != nullptr) {
-      close_readers();
-      participant_->set_listener(nullptr);
-      participant_->delete_contained_entities();
-      dds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
-    }
-  }
+  // The readers first (close_readers() waits for a callback in progress), then participant_
+  // deletes the other entities and itself before the listeners and peers_ die.
+  ~FastDdsBus() override { close_readers(); }
 
   std::shared_ptr<WriterHandle> writer(const std::string& topic, const std::string& type_name, const std::string& profile) override {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -199,7 +184,7 @@ class FastDdsBus : public DdsBus {
         throw ConfigError("topic " + topic + ": unknown type " + type_name);
       }
       dds::TypeSupport support(type);
-      if (support.register_type(participant_) != ReturnCode_t::RETCODE_OK) {
+      if (support.register_type(participant_.get()) != ReturnCode_t::RETCODE_OK) {
         throw RunError("could not register type " + type_name);
       }
       registered_types_.insert(type_name);
@@ -212,18 +197,18 @@ class FastDdsBus : public DdsBus {
     return created;
   }
 
-  // Declared before participant_'s users: the participant (deleted in the destructor body)
-  // calls it until then, so it must outlive the participant.
+  // What the participant and its entities call into: declared before participant_, so that they
+  // outlive it (members die in reverse order, also when the constructor throws).
   PeerDirectory peers_;
   std::mutex mutex_;
-  dds::DomainParticipant* participant_ = nullptr;
-  dds::Publisher* publisher_ = nullptr;
-  dds::Subscriber* subscriber_ = nullptr;
+  std::map<std::string, std::unique_ptr<WriterListener>> writer_listeners_;
+  std::map<std::string, PendingReader> readers_;
   std::set<std::string> registered_types_;
   std::map<std::string, dds::Topic*> topics_;
   std::map<std::string, std::shared_ptr<DdsWriter>> writers_;
-  std::map<std::string, std::unique_ptr<WriterListener>> writer_listeners_;
-  std::map<std::string, PendingReader> readers_;
+  ParticipantPtr participant_;
+  dds::Publisher* publisher_ = nullptr;    // owned by participant_
+  dds::Subscriber* subscriber_ = nullptr;  // owned by participant_
   bool started_ = false;
 };
 

@@ -38,7 +38,9 @@ std::unique_ptr<DdsBus> make_dds_bus(const DdsOptions& options);
 /// a malformed file, naming the file and Fast DDS's reason.
 void load_qos_files(const std::vector<std::string>& files);
 
-/// Data-writer/reader profile names the runtime requires in the QoS files.
-const std::vector<std::string>& required_data_profiles();
+/// Loads the QoS files and checks that they define every profile a bus with these options can ask
+/// for (required_profiles()), without creating a participant: ConfigError naming the file and the
+/// first missing profile. make_dds_bus() runs it first; a launcher runs it before spawning hosts.
+void check_qos_profiles(const DdsOptions& options);
 
 }  // namespace robodds

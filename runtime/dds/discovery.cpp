@@ -1,8 +1,8 @@
 #include "runtime/dds/discovery.hpp"
+#include "runtime/dds/participant.hpp"
 #include "runtime/dds/qos_files.hpp"
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
-#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/domain/DomainParticipantListener.hpp>
 
 #include <chrono>
@@ -71,21 +71,15 @@ class DiscoveryListener : public dds::DomainParticipantListener {
 }  // namespace
 
 std::vector<DiscoveredTopic> discover_topics(const DdsOptions& options, double seconds) {
-  auto* factory = dds::DomainParticipantFactory::get_instance();
   dds::DomainParticipantQos qos = checked_participant_qos(options);
   qos.name("robodds-topics");
-  DiscoveryListener listener;
+  DiscoveryListener listener;  // declared before the participant: outlives it
   // Only discovery callbacks: leave data_on_readers out of the mask (it would swallow data).
-  dds::StatusMask mask = dds::StatusMask::none();
-  dds::DomainParticipant* participant = factory->create_participant(options.domain_id, qos, &listener, mask);
-  if (participant == nullptr) {
-    throw RunError("could not create a DDS participant on domain " + std::to_string(options.domain_id));
-  }
+  ParticipantPtr participant =
+      create_participant(options.domain_id, qos, &listener, dds::StatusMask::none(), options.participant_profile);
   std::this_thread::sleep_for(std::chrono::duration<double>(seconds));
-  participant->set_listener(nullptr);
-  auto topics = listener.topics();
-  factory->delete_participant(participant);
-  return topics;
+  participant.reset();  // no callback runs once it returns
+  return listener.topics();
 }
 
 }  // namespace robodds

@@ -2,7 +2,11 @@
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/dds/log/Log.hpp>
+#include <fastrtps/attributes/ParticipantAttributes.h>
+#include <fastrtps/attributes/PublisherAttributes.h>
+#include <fastrtps/attributes/SubscriberAttributes.h>
 #include <fastrtps/utils/IPLocator.h>
+#include <fastrtps/xmlparser/XMLProfileManager.h>
 
 #include <fstream>
 #include <iterator>
@@ -95,11 +99,36 @@ void check_discovery_servers(const dds::DomainParticipantQos& qos, const std::st
   }
 }
 
+/// Whether the loaded QoS files define `profile` (asks Fast DDS's profile store; no participant needed).
+bool profile_defined(const QosProfileRef& profile) {
+  using eprosima::fastrtps::xmlparser::XMLP_ret;
+  using eprosima::fastrtps::xmlparser::XMLProfileManager;
+  if (profile.element == "participant") {
+    eprosima::fastrtps::ParticipantAttributes attributes;
+    return XMLProfileManager::fillParticipantAttributes(profile.name, attributes, false) == XMLP_ret::XML_OK;
+  }
+  if (profile.element == "data_writer") {  // Fast DDS 2.9 keeps <data_writer> as a publisher profile
+    eprosima::fastrtps::PublisherAttributes attributes;
+    return XMLProfileManager::fillPublisherAttributes(profile.name, attributes, false) == XMLP_ret::XML_OK;
+  }
+  eprosima::fastrtps::SubscriberAttributes attributes;
+  return XMLProfileManager::fillSubscriberAttributes(profile.name, attributes, false) == XMLP_ret::XML_OK;
+}
+
 }  // namespace
 
-const std::vector<std::string>& required_data_profiles() {
-  static const std::vector<std::string> profiles = data_profile_names();
-  return profiles;
+void check_qos_profiles(const DdsOptions& options) {
+  load_qos_files(options.qos_files);
+  // Data profiles are looked for in the first file, the participant profile in any (named: the last).
+  const std::string first = options.qos_files.empty() ? "(no QoS file)" : options.qos_files.front();
+  const std::string last = options.qos_files.empty() ? "(no QoS file)" : options.qos_files.back();
+  for (const QosProfileRef& profile : required_profiles(options.participant_profile)) {
+    if (!profile_defined(profile)) {
+      const bool participant = profile.element == "participant";
+      throw ConfigError(located(participant ? last : first, profile.element + " profile '" + profile.name + "'",
+                                participant ? "not found in the loaded QoS files" : "not found"));
+    }
+  }
 }
 
 void load_qos_files(const std::vector<std::string>& files) {
@@ -139,7 +168,7 @@ void load_qos_files(const std::vector<std::string>& files) {
 }
 
 dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
-  load_qos_files(options.qos_files);
+  check_qos_profiles(options);
   const std::string last = options.qos_files.empty() ? "(no QoS file)" : options.qos_files.back();
   dds::DomainParticipantQos qos;
   if (dds::DomainParticipantFactory::get_instance()->get_participant_qos_from_profile(options.participant_profile, qos) !=

@@ -1,6 +1,6 @@
 #pragma once
 // Loading and checking the QoS profile files (runtime-internal; includes Fast DDS). The
-// Fast-DDS-free entry points (load_qos_files, required_data_profiles) are declared in
+// Fast-DDS-free entry points (load_qos_files, check_qos_profiles) are declared in
 // runtime/dds/dds_bus.hpp.
 
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
@@ -9,8 +9,9 @@
 
 namespace robodds {
 
-/// Loads options.qos_files and returns the participant QoS of options.participant_profile,
-/// checked; ConfigError naming the file and element if it is missing or unusable.
+/// Loads options.qos_files, checks every required profile (check_qos_profiles) and returns the
+/// participant QoS of options.participant_profile, checked; ConfigError naming the file and
+/// element if a profile is missing or unusable. Creates no participant.
 eprosima::fastdds::dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options);
 
 }  // namespace robodds

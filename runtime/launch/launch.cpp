@@ -110,6 +110,7 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
   for (const ComponentSpec& c : scenario.components) {
     registry.get(c.type);
   }
+  check_qos_profiles(launch.dds);  // one error line here, not one per child and a coordinator
   const std::uint64_t run_id = make_run_id();
   timespec ts{};
   clock_gettime(CLOCK_REALTIME, &ts);

@@ -99,5 +99,33 @@ TEST(QosProfiles, LockstepSubstitutesEveryClassButMission) {
   EXPECT_EQ(monitor_profile_for(sensor), kMonitorProfile);
 }
 
+TEST(QosProfiles, RequiredProfilesAreTheParticipantThenEveryDataProfileAsWriterAndReader) {
+  const std::vector<QosProfileRef> required = required_profiles("p");
+  ASSERT_EQ(required.size(), 1 + 2 * data_profile_names().size());
+  EXPECT_EQ(required.front(), (QosProfileRef{"participant", "p"}));
+  for (const std::string& name : data_profile_names()) {
+    EXPECT_THAT(required, testing::Contains(QosProfileRef{"data_writer", name}));
+    EXPECT_THAT(required, testing::Contains(QosProfileRef{"data_reader", name}));
+  }
+}
+
+// The profiles checked before a participant exists are exactly robodds_qos.xml's data profiles
+// (a profile the file adds but the runtime never asks for would go unchecked) plus the participant.
+TEST(QosProfilesXml, RequiredProfilesAreExactlyTheDataProfilesOfRoboddsQosXml) {
+  ProfileSet data_in_file;
+  for (const auto& [element, name] : profiles_in(read_source_file("deploy/qos/robodds_qos.xml"))) {
+    if (element != "participant") {
+      data_in_file.emplace(element, name);
+    }
+  }
+  ProfileSet required;
+  for (const QosProfileRef& profile : required_profiles(kDefaultParticipantProfile)) {
+    if (profile.element != "participant") {
+      required.emplace(profile.element, profile.name);
+    }
+  }
+  EXPECT_EQ(required, data_in_file);
+}
+
 }  // namespace
 }  // namespace robodds

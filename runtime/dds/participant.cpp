@@ -1,0 +1,35 @@
+#include "runtime/dds/participant.hpp"
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+
+#include "runtime/error.hpp"
+#include "runtime/log.hpp"
+
+namespace robodds {
+namespace dds = eprosima::fastdds::dds;
+using eprosima::fastrtps::types::ReturnCode_t;
+
+void ParticipantDeleter::operator()(dds::DomainParticipant* participant) const {
+  if (participant == nullptr) {
+    return;
+  }
+  participant->set_listener(nullptr);
+  if (participant->delete_contained_entities() != ReturnCode_t::RETCODE_OK) {
+    log::warn("dds", "could not delete the entities of participant " + participant->get_qos().name().to_string());
+  }
+  if (dds::DomainParticipantFactory::get_instance()->delete_participant(participant) != ReturnCode_t::RETCODE_OK) {
+    log::warn("dds", "could not delete participant " + participant->get_qos().name().to_string());
+  }
+}
+
+ParticipantPtr create_participant(int domain_id, const dds::DomainParticipantQos& qos, dds::DomainParticipantListener* listener,
+                                  const dds::StatusMask& mask, const std::string& profile) {
+  ParticipantPtr participant(dds::DomainParticipantFactory::get_instance()->create_participant(domain_id, qos, listener, mask));
+  if (participant == nullptr) {
+    throw RunError("could not create a DDS participant on domain " + std::to_string(domain_id) + " with profile '" +
+                   profile + "'");
+  }
+  return participant;
+}
+
+}  // namespace robodds
