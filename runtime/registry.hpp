@@ -46,24 +46,26 @@ void register_builtin_components(ComponentRegistry& registry);
 
 /// Defines robodds::component_registration::register_<type_name>(ComponentRegistry&), which adds
 /// the component type `type_name` (a bare identifier, e.g. position_sensor; the scenario's `type`)
-/// with a one-line description, its factory (std::unique_ptr<Component>()) and its parameter
-/// table (params::ParamDoc(), the one source of its parameters' defaults, units, ranges and
-/// descriptions). Its defaults file is config/<type_name>.params.yaml of the component's folder:
-/// robodds_component() passes that path as ROBODDS_COMPONENT_DEFAULTS_FILE. Write it once, at
+/// with a one-line description, its factory (std::unique_ptr<Component>()) and the accessor of
+/// its parameter table (`const params::ParamTable<S>& f()`, the one source of its parameters'
+/// defaults, units, ranges and descriptions; the registry keeps its doc()). Its defaults file
+/// is config/<type_name>.params.yaml of the component's folder: robodds_component() passes that
+/// path as ROBODDS_COMPONENT_DEFAULTS_FILE. Write it once, at
 /// global scope (outside any namespace; elsewhere it does not compile), in the component's node
 /// .cpp, and name the same type_name in the folder's robodds_component(NAME ...) call, which
 /// makes the generated registered_components.cpp call the function. Example:
 ///   ROBODDS_REGISTER_COMPONENT(position_sensor, "noisy absolute position: plant/state -> sensor/position",
 ///                              robodds::position_sensor::make_position_sensor_node,
-///                              robodds::position_sensor::position_sensor_params_doc);
-#define ROBODDS_REGISTER_COMPONENT(type_name, description, factory, params_doc)                           \
-  namespace robodds::component_registration {                                                          \
-  void register_##type_name(::robodds::ComponentRegistry& registry);                                   \
-  }                                                                                                    \
+///                              robodds::position_sensor::position_sensor_param_table);
+#define ROBODDS_REGISTER_COMPONENT(type_name, description, factory, param_table)                         \
+  namespace robodds::component_registration {                                                            \
+  void register_##type_name(::robodds::ComponentRegistry& registry);                                     \
+  }                                                                                                      \
   void ::robodds::component_registration::register_##type_name(::robodds::ComponentRegistry& registry) { \
-    registry.add({#type_name, description, ROBODDS_COMPONENT_DEFAULTS_FILE, factory, params_doc});      \
-  }                                                                                                    \
-  static_assert(sizeof(description) > 1,                                                               \
+    registry.add({#type_name, description, ROBODDS_COMPONENT_DEFAULTS_FILE, factory,                     \
+                  [] { return param_table().doc(); }});                                                  \
+  }                                                                                                      \
+  static_assert(sizeof(description) > 1,                                                                 \
                 "ROBODDS_REGISTER_COMPONENT(" #type_name "): the description must not be empty")
 
 /// Declares the registration function of component type `type_name` (defined by its

@@ -62,12 +62,10 @@ class OdometrySensorNode : public Component {
 
 }  // namespace
 
-params::ParamDoc odometry_sensor_params_doc() { return odometry_sensor_param_table().doc(); }
-
 std::unique_ptr<Component> make_odometry_sensor_node() { return std::make_unique<OdometrySensorNode>(); }
 
 }  // namespace robodds::odometry_sensor
 
 ROBODDS_REGISTER_COMPONENT(odometry_sensor, "wheel odometry with noise and slip: plant/state -> sensor/odometry",
                            robodds::odometry_sensor::make_odometry_sensor_node,
-                           robodds::odometry_sensor::odometry_sensor_params_doc);
+                           robodds::odometry_sensor::odometry_sensor_param_table);

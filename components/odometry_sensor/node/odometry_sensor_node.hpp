@@ -1,13 +1,10 @@
 #pragma once
 #include <memory>
 
-#include "common/param_doc.hpp"
 #include "runtime/component.hpp"
 
 namespace robodds::odometry_sensor {
 /// plant/state in (every step), sensor/odometry out at rate_hz: the mean true twist over the
 /// interval since the previous reading, measured through noisy, slipping wheels.
 std::unique_ptr<Component> make_odometry_sensor_node();
-/// Its parameters (keys, types, defaults, units, ranges, descriptions).
-params::ParamDoc odometry_sensor_params_doc();
 }  // namespace robodds::odometry_sensor

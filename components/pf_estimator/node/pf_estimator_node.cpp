@@ -99,10 +99,8 @@ class PfEstimatorNode : public Component {
 
 std::unique_ptr<Component> make_pf_estimator_node() { return std::make_unique<PfEstimatorNode>(); }
 
-params::ParamDoc pf_estimator_params_doc() { return pf_estimator_param_table().doc(); }
-
 }  // namespace robodds::pf
 
 ROBODDS_REGISTER_COMPONENT(pf_estimator, "paper 1 particle filter, full pose: sensor/odometry + sensor/position -> estimate/pose",
                            robodds::pf::make_pf_estimator_node,
-                           robodds::pf::pf_estimator_params_doc);
+                           robodds::pf::pf_estimator_param_table);

@@ -51,12 +51,10 @@ class PositionSensorNode : public Component {
 
 }  // namespace
 
-params::ParamDoc position_sensor_params_doc() { return position_sensor_param_table().doc(); }
-
 std::unique_ptr<Component> make_position_sensor_node() { return std::make_unique<PositionSensorNode>(); }
 
 }  // namespace robodds::position_sensor
 
 ROBODDS_REGISTER_COMPONENT(position_sensor, "noisy absolute position: plant/state -> sensor/position",
                            robodds::position_sensor::make_position_sensor_node,
-                           robodds::position_sensor::position_sensor_params_doc);
+                           robodds::position_sensor::position_sensor_param_table);

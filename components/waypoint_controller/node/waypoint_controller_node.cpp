@@ -88,4 +88,4 @@ std::unique_ptr<Component> make_waypoint_controller_node() { return std::make_un
 
 ROBODDS_REGISTER_COMPONENT(waypoint_controller, "paper 1 way-point tracking: estimate/pose + mission/waypoints -> plant/cmd, control/status",
                            robodds::waypoint::make_waypoint_controller_node,
-                           robodds::waypoint::waypoint_controller_params_doc);
+                           robodds::waypoint::waypoint_controller_param_table);

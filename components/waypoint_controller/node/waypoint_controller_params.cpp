@@ -17,6 +17,4 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
   return table;
 }
 
-params::ParamDoc waypoint_controller_params_doc() { return waypoint_controller_param_table().doc(); }
-
 }  // namespace robodds::waypoint

@@ -287,4 +287,4 @@ std::unique_ptr<Component> make_evaluator_node() { return std::make_unique<Evalu
 
 ROBODDS_REGISTER_COMPONENT(evaluator, "records topics to CSV and writes summary.json",
                            robodds::evaluator::make_evaluator_node,
-                           robodds::evaluator::evaluator_params_doc);
+                           robodds::evaluator::evaluator_param_table);

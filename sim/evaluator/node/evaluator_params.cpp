@@ -16,6 +16,4 @@ const params::ParamTable<EvaluatorParams>& evaluator_param_table() {
   return table;
 }
 
-params::ParamDoc evaluator_params_doc() { return evaluator_param_table().doc(); }
-
 }  // namespace robodds::evaluator

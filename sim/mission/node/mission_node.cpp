@@ -54,4 +54,4 @@ std::unique_ptr<Component> make_mission_node() { return std::make_unique<Mission
 
 ROBODDS_REGISTER_COMPONENT(mission_source, "publishes the way-point mission (transient local) -> mission/waypoints",
                            robodds::mission::make_mission_node,
-                           robodds::mission::mission_source_params_doc);
+                           robodds::mission::mission_source_param_table);

@@ -30,6 +30,4 @@ const params::ParamTable<MissionParams>& mission_source_param_table() {
   return table;
 }
 
-params::ParamDoc mission_source_params_doc() { return mission_source_param_table().doc(); }
-
 }  // namespace robodds::mission

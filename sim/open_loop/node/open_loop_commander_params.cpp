@@ -17,6 +17,4 @@ const params::ParamTable<OpenLoopNodeParams>& open_loop_commander_param_table() 
   return table;
 }
 
-params::ParamDoc open_loop_commander_params_doc() { return open_loop_commander_param_table().doc(); }
-
 }  // namespace robodds::open_loop

@@ -58,4 +58,4 @@ std::unique_ptr<Component> make_open_loop_node() { return std::make_unique<OpenL
 
 ROBODDS_REGISTER_COMPONENT(open_loop_commander, "open-loop velocity commands -> plant/cmd",
                            robodds::open_loop::make_open_loop_node,
-                           robodds::open_loop::open_loop_commander_params_doc);
+                           robodds::open_loop::open_loop_commander_param_table);

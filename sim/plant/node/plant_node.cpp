@@ -91,4 +91,4 @@ std::unique_ptr<Component> make_plant_node() { return std::make_unique<PlantNode
 
 ROBODDS_REGISTER_COMPONENT(plant, "differential-drive plant (paper 1 eq. 1): plant/cmd -> plant/state",
                            robodds::plant::make_plant_node,
-                           robodds::plant::plant_params_doc);
+                           robodds::plant::plant_param_table);

@@ -15,6 +15,4 @@ const params::ParamTable<PlantNodeParams>& plant_param_table() {
   return table;
 }
 
-params::ParamDoc plant_params_doc() { return plant_param_table().doc(); }
-
 }  // namespace robodds::plant

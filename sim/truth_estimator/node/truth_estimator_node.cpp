@@ -55,4 +55,4 @@ std::unique_ptr<Component> make_truth_estimator_node() { return std::make_unique
 
 ROBODDS_REGISTER_COMPONENT(truth_estimator, "ideal estimator: plant/state -> estimate/pose (true pose)",
                            robodds::truth_estimator::make_truth_estimator_node,
-                           robodds::truth_estimator::truth_estimator_params_doc);
+                           robodds::truth_estimator::truth_estimator_param_table);

@@ -15,6 +15,4 @@ const params::ParamTable<TruthEstimatorParams>& truth_estimator_param_table() {
   return table;
 }
 
-params::ParamDoc truth_estimator_params_doc() { return truth_estimator_param_table().doc(); }
-
 }  // namespace robodds::truth_estimator
