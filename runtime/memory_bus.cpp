@@ -20,7 +20,6 @@ constexpr const char* kTransientLocalProfile = kMissionProfile;
 
 /// What the bus needs to know about a sample it only sees as `const void*`.
 struct TypeOps {
-  std::string type_name;
   std::shared_ptr<const void> (*copy)(const void* sample) = nullptr;
   std::uint64_t (*key)(const void* sample) = nullptr;
 };
@@ -37,7 +36,6 @@ std::uint64_t key_of(const void* sample) {
 
 TypeOps type_ops(const std::string& topic, const std::string& type_name) {
   TypeOps ops;
-  ops.type_name = type_name;
   const bool known = idl::dispatch_type(type_name, [&ops](auto tag) {
     using T = typename decltype(tag)::type;
     ops.copy = &copy_sample<T>;

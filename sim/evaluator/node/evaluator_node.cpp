@@ -131,10 +131,7 @@ class EvaluatorNode : public Component {
         recorders_.push_back(std::make_unique<Recorder<Msg>>(topic, input));
       });
     }
-    scenario_ = &ctx.scenario();
     context_ = &ctx;
-    output_dir_ = ctx.output_dir();
-    step_s_ = ctx.step_s();
   }
 
   void on_step(const StepInfo&) override {
@@ -145,24 +142,24 @@ class EvaluatorNode : public Component {
 
   void on_finish(const StepInfo& info) override {
     on_step(info);
-    if (output_dir_.empty()) {
+    if (context_->output_dir().empty()) {
       return;
     }
-    ::mkdir(output_dir_.c_str(), 0755);
+    ::mkdir(context_->output_dir().c_str(), 0755);
     for (const auto& recorder : recorders_) {
-      recorder->write(output_dir_);
+      recorder->write(context_->output_dir());
     }
     write_summary(info);
   }
 
  private:
   void write_summary(const StepInfo& info) const {
-    const auto from_step = static_cast<std::uint64_t>(std::llround(metrics_after_s_ / step_s_));
+    const auto from_step = static_cast<std::uint64_t>(std::llround(metrics_after_s_ / context_->step_s()));
     JsonWriter json;
     json.begin_object();
-    json.value("scenario", scenario_->name);
+    json.value("scenario", context_->scenario().name);
     json.value("steps", static_cast<std::int64_t>(info.step + 1));
-    json.value("step_s", step_s_);
+    json.value("step_s", context_->step_s());
     json.begin_object("metrics");
     PooledRmse fix_rmse;
     PooledRmse estimate_rmse;
@@ -223,7 +220,7 @@ class EvaluatorNode : public Component {
     json.end_object();
     write_run_section(json);
     json.end_object();
-    const std::string path = output_dir_ + "/summary.json";
+    const std::string path = context_->output_dir() + "/summary.json";
     std::ofstream out(path, std::ios::binary);
     out << json.str();
     if (!out) {
@@ -254,7 +251,7 @@ class EvaluatorNode : public Component {
     if (status == histories_.status.end() || mission == histories_.missions.end()) {
       return;
     }
-    const WaypointMetrics m = waypoint_metrics(truth, status->second, mission->second, step_s_);
+    const WaypointMetrics m = waypoint_metrics(truth, status->second, mission->second, context_->step_s());
     json.value("waypoints_reached", static_cast<std::int64_t>(m.waypoints_reached));
     json.value("waypoints_total", static_cast<std::int64_t>(m.waypoints_total));
     json.value("time_to_final_s", m.time_to_final_s);
@@ -272,10 +269,7 @@ class EvaluatorNode : public Component {
   std::vector<std::uint64_t> keys_;
   std::vector<std::unique_ptr<RecorderBase>> recorders_;
   Histories histories_;
-  const Scenario* scenario_ = nullptr;
   const ComponentContext* context_ = nullptr;  // owned by the host, which keeps it while it runs us
-  std::string output_dir_;
-  double step_s_ = 0.01;
   double metrics_after_s_ = 0.0;  // s, EvaluatorParams::metrics_after_s
 };
 
