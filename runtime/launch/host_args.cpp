@@ -2,10 +2,9 @@
 
 #include <CLI/CLI.hpp>
 
-#include <cerrno>
-#include <cmath>
-#include <cstdlib>
+#include <limits>
 
+#include "common/number_parse.hpp"
 #include "common/number_text.hpp"
 
 namespace robodds {
@@ -49,9 +48,8 @@ class ArgvWriter {
 CLI::Validator positive_seconds() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double value = std::strtod(text.c_str(), &end);
-        if (text.empty() || *end != '\0' || !std::isfinite(value) || !(value > 0.0)) {
+        const std::optional<double> value = parse_finite_number(text);
+        if (!value || !(*value > 0.0)) {
           return "must be a positive, finite number of seconds (got " + text + ")";
         }
         return {};
@@ -63,13 +61,7 @@ CLI::Validator positive_seconds() {
 CLI::Validator seed_number() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
-        errno = 0;
-        char* end = nullptr;
-        const bool digits = !text.empty() && text.find_first_not_of("0123456789") == std::string::npos;
-        if (digits) {
-          std::strtoull(text.c_str(), &end, 10);
-        }
-        if (!digits || errno == ERANGE) {
+        if (!parse_whole_number(text, std::numeric_limits<std::uint64_t>::max())) {
           return "must be a whole number 0..18446744073709551615 (got " + text + ")";
         }
         return {};

@@ -5,6 +5,7 @@
 #include <set>
 #include <sstream>
 
+#include "common/number_parse.hpp"
 #include "runtime/error.hpp"
 
 namespace robodds {
@@ -14,39 +15,24 @@ namespace {
   throw ConfigError("--robot '" + text + "': " + reason + " (expected ID or ID:X,Y,THETA, e.g. 1 or 1:50,10,0)");
 }
 
-/// A whole decimal number that fits `limit`, or nothing.
-bool parse_id(const std::string& text, std::uint64_t limit, std::uint64_t* value) {
-  if (text.empty() || text.size() > 10 || text.find_first_not_of("0123456789") != std::string::npos) {
-    return false;
-  }
-  *value = std::stoull(text);
-  return *value <= limit;
-}
-
 double parse_coordinate(const std::string& robot, const std::string& text, const char* what) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(value)) {
+  const std::optional<double> value = parse_finite_number(text);
+  if (!value) {
     bad_robot(robot, std::string(what) + " '" + text + "' is not a finite number");
   }
-  return value;
+  return *value;
 }
 
 }  // namespace
 
 RobotSpec parse_robot(const std::string& text) {
   const std::size_t colon = text.find(':');
-  std::uint64_t id = 0;
-  if (!parse_id(text.substr(0, colon), 0xffffffffULL, &id)) {
+  const std::optional<std::uint64_t> id = parse_whole_number(text.substr(0, colon), 0xffffffffULL);
+  if (!id) {
     bad_robot(text, "the id is not a whole number 0..4294967295");
   }
   RobotSpec robot;
-  robot.id = static_cast<std::uint32_t>(id);
+  robot.id = static_cast<std::uint32_t>(*id);
   if (colon == std::string::npos) {
     return robot;
   }
