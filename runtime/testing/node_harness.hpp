@@ -22,6 +22,7 @@
 #include "robodds/idl/robodds_visit.hpp"
 #include "runtime/component.hpp"
 #include "runtime/host.hpp"
+#include "runtime/host_slot.hpp"
 #include "runtime/memory_bus.hpp"
 #include "runtime/notifier.hpp"
 #include "runtime/registry.hpp"
@@ -127,7 +128,7 @@ class NodeHarness {
     const TopicInfo& info = topic_info(topic);
     sample.header().step(step);
     sample.header().next_step(next_step);
-    sample.header().stamp_ns(static_cast<std::int64_t>(std::llround(static_cast<double>(step) * scenario_.step_s * 1e9)));
+    sample.header().stamp_ns(host_detail::sim_stamp_ns(step, scenario_.step_s));
     bus_.writer(topic, info.type_name, qos_profile_for(info, TimeMode::kLockstep, true))->write(&sample);
   }
 
