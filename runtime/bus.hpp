@@ -4,6 +4,7 @@
 // boundary as `const void*` pointing at the generated C++ type named by `type_name`.
 
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -19,9 +20,26 @@ class WriterHandle {
   virtual const std::string& topic() const = 0;
 };
 
+/// What the transport knows about a sample besides its contents: who wrote it (to tell two
+/// producers of one instance apart and to name a hostile writer) and when this process received
+/// it (to judge freshness by the receiver's own clock, never only by the sender's stamp).
+struct SampleMeta {
+  /// The writing endpoint, stable for the writer's life: a hash of the DDS writer GUID (Fast DDS)
+  /// or a per-writer number (MemoryBus). 0: unknown. Bus::writer_name() spells it.
+  std::uint64_t writer_id = 0;
+  /// steady_clock (CLOCK_MONOTONIC) time at which this process took the sample, ns since the
+  /// clock's epoch. 0: unknown (e.g. a unit test feeding an Input directly).
+  std::int64_t received_ns = 0;
+};
+
+/// steady_clock now in ns: the clock of SampleMeta::received_ns.
+inline std::int64_t monotonic_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
 /// Called for each valid sample, on a DDS thread or, for a writer in the same process, inside
 /// that writer's write(): it must only store the sample and return.
-using SampleCallback = std::function<void(const void* sample)>;
+using SampleCallback = std::function<void(const void* sample, const SampleMeta& meta)>;
 /// Called for QoS events on a reader (deadline missed, liveliness lost, incompatible QoS).
 using ReaderEventCallback = std::function<void(const std::string& event)>;
 
@@ -45,6 +63,9 @@ class Bus {
   /// One line naming this process's topics without a matched peer and any incompatible QoS
   /// (both sides' policies), appended to lockstep timeout errors; empty when all matched.
   virtual std::string match_report() { return {}; }
+  /// Names the writer of SampleMeta::writer_id for log lines and errors, e.g.
+  /// "'control' (writer 01.0f...|0.0.3.3)"; "writer <id>" when the bus knows nothing more.
+  virtual std::string writer_name(std::uint64_t writer_id) const { return "writer " + std::to_string(writer_id); }
 };
 
 }  // namespace robodds

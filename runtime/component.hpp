@@ -92,12 +92,14 @@ class ComponentContext {
     options.expected = subscription.expected();
     options.delay_steps = subscription.delay_steps();
     options.key_names = info.key;
+    Bus* bus = run_.bus;
+    options.writer_name = [bus](std::uint64_t writer_id) { return bus->writer_name(writer_id); };
     auto input = std::make_unique<Input<Msg>>(topic, spec_.name, state_, run_.notifier, std::move(options));
     Input<Msg>* raw = input.get();
     const std::string owner = spec_.name;
     readers_.push_back(run_.bus->reader(
         topic, info.type_name, qos_profile_for(info, run_.mode, run_.single_process),
-        [raw](const void* sample) { raw->on_sample(*static_cast<const Msg*>(sample)); },
+        [raw](const void* sample, const SampleMeta& meta) { raw->on_sample(*static_cast<const Msg*>(sample), meta); },
         [owner, topic](const std::string& event) { log::warn(owner, topic + ": " + event); }));
     inputs_.push_back(std::move(input));
     return *raw;

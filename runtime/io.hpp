@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <map>
 #include <memory>
@@ -85,7 +86,29 @@ struct InputOptions {
   std::string key_names;
   /// Labels for instances whose key cannot be spelled from key_names (e.g. hashed strings).
   std::map<std::uint64_t, std::string> labels;
+  /// Spells SampleMeta::writer_id in log lines (Bus::writer_name); empty: "writer <id>".
+  std::function<std::string(std::uint64_t)> writer_name;
 };
+
+}  // namespace detail
+
+/// What an input did with the samples it was handed: accepted, or dropped and counted per reason
+/// (e.g. "non_finite"), for logs and summary.json.
+struct InputCounts {
+  std::uint64_t accepted = 0;
+  std::map<std::string, std::uint64_t> rejected;  // reason -> samples
+  std::uint64_t rejected_total() const {
+    std::uint64_t total = 0;
+    for (const auto& [reason, count] : rejected) {
+      total += count;
+    }
+    return total;
+  }
+};
+
+namespace detail {
+/// Rejection reason of a sample with a NaN or infinite number.
+inline constexpr const char* kRejectNonFinite = "non_finite";
 
 }  // namespace detail
 
@@ -98,7 +121,22 @@ class InputBase {
   const std::string& topic() const { return topic_; }
   std::uint64_t rejected_count() const {
     std::lock_guard<std::mutex> lock(mutex_);
-    return rejected_;
+    return counts_.rejected_total();
+  }
+  InputCounts counts() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return counts_;
+  }
+  /// Seconds between the receipt of the newest accepted sample of `key` (SampleMeta::received_ns,
+  /// this process's monotonic clock) and `now_ns` (same clock); nullopt if none was accepted or
+  /// its receive time is unknown. Judges freshness by the receiver's clock, not the sender's stamp.
+  std::optional<double> age_s(std::uint64_t key, std::int64_t now_ns = monotonic_now_ns()) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = progress_.find(key);
+    if (it == progress_.end() || it->second.received_ns == 0) {
+      return std::nullopt;
+    }
+    return static_cast<double>(now_ns - it->second.received_ns) * 1e-9;
   }
 
   /// Lockstep: true when every expected instance has delivered all samples with
@@ -127,7 +165,20 @@ class InputBase {
   struct Progress {
     std::uint64_t step = 0;
     std::uint64_t next_step = 0;
+    std::int64_t received_ns = 0;  // SampleMeta::received_ns of the newest accepted sample
+    std::uint64_t writer_id = 0;   // its writer
   };
+
+  /// Counts a dropped sample; the first of each (writer, reason) is logged, naming the writer:
+  /// "rejected a sample on <topic> from <writer> <detail>; ...". Call with mutex_ held.
+  void count_rejection(const std::string& reason, const std::string& detail, std::uint64_t writer_id) {
+    ++counts_.rejected[reason];
+    if (logged_rejections_.insert({writer_id, reason}).second) {
+      const std::string writer = options_.writer_name ? options_.writer_name(writer_id) : "writer " + std::to_string(writer_id);
+      log::warn(owner_, "rejected a sample on " + topic_ + " from " + writer + " " + detail +
+                            "; such samples are counted and dropped (logged once per writer and reason)");
+    }
+  }
 
   std::string label_of(std::uint64_t key) const {
     auto it = labels_.find(key);
@@ -170,8 +221,8 @@ class InputBase {
   mutable std::mutex mutex_;
   std::map<std::uint64_t, Progress> progress_;
   std::map<std::uint64_t, std::string> labels_{options_.labels};
-  std::uint64_t rejected_ = 0;
-  bool rejection_logged_ = false;
+  InputCounts counts_;
+  std::set<std::pair<std::uint64_t, std::string>> logged_rejections_;  // (writer_id, reason)
 };
 
 template <class Msg>
@@ -180,7 +231,7 @@ class Input : public InputBase {
   using InputBase::InputBase;
 
   /// Stores a sample; called by the bus (listener thread or inside a local writer's write()).
-  void on_sample(const Msg& sample) {
+  void on_sample(const Msg& sample, const SampleMeta& meta = SampleMeta{}) {
     const std::uint64_t key = idl::instance_key(sample);
     if (!wanted(key)) {
       return;
@@ -195,15 +246,15 @@ class Input : public InputBase {
         labels_[key] = idl::instance_label(sample);
       }
       if (bad_field.empty()) {
+        p.received_ns = meta.received_ns;
+        p.writer_id = meta.writer_id;
+        ++counts_.accepted;
         slots_[key].pending.push_back(sample);
       } else {
-        ++rejected_;
-        if (!rejection_logged_) {
-          rejection_logged_ = true;
-          log::warn(owner_, "rejected a sample on " + topic_ + " (" + idl::instance_label(sample) + ", step " +
-                                std::to_string(sample.header().step()) + "): field '" + bad_field +
-                                "' is not finite; such samples are counted and dropped (logged once)");
-        }
+        count_rejection(detail::kRejectNonFinite,
+                        "(" + idl::instance_label(sample) + ", step " + std::to_string(sample.header().step()) +
+                            "): field '" + bad_field + "' is not finite",
+                        meta.writer_id);
       }
     }
     notifier_->notify();

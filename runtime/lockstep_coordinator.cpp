@@ -36,10 +36,10 @@ LockstepCoordinator::LockstepCoordinator(const RunContext& run, const HostOption
   auto* raw = ack_input_.get();
   const std::uint64_t run_id = options.run_id;
   ack_reader_ = run.bus->reader(done.name, done.type_name, profile,
-                                [raw, run_id](const void* s) {
+                                [raw, run_id](const void* s, const SampleMeta& meta) {
                                   const auto& ack = *static_cast<const idl::StepDone*>(s);
                                   if (ack.run_id() == run_id) {  // a stale host of another run must not count
-                                    raw->on_sample(ack);
+                                    raw->on_sample(ack, meta);
                                   }
                                 },
                                 [](const std::string& e) { log::warn("coordinator", "sim/step_done: " + e); });

@@ -23,10 +23,10 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
   auto* raw = tick_input_.get();
   const std::uint64_t run_id = options.run_id;
   tick_reader_ = run.bus->reader(clock.name, clock.type_name, profile,
-                                 [raw, run_id](const void* s) {
+                                 [raw, run_id](const void* s, const SampleMeta& meta) {
                                    const auto& tick = *static_cast<const idl::SimTick*>(s);
                                    if (tick.run_id() == run_id) {  // ignore ticks of other runs
-                                     raw->on_sample(tick);
+                                     raw->on_sample(tick, meta);
                                    }
                                  },
                                  [this](const std::string& e) { log::warn(options_.member, "sim/clock: " + e); });

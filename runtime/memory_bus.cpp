@@ -49,10 +49,17 @@ TypeOps type_ops(const std::string& topic, const std::string& type_name) {
 
 using Callbacks = std::vector<SampleCallback>;
 
+/// A transient-local sample kept for late readers, with the writer that wrote it.
+struct Retained {
+  std::shared_ptr<const void> sample;
+  std::uint64_t writer_id = 0;
+};
+
 /// One sample on its way to the callbacks that were subscribed when it was written.
 struct Delivery {
   std::shared_ptr<const Callbacks> callbacks;
   std::shared_ptr<const void> sample;
+  SampleMeta meta;
 };
 
 /// The delivery running on this thread per bus: writes made from inside a callback join its
@@ -74,13 +81,15 @@ struct MemoryBus::State {
     std::string type_name;
     std::vector<Subscriber> subscribers;
     std::shared_ptr<const Callbacks> callbacks = std::make_shared<Callbacks>();  // snapshot of subscribers
-    std::map<std::uint64_t, std::shared_ptr<const void>> retained;  // newest transient-local sample per instance
+    std::map<std::uint64_t, Retained> retained;  // newest transient-local sample per instance
   };
 
   std::mutex mutex;
   std::map<std::string, Topic> topics;
   std::map<std::string, std::shared_ptr<WriterHandle>> writers;  // by "topic|profile"
   std::uint64_t next_subscriber = 1;
+  std::uint64_t next_writer = 1;  // SampleMeta::writer_id of the next writer
+  std::map<std::uint64_t, std::string> writer_topics;  // writer id -> "topic|profile"
 
   /// The topic, checking that every endpoint agrees on its type. Call with the mutex held.
   Topic& topic_of(const std::string& topic, const std::string& type_name) {
@@ -135,7 +144,7 @@ struct MemoryBus::State {
       const Delivery next = std::move(queue.front());
       queue.pop_front();
       for (const SampleCallback& callback : *next.callbacks) {
-        callback(next.sample.get());
+        callback(next.sample.get(), next.meta);
       }
     }
   }
@@ -145,9 +154,9 @@ namespace {
 
 class MemoryWriter : public WriterHandle {
  public:
-  MemoryWriter(std::weak_ptr<MemoryBus::State> state, std::string topic, std::string profile, TypeOps ops)
+  MemoryWriter(std::weak_ptr<MemoryBus::State> state, std::string topic, std::string profile, TypeOps ops, std::uint64_t id)
       : state_(std::move(state)), topic_(std::move(topic)), ops_(std::move(ops)),
-        transient_local_(profile == kTransientLocalProfile) {}
+        transient_local_(profile == kTransientLocalProfile), id_(id) {}
 
   void write(const void* sample) override {
     std::shared_ptr<MemoryBus::State> state = state_.lock();
@@ -156,11 +165,12 @@ class MemoryWriter : public WriterHandle {
     }
     Delivery delivery;
     delivery.sample = ops_.copy(sample);  // a queued delivery outlives the caller's sample
+    delivery.meta = SampleMeta{id_, monotonic_now_ns()};
     {
       std::lock_guard<std::mutex> lock(state->mutex);
       MemoryBus::State::Topic& topic = state->topics.at(topic_);
       if (transient_local_) {
-        topic.retained[ops_.key(sample)] = delivery.sample;
+        topic.retained[ops_.key(sample)] = Retained{delivery.sample, id_};
       }
       delivery.callbacks = topic.callbacks;
     }
@@ -174,6 +184,7 @@ class MemoryWriter : public WriterHandle {
   std::string topic_;
   TypeOps ops_;
   bool transient_local_;
+  std::uint64_t id_;
 };
 
 class MemoryReader : public ReaderHandle {
@@ -205,7 +216,9 @@ std::shared_ptr<WriterHandle> MemoryBus::writer(const std::string& topic, const 
   state_->topic_of(topic, type_name);
   std::shared_ptr<WriterHandle>& writer = state_->writers[topic + "|" + profile];
   if (!writer) {
-    writer = std::make_shared<MemoryWriter>(state_, topic, profile, std::move(ops));
+    const std::uint64_t id = state_->next_writer++;
+    state_->writer_topics[id] = topic + "|" + profile;
+    writer = std::make_shared<MemoryWriter>(state_, topic, profile, std::move(ops), id);
   }
   return writer;
 }
@@ -214,7 +227,7 @@ std::shared_ptr<ReaderHandle> MemoryBus::reader(const std::string& topic, const 
                                                 const std::string& profile, SampleCallback on_sample,
                                                 ReaderEventCallback /*on_event: no QoS events in memory*/) {
   type_ops(topic, type_name);
-  std::vector<std::shared_ptr<const void>> history;
+  std::vector<Retained> history;
   std::uint64_t id = 0;
   {
     std::lock_guard<std::mutex> lock(state_->mutex);
@@ -223,18 +236,26 @@ std::shared_ptr<ReaderHandle> MemoryBus::reader(const std::string& topic, const 
     entry.subscribers.push_back(State::Subscriber{id, on_sample});
     State::rebuild_callbacks(entry);
     if (profile == kTransientLocalProfile) {
-      for (const auto& [key, sample] : entry.retained) {
-        history.push_back(sample);
+      for (const auto& [key, retained] : entry.retained) {
+        history.push_back(retained);
       }
     }
   }
   // A late joiner gets the retained samples at once, outside the lock (it may write).
-  for (const std::shared_ptr<const void>& sample : history) {
-    state_->deliver(Delivery{std::make_shared<const Callbacks>(Callbacks{on_sample}), sample});
+  for (const Retained& retained : history) {
+    state_->deliver(Delivery{std::make_shared<const Callbacks>(Callbacks{on_sample}), retained.sample,
+                             SampleMeta{retained.writer_id, monotonic_now_ns()}});
   }
   return std::make_shared<MemoryReader>(state_, topic, id);
 }
 
 void MemoryBus::flush(std::chrono::milliseconds /*timeout*/) {}
+
+std::string MemoryBus::writer_name(std::uint64_t writer_id) const {
+  std::lock_guard<std::mutex> lock(state_->mutex);
+  auto it = state_->writer_topics.find(writer_id);
+  return it == state_->writer_topics.end() ? Bus::writer_name(writer_id)
+                                           : "in-memory writer " + std::to_string(writer_id) + " (" + it->second + ")";
+}
 
 }  // namespace robodds

@@ -151,6 +151,8 @@ class FastDdsBus : public DdsBus {
     return describe_match_problems(peers_, endpoints);
   }
 
+  std::string writer_name(std::uint64_t writer_id) const override { return peers_.writer_name(writer_id); }
+
  private:
   struct PendingReader {
     std::string topic;

@@ -15,7 +15,7 @@ namespace robodds {
 namespace rtps = eprosima::fastrtps::rtps;
 using eprosima::fastrtps::types::ReturnCode_t;
 
-ReaderListener::ReaderListener(const std::string& type_name, std::string topic, const PeerDirectory* peers)
+ReaderListener::ReaderListener(const std::string& type_name, std::string topic, PeerDirectory* peers)
     : topic_(std::move(topic)), peers_(peers), match_(topic_, true, peers) {
   type_ = dds::TypeSupport(make_type_support(type_name));
   buffer_ = type_->createData();
@@ -36,8 +36,9 @@ void ReaderListener::on_data_available(dds::DataReader* reader) {
     if (!info.valid_data) {
       continue;
     }
+    const SampleMeta meta{peers_->writer_id(rtps::iHandle2GUID(info.publication_handle)), monotonic_now_ns()};
     for (const SampleCallback& callback : sample_callbacks_) {
-      callback(buffer_);
+      callback(buffer_, meta);
     }
   }
 }

@@ -21,7 +21,7 @@ namespace dds = eprosima::fastdds::dds;
 /// event callbacks.
 class ReaderListener : public dds::DataReaderListener {
  public:
-  ReaderListener(const std::string& type_name, std::string topic, const PeerDirectory* peers);
+  ReaderListener(const std::string& type_name, std::string topic, PeerDirectory* peers);
   ~ReaderListener() override;
 
   void add(SampleCallback on_sample, ReaderEventCallback on_event);
@@ -41,7 +41,7 @@ class ReaderListener : public dds::DataReaderListener {
   void event(const std::string& text);
 
   std::string topic_;
-  const PeerDirectory* peers_;
+  PeerDirectory* peers_;
   dds::TypeSupport type_;
   void* buffer_ = nullptr;
   std::mutex mutex_;

@@ -44,6 +44,40 @@ void PeerDirectory::on_subscriber_discovery(dds::DomainParticipant*, rtps::Reade
            describe_qos(q.m_reliability, q.m_durability, q.m_deadline, q.m_liveliness));
 }
 
+std::uint64_t PeerDirectory::writer_id(const rtps::GUID_t& writer) {
+  // FNV-1a over prefix and entity id: stable for the writer's life, the same in every process.
+  std::uint64_t hash = 1469598103934665603ULL;
+  const auto mix = [&hash](std::uint8_t byte) {
+    hash ^= byte;
+    hash *= 1099511628211ULL;
+  };
+  for (std::uint8_t byte : writer.guidPrefix.value) {
+    mix(byte);
+  }
+  for (std::uint8_t byte : writer.entityId.value) {
+    mix(byte);
+  }
+  hash = hash == 0 ? 1 : hash;  // 0 means "unknown" in SampleMeta
+  std::lock_guard<std::mutex> lock(mutex_);
+  writer_guids_.emplace(hash, writer);
+  return hash;
+}
+
+std::string PeerDirectory::writer_name(std::uint64_t id) const {
+  rtps::GUID_t guid;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto it = writer_guids_.find(id);
+    if (it == writer_guids_.end()) {
+      return "writer " + std::to_string(id);
+    }
+    guid = it->second;
+  }
+  std::ostringstream entity;
+  entity << guid.entityId;
+  return who(guid) + " (writer " + guid_prefix_text(guid.guidPrefix) + "|" + entity.str() + ")";
+}
+
 std::string PeerDirectory::who(const rtps::GUID_t& guid) const {
   const std::string key = guid_prefix_text(guid.guidPrefix);
   std::lock_guard<std::mutex> lock(mutex_);

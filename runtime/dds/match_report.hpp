@@ -39,6 +39,12 @@ class PeerDirectory : public dds::DomainParticipantListener {
 
   std::size_t participants_alive() const;
 
+  /// SampleMeta::writer_id of a writer GUID (a hash of its 16 bytes), remembered so that
+  /// writer_name() can spell it later.
+  std::uint64_t writer_id(const rtps::GUID_t& writer);
+  /// "'control' (writer 01.0f...|0.0.1.3)" for an id writer_id() returned; "writer <id>" otherwise.
+  std::string writer_name(std::uint64_t id) const;
+
  private:
   using Table = std::map<std::string, std::map<std::string, std::pair<std::string, rtps::GUID_t>>>;
   void remember(Table& table, const std::string& topic, const rtps::GUID_t& guid, bool present, const std::string& qos);
@@ -48,6 +54,7 @@ class PeerDirectory : public dds::DomainParticipantListener {
   std::set<std::string> alive_;
   Table writers_;
   Table readers_;
+  std::map<std::uint64_t, rtps::GUID_t> writer_guids_;  // writer_id() -> GUID
 };
 
 /// Match state of one local endpoint, kept for the report appended to lockstep timeouts. The

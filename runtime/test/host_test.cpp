@@ -165,11 +165,11 @@ std::vector<std::pair<std::uint64_t, double>> pipeline_outputs(std::size_t windo
   *max_outstanding = 0;
   const TopicInfo& clock = topic_info("sim/clock");
   const TopicInfo& done = topic_info("sim/step_done");
-  auto tick_reader = h.bus().reader(clock.name, clock.type_name, "lockstep_local", [=](const void*) {
+  auto tick_reader = h.bus().reader(clock.name, clock.type_name, "lockstep_local", [=](const void*, const SampleMeta&) {
     ++*ticks;
     *max_outstanding = std::max(*max_outstanding, *ticks - *acks);
   }, [](const std::string&) {});
-  auto ack_reader = h.bus().reader(done.name, done.type_name, "lockstep_local", [=](const void*) { ++*acks; },
+  auto ack_reader = h.bus().reader(done.name, done.type_name, "lockstep_local", [=](const void*, const SampleMeta&) { ++*acks; },
                                    [](const std::string&) {});
   add_producer(h);
   auto input = std::make_shared<Input<idl::RobotState>*>(nullptr);

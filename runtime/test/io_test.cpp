@@ -17,6 +17,15 @@ idl::RobotState state(std::uint32_t robot, std::uint64_t step, std::uint64_t nex
   return s;
 }
 
+/// Options of an input that expects robot 1, read `delay` steps late.
+detail::InputOptions robot_one(std::uint64_t delay) {
+  detail::InputOptions options;
+  options.expected = {1};
+  options.delay_steps = delay;
+  options.key_names = "robot_id";
+  return options;
+}
+
 class InputTest : public ::testing::Test {
  protected:
   StepState clock;
@@ -57,7 +66,7 @@ TEST_F(InputTest, ReadsOnlySamplesUpToTheCurrentStepMinusDelay) {
 }
 
 TEST_F(InputTest, TakeNewReturnsEverySampleInOrderOnce) {
-  Input<idl::RobotState> input("sensor/odometry", "test", &clock, &notifier, detail::InputOptions{{1}, 0, false, "robot_id", {}});
+  Input<idl::RobotState> input("sensor/odometry", "test", &clock, &notifier, robot_one(0));
   input.on_sample(state(1, 0, 2, 0.0));
   input.on_sample(state(1, 2, 4, 2.0));
   clock.step = 3;
@@ -68,7 +77,7 @@ TEST_F(InputTest, TakeNewReturnsEverySampleInOrderOnce) {
 }
 
 TEST_F(InputTest, NonFiniteSampleAdvancesTimeButIsDropped) {
-  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, detail::InputOptions{{1}, 0, false, "robot_id", {}});
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, robot_one(0));
   input.on_sample(state(1, 0, 1, 1.0));
   input.on_sample(state(1, 1, 2, std::numeric_limits<double>::quiet_NaN()));
   clock.step = 1;
@@ -76,17 +85,31 @@ TEST_F(InputTest, NonFiniteSampleAdvancesTimeButIsDropped) {
   ASSERT_NE(input.latest(1), nullptr);
   EXPECT_DOUBLE_EQ(input.latest(1)->x(), 1.0);
   EXPECT_EQ(input.rejected_count(), 1u);
+  const InputCounts counts = input.counts();
+  EXPECT_EQ(counts.accepted, 1u);
+  EXPECT_EQ(counts.rejected.at("non_finite"), 1u);
+}
+
+TEST_F(InputTest, AgeIsMeasuredFromTheReceiveTimeOfTheNewestAcceptedSample) {
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, robot_one(0));
+  EXPECT_FALSE(input.age_s(1, 5'000'000'000).has_value());  // nothing received
+  input.on_sample(state(1, 0, 1, 1.0), SampleMeta{7, 1'000'000'000});
+  // A rejected sample received later does not make the instance fresh again.
+  input.on_sample(state(1, 1, 2, std::numeric_limits<double>::quiet_NaN()), SampleMeta{7, 4'000'000'000});
+  ASSERT_TRUE(input.age_s(1, 5'000'000'000).has_value());
+  EXPECT_DOUBLE_EQ(*input.age_s(1, 5'000'000'000), 4.0);
+  EXPECT_FALSE(input.age_s(2, 5'000'000'000).has_value());
 }
 
 TEST_F(InputTest, IgnoresUnexpectedInstances) {
-  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, detail::InputOptions{{1}, 0, false, "robot_id", {}});
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, robot_one(0));
   input.on_sample(state(5, 0, 1, 1.0));
   EXPECT_TRUE(input.instances().empty());
 }
 
 TEST_F(InputTest, RealtimeIsAlwaysReadyAndReadsTheNewest) {
   clock.mode = TimeMode::kRealtime;
-  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, detail::InputOptions{{1}, 1, false, "robot_id", {}});
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, robot_one(1));
   EXPECT_TRUE(input.ready(100, nullptr));
   input.on_sample(state(1, 7, 8, 3.0));
   ASSERT_NE(input.latest(1), nullptr);

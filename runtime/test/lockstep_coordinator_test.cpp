@@ -35,7 +35,7 @@ struct CoordinatorFixture : ::testing::Test {
     run.notifier = &notifier;
     options.members = {"a", "b"};
     options.run_id = 9;
-    tick_reader = bus.reader("sim/clock", topic_info("sim/clock").type_name, profile_of("sim/clock"), [this](const void* s) {
+    tick_reader = bus.reader("sim/clock", topic_info("sim/clock").type_name, profile_of("sim/clock"), [this](const void* s, const SampleMeta&) {
       const auto& tick = *static_cast<const idl::SimTick*>(s);
       ticks.push_back(tick.header().step());
       final_flags.push_back(tick.final_tick());

@@ -54,7 +54,7 @@ struct HostFixture : ::testing::Test {
     options.components = {"recorder"};
     options.run_id = 9;
     ack_reader = bus.reader("sim/step_done", topic_info("sim/step_done").type_name, profile_of("sim/step_done"),
-                            [this](const void* s) { acks.push_back(*static_cast<const idl::StepDone*>(s)); }, nullptr);
+                            [this](const void* s, const SampleMeta&) { acks.push_back(*static_cast<const idl::StepDone*>(s)); }, nullptr);
     tick_output = std::make_unique<Output<idl::SimTick>>(bus.writer("sim/clock", topic_info("sim/clock").type_name, profile_of("sim/clock")), &tick_state);
   }
 

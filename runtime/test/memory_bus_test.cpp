@@ -39,7 +39,7 @@ idl::WaypointMission mission(std::uint32_t robot, double x) {
 struct StateLog {
   std::vector<std::pair<std::uint32_t, std::uint64_t>> seen;
   SampleCallback callback() {
-    return [this](const void* p) {
+    return [this](const void* p, const SampleMeta&) {
       const auto& s = *static_cast<const idl::RobotState*>(p);
       seen.emplace_back(s.robot_id(), s.header().step());
     };
@@ -110,7 +110,7 @@ TEST(MemoryBus, LateJoinerGetsNewestMissionPerInstanceButNoVolatileSamples) {
   states->write(&s);
 
   std::vector<std::pair<std::uint32_t, double>> got;
-  auto mission_reader = bus.reader(kMission, kMissionType, "mission", [&got](const void* p) {
+  auto mission_reader = bus.reader(kMission, kMissionType, "mission", [&got](const void* p, const SampleMeta&) {
     const auto& m = *static_cast<const idl::WaypointMission*>(p);
     got.emplace_back(m.robot_id(), m.waypoints().at(0).x());
   }, kNoEvents);
@@ -122,13 +122,35 @@ TEST(MemoryBus, LateJoinerGetsNewestMissionPerInstanceButNoVolatileSamples) {
   EXPECT_TRUE(late.seen.empty()) << "a volatile topic must not replay old samples";
 }
 
+TEST(MemoryBus, EachSampleNamesItsWriterAndItsReceiveTime) {
+  MemoryBus bus;
+  auto first = bus.writer(kState, kStateType, "lockstep_local");
+  auto second = bus.writer(kState, kStateType, "realtime");  // another profile: another writer
+  std::vector<SampleMeta> metas;
+  auto reader = bus.reader(kState, kStateType, "lockstep_local",
+                           [&metas](const void*, const SampleMeta& meta) { metas.push_back(meta); }, kNoEvents);
+  const std::int64_t before = monotonic_now_ns();
+  idl::RobotState s = state(1, 0);
+  first->write(&s);
+  first->write(&s);
+  second->write(&s);
+  ASSERT_EQ(metas.size(), 3u);
+  EXPECT_NE(metas[0].writer_id, 0u);
+  EXPECT_EQ(metas[0].writer_id, metas[1].writer_id);
+  EXPECT_NE(metas[0].writer_id, metas[2].writer_id);
+  EXPECT_GE(metas[0].received_ns, before);
+  EXPECT_LE(metas[2].received_ns, monotonic_now_ns());
+  EXPECT_NE(bus.writer_name(metas[2].writer_id).find("plant/state|realtime"), std::string::npos)
+      << bus.writer_name(metas[2].writer_id);
+}
+
 TEST(MemoryBus, VolatileReaderOfAMissionTopicGetsNoHistory) {
   MemoryBus bus;
   auto missions = bus.writer(kMission, kMissionType, "mission");
   idl::WaypointMission m = mission(1, 1.0);
   missions->write(&m);
   int count = 0;
-  auto reader = bus.reader(kMission, kMissionType, "state", [&count](const void*) { ++count; }, kNoEvents);
+  auto reader = bus.reader(kMission, kMissionType, "state", [&count](const void*, const SampleMeta&) { ++count; }, kNoEvents);
   EXPECT_EQ(count, 0);
 }
 
@@ -139,8 +161,8 @@ TEST(MemoryBus, WriteFromACallbackIsSafeAndKeepsOneOrderForAllReaders) {
   // subscribes a new callback from inside delivery: neither may deadlock.
   StateLog first, second, added;
   std::shared_ptr<ReaderHandle> added_reader;
-  auto r1 = bus.reader(kState, kStateType, "lockstep_local", [&](const void* p) {
-    first.callback()(p);
+  auto r1 = bus.reader(kState, kStateType, "lockstep_local", [&](const void* p, const SampleMeta&) {
+    first.callback()(p, SampleMeta{});
     const auto& s = *static_cast<const idl::RobotState*>(p);
     if (s.header().step() == 0) {
       idl::RobotState echo = state(s.robot_id(), 100);
@@ -165,7 +187,7 @@ TEST(MemoryBus, WriteFromACallbackIsSafeAndKeepsOneOrderForAllReaders) {
 TEST(MemoryBus, WrongOrUnknownTypeIsAConfigError) {
   MemoryBus bus;
   bus.writer(kState, kStateType, "lockstep_local");
-  EXPECT_THROW(bus.reader(kState, kMissionType, "lockstep_local", [](const void*) {}, kNoEvents), ConfigError);
+  EXPECT_THROW(bus.reader(kState, kMissionType, "lockstep_local", [](const void*, const SampleMeta&) {}, kNoEvents), ConfigError);
   EXPECT_THROW(bus.writer("x/y", "robodds::idl::NoSuchType", "state"), ConfigError);
 }
 

@@ -138,7 +138,7 @@ class NodeHarness {
     auto log = std::make_shared<std::vector<Msg>>();
     records_.push_back(log);
     readers_.push_back(bus_.reader(topic, info.type_name, qos_profile_for(info, TimeMode::kLockstep, true),
-                                   [log](const void* sample) { log->push_back(*static_cast<const Msg*>(sample)); },
+                                   [log](const void* sample, const SampleMeta&) { log->push_back(*static_cast<const Msg*>(sample)); },
                                    [](const std::string&) {}));
     return *log;
   }

@@ -57,7 +57,7 @@ run_with_nan_injected() {
 expect_rejected_once() {
   local log="$1" consumer="$2" topic="$3" step="$4" field="$5" csv
   shift 5
-  grep -q "\[warn\] $consumer: rejected a sample on $topic (robot_id=1, step $step): field '$field' is not finite" "$log" \
+  grep -qE "\[warn\] $consumer: rejected a sample on $topic from .+ \(robot_id=1, step $step\): field '$field' is not finite" "$log" \
     || fail "$consumer did not report the NaN sample on $topic: $(cat "$log")"
   [[ $(grep -c "$consumer: rejected" "$log") -eq 1 ]] || fail "rejection logged more than once"
   for csv in "$@"; do

@@ -36,7 +36,7 @@ class EchoCommand : public Command {
       using Msg = typename decltype(tag)::type;
       // Missions are transient local: read them with the mission profile to get the last one.
       bus->reader(topic_, info.type_name, monitor_profile_for(info),
-                  [&](const void* sample) {
+                  [&](const void* sample, const SampleMeta&) {
                     const Msg& m = *static_cast<const Msg*>(sample);
                     std::lock_guard<std::mutex> lock(mutex);
                     lines.push_back("--- " + topic_ + " (" + idl::instance_label(m) + ")\n" + to_text(m));

@@ -245,7 +245,7 @@ class RuntimeLink : public Link {
     robodds::Input<RobotState>* raw = &input_;
     reader_ = bus.reader(
         in, robodds::idl::type_name<RobotState>(), profile,
-        [raw](const void* sample) { raw->on_sample(*static_cast<const RobotState*>(sample)); },
+        [raw](const void* sample, const robodds::SampleMeta& meta) { raw->on_sample(*static_cast<const RobotState*>(sample), meta); },
         [owner, in](const std::string& event) { robodds::log::warn(owner, in + ": " + event); });
   }
 

@@ -55,7 +55,7 @@ TEST(MissionNode, AReaderThatJoinsAfterTheRunStillGetsTheMission) {
   std::vector<std::uint32_t> late;
   const TopicInfo& info = topic_info("mission/waypoints");
   auto reader = h.bus().reader(info.name, info.type_name, qos_profile_for(info, TimeMode::kLockstep, true),
-                               [&late](const void* p) { late.push_back(static_cast<const idl::WaypointMission*>(p)->robot_id()); },
+                               [&late](const void* p, const SampleMeta&) { late.push_back(static_cast<const idl::WaypointMission*>(p)->robot_id()); },
                                [](const std::string&) {});
   EXPECT_EQ(late, (std::vector<std::uint32_t>{1, 2})) << "the mission topic is transient local";
 }
