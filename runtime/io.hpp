@@ -96,7 +96,10 @@ struct InputOptions {
 /// (e.g. "non_finite"), for logs and summary.json.
 struct InputCounts {
   std::uint64_t accepted = 0;
-  std::map<std::string, std::uint64_t> rejected;  // reason -> samples
+  std::map<std::string, std::uint64_t> rejected;  // reason -> samples dropped
+  /// reason -> accepted samples the consumer had to correct before use (e.g. a command saturated
+  /// to the plant's limits); counted by the component with InputBase::count_adjusted().
+  std::map<std::string, std::uint64_t> adjusted;
   std::uint64_t rejected_total() const {
     std::uint64_t total = 0;
     for (const auto& [reason, count] : rejected) {
@@ -126,6 +129,11 @@ class InputBase {
   InputCounts counts() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return counts_;
+  }
+  /// Counts an accepted sample the component corrected before use, under `reason`.
+  void count_adjusted(const std::string& reason) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++counts_.adjusted[reason];
   }
   /// Seconds between the receipt of the newest accepted sample of `key` (SampleMeta::received_ns,
   /// this process's monotonic clock) and `now_ns` (same clock); nullopt if none was accepted or
