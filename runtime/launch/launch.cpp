@@ -5,10 +5,12 @@
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
+#include <optional>
 #include <system_error>
 #include <thread>
 #include <unistd.h>
 
+#include "common/number_parse.hpp"
 #include "runtime/error.hpp"
 #include "runtime/log.hpp"
 #include "runtime/launch/process_group.hpp"
@@ -158,14 +160,16 @@ std::string share_dir() { return share_dir_of_this_process(ROBODDS_SOURCE_DIR); 
 
 DdsOptions resolve_dds(const DdsArgs& args, const std::string& participant_name) {
   DdsOptions o;
-  const std::string env_domain = env_or("ROBODDS_DOMAIN_ID", "0");
-  try {
-    o.domain_id = args.domain >= 0 ? args.domain : std::stoi(env_domain);
-  } catch (const std::exception&) {
-    throw ConfigError("ROBODDS_DOMAIN_ID: expected an integer 0..232, got '" + env_domain + "'");
-  }
-  if (o.domain_id < 0 || o.domain_id > 232) {
-    throw ConfigError("ROBODDS_DOMAIN_ID: " + std::to_string(o.domain_id) + " is outside 0..232");
+  if (args.domain >= 0) {
+    o.domain_id = args.domain;  // --domain: CLI11 checked 0..232
+  } else {
+    // The whole text must be the number: "7x" is refused, not read as 7.
+    const std::string env_domain = env_or("ROBODDS_DOMAIN_ID", "0");
+    const std::optional<std::uint64_t> domain = parse_whole_number(env_domain, 232);
+    if (!domain) {
+      throw ConfigError("ROBODDS_DOMAIN_ID: expected a whole number 0..232, got '" + env_domain + "'");
+    }
+    o.domain_id = static_cast<int>(*domain);
   }
   if (!args.qos_files.empty()) {
     o.qos_files = args.qos_files;

@@ -32,7 +32,10 @@ expect_error 2 "--seed: .*18446744073709551616" -- "${R[@]}" --out "$WORK/o7" "$
 # The scenario must be a readable file: a directory used to give a libstdc++ message naming no file.
 mkdir "$WORK/adir"
 expect_error 2 "adir: is a directory, not a scenario file" -- "${R[@]}" --out "$WORK/o8" "$WORK/adir"
-for out in o1 o2 o3 o4 o5 o6 o7 o8; do
+# $ROBODDS_DOMAIN_ID must be the whole number: "7x" used to be read as domain 7.
+expect_error 2 "ROBODDS_DOMAIN_ID: expected a whole number 0\.\.232, got '7x'" -- \
+  env ROBODDS_DOMAIN_ID=7x "$ROBODDS" run --no-plots --duration 0.1 --out "$WORK/o9" "$S"
+for out in o1 o2 o3 o4 o5 o6 o7 o8 o9; do
   [[ ! -e "$WORK/$out" ]] || fail "--out $out was created although the input was refused"
 done
 

@@ -58,8 +58,8 @@ class RunCommand : public Command {
     launch.log_level = env_.log_level;
     launch.progress = show_progress;
     launch.stop = &env_.stop;
+    launch.dds = resolve_dds(dds_, "robodds-run");  // a bad $ROBODDS_DOMAIN_ID creates no --out
     make_output_dir(launch.out_dir);
-    launch.dds = resolve_dds(dds_, "robodds-run");
     std::fflush(stdout);
     std::printf("robodds run %s: %s, %s, %llu steps of %g s, seed %llu\n", scenario.name.c_str(), deploy_.c_str(),
                 realtime_ ? "real time" : "lockstep", static_cast<unsigned long long>(scenario.last_step() + 1),
