@@ -25,8 +25,10 @@ start=$(date +%s.%N)
 fuzz_rc=0
 timeout -k 5 60 "$FUZZ" --domain "$DOMAIN" --topics "$TOPICS" --count "$COUNT" --rate 1000 --seed 9 --self-check \
   --qos "$SRC/deploy/qos/robodds_qos.xml" >"$WORK/fuzz.txt" 2>"$WORK/fuzz.log" || fuzz_rc=$?
-end=$(date +%s.%N)
 cat "$WORK/fuzz.txt"
+end_ns=$(sed -n 's/^written_until_ns=//p' "$WORK/fuzz.txt")
+[[ -n "$end_ns" ]] || fail "robodds-fuzz printed no written_until_ns: $(cat "$WORK/fuzz.log")"
+end=$(python3 -c "print($end_ns / 1e9)")
 rc=0
 wait "$run_pid" || rc=$?
 [[ $rc -eq 0 ]] || fail "robodds run exited $rc under fuzz: $(grep -v 'deadline missed' "$WORK/run.log" | tail -20)"

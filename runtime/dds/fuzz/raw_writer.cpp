@@ -15,7 +15,8 @@
 //   header      a valid encapsulation header and random bytes of random length 4..2*max.
 // --key ID writes ID as the first key member (robot_id) of the `body` payloads, so they decode
 // as samples of that robot; without it the key is random too (samples of unknown robots).
-// Prints one line per topic (payloads written per kind, write failures, matched readers).
+// Prints written_until_ns=<wall clock ns after the last payload>, then one line per topic
+// (payloads written per kind, write failures, matched readers).
 // --self-check: a second participant in this process reads every topic with the runtime's type
 // support (make_type_support) and the topic's profile, and prints per topic what it decoded,
 // what the type support dropped as undecodable, and Fast DDS's own sample_lost/sample_rejected
@@ -356,6 +357,8 @@ int run(const Options& o) {
     next += std::chrono::duration_cast<std::chrono::steady_clock::duration>(period);
     std::this_thread::sleep_until(next);
   }
+  const auto written_until = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch());
+  std::cout << "written_until_ns=" << written_until.count() << std::endl;  // wall clock, as plant/state stamps
   for (const Target& t : targets) {
     dds::PublicationMatchedStatus status;
     t.writer->get_publication_matched_status(status);
