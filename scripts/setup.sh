@@ -7,6 +7,7 @@ PACKAGES=(
   libeigen3-dev libceres-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   iproute2 procps bc docker-compose python3-matplotlib file
+  cyclonedds-dev cyclonedds-tools libcycloneddsidl0
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
