@@ -36,7 +36,7 @@ wait "$run_pid" || rc=$?
 [[ $rc -eq 0 ]] || fail "robodds run exited $rc: $(cat "$WORK/run.log")"
 echo "ok: robodds run exited 0; Cyclone wrote $(grep -c '^cmd ' "$WORK/cmd.txt") commands, read $(grep -c '^state ' "$WORK/state.txt") states"
 
-grep -q "\[warn\] plant: rejected a sample on plant/cmd (robot_id=1, step 0): field 'v' is not finite" "$WORK/run.log" \
+grep -qE "\[warn\] plant: rejected a sample on plant/cmd from 'cyclone_probe' .*\(robot_id=1, step 0\): field 'v' is not finite" "$WORK/run.log" \
   || fail "the plant did not report the Cyclone NaN command: $(cat "$WORK/run.log")"
 echo "ok: plant refused the non-finite Cyclone command (log)"
 
