@@ -1,10 +1,14 @@
 #include "sim/evaluator/node/evaluator_node.hpp"
 
 #include <algorithm>
-#include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
+#include <type_traits>
 #include <sys/stat.h>
 
 #include "common/angle.hpp"
@@ -31,57 +35,129 @@ std::string csv_file_name(std::string topic) {
   return topic + ".csv";
 }
 
-/// What the metrics need from the recorded samples, per robot.
-struct Histories {
-  std::map<std::uint32_t, Track> truth;
-  std::map<std::uint32_t, Track> fixes;
-  std::map<std::uint32_t, Track> estimates;
-  std::map<std::uint32_t, double> max_abs_omega;
-  std::map<std::uint32_t, double> max_abs_v;
-  std::map<std::uint32_t, std::vector<StatusSample>> status;
-  std::map<std::uint32_t, std::vector<std::array<double, 2>>> missions;
+/// What the metrics need of one robot, updated sample by sample: running figures and the few
+/// samples still waiting for their match, never the whole history.
+struct RobotMetrics {
+  explicit RobotMetrics(std::uint64_t from_step)
+      : fixes(position_distance, from_step), position(position_distance, from_step),
+        heading(heading_difference, from_step) {}
+  TrackSummary truth;
+  TruthWindow recent_truth;
+  MatchedError fixes;     // sensor/position against truth
+  MatchedError position;  // estimate/pose against truth
+  MatchedError heading;
+  WaypointTracker waypoints;
+  bool has_command = false;
+  double max_abs_omega = 0.0;
+  double max_abs_v = 0.0;
+};
+
+/// Which metrics consume truth samples: those whose topics are recorded.
+struct TruthConsumers {
+  bool fixes = false;
+  bool estimates = false;
+  bool status = false;
+};
+
+/// The metrics of all robots, fed with every recorded sample.
+class Metrics {
+ public:
+  Metrics(std::uint64_t from_step, TruthConsumers consumers) : from_step_(from_step), consumers_(consumers) {}
 
   template <class Msg>
   void observe(const Msg&) {}
-  void observe(const idl::RobotState& m) { truth[m.robot_id()].push_back({m.header().step(), m.x(), m.y(), m.theta()}); }
-  void observe(const idl::PositionMeasurement& m) { fixes[m.robot_id()].push_back({m.header().step(), m.x(), m.y(), 0.0}); }
+  void observe(const idl::RobotState& m) {
+    const PoseSample s{m.header().step(), m.x(), m.y(), m.theta()};
+    RobotMetrics& r = robot(m.robot_id());
+    r.truth.add(s);
+    r.recent_truth.add(s);
+  }
+  void observe(const idl::PositionMeasurement& m) { robot(m.robot_id()).fixes.add({m.header().step(), m.x(), m.y(), 0.0}); }
   void observe(const idl::PoseEstimate& m) {
-    estimates[m.robot_id()].push_back({m.header().step(), m.x(), m.y(), m.theta()});
+    const PoseSample s{m.header().step(), m.x(), m.y(), m.theta()};
+    robot(m.robot_id()).position.add(s);
+    robot(m.robot_id()).heading.add(s);
   }
   void observe(const idl::VelocityCommand& m) {
-    max_abs_omega[m.robot_id()] = std::max(max_abs_omega[m.robot_id()], std::abs(m.omega()));
-    max_abs_v[m.robot_id()] = std::max(max_abs_v[m.robot_id()], std::abs(m.v()));
+    RobotMetrics& r = robot(m.robot_id());
+    r.has_command = true;
+    r.max_abs_omega = std::max(r.max_abs_omega, std::abs(m.omega()));
+    r.max_abs_v = std::max(r.max_abs_v, std::abs(m.v()));
   }
   void observe(const idl::ControllerStatus& m) {
-    status[m.robot_id()].push_back({m.header().step(), m.waypoints_reached(), m.waypoints_total(), m.done(), m.switched(),
-                                    m.switch_distance(), m.epsilon()});
+    robot(m.robot_id()).waypoints.add_status({m.header().step(), m.waypoints_reached(), m.waypoints_total(), m.done(),
+                                              m.switched(), m.switch_distance(), m.epsilon()});
   }
   void observe(const idl::WaypointMission& m) {
-    auto& mission = missions[m.robot_id()];
-    mission.clear();
+    Mission mission;
     for (const idl::Waypoint& w : m.waypoints()) {
       mission.push_back({w.x(), w.y()});
     }
+    robot(m.robot_id()).waypoints.set_mission(std::move(mission));
   }
+
+  /// Matches what has arrived with truth and forgets the truth nothing waits for any more.
+  void match() {
+    for (auto& [id, r] : robots_) {
+      r.fixes.match(r.recent_truth);
+      r.position.match(r.recent_truth);
+      r.heading.match(r.recent_truth);
+      r.waypoints.match(r.recent_truth);
+      std::uint64_t needed = std::numeric_limits<std::uint64_t>::max();
+      if (consumers_.fixes) {
+        needed = std::min(needed, r.fixes.needed_from());
+      }
+      if (consumers_.estimates) {
+        needed = std::min({needed, r.position.needed_from(), r.heading.needed_from()});
+      }
+      if (consumers_.status) {
+        needed = std::min(needed, r.waypoints.needed_from());
+      }
+      r.recent_truth.drop_before(needed);
+    }
+  }
+
+  const RobotMetrics* find(std::uint32_t id) const {
+    auto it = robots_.find(id);
+    return it != robots_.end() ? &it->second : nullptr;
+  }
+
+ private:
+  RobotMetrics& robot(std::uint32_t id) { return robots_.try_emplace(id, from_step_).first->second; }
+
+  std::uint64_t from_step_;
+  TruthConsumers consumers_;
+  std::map<std::uint32_t, RobotMetrics> robots_;
 };
 
 class RecorderBase {
  public:
   virtual ~RecorderBase() = default;
-  virtual void collect(const std::vector<std::uint64_t>& keys, Histories& histories) = 0;
-  virtual void write(const std::string& dir) const = 0;
+  virtual void collect(const std::vector<std::uint64_t>& keys, Metrics& metrics) = 0;
+  /// Pushes the rows written so far to the file; RunError if it cannot.
+  virtual void flush() = 0;
   virtual const std::string& topic() const = 0;
   virtual std::uint64_t rejected() const = 0;
   virtual std::size_t rows() const = 0;
 };
 
+/// Writes each sample of its topic as a CSV row when it is taken (no output dir: no file).
 template <class Msg>
 class Recorder : public RecorderBase {
  public:
-  Recorder(std::string topic, Input<Msg>* input) : topic_(std::move(topic)), input_(input) {
-    text_ = "t_s," + csv_header<Msg>() + "\n";
+  Recorder(std::string topic, Input<Msg>* input, const std::string& dir) : topic_(std::move(topic)), input_(input) {
+    if (dir.empty()) {
+      return;
+    }
+    path_ = dir + "/" + csv_file_name(topic_);
+    file_.open(path_, std::ios::binary | std::ios::trunc);
+    file_ << "t_s," << csv_header<Msg>() << '\n';
+    if (!file_) {
+      throw ConfigError("evaluator: cannot write " + path_);
+    }
   }
-  void collect(const std::vector<std::uint64_t>& keys, Histories& histories) override {
+  void collect(const std::vector<std::uint64_t>& keys, Metrics& metrics) override {
+    text_.clear();
     for (std::uint64_t key : keys) {
       for (const Msg& sample : input_->take_new(key)) {
         append_seconds(text_, static_cast<std::int64_t>(sample.header().stamp_ns()));
@@ -89,16 +165,16 @@ class Recorder : public RecorderBase {
         append_csv_row(text_, sample);
         text_ += '\n';
         ++rows_;
-        histories.observe(sample);
+        metrics.observe(sample);
       }
     }
+    if (file_.is_open()) {
+      file_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+    }
   }
-  void write(const std::string& dir) const override {
-    const std::string path = dir + "/" + csv_file_name(topic_);
-    std::ofstream out(path, std::ios::binary);
-    out << text_;
-    if (!out) {
-      throw RunError("evaluator: cannot write " + path);
+  void flush() override {
+    if (file_.is_open() && !file_.flush()) {
+      throw RunError("evaluator: cannot write " + path_);
     }
   }
   const std::string& topic() const override { return topic_; }
@@ -108,8 +184,16 @@ class Recorder : public RecorderBase {
  private:
   std::string topic_;
   Input<Msg>* input_;
-  std::string text_;
+  std::string path_;
+  std::ofstream file_;  // buffered: rows reach the disk in blocks, and at flush()
+  std::string text_;    // the rows of one collect()
   std::size_t rows_ = 0;
+};
+
+/// How the run ended, for summary.json's "status" (and "reason" when it failed).
+struct RunEnd {
+  bool completed = true;
+  std::string reason;
 };
 
 class EvaluatorNode : public Component {
@@ -117,27 +201,36 @@ class EvaluatorNode : public Component {
   void configure(ComponentContext& ctx) override {
     auto& p = ctx.params();
     const EvaluatorParams params = read_params(p, evaluator_param_table());
-    const std::vector<std::string>& topics = params.topics;
-    metrics_after_s_ = params.metrics_after_s;
     keys_ = ctx.robot_keys();
-    for (const std::string& topic : topics) {
+    context_ = &ctx;
+    if (!ctx.output_dir().empty()) {
+      ::mkdir(ctx.output_dir().c_str(), 0755);
+    }
+    TruthConsumers consumers;
+    for (const std::string& topic : params.topics) {
       const TopicInfo* info = find_topic(topic);
       if (info == nullptr || info->key != "robot_id") {
         p.fail("topics: '" + topic + "' is not a per-robot topic of the catalog (see docs/topics.md)");
       }
       idl::dispatch_type(info->type_name, [&](auto tag) {
         using Msg = typename decltype(tag)::type;
+        consumers.fixes |= std::is_same_v<Msg, idl::PositionMeasurement>;
+        consumers.estimates |= std::is_same_v<Msg, idl::PoseEstimate>;
+        consumers.status |= std::is_same_v<Msg, idl::ControllerStatus>;
         auto* input = &ctx.subscribe<Msg>(topic, Subscription::instances(keys_));
-        recorders_.push_back(std::make_unique<Recorder<Msg>>(topic, input));
+        recorders_.push_back(std::make_unique<Recorder<Msg>>(topic, input, ctx.output_dir()));
       });
     }
-    context_ = &ctx;
+    const auto from_step = static_cast<std::uint64_t>(std::llround(params.metrics_after_s / ctx.step_s()));
+    metrics_ = std::make_unique<Metrics>(from_step, consumers);
   }
 
-  void on_step(const StepInfo&) override {
+  void on_step(const StepInfo& info) override {
     for (auto& recorder : recorders_) {
-      recorder->collect(keys_, histories_);
+      recorder->collect(keys_, *metrics_);
     }
+    metrics_->match();
+    steps_ = info.step + 1;
   }
 
   void on_finish(const StepInfo& info) override {
@@ -145,21 +238,61 @@ class EvaluatorNode : public Component {
     if (context_->output_dir().empty()) {
       return;
     }
-    ::mkdir(context_->output_dir().c_str(), 0755);
     for (const auto& recorder : recorders_) {
-      recorder->write(context_->output_dir());
+      recorder->flush();
     }
-    write_summary(info);
+    write_summary(RunEnd{});
+  }
+
+  /// The run failed: the rows recorded so far stay, summary.json says why and holds the metrics
+  /// of the data so far.
+  void on_abort(const std::string& reason) override {
+    if (context_ == nullptr || context_->output_dir().empty()) {
+      return;
+    }
+    for (const auto& recorder : recorders_) {
+      recorder->flush();
+    }
+    write_summary(RunEnd{false, reason});
   }
 
  private:
-  void write_summary(const StepInfo& info) const {
-    const auto from_step = static_cast<std::uint64_t>(std::llround(metrics_after_s_ / context_->step_s()));
+  /// summary.json: one function per section. Written to a temporary file and renamed, so that
+  /// it is whole or absent even if the process dies meanwhile.
+  void write_summary(const RunEnd& end) const {
     JsonWriter json;
     json.begin_object();
+    write_status_section(json, end);
     json.value("scenario", context_->scenario().name);
-    json.value("steps", static_cast<std::int64_t>(info.step + 1));
+    json.value("steps", static_cast<std::int64_t>(steps_));
     json.value("step_s", context_->step_s());
+    write_metrics_section(json);
+    write_run_section(json);
+    json.end_object();
+    const std::string path = context_->output_dir() + "/summary.json";
+    const std::string temporary = path + ".tmp";
+    {
+      std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+      out << json.str();
+      if (!out.flush()) {
+        throw RunError("evaluator: cannot write " + temporary);
+      }
+    }
+    if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+      throw RunError("evaluator: cannot rename " + temporary + " to " + path + ": " + std::strerror(errno));
+    }
+  }
+
+  /// "status": "completed", or "failed" with the error line that ended the run as "reason".
+  static void write_status_section(JsonWriter& json, const RunEnd& end) {
+    json.value("status", end.completed ? "completed" : "failed");
+    if (!end.completed) {
+      json.value("reason", end.reason);
+    }
+  }
+
+  /// Deterministic figures of the recorded data (in lockstep, the same on every run).
+  void write_metrics_section(JsonWriter& json) const {
     json.begin_object("metrics");
     PooledRmse fix_rmse;
     PooledRmse estimate_rmse;
@@ -168,35 +301,35 @@ class EvaluatorNode : public Component {
     for (std::uint64_t key : keys_) {
       const auto id = static_cast<std::uint32_t>(key);
       json.begin_object(std::to_string(id));
-      auto truth = histories_.truth.find(id);
-      if (truth != histories_.truth.end() && !truth->second.empty()) {
-        const PoseSample& last = truth->second.back();
-        json.value("path_length_m", path_length(truth->second));
+      const RobotMetrics* r = metrics_->find(id);
+      if (r != nullptr && !r->truth.empty()) {
+        const PoseSample& last = r->truth.last();
+        json.value("path_length_m", r->truth.path_length());
         json.value("final_x_m", last.x).value("final_y_m", last.y).value("final_theta_rad", last.theta);
-        json.value("state_samples", static_cast<std::int64_t>(truth->second.size()));
-        auto fixes = histories_.fixes.find(id);
-        if (fixes != histories_.fixes.end()) {
-          const ErrorStats e = position_error(truth->second, fixes->second, from_step);
+        json.value("state_samples", static_cast<std::int64_t>(r->truth.count()));
+        if (r->fixes.seen()) {
+          const ErrorStats e = r->fixes.stats();
           json.value("measurement_rmse_m", e.rmse).value("measurement_samples", static_cast<std::int64_t>(e.count));
           fix_rmse.add(e);
         }
-        auto est = histories_.estimates.find(id);
-        if (est != histories_.estimates.end()) {
-          const ErrorStats e = position_error(truth->second, est->second, from_step);
-          const ErrorStats h = heading_error(truth->second, est->second, from_step);
+        if (r->position.seen()) {
+          const ErrorStats e = r->position.stats();
+          const ErrorStats h = r->heading.stats();
           json.value("pf_rmse_m", e.rmse).value("heading_rmse_deg", h.rmse * kDegPerRad);
           estimate_rmse.add(e);
           heading_rmse_rad.add(h);
         }
-        write_waypoint_metrics(json, id, truth->second);
+        write_waypoint_metrics(json, *r);
       }
       json.end_object();
     }
     json.end_object();
-    if (keys_.size() == 1 && histories_.status.count(static_cast<std::uint32_t>(keys_[0])) != 0) {
+    if (keys_.size() == 1) {
       // One robot (the paper's setting): its way-point figures at the top level too.
-      const auto id = static_cast<std::uint32_t>(keys_[0]);
-      write_waypoint_metrics(json, id, histories_.truth.at(id));
+      const RobotMetrics* r = metrics_->find(static_cast<std::uint32_t>(keys_[0]));
+      if (r != nullptr && r->waypoints.has_status()) {
+        write_waypoint_metrics(json, *r);
+      }
     }
     if (!fix_rmse.empty()) {
       json.value("measurement_rmse_m", fix_rmse.rmse());
@@ -218,14 +351,6 @@ class EvaluatorNode : public Component {
     }
     json.end_object();
     json.end_object();
-    write_run_section(json);
-    json.end_object();
-    const std::string path = context_->output_dir() + "/summary.json";
-    std::ofstream out(path, std::ios::binary);
-    out << json.str();
-    if (!out) {
-      throw RunError("evaluator: cannot write " + path);
-    }
   }
 
   /// How the run went on the wall clock (kept apart from "metrics", which are deterministic).
@@ -245,13 +370,11 @@ class EvaluatorNode : public Component {
     json.end_object();
   }
 
-  void write_waypoint_metrics(JsonWriter& json, std::uint32_t id, const Track& truth) const {
-    auto status = histories_.status.find(id);
-    auto mission = histories_.missions.find(id);
-    if (status == histories_.status.end() || mission == histories_.missions.end()) {
+  void write_waypoint_metrics(JsonWriter& json, const RobotMetrics& r) const {
+    if (!r.waypoints.has_status() || !r.waypoints.has_mission()) {
       return;
     }
-    const WaypointMetrics m = waypoint_metrics(truth, status->second, mission->second, context_->step_s());
+    const WaypointMetrics m = r.waypoints.metrics(r.truth.empty() ? nullptr : &r.truth.last(), context_->step_s());
     json.value("waypoints_reached", static_cast<std::int64_t>(m.waypoints_reached));
     json.value("waypoints_total", static_cast<std::int64_t>(m.waypoints_total));
     json.value("time_to_final_s", m.time_to_final_s);
@@ -259,18 +382,17 @@ class EvaluatorNode : public Component {
     json.value("switch_distance_true_m", m.switch_distance_true_m);
     json.value("final_error_true_m", m.final_error_true_m);
     json.value("epsilon", m.epsilon_m);
-    auto omega = histories_.max_abs_omega.find(id);
-    if (omega != histories_.max_abs_omega.end()) {
-      json.value("max_abs_omega", omega->second);
-      json.value("max_abs_v", histories_.max_abs_v.at(id));
+    if (r.has_command) {
+      json.value("max_abs_omega", r.max_abs_omega);
+      json.value("max_abs_v", r.max_abs_v);
     }
   }
 
   std::vector<std::uint64_t> keys_;
   std::vector<std::unique_ptr<RecorderBase>> recorders_;
-  Histories histories_;
+  std::unique_ptr<Metrics> metrics_;
   const ComponentContext* context_ = nullptr;  // owned by the host, which keeps it while it runs us
-  double metrics_after_s_ = 0.0;  // s, EvaluatorParams::metrics_after_s
+  std::uint64_t steps_ = 0;  // steps whose samples were taken (the last one + 1)
 };
 
 }  // namespace
