@@ -133,6 +133,8 @@ class Metrics {
 class RecorderBase {
  public:
   virtual ~RecorderBase() = default;
+  /// Creates the CSV file in `dir` and writes its header.
+  virtual void open(const std::string& dir) = 0;
   virtual void collect(const std::vector<std::uint64_t>& keys, Metrics& metrics) = 0;
   /// Pushes the rows written so far to the file; RunError if it cannot.
   virtual void flush() = 0;
@@ -141,19 +143,17 @@ class RecorderBase {
   virtual std::size_t rows() const = 0;
 };
 
-/// Writes each sample of its topic as a CSV row when it is taken (no output dir: no file).
+/// Writes each sample of its topic as a CSV row when it is taken (not opened: no file).
 template <class Msg>
 class Recorder : public RecorderBase {
  public:
-  Recorder(std::string topic, Input<Msg>* input, const std::string& dir) : topic_(std::move(topic)), input_(input) {
-    if (dir.empty()) {
-      return;
-    }
+  Recorder(std::string topic, Input<Msg>* input) : topic_(std::move(topic)), input_(input) {}
+  void open(const std::string& dir) override {
     path_ = dir + "/" + csv_file_name(topic_);
     file_.open(path_, std::ios::binary | std::ios::trunc);
     file_ << "t_s," << csv_header<Msg>() << '\n';
     if (!file_) {
-      throw ConfigError("evaluator: cannot write " + path_);
+      throw RunError("evaluator: cannot write " + path_);
     }
   }
   void collect(const std::vector<std::uint64_t>& keys, Metrics& metrics) override {
@@ -203,9 +203,6 @@ class EvaluatorNode : public Component {
     const EvaluatorParams params = read_params(p, evaluator_param_table());
     keys_ = ctx.robot_keys();
     context_ = &ctx;
-    if (!ctx.output_dir().empty()) {
-      ::mkdir(ctx.output_dir().c_str(), 0755);
-    }
     TruthConsumers consumers;
     for (const std::string& topic : params.topics) {
       const TopicInfo* info = find_topic(topic);
@@ -218,7 +215,7 @@ class EvaluatorNode : public Component {
         consumers.estimates |= std::is_same_v<Msg, idl::PoseEstimate>;
         consumers.status |= std::is_same_v<Msg, idl::ControllerStatus>;
         auto* input = &ctx.subscribe<Msg>(topic, Subscription::instances(keys_));
-        recorders_.push_back(std::make_unique<Recorder<Msg>>(topic, input, ctx.output_dir()));
+        recorders_.push_back(std::make_unique<Recorder<Msg>>(topic, input));
       });
     }
     const auto from_step = static_cast<std::uint64_t>(std::llround(params.metrics_after_s / ctx.step_s()));
@@ -226,6 +223,14 @@ class EvaluatorNode : public Component {
   }
 
   void on_step(const StepInfo& info) override {
+    if (!files_open_ && !context_->output_dir().empty()) {
+      // At the first step, not at configure: a run that never starts leaves no files.
+      files_open_ = true;
+      ::mkdir(context_->output_dir().c_str(), 0755);
+      for (auto& recorder : recorders_) {
+        recorder->open(context_->output_dir());
+      }
+    }
     for (auto& recorder : recorders_) {
       recorder->collect(keys_, *metrics_);
     }
@@ -250,6 +255,7 @@ class EvaluatorNode : public Component {
     if (context_ == nullptr || context_->output_dir().empty()) {
       return;
     }
+    ::mkdir(context_->output_dir().c_str(), 0755);
     for (const auto& recorder : recorders_) {
       recorder->flush();
     }
@@ -393,6 +399,7 @@ class EvaluatorNode : public Component {
   std::unique_ptr<Metrics> metrics_;
   const ComponentContext* context_ = nullptr;  // owned by the host, which keeps it while it runs us
   std::uint64_t steps_ = 0;  // steps whose samples were taken (the last one + 1)
+  bool files_open_ = false;
 };
 
 }  // namespace
