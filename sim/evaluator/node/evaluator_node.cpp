@@ -1,13 +1,10 @@
 #include "sim/evaluator/node/evaluator_node.hpp"
 
-#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <limits>
-#include <map>
 #include <type_traits>
 #include <sys/stat.h>
 
@@ -16,8 +13,9 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
-#include "runtime/sample_format.hpp"
+#include "sim/evaluator/node/csv_recorder.hpp"
 #include "sim/evaluator/node/evaluator_params.hpp"
+#include "sim/evaluator/node/sample_metrics.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
 
@@ -25,170 +23,6 @@ namespace robodds::evaluator {
 namespace {
 
 constexpr double kDegPerRad = 180.0 / kPi;
-
-std::string csv_file_name(std::string topic) {
-  for (char& c : topic) {
-    if (c == '/') {
-      c = '_';
-    }
-  }
-  return topic + ".csv";
-}
-
-/// What the metrics need of one robot, updated sample by sample: running figures and the few
-/// samples still waiting for their match, never the whole history.
-struct RobotMetrics {
-  explicit RobotMetrics(std::uint64_t from_step)
-      : fixes(position_distance, from_step), position(position_distance, from_step),
-        heading(heading_difference, from_step) {}
-  TrackSummary truth;
-  TruthWindow recent_truth;
-  MatchedError fixes;     // sensor/position against truth
-  MatchedError position;  // estimate/pose against truth
-  MatchedError heading;
-  WaypointTracker waypoints;
-  bool has_command = false;
-  double max_abs_omega = 0.0;
-  double max_abs_v = 0.0;
-};
-
-/// Which metrics consume truth samples: those whose topics are recorded.
-struct TruthConsumers {
-  bool fixes = false;
-  bool estimates = false;
-  bool status = false;
-};
-
-/// The metrics of all robots, fed with every recorded sample.
-class Metrics {
- public:
-  Metrics(std::uint64_t from_step, TruthConsumers consumers) : from_step_(from_step), consumers_(consumers) {}
-
-  template <class Msg>
-  void observe(const Msg&) {}
-  void observe(const idl::RobotState& m) {
-    const PoseSample s{m.header().step(), m.x(), m.y(), m.theta()};
-    RobotMetrics& r = robot(m.robot_id());
-    r.truth.add(s);
-    r.recent_truth.add(s);
-  }
-  void observe(const idl::PositionMeasurement& m) { robot(m.robot_id()).fixes.add({m.header().step(), m.x(), m.y(), 0.0}); }
-  void observe(const idl::PoseEstimate& m) {
-    const PoseSample s{m.header().step(), m.x(), m.y(), m.theta()};
-    robot(m.robot_id()).position.add(s);
-    robot(m.robot_id()).heading.add(s);
-  }
-  void observe(const idl::VelocityCommand& m) {
-    RobotMetrics& r = robot(m.robot_id());
-    r.has_command = true;
-    r.max_abs_omega = std::max(r.max_abs_omega, std::abs(m.omega()));
-    r.max_abs_v = std::max(r.max_abs_v, std::abs(m.v()));
-  }
-  void observe(const idl::ControllerStatus& m) {
-    robot(m.robot_id()).waypoints.add_status({m.header().step(), m.waypoints_reached(), m.waypoints_total(), m.done(),
-                                              m.switched(), m.switch_distance(), m.epsilon()});
-  }
-  void observe(const idl::WaypointMission& m) {
-    Mission mission;
-    for (const idl::Waypoint& w : m.waypoints()) {
-      mission.push_back({w.x(), w.y()});
-    }
-    robot(m.robot_id()).waypoints.set_mission(std::move(mission));
-  }
-
-  /// Matches what has arrived with truth and forgets the truth nothing waits for any more.
-  void match() {
-    for (auto& [id, r] : robots_) {
-      r.fixes.match(r.recent_truth);
-      r.position.match(r.recent_truth);
-      r.heading.match(r.recent_truth);
-      r.waypoints.match(r.recent_truth);
-      std::uint64_t needed = std::numeric_limits<std::uint64_t>::max();
-      if (consumers_.fixes) {
-        needed = std::min(needed, r.fixes.needed_from());
-      }
-      if (consumers_.estimates) {
-        needed = std::min({needed, r.position.needed_from(), r.heading.needed_from()});
-      }
-      if (consumers_.status) {
-        needed = std::min(needed, r.waypoints.needed_from());
-      }
-      r.recent_truth.drop_before(needed);
-    }
-  }
-
-  const RobotMetrics* find(std::uint32_t id) const {
-    auto it = robots_.find(id);
-    return it != robots_.end() ? &it->second : nullptr;
-  }
-
- private:
-  RobotMetrics& robot(std::uint32_t id) { return robots_.try_emplace(id, from_step_).first->second; }
-
-  std::uint64_t from_step_;
-  TruthConsumers consumers_;
-  std::map<std::uint32_t, RobotMetrics> robots_;
-};
-
-class RecorderBase {
- public:
-  virtual ~RecorderBase() = default;
-  /// Creates the CSV file in `dir` and writes its header.
-  virtual void open(const std::string& dir) = 0;
-  virtual void collect(const std::vector<std::uint64_t>& keys, Metrics& metrics) = 0;
-  /// Pushes the rows written so far to the file; RunError if it cannot.
-  virtual void flush() = 0;
-  virtual const std::string& topic() const = 0;
-  virtual std::uint64_t rejected() const = 0;
-  virtual std::size_t rows() const = 0;
-};
-
-/// Writes each sample of its topic as a CSV row when it is taken (not opened: no file).
-template <class Msg>
-class Recorder : public RecorderBase {
- public:
-  Recorder(std::string topic, Input<Msg>* input) : topic_(std::move(topic)), input_(input) {}
-  void open(const std::string& dir) override {
-    path_ = dir + "/" + csv_file_name(topic_);
-    file_.open(path_, std::ios::binary | std::ios::trunc);
-    file_ << "t_s," << csv_header<Msg>() << '\n';
-    if (!file_) {
-      throw RunError("evaluator: cannot write " + path_);
-    }
-  }
-  void collect(const std::vector<std::uint64_t>& keys, Metrics& metrics) override {
-    text_.clear();
-    for (std::uint64_t key : keys) {
-      for (const Msg& sample : input_->take_new(key)) {
-        append_seconds(text_, static_cast<std::int64_t>(sample.header().stamp_ns()));
-        text_ += ',';
-        append_csv_row(text_, sample);
-        text_ += '\n';
-        ++rows_;
-        metrics.observe(sample);
-      }
-    }
-    if (file_.is_open()) {
-      file_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
-    }
-  }
-  void flush() override {
-    if (file_.is_open() && !file_.flush()) {
-      throw RunError("evaluator: cannot write " + path_);
-    }
-  }
-  const std::string& topic() const override { return topic_; }
-  std::uint64_t rejected() const override { return input_->rejected_count(); }
-  std::size_t rows() const override { return rows_; }
-
- private:
-  std::string topic_;
-  Input<Msg>* input_;
-  std::string path_;
-  std::ofstream file_;  // buffered: rows reach the disk in blocks, and at flush()
-  std::string text_;    // the rows of one collect()
-  std::size_t rows_ = 0;
-};
 
 /// How the run ended, for summary.json's "status" (and "reason" when it failed).
 struct RunEnd {
