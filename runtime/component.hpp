@@ -35,6 +35,10 @@ class Component {
   virtual void on_step(const StepInfo& info) = 0;
   /// Called once after the last step (e.g. the evaluator writes its files).
   virtual void on_finish(const StepInfo& /*info*/) {}
+  /// Called instead of (or after) on_finish() when the run fails (a RunError in this host: a
+  /// timeout, a failed peer, a signal); `reason` is the error line. E.g. the evaluator writes
+  /// what it recorded and a summary that says the run failed. Must not block.
+  virtual void on_abort(const std::string& /*reason*/) {}
 };
 
 /// Wall-clock figures of the run so far, for summary.json's "run" section: the host fills them

@@ -184,6 +184,13 @@ RunStats Host::run() {
       }
     } catch (...) {
     }
+    for (auto& slot : impl_->slots) {  // e.g. the evaluator keeps what it recorded
+      try {
+        slot->component->on_abort(e.what());
+      } catch (const std::exception& abort_error) {
+        log::warn(impl_->options.member, slot->spec->name + ": after the failure: " + abort_error.what());
+      }
+    }
     throw;
   }
 }

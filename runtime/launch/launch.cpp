@@ -12,6 +12,7 @@
 
 #include "common/number_parse.hpp"
 #include "runtime/error.hpp"
+#include "runtime/launch/failed_summary.hpp"
 #include "runtime/log.hpp"
 #include "runtime/launch/process_group.hpp"
 #include "runtime/share_dir.hpp"
@@ -213,8 +214,14 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
 }
 
 RunStats launch_run(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& options) {
-  return options.deploy == Deploy::kColocated ? run_colocated(registry, scenario, options)
-                                              : run_as_processes(registry, scenario, options);
+  try {
+    return options.deploy == Deploy::kColocated ? run_colocated(registry, scenario, options)
+                                                : run_as_processes(registry, scenario, options);
+  } catch (const RunError& e) {
+    // The hosts have stopped (the children are reaped): the evaluator's partial summary, or none.
+    record_failed_run(options.out_dir, e.what());
+    throw;
+  }
 }
 
 namespace {

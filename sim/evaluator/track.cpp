@@ -2,58 +2,84 @@
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 
 #include "common/angle.hpp"
 
 namespace robodds::evaluator {
-namespace {
 
-ErrorStats matched_error(const Track& truth, const Track& estimate, std::uint64_t from_step,
-                         const std::function<double(const PoseSample&, const PoseSample&)>& error) {
-  ErrorStats stats;
-  double sum_sq = 0.0;
-  auto t = truth.begin();
-  for (const PoseSample& e : estimate) {
-    if (e.step < from_step) {
-      continue;
-    }
-    t = std::lower_bound(t, truth.end(), e.step, [](const PoseSample& s, std::uint64_t step) { return s.step < step; });
-    if (t == truth.end()) {
-      break;
-    }
-    if (t->step != e.step) {
-      continue;
-    }
-    const double err = error(*t, e);
-    sum_sq += err * err;
-    stats.max_abs = std::max(stats.max_abs, std::abs(err));
-    ++stats.count;
+void TrackSummary::add(const PoseSample& sample) {
+  if (count_ > 0) {
+    length_ += std::hypot(sample.x - last_.x, sample.y - last_.y);
   }
-  stats.rmse = stats.count > 0 ? std::sqrt(sum_sq / static_cast<double>(stats.count)) : 0.0;
-  return stats;
-}
-
-}  // namespace
-
-double path_length(const Track& track) {
-  double length = 0.0;
-  for (std::size_t i = 1; i < track.size(); ++i) {
-    length += std::hypot(track[i].x - track[i - 1].x, track[i].y - track[i - 1].y);
-  }
-  return length;
+  last_ = sample;
+  ++count_;
 }
 
 double PooledRmse::rmse() const { return std::sqrt(sum_squares_ / static_cast<double>(count_)); }
 
-ErrorStats position_error(const Track& truth, const Track& estimate, std::uint64_t from_step) {
-  return matched_error(truth, estimate, from_step,
-                       [](const PoseSample& t, const PoseSample& e) { return std::hypot(e.x - t.x, e.y - t.y); });
+void TruthWindow::add(const PoseSample& sample) {
+  samples_.push_back(sample);
+  if (samples_.size() > capacity_) {
+    samples_.pop_front();
+  }
+  last_step_ = any_ ? std::max(last_step_, sample.step) : sample.step;
+  any_ = true;
 }
 
-ErrorStats heading_error(const Track& truth, const Track& estimate, std::uint64_t from_step) {
-  return matched_error(truth, estimate, from_step,
-                       [](const PoseSample& t, const PoseSample& e) { return wrap_angle(e.theta - t.theta); });
+const PoseSample* TruthWindow::at(std::uint64_t step) const {
+  auto it = std::lower_bound(samples_.begin(), samples_.end(), step,
+                             [](const PoseSample& s, std::uint64_t v) { return s.step < v; });
+  return it != samples_.end() && it->step == step ? &*it : nullptr;
+}
+
+void TruthWindow::drop_before(std::uint64_t step) {
+  while (!samples_.empty() && samples_.front().step < step) {
+    samples_.pop_front();
+  }
+}
+
+void MatchedError::add(const PoseSample& estimate) {
+  seen_ = true;
+  if (estimate.step >= from_step_) {
+    pending_.push_back(estimate);
+  }
+}
+
+void MatchedError::match(const TruthWindow& truth) {
+  while (!pending_.empty()) {
+    const PoseSample& e = pending_.front();
+    if (e.step >= floor_) {
+      if (!truth.reached(e.step)) {
+        return;  // its truth may still come
+      }
+      floor_ = e.step;
+      if (const PoseSample* t = truth.at(e.step)) {
+        const double err = error_(*t, e);
+        sum_squares_ += err * err;
+        max_abs_ = std::max(max_abs_, std::abs(err));
+        ++count_;
+      }
+    }
+    pending_.pop_front();
+  }
+}
+
+std::uint64_t MatchedError::needed_from() const { return std::max(from_step_, floor_); }
+
+ErrorStats MatchedError::stats() const {
+  ErrorStats stats;
+  stats.max_abs = max_abs_;
+  stats.count = count_;
+  stats.rmse = count_ > 0 ? std::sqrt(sum_squares_ / static_cast<double>(count_)) : 0.0;
+  return stats;
+}
+
+double position_distance(const PoseSample& truth, const PoseSample& estimate) {
+  return std::hypot(estimate.x - truth.x, estimate.y - truth.y);
+}
+
+double heading_difference(const PoseSample& truth, const PoseSample& estimate) {
+  return wrap_angle(estimate.theta - truth.theta);
 }
 
 }  // namespace robodds::evaluator

@@ -4,36 +4,57 @@
 #include <cmath>
 
 namespace robodds::evaluator {
-namespace {
 
-const PoseSample* truth_at(const Track& truth, std::uint64_t step) {
-  auto it = std::lower_bound(truth.begin(), truth.end(), step, [](const PoseSample& s, std::uint64_t v) { return s.step < v; });
-  return it != truth.end() && it->step == step ? &*it : nullptr;
+void WaypointTracker::add_status(const StatusSample& s) {
+  has_status_ = true;
+  last_step_ = s.step;
+  waypoints_reached_ = std::max(waypoints_reached_, s.waypoints_reached);
+  epsilon_m_ = s.epsilon;
+  if (s.switched) {
+    switch_distance_estimate_m_.push_back(s.switch_distance);
+    Switch sw;
+    sw.step = s.step;
+    sw.reached_index = s.waypoints_reached > 0 ? s.waypoints_reached - 1 : 0;
+    switches_.push_back(sw);
+  }
+  if (s.done && !done_) {
+    done_ = true;
+    done_step_ = s.step;
+  }
 }
 
-}  // namespace
-
-WaypointMetrics waypoint_metrics(const Track& truth, const std::vector<StatusSample>& status,
-                                 const std::vector<std::array<double, 2>>& mission, double step_s) {
-  WaypointMetrics m;
-  m.waypoints_total = static_cast<std::uint32_t>(mission.size());
-  for (const StatusSample& s : status) {
-    m.waypoints_reached = std::max(m.waypoints_reached, s.waypoints_reached);
-    m.epsilon_m = s.epsilon;
-    if (s.switched) {
-      m.switch_distance_estimate_m.push_back(s.switch_distance);
-      const std::size_t reached_index = s.waypoints_reached > 0 ? s.waypoints_reached - 1 : 0;
-      const PoseSample* t = truth_at(truth, s.step);
-      if (t != nullptr && reached_index < mission.size()) {
-        m.switch_distance_true_m.push_back(std::hypot(t->x - mission[reached_index][0], t->y - mission[reached_index][1]));
-      }
-    }
-    if (s.done && m.time_to_final_s < 0.0) {
-      m.time_to_final_s = static_cast<double>(s.step) * step_s;
+void WaypointTracker::match(const TruthWindow& truth) {
+  for (; next_unmatched_ < switches_.size() && truth.reached(switches_[next_unmatched_].step); ++next_unmatched_) {
+    Switch& sw = switches_[next_unmatched_];
+    if (const PoseSample* t = truth.at(sw.step)) {
+      sw.has_truth = true;
+      sw.x = t->x;
+      sw.y = t->y;
     }
   }
-  if (!truth.empty() && !mission.empty()) {
-    m.final_error_true_m = std::hypot(truth.back().x - mission.back()[0], truth.back().y - mission.back()[1]);
+}
+
+std::uint64_t WaypointTracker::needed_from() const {
+  return next_unmatched_ < switches_.size() ? std::min(switches_[next_unmatched_].step, last_step_) : last_step_;
+}
+
+WaypointMetrics WaypointTracker::metrics(const PoseSample* final_truth, double step_s) const {
+  WaypointMetrics m;
+  m.waypoints_total = static_cast<std::uint32_t>(mission_.size());
+  m.waypoints_reached = waypoints_reached_;
+  m.epsilon_m = epsilon_m_;
+  m.switch_distance_estimate_m = switch_distance_estimate_m_;
+  for (const Switch& sw : switches_) {
+    if (sw.has_truth && sw.reached_index < mission_.size()) {
+      const auto& w = mission_[sw.reached_index];
+      m.switch_distance_true_m.push_back(std::hypot(sw.x - w[0], sw.y - w[1]));
+    }
+  }
+  if (done_) {
+    m.time_to_final_s = static_cast<double>(done_step_) * step_s;
+  }
+  if (final_truth != nullptr && !mission_.empty()) {
+    m.final_error_true_m = std::hypot(final_truth->x - mission_.back()[0], final_truth->y - mission_.back()[1]);
   }
   return m;
 }

@@ -1,5 +1,6 @@
 // The evaluator node on the in-memory bus: records the listed topics into CSV files and writes
-// summary.json when the run finishes; non-finite samples are dropped and counted.
+// summary.json ("status": "completed") when the run finishes, or what it has with "status":
+// "failed" and the reason when the run fails; non-finite samples are dropped and counted.
 #include "sim/evaluator/node/evaluator_node.hpp"
 
 #include <gtest/gtest.h>
@@ -80,6 +81,35 @@ TEST(EvaluatorNode, WritesEveryValidSampleToCsvAndCountsTheRejectedOne) {
   EXPECT_NE(summary.find("\"steps\": 11"), std::string::npos) << summary;
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("rejected_samples": \{\s*"plant/state": 1\s*\})"))) << summary;
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("samples": \{\s*"plant/state": 21\s*\})"))) << summary;
+  EXPECT_EQ(summary.rfind("{\n  \"status\": \"completed\",\n", 0), 0u) << summary;
+  EXPECT_EQ(summary.find("\"reason\""), std::string::npos) << summary;
+}
+
+TEST(EvaluatorNode, AFailedRunKeepsTheRowsSoFarAndSaysWhyInTheSummary) {
+  NodeHarness h(kScenario);
+  add_evaluator(h);
+  h.feed([&h](std::uint64_t step) {
+    if (step == 6) {
+      throw RunError("lockstep: component 'plant' waited 2 s for its inputs");
+    }
+    for (std::uint32_t robot : {1u, 2u}) {
+      idl::RobotState s;
+      s.robot_id(robot);
+      s.x(static_cast<double>(step));
+      h.publish("plant/state", s, step, step + 1);
+    }
+  });
+  EXPECT_THROW(h.run({"evaluator"}), RunError);
+
+  const std::vector<std::string> csv = lines_of(h.output_dir() + "/plant_state.csv");
+  EXPECT_EQ(csv.size(), 1u + 2u * 6u) << "header + 2 robots x steps 0..5, on disk although the run failed";
+  const std::string summary = text_of(h.output_dir() + "/summary.json");
+  EXPECT_EQ(summary.rfind("{\n  \"status\": \"failed\",\n  \"reason\": \"component 'feeder' failed at step 6: lockstep: "
+                          "component 'plant' waited 2 s for its inputs\",\n", 0),
+            0u) << "the host's error line: " << summary;
+  EXPECT_NE(summary.find("\"steps\": 6"), std::string::npos) << summary;
+  EXPECT_TRUE(std::regex_search(summary, std::regex(R"("samples": \{\s*"plant/state": 12\s*\})"))) << summary;
+  EXPECT_TRUE(std::regex_search(summary, std::regex(R"("1": \{\s*"path_length_m": 5,)"))) << "metrics of the data so far: " << summary;
 }
 
 TEST(EvaluatorNode, ATopicThatIsNotPerRobotIsAConfigError) {

@@ -1,0 +1,87 @@
+#pragma once
+// One recorded topic of the evaluator: its samples become CSV rows as they are taken.
+
+#include <cstdint>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/error.hpp"
+#include "runtime/io.hpp"
+#include "runtime/sample_format.hpp"
+#include "sim/evaluator/node/sample_metrics.hpp"
+
+namespace robodds::evaluator {
+
+/// <topic with / as _>.csv
+inline std::string csv_file_name(std::string topic) {
+  for (char& c : topic) {
+    if (c == '/') {
+      c = '_';
+    }
+  }
+  return topic + ".csv";
+}
+
+class RecorderBase {
+ public:
+  virtual ~RecorderBase() = default;
+  /// Creates the CSV file in `dir` and writes its header.
+  virtual void open(const std::string& dir) = 0;
+  virtual void collect(const std::vector<std::uint64_t>& keys, Metrics& metrics) = 0;
+  /// Pushes the rows written so far to the file; RunError if it cannot.
+  virtual void flush() = 0;
+  virtual const std::string& topic() const = 0;
+  virtual std::uint64_t rejected() const = 0;
+  virtual std::size_t rows() const = 0;
+};
+
+/// Writes each sample of its topic as a CSV row when it is taken (not opened: no file).
+template <class Msg>
+class Recorder : public RecorderBase {
+ public:
+  Recorder(std::string topic, Input<Msg>* input) : topic_(std::move(topic)), input_(input) {}
+  void open(const std::string& dir) override {
+    path_ = dir + "/" + csv_file_name(topic_);
+    file_.open(path_, std::ios::binary | std::ios::trunc);
+    file_ << "t_s," << csv_header<Msg>() << '\n';
+    if (!file_) {
+      throw RunError("evaluator: cannot write " + path_);
+    }
+  }
+  void collect(const std::vector<std::uint64_t>& keys, Metrics& metrics) override {
+    text_.clear();
+    for (std::uint64_t key : keys) {
+      for (const Msg& sample : input_->take_new(key)) {
+        append_seconds(text_, static_cast<std::int64_t>(sample.header().stamp_ns()));
+        text_ += ',';
+        append_csv_row(text_, sample);
+        text_ += '\n';
+        ++rows_;
+        metrics.observe(sample);
+      }
+    }
+    if (file_.is_open()) {
+      file_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+    }
+  }
+  void flush() override {
+    if (file_.is_open() && !file_.flush()) {
+      throw RunError("evaluator: cannot write " + path_);
+    }
+  }
+  const std::string& topic() const override { return topic_; }
+  std::uint64_t rejected() const override { return input_->rejected_count(); }
+  std::size_t rows() const override { return rows_; }
+
+ private:
+  std::string topic_;
+  Input<Msg>* input_;
+  std::string path_;
+  std::ofstream file_;  // buffered: rows reach the disk in blocks, and at flush()
+  std::string text_;    // the rows of one collect()
+  std::size_t rows_ = 0;
+};
+
+}  // namespace robodds::evaluator

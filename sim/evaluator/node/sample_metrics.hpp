@@ -1,0 +1,113 @@
+#pragma once
+// The evaluator's metrics fed sample by sample (node side: it knows the IDL types; the maths is
+// in sim/evaluator/track.hpp and waypoint_metrics.hpp).
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <utility>
+
+#include "robodds/idl/robodds.h"
+#include "sim/evaluator/track.hpp"
+#include "sim/evaluator/waypoint_metrics.hpp"
+
+namespace robodds::evaluator {
+
+/// What the metrics need of one robot, updated sample by sample: running figures and the few
+/// samples still waiting for their match, never the whole history.
+struct RobotMetrics {
+  explicit RobotMetrics(std::uint64_t from_step)
+      : fixes(position_distance, from_step), position(position_distance, from_step),
+        heading(heading_difference, from_step) {}
+  TrackSummary truth;
+  TruthWindow recent_truth;
+  MatchedError fixes;     // sensor/position against truth
+  MatchedError position;  // estimate/pose against truth
+  MatchedError heading;
+  WaypointTracker waypoints;
+  bool has_command = false;
+  double max_abs_omega = 0.0;
+  double max_abs_v = 0.0;
+};
+
+/// Which metrics consume truth samples: those whose topics are recorded.
+struct TruthConsumers {
+  bool fixes = false;
+  bool estimates = false;
+  bool status = false;
+};
+
+/// The metrics of all robots, fed with every recorded sample.
+class Metrics {
+ public:
+  Metrics(std::uint64_t from_step, TruthConsumers consumers) : from_step_(from_step), consumers_(consumers) {}
+
+  template <class Msg>
+  void observe(const Msg&) {}
+  void observe(const idl::RobotState& m) {
+    const PoseSample s{m.header().step(), m.x(), m.y(), m.theta()};
+    RobotMetrics& r = robot(m.robot_id());
+    r.truth.add(s);
+    r.recent_truth.add(s);
+  }
+  void observe(const idl::PositionMeasurement& m) { robot(m.robot_id()).fixes.add({m.header().step(), m.x(), m.y(), 0.0}); }
+  void observe(const idl::PoseEstimate& m) {
+    const PoseSample s{m.header().step(), m.x(), m.y(), m.theta()};
+    robot(m.robot_id()).position.add(s);
+    robot(m.robot_id()).heading.add(s);
+  }
+  void observe(const idl::VelocityCommand& m) {
+    RobotMetrics& r = robot(m.robot_id());
+    r.has_command = true;
+    r.max_abs_omega = std::max(r.max_abs_omega, std::abs(m.omega()));
+    r.max_abs_v = std::max(r.max_abs_v, std::abs(m.v()));
+  }
+  void observe(const idl::ControllerStatus& m) {
+    robot(m.robot_id()).waypoints.add_status({m.header().step(), m.waypoints_reached(), m.waypoints_total(), m.done(),
+                                              m.switched(), m.switch_distance(), m.epsilon()});
+  }
+  void observe(const idl::WaypointMission& m) {
+    Mission mission;
+    for (const idl::Waypoint& w : m.waypoints()) {
+      mission.push_back({w.x(), w.y()});
+    }
+    robot(m.robot_id()).waypoints.set_mission(std::move(mission));
+  }
+
+  /// Matches what has arrived with truth and forgets the truth nothing waits for any more.
+  void match() {
+    for (auto& [id, r] : robots_) {
+      r.fixes.match(r.recent_truth);
+      r.position.match(r.recent_truth);
+      r.heading.match(r.recent_truth);
+      r.waypoints.match(r.recent_truth);
+      std::uint64_t needed = std::numeric_limits<std::uint64_t>::max();
+      if (consumers_.fixes) {
+        needed = std::min(needed, r.fixes.needed_from());
+      }
+      if (consumers_.estimates) {
+        needed = std::min({needed, r.position.needed_from(), r.heading.needed_from()});
+      }
+      if (consumers_.status) {
+        needed = std::min(needed, r.waypoints.needed_from());
+      }
+      r.recent_truth.drop_before(needed);
+    }
+  }
+
+  const RobotMetrics* find(std::uint32_t id) const {
+    auto it = robots_.find(id);
+    return it != robots_.end() ? &it->second : nullptr;
+  }
+
+ private:
+  RobotMetrics& robot(std::uint32_t id) { return robots_.try_emplace(id, from_step_).first->second; }
+
+  std::uint64_t from_step_;
+  TruthConsumers consumers_;
+  std::map<std::uint32_t, RobotMetrics> robots_;
+};
+
+}  // namespace robodds::evaluator
