@@ -1,7 +1,9 @@
 #include "runtime/sample_checks.hpp"
 
+#include <array>
 #include <chrono>
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 
 namespace robodds {
