@@ -23,6 +23,7 @@
 #include "runtime/bus.hpp"
 #include "runtime/log.hpp"
 #include "runtime/notifier.hpp"
+#include "runtime/sample_checks.hpp"
 #include "runtime/sample_fields.hpp"
 
 namespace robodds {
@@ -245,6 +246,10 @@ class Input : public InputBase {
       return;
     }
     const std::string bad_field = first_non_finite_field(sample);
+    // Plausibility checks of the topic type (runtime/sample_checks.hpp), after the non-finite one.
+    const std::optional<SampleCheckFailure> failed =
+        bad_field.empty() ? check_sample(sample, state_->mode, state_->mode == TimeMode::kRealtime ? wall_clock_now_ns() : 0)
+                          : std::nullopt;
     {
       std::lock_guard<std::mutex> lock(mutex_);
       Progress& p = progress_[key];
@@ -253,11 +258,16 @@ class Input : public InputBase {
       if (labels_.count(key) == 0) {
         labels_[key] = idl::instance_label(sample);
       }
-      if (bad_field.empty()) {
+      if (bad_field.empty() && !failed) {
         p.received_ns = meta.received_ns;
         p.writer_id = meta.writer_id;
         ++counts_.accepted;
         slots_[key].pending.push_back(sample);
+      } else if (failed) {
+        count_rejection(failed->reason,
+                        "(" + idl::instance_label(sample) + ", step " + std::to_string(sample.header().step()) + "): field '" +
+                            failed->field + "' " + failed->detail + " [" + failed->reason + "]",
+                        meta.writer_id);
       } else {
         count_rejection(detail::kRejectNonFinite,
                         "(" + idl::instance_label(sample) + ", step " + std::to_string(sample.header().step()) +

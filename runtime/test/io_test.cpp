@@ -5,6 +5,8 @@
 
 #include <limits>
 
+#include "runtime/sample_checks.hpp"
+
 namespace robodds {
 namespace {
 
@@ -114,6 +116,64 @@ TEST_F(InputTest, RealtimeIsAlwaysReadyAndReadsTheNewest) {
   input.on_sample(state(1, 7, 8, 3.0));
   ASSERT_NE(input.latest(1), nullptr);
   EXPECT_DOUBLE_EQ(input.latest(1)->x(), 3.0);
+}
+
+TEST_F(InputTest, RealtimeRefusesStampsInTheFutureOrNegativeWithoutOverflow) {
+  clock.mode = TimeMode::kRealtime;
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, robot_one(0));
+  const std::int64_t now = wall_clock_now_ns();
+  auto stamped = [](std::uint64_t step, std::int64_t stamp_ns) {
+    idl::RobotState s = state(1, step, step + 1, 1.0);
+    s.header().stamp_ns(stamp_ns);
+    return s;
+  };
+  input.on_sample(stamped(0, std::numeric_limits<std::int64_t>::max()), SampleMeta{3, 1'000});
+  input.on_sample(stamped(1, std::numeric_limits<std::int64_t>::min()), SampleMeta{3, 2'000});
+  input.on_sample(stamped(2, -1), SampleMeta{3, 3'000});
+  input.on_sample(stamped(3, now + 60'000'000'000), SampleMeta{3, 4'000});  // a minute ahead
+  EXPECT_EQ(input.latest(1), nullptr);
+  EXPECT_FALSE(input.age_s(1, 10'000).has_value()) << "a refused sample is not fresh";
+  input.on_sample(stamped(4, now), SampleMeta{3, 5'000});
+  input.on_sample(stamped(5, now + 500'000'000), SampleMeta{3, 6'000});  // within the tolerance
+  const InputCounts counts = input.counts();
+  EXPECT_EQ(counts.accepted, 2u);
+  EXPECT_EQ(counts.rejected.at("stamp_in_future"), 2u);
+  EXPECT_EQ(counts.rejected.at("negative_stamp"), 2u);
+  EXPECT_DOUBLE_EQ(*input.age_s(1, 10'000), 4e-6);
+}
+
+TEST_F(InputTest, LockstepStampsAreSimTimeOnlyNegativeIsRefused) {
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, robot_one(0));
+  idl::RobotState far = state(1, 0, 1, 1.0);
+  far.header().stamp_ns(std::numeric_limits<std::int64_t>::max());  // a long simulation, not absurd
+  input.on_sample(far);
+  idl::RobotState negative = state(1, 1, 2, 1.0);
+  negative.header().stamp_ns(std::numeric_limits<std::int64_t>::min());
+  input.on_sample(negative);
+  const InputCounts counts = input.counts();
+  EXPECT_EQ(counts.accepted, 1u);
+  EXPECT_EQ(counts.rejected.at("negative_stamp"), 1u);
+}
+
+TEST_F(InputTest, AppliesThePlausibilityChecksOfTheTopicType) {
+  detail::InputOptions options = robot_one(0);
+  Input<idl::VelocityCommand> input("plant/cmd", "test", &clock, &notifier, options);
+  idl::VelocityCommand cmd;
+  cmd.robot_id(1);
+  cmd.header().next_step(1);
+  cmd.mode(static_cast<idl::CommandMode>(7));
+  input.on_sample(cmd);
+  cmd.mode(idl::VELOCITY);
+  cmd.v(1e300);
+  input.on_sample(cmd);
+  cmd.v(0.5);
+  input.on_sample(cmd);
+  const InputCounts counts = input.counts();
+  EXPECT_EQ(counts.accepted, 1u);
+  EXPECT_EQ(counts.rejected.at("bad_enum"), 1u);
+  EXPECT_EQ(counts.rejected.at("absurd_magnitude"), 1u);
+  ASSERT_NE(input.latest(1), nullptr);
+  EXPECT_DOUBLE_EQ(input.latest(1)->v(), 0.5);
 }
 
 }  // namespace

@@ -25,6 +25,7 @@
 #include "runtime/memory_bus.hpp"
 #include "runtime/notifier.hpp"
 #include "runtime/registry.hpp"
+#include "runtime/sample_checks.hpp"
 #include "runtime/scenario.hpp"
 #include "runtime/topic_catalog.hpp"
 #include "tests/support/temp_file.hpp"
@@ -120,14 +121,21 @@ class NodeHarness {
   /// Runs `feed(step)` at every step, before the components under test.
   void feed(std::function<void(std::uint64_t step)> feed) { feed_ = std::move(feed); }
 
-  /// Writes `sample` on `topic` as its producer would at `step` (stamp = step * step_s) with
-  /// the given next_step; delivered before this returns.
+  /// Writes `sample` on `topic` as its producer would at `step` (stamp = step * step_s in
+  /// lockstep, the wall clock in real time) with the given next_step; delivered (receive time:
+  /// now) before this returns.
   template <class Msg>
   void publish(const std::string& topic, Msg sample, std::uint64_t step, std::uint64_t next_step) {
+    publish_stamped(topic, std::move(sample), step, next_step,
+                    mode_ == TimeMode::kRealtime ? wall_clock_now_ns() : host_detail::sim_stamp_ns(step, scenario_.step_s));
+  }
+  /// publish() with the header stamp the test chooses (e.g. a hostile one).
+  template <class Msg>
+  void publish_stamped(const std::string& topic, Msg sample, std::uint64_t step, std::uint64_t next_step, std::int64_t stamp_ns) {
     const TopicInfo& info = topic_info(topic);
     sample.header().step(step);
     sample.header().next_step(next_step);
-    sample.header().stamp_ns(host_detail::sim_stamp_ns(step, scenario_.step_s));
+    sample.header().stamp_ns(stamp_ns);
     bus_.writer(topic, info.type_name, qos_profile_for(info, TimeMode::kLockstep, true))->write(&sample);
   }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <optional>
 
 #include "components/pf_estimator/node/pf_estimator_params.hpp"
 #include "components/pf_estimator/particle_filter.hpp"
@@ -24,6 +25,12 @@ class PfEstimatorNode : public Component {
     valid_max_std_m_ = node_params.valid_max_position_std_m;
     p.validate(params);
     ctx.set_rate_hz(rate_hz, "rate_hz");
+    input_timeout_s_ = node_params.input_timeout_s;
+    if (input_timeout_s_ <= 1.0 / rate_hz) {
+      p.fail("input_timeout_s: must be longer than the estimator's period (" + std::to_string(1.0 / rate_hz) + " s at rate_hz " +
+             std::to_string(rate_hz) + "), is " + std::to_string(input_timeout_s_));
+    }
+    realtime_ = ctx.mode() == TimeMode::kRealtime;
     for (const RobotSpec& robot : ctx.robots()) {
       filters_.emplace(robot.id, std::make_unique<ParticleFilter>(params, ctx.seed_for("robot" + std::to_string(robot.id))));
     }
@@ -60,11 +67,25 @@ class PfEstimatorNode : public Component {
       if (!odometry.empty() || !fixes.empty() || published_.count(id) == 0) {
         published_[id] = to_message(id, *filter);
       }
-      out_->publish(published_[id]);
+      if (realtime_ && !inputs_fresh(id)) {
+        // Safe behaviour: a filter without fresh sensors says so, and its consumers stop.
+        idl::PoseEstimate stale = published_[id];
+        stale.valid(false);
+        out_->publish(stale);
+      } else {
+        out_->publish(published_[id]);
+      }
     }
   }
 
  private:
+  /// Real time: both sensors delivered within input_timeout_s, by this process's receive time.
+  bool inputs_fresh(std::uint32_t id) const {
+    const std::optional<double> odometry_age = odometry_->age_s(id);
+    const std::optional<double> fix_age = fixes_->age_s(id);
+    return odometry_age && fix_age && *odometry_age <= input_timeout_s_ && *fix_age <= input_timeout_s_;
+  }
+
   static void predict(ParticleFilter& filter, const idl::Odometry& odometry) {
     if (filter.initialized() && odometry.dt_s() > 0.0) {
       filter.predict(odometry.v(), odometry.omega(), odometry.dt_s());
@@ -90,6 +111,8 @@ class PfEstimatorNode : public Component {
   std::map<std::uint32_t, std::unique_ptr<ParticleFilter>> filters_;
   std::map<std::uint32_t, idl::PoseEstimate> published_;  // last estimate per robot
   double valid_max_std_m_ = 3.0;
+  double input_timeout_s_ = 0.5;
+  bool realtime_ = false;
   Input<idl::Odometry>* odometry_ = nullptr;
   Input<idl::PositionMeasurement>* fixes_ = nullptr;
   Output<idl::PoseEstimate>* out_ = nullptr;

@@ -76,5 +76,56 @@ TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
   }
 }
 
+// Real time: once its sensors stop (by this process's receive time) for longer than
+// input_timeout_s the estimator keeps publishing, but valid = false, so a controller stops.
+TEST(PfEstimatorNode, RealTimeEstimateTurnsInvalidWhenTheSensorsGoStale) {
+  NodeHarness h(R"(name: pf_estimator_stale
+step_s: 0.01
+duration_s: 0.8
+seed: 5
+robots:
+  - {id: 1}
+components:
+  - {name: pf, type: pf_estimator, params: {num_particles: 300, resample_threshold: 150.0, input_timeout_s: 0.2}}
+)");
+  robodds::component_registration::register_pf_estimator(h.registry());
+  h.set_mode(TimeMode::kRealtime);
+  constexpr std::uint64_t kLastFed = 30;  // the sensors stop after 0.3 s
+  h.feed([&h](std::uint64_t step) {
+    if (step > kLastFed) {
+      return;
+    }
+    idl::Odometry odometry;
+    odometry.robot_id(1);
+    odometry.dt_s(0.01);
+    h.publish("sensor/odometry", odometry, step, step + 1);
+    idl::PositionMeasurement fix;
+    fix.robot_id(1);
+    fix.x(fix_x(1));
+    fix.y(fix_y(1));
+    fix.var_x(2.28);
+    fix.var_y(2.28);
+    h.publish("sensor/position", fix, step, step + 1);
+  });
+  const auto& estimates = h.record<idl::PoseEstimate>("estimate/pose");
+  h.run({"pf"});
+  int valid_while_fed = 0;
+  int after_limit = 0;
+  for (const idl::PoseEstimate& e : estimates) {
+    const std::uint64_t step = e.header().step();
+    if (step >= 10 && step <= kLastFed) {
+      valid_while_fed += e.valid() ? 1 : 0;
+    }
+    // 0.2 s limit + 0.15 s margin for a loaded machine.
+    if (step >= kLastFed + 35) {
+      ++after_limit;
+      EXPECT_FALSE(e.valid()) << "step " << step << ": sensors silent for " << (step - kLastFed) * 0.01 << " s";
+      EXPECT_NEAR(e.x(), fix_x(1), 1.0) << "the last estimate is still published, only marked invalid";
+    }
+  }
+  EXPECT_GT(valid_while_fed, 0) << "the estimate was valid while the sensors were fresh";
+  EXPECT_GT(after_limit, 0);
+}
+
 }  // namespace
 }  // namespace robodds::pf

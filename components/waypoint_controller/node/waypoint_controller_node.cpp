@@ -2,6 +2,7 @@
 #include "components/waypoint_controller/node/waypoint_controller_node.hpp"
 
 #include <map>
+#include <optional>
 
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 #include "robodds/idl/robodds.h"
@@ -20,8 +21,14 @@ class WaypointControllerNode : public Component {
     const double rate_hz = node_params.rate_hz;
     params_ = node_params.controller;
     require_valid_ = node_params.require_valid_estimate;
+    estimate_timeout_s_ = node_params.estimate_timeout_s;
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
+    if (estimate_timeout_s_ <= 1.0 / rate_hz) {
+      p.fail("estimate_timeout_s: must be longer than the control period (" + std::to_string(1.0 / rate_hz) + " s at rate_hz " +
+             std::to_string(rate_hz) + "), is " + std::to_string(estimate_timeout_s_));
+    }
+    realtime_ = ctx.mode() == TimeMode::kRealtime;
     for (const RobotSpec& robot : ctx.robots()) {
       trackers_.emplace(robot.id, WaypointTracker(params_));
     }
@@ -48,7 +55,8 @@ class WaypointControllerNode : public Component {
       idl::ControllerStatus status;
       status.robot_id(id);
       status.epsilon(params_.epsilon_m);
-      if (tracker.has_mission() && estimate != nullptr && (estimate->valid() || !require_valid_)) {
+      status.state(state_for(id, tracker, estimate));
+      if (status.state() == idl::TRACKING) {
         Eigen::Matrix2d position_covariance;  // row-major 3x3 [x, y, theta] -> its xy block
         position_covariance << estimate->cov()[0], estimate->cov()[1], estimate->cov()[3], estimate->cov()[4];
         const TrackerOutput out = tracker.step(estimate->x(), estimate->y(), estimate->theta(), position_covariance);
@@ -64,6 +72,7 @@ class WaypointControllerNode : public Component {
         status.done(out.status.done);
         status.switched(out.status.reached_this_step);
         status.switch_distance(out.status.reached_this_step ? out.status.reached_distance_m : 0.0);
+        status.state(out.status.done ? idl::DONE : idl::TRACKING);
       }
       cmd_out_->publish(cmd);
       status_out_->publish(status);
@@ -71,8 +80,31 @@ class WaypointControllerNode : public Component {
   }
 
  private:
+  /// TRACKING when the tracker may run on `estimate`; otherwise why the command is zero.
+  idl::ControlState state_for(std::uint32_t id, const WaypointTracker& tracker, const idl::PoseEstimate* estimate) const {
+    if (!tracker.has_mission()) {
+      return idl::NO_MISSION;
+    }
+    if (estimate == nullptr) {
+      return idl::NO_ESTIMATE;
+    }
+    if (realtime_) {
+      // Judged by this process's receive time, never by the estimator's stamp.
+      const std::optional<double> age_s = estimates_->age_s(id);
+      if (!age_s || *age_s > estimate_timeout_s_) {
+        return idl::ESTIMATE_STALE;
+      }
+    }
+    if (!estimate->valid() && require_valid_) {
+      return idl::ESTIMATE_INVALID;
+    }
+    return idl::TRACKING;
+  }
+
   ControllerParams params_;
   bool require_valid_ = true;
+  double estimate_timeout_s_ = 0.5;
+  bool realtime_ = false;
   std::map<std::uint32_t, WaypointTracker> trackers_;
   Input<idl::PoseEstimate>* estimates_ = nullptr;
   Input<idl::WaypointMission>* missions_ = nullptr;

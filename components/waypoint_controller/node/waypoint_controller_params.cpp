@@ -13,7 +13,9 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
                "control rate; must divide the simulation rate")
           .include(&WaypointControllerNodeParams::controller, controller_param_table())
           .add("require_valid_estimate", &WaypointControllerNodeParams::require_valid_estimate, "", params::any<bool>(),
-               "command zero while the pose estimate says it is not valid yet");
+               "command zero while the pose estimate says it is not valid yet")
+          .add("estimate_timeout_s", &WaypointControllerNodeParams::estimate_timeout_s, "s", params::positive(),
+               "real time only: an estimate received longer ago than this stops the robot (state ESTIMATE_STALE); > the control period");
   return table;
 }
 

@@ -18,6 +18,7 @@ struct WaypointControllerNodeParams {
   double rate_hz = 100.0;
   ControllerParams controller;
   bool require_valid_estimate = true;
+  double estimate_timeout_s = 0.5;
 };
 
 const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_param_table();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/error.hpp"
 #include "runtime/io.hpp"
 #include "runtime/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
@@ -108,6 +109,92 @@ TEST(WaypointControllerNode, DrivesToTheWaypointAndSwitchesWithinEpsilon) {
   EXPECT_EQ(status[4].waypoint_index(), 1u);
   EXPECT_NEAR(status[4].distance_to_final(), 4.05, 1e-12);
   EXPECT_FALSE(status[5].done());
+}
+
+// Real time (finding 1 of issue 9): when the estimates stop arriving, the controller commands
+// zero within estimate_timeout_s of the last receipt and says why (ESTIMATE_STALE), instead of
+// steering on the frozen estimate.
+TEST(WaypointControllerNode, RealTimeStaleEstimateStopsTheRobotAndSaysWhy) {
+  NodeHarness h(R"(name: waypoint_controller_stale
+step_s: 0.01
+duration_s: 0.8
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: controller, type: waypoint_controller, params: {estimate_timeout_s: 0.2}}
+)");
+  add_controller(h);
+  h.set_mode(TimeMode::kRealtime);
+  constexpr std::uint64_t kLastFed = 30;  // the estimator dies after 0.3 s
+  bool mission_sent = false;
+  h.feed([&](std::uint64_t step) {
+    if (!mission_sent) {
+      h.publish("mission/waypoints", mission({{10.0, 0.0}}), step, kNeverAgain);
+      mission_sent = true;
+    }
+    if (step <= kLastFed) {
+      h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, true), step, step + 1);
+    }
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), status.size());
+  int tracking = 0;
+  int stopped = 0;
+  for (std::size_t i = 0; i < commands.size(); ++i) {
+    const std::uint64_t step = commands[i].header().step();
+    if (step <= kLastFed && status[i].state() == idl::TRACKING) {
+      ++tracking;
+      EXPECT_GT(commands[i].v(), 0.0) << "step " << step;
+    }
+    // 0.2 s limit + 0.15 s margin for a loaded machine.
+    if (step >= kLastFed + 35) {
+      ++stopped;
+      EXPECT_DOUBLE_EQ(commands[i].v(), 0.0) << "step " << step << ": estimate silent for " << (step - kLastFed) * 0.01 << " s";
+      EXPECT_DOUBLE_EQ(commands[i].omega(), 0.0) << "step " << step;
+      EXPECT_EQ(status[i].state(), idl::ESTIMATE_STALE) << "step " << step;
+    }
+  }
+  EXPECT_GT(tracking, 0) << "the controller tracked while the estimate was fresh";
+  EXPECT_GT(stopped, 0);
+}
+
+TEST(WaypointControllerNode, StatusSaysWhyTheCommandIsZero) {
+  NodeHarness h(kScenario);
+  add_controller(h);
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
+    }
+    h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, step >= 3), step, step + 1);
+  });
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(status.size(), 6u);
+  for (std::size_t step = 0; step < status.size(); ++step) {
+    EXPECT_EQ(status[step].state(), step < 3 ? idl::ESTIMATE_INVALID : idl::TRACKING) << "step " << step;
+  }
+}
+
+TEST(WaypointControllerNode, EstimateTimeoutMustExceedTheControlPeriod) {
+  NodeHarness h(R"(name: bad_timeout
+step_s: 0.01
+duration_s: 0.05
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: controller, type: waypoint_controller, params: {estimate_timeout_s: 0.005}}
+)");
+  add_controller(h);
+  try {
+    h.run({"controller"});
+    FAIL() << "a timeout shorter than the control period was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("estimate_timeout_s: must be longer than the control period"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "common/model/diff_drive_kinematics.hpp"
 #include "robodds/idl/robodds.h"
@@ -23,6 +24,10 @@ class PlantNode : public Component {
     const double rate_hz = node_params.rate_hz;
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
+    if (params_.command_timeout_s <= 1.0 / rate_hz) {
+      p.fail("command_timeout_s: must be longer than the plant's period (" + std::to_string(1.0 / rate_hz) + " s at rate_hz " +
+             std::to_string(rate_hz) + "), is " + std::to_string(params_.command_timeout_s));
+    }
     for (const RobotSpec& robot : ctx.robots()) {
       robots_[robot.id] = Robot{model::Pose2{robot.x, robot.y, robot.theta}, model::Twist{}};
     }
@@ -34,7 +39,7 @@ class PlantNode : public Component {
 
   void on_step(const StepInfo& info) override {
     for (auto& [id, robot] : robots_) {
-      const model::Twist twist = command_for(id, info);
+      const model::Twist twist = command_for(id);
       if (info.dt_s > 0.0) {
         robot.pose = model::integrate_exact(robot.pose, twist, info.dt_s);
       }
@@ -56,25 +61,40 @@ class PlantNode : public Component {
     model::Twist applied;
   };
 
-  model::Twist command_for(std::uint32_t id, const StepInfo& info) {
+  model::Twist command_for(std::uint32_t id) {
     const idl::VelocityCommand* cmd = commands_->latest(id);
     if (cmd == nullptr) {
       return model::Twist{};  // no command yet: stand still
     }
     if (mode_ == TimeMode::kRealtime) {
-      const double age_s = static_cast<double>(info.stamp_ns - cmd->header().stamp_ns()) * 1e-9;
-      if (age_s > params_.command_timeout_s) {
+      // Age by this process's receive time (monotonic), never by the sender's stamp: a stamp in
+      // the future would otherwise keep a command alive forever.
+      const std::optional<double> age_s = commands_->age_s(id);
+      if (!age_s || *age_s > params_.command_timeout_s) {
         return model::Twist{};  // stale command: safe stop
       }
     }
+    // The input has refused commands beyond the gross bounds (runtime/sample_checks.hpp) and
+    // bad modes; what is left is saturated to this plant's limits and counted.
     const model::Twist requested = cmd->mode() == idl::WHEEL_SPEEDS
                                        ? model::twist_from_wheel_speeds(cmd->v_left(), cmd->v_right(), params_.wheel_base_m)
                                        : model::Twist{cmd->v(), cmd->omega()};
     if (!std::isfinite(requested.v) || !std::isfinite(requested.omega)) {
       return model::Twist{};  // never integrate a non-finite command
     }
-    return model::saturate(requested, params_.limits);
+    const model::Twist applied = model::saturate(requested, params_.limits);
+    if (applied.v != requested.v || applied.omega != requested.omega) {
+      // Once per command, not per step it is applied.
+      const auto [it, first] = counted_saturation_.try_emplace(id, cmd->header().step());
+      if (first || it->second != cmd->header().step()) {
+        it->second = cmd->header().step();
+        commands_->count_adjusted("saturated");
+      }
+    }
+    return applied;
   }
+
+  std::map<std::uint32_t, std::uint64_t> counted_saturation_;  // robot -> step of the last command counted
 
   PlantParams params_;
   std::map<std::uint32_t, Robot> robots_;

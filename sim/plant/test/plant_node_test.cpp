@@ -7,7 +7,9 @@
 #include <limits>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/error.hpp"
 #include "runtime/registry.hpp"
+#include "runtime/sample_checks.hpp"
 #include "runtime/testing/node_harness.hpp"
 
 ROBODDS_DECLARE_COMPONENT(plant);
@@ -114,6 +116,140 @@ TEST(PlantNode, ANonFiniteCommandIsRejectedAndTheLastValidOneKept) {
   EXPECT_DOUBLE_EQ(robot1[4].v(), 4.0);
   for (const idl::RobotState& s : robot1) {
     EXPECT_TRUE(std::isfinite(s.x()));
+  }
+}
+
+// Finding 3 of issue 9: a command beyond the gross bounds or with a mode outside CommandMode is
+// refused by the input (runtime/sample_checks.hpp) and never integrated; the last valid one is kept.
+TEST(PlantNode, AbsurdCommandsAndBadModesAreRefusedNotIntegrated) {
+  NodeHarness h(kScenario);
+  add_plant(h);
+  h.feed([&h](std::uint64_t step) {
+    idl::VelocityCommand one = velocity(1, step == 2 ? 1e300 : 1.0, 0.0);
+    h.publish("plant/cmd", one, step, step + 1);
+    idl::VelocityCommand two = velocity(2, step == 0 ? 0.5 : 1.0, 0.0);
+    if (step >= 1) {
+      two.mode(static_cast<idl::CommandMode>(7));  // not a CommandMode
+    }
+    h.publish("plant/cmd", two, step, step + 1);
+  });
+  const auto& states = h.record<idl::RobotState>("plant/state");
+  h.run({"plant"});
+  const auto robot1 = of_instance(states, 1);
+  ASSERT_EQ(robot1.size(), 6u);
+  EXPECT_DOUBLE_EQ(robot1[3].v(), 1.0) << "the command of step 2 (v = 1e300) was refused; step 1's is kept";
+  EXPECT_NEAR(robot1.back().x(), 0.05, 1e-12);
+  const auto robot2 = of_instance(states, 2);
+  ASSERT_EQ(robot2.size(), 6u);
+  for (std::size_t step = 1; step < robot2.size(); ++step) {
+    EXPECT_DOUBLE_EQ(robot2[step].v(), 0.5) << "step " << step << ": mode 7 was refused, the VELOCITY command of step 0 kept";
+  }
+}
+
+TEST(PlantNode, CommandsBeyondTheLimitsAreSaturated) {
+  NodeHarness h(R"(name: plant_limits
+step_s: 0.01
+duration_s: 0.05
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: plant, type: plant, params: {max_speed_mps: 1.0, max_turn_rate_radps: 0.5}}
+)");
+  add_plant(h);
+  h.feed([&h](std::uint64_t step) { h.publish("plant/cmd", velocity(1, -5.0, 2.0), step, step + 1); });
+  const auto& states = h.record<idl::RobotState>("plant/state");
+  h.run({"plant"});
+  ASSERT_EQ(states.size(), 6u);
+  EXPECT_DOUBLE_EQ(states[3].v(), -1.0);
+  EXPECT_DOUBLE_EQ(states[3].omega(), 0.5);
+}
+
+// Real time, scenario of 0.6 s with a 0.2 s command timeout.
+const char* kRealTimeScenario = R"(name: plant_realtime
+step_s: 0.01
+duration_s: 0.6
+seed: 1
+robots:
+  - {id: 1}
+  - {id: 2}
+components:
+  - {name: plant, type: plant, params: {command_timeout_s: 0.2}}
+)";
+constexpr std::uint64_t kLastCommand = 20;  // the commander stops after 0.2 s
+constexpr std::uint64_t kStoppedFrom = kLastCommand + 20 + 15;  // + timeout + margin for a loaded machine
+
+// Finding 2 of issue 9: a command stamped in the future (or negative) never expired. It is now
+// refused on arrival (stamp_in_future, negative_stamp), so the robot never moves on it.
+TEST(PlantNode, RealTimeCommandsWithAbsurdStampsAreRefused) {
+  NodeHarness h(kRealTimeScenario);
+  add_plant(h);
+  h.set_mode(TimeMode::kRealtime);
+  h.feed([&h](std::uint64_t step) {
+    if (step <= kLastCommand) {
+      h.publish_stamped("plant/cmd", velocity(1, 1.0, 0.0), step, step + 1, std::numeric_limits<std::int64_t>::max());
+      h.publish_stamped("plant/cmd", velocity(2, 1.0, 0.0), step, step + 1, std::numeric_limits<std::int64_t>::min());
+    }
+  });
+  const auto& states = h.record<idl::RobotState>("plant/state");
+  h.run({"plant"});
+  ASSERT_FALSE(states.empty());
+  for (const idl::RobotState& s : states) {
+    EXPECT_DOUBLE_EQ(s.v(), 0.0) << "robot " << s.robot_id() << " step " << s.header().step();
+    EXPECT_TRUE(std::isfinite(s.x()));
+  }
+}
+
+// Finding 1/2 of issue 9: a command's age is its receive time on this process's clock; a sender
+// whose clock is 10 s behind still drives the robot, and the robot stops within the timeout of
+// the last receipt.
+TEST(PlantNode, RealTimeCommandAgeIsJudgedByReceiveTimeNotTheSendersClock) {
+  NodeHarness h(kRealTimeScenario);
+  add_plant(h);
+  h.set_mode(TimeMode::kRealtime);
+  h.feed([&h](std::uint64_t step) {
+    if (step <= kLastCommand) {
+      const std::int64_t behind = wall_clock_now_ns() - 10'000'000'000;
+      h.publish_stamped("plant/cmd", velocity(1, 1.0, 0.0), step, step + 1, behind);
+      h.publish("plant/cmd", velocity(2, 1.0, 0.0), step, step + 1);
+    }
+  });
+  const auto& states = h.record<idl::RobotState>("plant/state");
+  h.run({"plant"});
+  for (std::uint32_t robot : {1u, 2u}) {
+    int driven = 0;
+    int stopped = 0;
+    for (const idl::RobotState& s : of_instance(states, robot)) {
+      const std::uint64_t step = s.header().step();
+      if (step >= 2 && step <= kLastCommand) {
+        driven += s.v() == 1.0 ? 1 : 0;
+      }
+      if (step >= kStoppedFrom) {
+        ++stopped;
+        EXPECT_DOUBLE_EQ(s.v(), 0.0) << "robot " << robot << " step " << step << ": no command for " << (step - kLastCommand) * 0.01 << " s";
+      }
+    }
+    EXPECT_GT(driven, 0) << "robot " << robot << " was never driven by its fresh commands";
+    EXPECT_GT(stopped, 0) << "robot " << robot;
+  }
+}
+
+TEST(PlantNode, CommandTimeoutMustExceedThePlantPeriod) {
+  NodeHarness h(R"(name: bad_timeout
+step_s: 0.01
+duration_s: 0.05
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: plant, type: plant, params: {command_timeout_s: 0.01}}
+)");
+  add_plant(h);
+  try {
+    h.run({"plant"});
+    FAIL() << "a timeout not longer than the plant's period was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("command_timeout_s: must be longer than the plant's period"), std::string::npos) << e.what();
   }
 }
 
