@@ -18,6 +18,11 @@ class WriterHandle {
   virtual ~WriterHandle() = default;
   virtual void write(const void* sample) = 0;
   virtual const std::string& topic() const = 0;
+  /// Waits until every reader matched now has acknowledged all this writer wrote: true, or false
+  /// after `timeout`. A process that exits right after a write calls it first, or the sample can
+  /// be lost with it (Fast DDS drops a sample it has not yet handed out when its writer leaves).
+  /// In-process delivery completes inside write(): nothing to wait for.
+  virtual bool wait_acknowledged(std::chrono::milliseconds /*timeout*/) { return true; }
 };
 
 /// What the transport knows about a sample besides its contents: who wrote it (to tell two

@@ -30,7 +30,8 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
                                    }
                                  },
                                  [this](const std::string& e) { log::warn(options_.member, "sim/clock: " + e); });
-  ack_output_ = std::make_unique<Output<idl::StepDone>>(run.bus->writer(done.name, done.type_name, profile), &state_);
+  ack_writer_ = run.bus->writer(done.name, done.type_name, profile);
+  ack_output_ = std::make_unique<Output<idl::StepDone>>(ack_writer_, &state_);
 }
 
 void LockstepHost::begin(Clock::time_point start) {
@@ -135,7 +136,19 @@ bool LockstepHost::run_due_components() {
   return true;
 }
 
-void LockstepHost::publish_failure(const std::string& error) { publish_ack(tick_step_, 0, error); }
+void LockstepHost::publish_failure(const std::string& error) {
+  publish_ack(tick_step_, 0, error);
+  // The process exits next, and its participant's goodbye can overtake the report: the
+  // coordinator then drops it with the writer and waits for this group until its own timeout
+  // (docs/deployment.md, "A failing host's last word"). So wait until the report is acknowledged.
+  const Clock::time_point since = Clock::now();
+  if (ack_writer_->wait_acknowledged(kFailureReportWait)) {
+    log::debug(options_.member, "failure report acknowledged after " + std::to_string(seconds_since(since)) + " s");
+  } else {
+    log::warn(options_.member, "the coordinator did not acknowledge this host's failure report within " +
+                                   fmt_s(std::chrono::duration<double>(kFailureReportWait).count()) + " s (is it gone?)");
+  }
+}
 
 void LockstepHost::publish_ack(std::uint64_t step, std::uint64_t components_run, const std::string& error) {
   idl::StepDone ack;

@@ -3,6 +3,7 @@
 // at the tick once its inputs for that step are ready, and acknowledges the tick on
 // sim/step_done. The Host calls step() in its loop, next to LockstepCoordinator::poll().
 
+#include <chrono>
 #include <cstdint>
 #include <deque>
 #include <memory>
@@ -31,8 +32,11 @@ class LockstepHost {
   bool done() const { return done_; }
   /// Ticks acknowledged so far (the steps done).
   std::uint64_t steps_done() const { return steps_done_; }
-  /// Tells the coordinator that this host stops, and why (a failed acknowledgement).
+  /// Tells the coordinator that this host stops, and why (a failed acknowledgement), and waits
+  /// until the coordinator has acknowledged it (at most kFailureReportWait), so that the report
+  /// is not lost with the process that exits next.
   void publish_failure(const std::string& error);
+  static constexpr std::chrono::milliseconds kFailureReportWait{2000};
 
  private:
   bool take_tick();
@@ -45,6 +49,7 @@ class LockstepHost {
   StepState state_;
   std::unique_ptr<Input<idl::SimTick>> tick_input_;
   std::shared_ptr<ReaderHandle> tick_reader_;
+  std::shared_ptr<WriterHandle> ack_writer_;
   std::unique_ptr<Output<idl::StepDone>> ack_output_;
 
   host_detail::Clock::time_point start_;

@@ -37,6 +37,10 @@ class DdsWriter : public WriterHandle {
     }
   }
   const std::string& topic() const override { return topic_; }
+  bool wait_acknowledged(std::chrono::milliseconds timeout) override {
+    const eprosima::fastrtps::Duration_t limit(static_cast<double>(timeout.count()) / 1000.0);
+    return writer_->wait_for_acknowledgments(limit) == ReturnCode_t::RETCODE_OK;
+  }
   dds::DataWriter* writer() const { return writer_; }
 
  private:

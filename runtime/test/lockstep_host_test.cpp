@@ -25,6 +25,40 @@ class Recorder : public Component {
   bool* finished_;
 };
 
+/// A bus in front of another that logs "write <topic>" and "wait <topic>" for every call on the
+/// writers it hands out (the order in which a host writes and waits for acknowledgements).
+class CallLogBus : public Bus {
+ public:
+  explicit CallLogBus(Bus& inner) : inner_(inner) {}
+  std::shared_ptr<WriterHandle> writer(const std::string& topic, const std::string& type_name,
+                                       const std::string& profile) override {
+    return std::make_shared<Handle>(inner_.writer(topic, type_name, profile), &calls);
+  }
+  std::shared_ptr<ReaderHandle> reader(const std::string& topic, const std::string& type_name, const std::string& profile,
+                                       SampleCallback on_sample, ReaderEventCallback on_event) override {
+    return inner_.reader(topic, type_name, profile, std::move(on_sample), std::move(on_event));
+  }
+  void flush(std::chrono::milliseconds timeout) override { inner_.flush(timeout); }
+  std::vector<std::string> calls;
+
+ private:
+  struct Handle : WriterHandle {
+    Handle(std::shared_ptr<WriterHandle> inner, std::vector<std::string>* calls) : inner(std::move(inner)), calls(calls) {}
+    void write(const void* sample) override {
+      calls->push_back("write " + topic());
+      inner->write(sample);
+    }
+    const std::string& topic() const override { return inner->topic(); }
+    bool wait_acknowledged(std::chrono::milliseconds timeout) override {
+      calls->push_back("wait " + topic());
+      return inner->wait_acknowledged(timeout);
+    }
+    std::shared_ptr<WriterHandle> inner;
+    std::vector<std::string>* calls;
+  };
+  Bus& inner_;
+};
+
 /// One component ("recorder", every `period` steps) behind a LockstepHost on the in-memory bus,
 /// a tick publisher standing in for the coordinator, and a recorder of the acknowledgements.
 struct HostFixture : ::testing::Test {
@@ -171,6 +205,23 @@ TEST_F(HostFixture, FailureIsAcknowledgedWithItsReason) {
   EXPECT_TRUE(acks.back().failed());
   EXPECT_EQ(acks.back().error().to_string(), "boom");
   EXPECT_EQ(acks.back().header().step(), 1u);
+}
+
+// The host exits right after its failure report; across processes the report is lost when the
+// participant's goodbye overtakes it (integration.qos_mismatch under load, issue 9 finding 10).
+// So the report must be acknowledged before publish_failure() returns.
+TEST_F(HostFixture, FailureReportIsAcknowledgedBeforeReturning) {
+  add_slot(1);
+  CallLogBus logged(bus);
+  run.bus = &logged;
+  LockstepHost host(run, options, slots);
+  host.begin(std::chrono::steady_clock::now());
+  tick(0);
+  host.step();
+  host.publish_failure("boom");
+  ASSERT_EQ(acks.size(), 2u);
+  EXPECT_TRUE(acks.back().failed());
+  EXPECT_EQ(logged.calls, (std::vector<std::string>{"write sim/step_done", "write sim/step_done", "wait sim/step_done"}));
 }
 
 }  // namespace
