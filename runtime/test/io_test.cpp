@@ -116,5 +116,76 @@ TEST_F(InputTest, RealtimeIsAlwaysReadyAndReadsTheNewest) {
   EXPECT_DOUBLE_EQ(input.latest(1)->x(), 3.0);
 }
 
+/// Options of robot 1's input whose writers are named "writer-<id>".
+detail::InputOptions named_writers() {
+  detail::InputOptions options = robot_one(0);
+  options.writer_name = [](std::uint64_t id) { return "writer-" + std::to_string(id); };
+  return options;
+}
+
+TEST_F(InputTest, LockstepSecondProducerOfAnInstanceEndsTheRunNamingTopicInstanceAndBothWriters) {
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, named_writers());
+  input.on_sample(state(1, 0, 1, 1.0), SampleMeta{7, 0});
+  input.on_sample(state(1, 1, 2, 2.0), SampleMeta{7, 0});
+  EXPECT_TRUE(input.ready(1, nullptr));
+  EXPECT_TRUE(input.producer_conflict().empty());
+  input.on_sample(state(1, 0, 1, 9.0), SampleMeta{8, 0});  // a restarted producer replays step 0
+  try {
+    input.ready(1, nullptr);
+    FAIL() << "expected a RunError";
+  } catch (const RunError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("plant/state"), std::string::npos) << what;
+    EXPECT_NE(what.find("robot_id=1"), std::string::npos) << what;
+    EXPECT_NE(what.find("writer-7"), std::string::npos) << what;
+    EXPECT_NE(what.find("writer-8"), std::string::npos) << what;
+  }
+  EXPECT_EQ(input.counts().rejected.at(detail::kRejectSecondProducer), 1U);
+  clock.step = 1;
+  EXPECT_EQ(input.take_new(1).size(), 2U);  // the second writer's sample was not used
+}
+
+TEST_F(InputTest, OtherInstancesMayHaveOtherProducers) {
+  detail::InputOptions options = named_writers();
+  options.expected = {1, 2};
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, options);
+  input.on_sample(state(1, 0, 1, 1.0), SampleMeta{7, 0});
+  input.on_sample(state(2, 0, 1, 1.0), SampleMeta{8, 0});
+  EXPECT_TRUE(input.ready(0, nullptr));
+  EXPECT_TRUE(input.producer_conflict().empty());
+}
+
+TEST_F(InputTest, RealtimeFirstWriterWinsAndTheSecondIsCountedAsSecondProducer) {
+  clock.mode = TimeMode::kRealtime;
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, named_writers());
+  input.on_sample(state(1, 0, 1, 1.0), SampleMeta{7, 1'000'000'000});
+  input.on_sample(state(1, 1, 2, 5.0), SampleMeta{8, 1'100'000'000});
+  input.on_sample(state(1, 2, 3, 6.0), SampleMeta{8, 1'200'000'000});
+  input.on_sample(state(1, 3, 4, 2.0), SampleMeta{7, 1'300'000'000});
+  EXPECT_TRUE(input.ready(3, nullptr));  // real time never throws: a warning and the rule
+  ASSERT_NE(input.latest(1), nullptr);
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 2.0);
+  EXPECT_EQ(input.counts().accepted, 2U);
+  EXPECT_EQ(input.counts().rejected.at(detail::kRejectSecondProducer), 2U);
+  // The first producer falls silent for longer than the lease: a restarted producer takes over.
+  input.on_sample(state(1, 9, 10, 4.0), SampleMeta{8, 1'300'000'000 + detail::kProducerSilenceNs + 1});
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 4.0);
+  input.on_sample(state(1, 10, 11, 3.0), SampleMeta{7, 2'400'000'000});  // now 7 is the second one
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 4.0);
+  EXPECT_EQ(input.counts().rejected.at(detail::kRejectSecondProducer), 3U);
+}
+
+TEST_F(InputTest, ExclusiveOwnershipMakesAChangeOfWriterAHandOver) {
+  clock.mode = TimeMode::kRealtime;
+  detail::InputOptions options = named_writers();
+  options.exclusive_ownership = true;
+  Input<idl::RobotState> input("estimate/pose", "test", &clock, &notifier, options);
+  input.on_sample(state(1, 0, 1, 1.0), SampleMeta{7, 1'000'000'000});
+  input.on_sample(state(1, 1, 2, 5.0), SampleMeta{8, 1'100'000'000});  // the middleware chose 8
+  ASSERT_NE(input.latest(1), nullptr);
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 5.0);
+  EXPECT_EQ(input.counts().rejected_total(), 0U);
+}
+
 }  // namespace
 }  // namespace robodds
