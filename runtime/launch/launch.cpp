@@ -1,5 +1,6 @@
 #include "runtime/launch/launch.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -11,6 +12,7 @@
 
 #include "runtime/error.hpp"
 #include "runtime/log.hpp"
+#include "runtime/producer_check.hpp"
 #include "runtime/launch/process_group.hpp"
 #include "runtime/share_dir.hpp"
 #include "runtime/launch/standalone_scenario.hpp"
@@ -195,6 +197,13 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   run.output_dir = in_process.out_dir;
   run.single_process = options.single_process;
   run.deploy_label = in_process.deploy_label;
+  const bool has_standby = std::any_of(scenario.components.begin(), scenario.components.end(),
+                                       [](const ComponentSpec& c) { return !c.standby_for.empty(); });
+  if (has_standby) {  // hot standby: the topics it writes use exclusive ownership
+    const ScenarioProducers producers = scenario_producers(registry, scenario, run.mode);
+    run.exclusive_topics = exclusive_topics(scenario, producers);
+    apply_exclusive_ownership(*bus, scenario, producers, run.exclusive_topics, options.components);
+  }
   Host host(registry, run, options);
   // The readers call into the host's inputs and the notifier: delete them first, also on a throw.
   struct ReaderCloser {
@@ -208,7 +217,14 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   return stats;
 }
 
+/// One producer per topic instance and where standbys may run, before anything starts.
+static void check_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode, bool single_process) {
+  check_standby_deployment(scenario, mode, single_process);
+  check_one_producer_per_instance(scenario, scenario_producers(registry, scenario, mode));
+}
+
 RunStats launch_run(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& options) {
+  check_producers(registry, scenario, time_mode(options.realtime), options.deploy == Deploy::kColocated);
   return options.deploy == Deploy::kColocated ? run_colocated(registry, scenario, options)
                                               : run_as_processes(registry, scenario, options);
 }
@@ -243,6 +259,7 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
 
 void run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop) {
   const Scenario scenario = host_scenario(registry, args);
+  check_producers(registry, scenario, time_mode(args.realtime), false);
   if (!args.out.empty() && args.deploy != to_string(Deploy::kProcesses)) {
     make_output_dir(args.out);  // a child of `robodds run --deploy processes` gets a checked one
   }
