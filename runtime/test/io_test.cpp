@@ -5,6 +5,8 @@
 
 #include <limits>
 
+#include "runtime/memory_bus.hpp"
+
 namespace robodds {
 namespace {
 
@@ -185,6 +187,30 @@ TEST_F(InputTest, ExclusiveOwnershipMakesAChangeOfWriterAHandOver) {
   ASSERT_NE(input.latest(1), nullptr);
   EXPECT_DOUBLE_EQ(input.latest(1)->x(), 5.0);
   EXPECT_EQ(input.counts().rejected_total(), 0U);
+}
+
+TEST_F(InputTest, TwoWritersOfOneInstanceOnABusAreTwoProducersNamedByTheBus) {
+  // End to end through a bus: SampleMeta from the MemoryBus (one id per writer handle), names
+  // from Bus::writer_name. Two profiles give two writers of plant/state, as two processes would.
+  MemoryBus bus;
+  detail::InputOptions options = robot_one(0);
+  options.writer_name = [&bus](std::uint64_t id) { return bus.writer_name(id); };
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, options);
+  auto reader = bus.reader("plant/state", idl::type_name<idl::RobotState>(), "state",
+                           [&input](const void* sample, const SampleMeta& meta) {
+                             input.on_sample(*static_cast<const idl::RobotState*>(sample), meta);
+                           },
+                           nullptr);
+  auto first = bus.writer("plant/state", idl::type_name<idl::RobotState>(), "state");
+  auto second = bus.writer("plant/state", idl::type_name<idl::RobotState>(), "lockstep");
+  idl::RobotState sample = state(1, 0, 1, 1.0);
+  first->write(&sample);
+  EXPECT_TRUE(input.ready(0, nullptr));
+  second->write(&sample);
+  EXPECT_THROW(input.ready(0, nullptr), RunError);
+  const std::string conflict = input.producer_conflict();
+  EXPECT_NE(conflict.find("(plant/state|state)"), std::string::npos) << conflict;
+  EXPECT_NE(conflict.find("(plant/state|lockstep)"), std::string::npos) << conflict;
 }
 
 }  // namespace
