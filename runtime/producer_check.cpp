@@ -105,6 +105,18 @@ void check_standby_deployment(const Scenario& scenario, TimeMode mode, bool sing
   }
 }
 
+void check_standby_apart(const Scenario& scenario, const std::vector<std::string>& components) {
+  const std::set<std::string> here(components.begin(), components.end());
+  for (const std::string& name : components) {
+    const ComponentSpec& spec = scenario.component(name);
+    if (!spec.standby_for.empty() && here.count(spec.standby_for) != 0) {
+      throw ConfigError(located(scenario.file, name + ".standby_for",
+                                "the standby '" + name + "' and its primary '" + spec.standby_for +
+                                    "' would run in one process, and die together; run them in separate hosts"));
+    }
+  }
+}
+
 std::set<std::string> exclusive_topics(const Scenario& scenario, const ScenarioProducers& producers) {
   std::set<std::string> topics;
   for (const ComponentSpec& spec : scenario.components) {

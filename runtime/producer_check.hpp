@@ -34,6 +34,10 @@ void check_one_producer_per_instance(const Scenario& scenario, const ScenarioPro
 /// process per group (a standby beside its primary dies with it; lockstep has no hand-over).
 void check_standby_deployment(const Scenario& scenario, TimeMode mode, bool single_process);
 
+/// ConfigError naming the file, the standby and its primary if `components` (one process's,
+/// e.g. `robodds host --components`) holds both: they would die together.
+void check_standby_apart(const Scenario& scenario, const std::vector<std::string>& components);
+
 /// Topics a standby publishes: their readers and writers use exclusive ownership.
 std::set<std::string> exclusive_topics(const Scenario& scenario, const ScenarioProducers& producers);
 

@@ -284,6 +284,7 @@ void run_host(const ComponentRegistry& registry, const HostArgs& args, const std
   if (!args.member.empty()) {
     options.member = args.member;
   }
+  check_standby_apart(scenario, options.components);
   options.run_id = args.run_id;
   options.coordinator = args.coordinate;
   options.members = !args.members.empty()         ? args.members

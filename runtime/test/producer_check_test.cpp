@@ -129,6 +129,9 @@ TEST(Standby, RunsOnlyInRealTimeWithOneProcessPerGroup) {
   EXPECT_THROW(check_standby_deployment(scenario, TimeMode::kLockstep, false), ConfigError);
   EXPECT_THROW(check_standby_deployment(scenario, TimeMode::kRealtime, true), ConfigError);
   EXPECT_NO_THROW(check_standby_deployment(scenario, TimeMode::kRealtime, false));
+  // One host given both (robodds host --components e,s) would die with its primary.
+  EXPECT_THROW(check_standby_apart(scenario, {"e", "s"}), ConfigError);
+  EXPECT_NO_THROW(check_standby_apart(scenario, {"s"}));
 }
 
 }  // namespace
