@@ -71,6 +71,10 @@ class Bus {
   /// Names the writer of SampleMeta::writer_id for log lines and errors, e.g.
   /// "'control' (writer 01.0f...|0.0.3.3)"; "writer <id>" when the bus knows nothing more.
   virtual std::string writer_name(std::uint64_t writer_id) const { return "writer " + std::to_string(writer_id); }
+  /// Hot standby: this process's readers and writers of `topic` created after this call request
+  /// DDS EXCLUSIVE ownership, its writers with `writer_strength` (the highest alive strength owns
+  /// each instance). Default: nothing (a bus without ownership, e.g. MemoryBus).
+  virtual void set_exclusive_ownership(const std::string& /*topic*/, std::uint32_t /*writer_strength*/) {}
 };
 
 }  // namespace robodds

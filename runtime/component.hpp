@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,9 @@ struct RunContext {
   std::string deploy_label;     // how the run is deployed ("colocated", "processes"); empty: a host
                                 // started on its own, whose evaluator writes no "run" section
   RunFigures figures;           // filled by the host before on_finish()
+  /// Topics whose readers and writers use DDS exclusive ownership because a hot standby writes
+  /// them (exclusive_topics() of runtime/producer_check.hpp).
+  std::set<std::string> exclusive_topics;
 };
 
 class ComponentContext {
@@ -98,6 +102,7 @@ class ComponentContext {
     options.key_names = info.key;
     Bus* bus = run_.bus;
     options.writer_name = [bus](std::uint64_t writer_id) { return bus->writer_name(writer_id); };
+    options.exclusive_ownership = run_.exclusive_topics.count(topic) != 0;
     auto input = std::make_unique<Input<Msg>>(topic, spec_.name, state_, run_.notifier, std::move(options));
     Input<Msg>* raw = input.get();
     const std::string owner = spec_.name;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "runtime/bus.hpp"
+#include "runtime/error.hpp"
 #include "runtime/log.hpp"
 #include "runtime/notifier.hpp"
 #include "runtime/sample_checks.hpp"
@@ -89,6 +90,9 @@ struct InputOptions {
   std::map<std::uint64_t, std::string> labels;
   /// Spells SampleMeta::writer_id in log lines (Bus::writer_name); empty: "writer <id>".
   std::function<std::string(std::uint64_t)> writer_name;
+  /// The topic's endpoints use DDS exclusive ownership (a hot standby writes it): the middleware
+  /// picks the writer, and a change of writer is a logged hand-over, not a second producer.
+  bool exclusive_ownership = false;
 };
 
 }  // namespace detail
@@ -113,6 +117,12 @@ struct InputCounts {
 namespace detail {
 /// Rejection reason of a sample with a NaN or infinite number.
 inline constexpr const char* kRejectNonFinite = "non_finite";
+/// Rejection reason of a sample of an instance that already has another producer (real time,
+/// shared ownership: the first writer wins; docs/architecture.md, "One producer per instance").
+inline constexpr const char* kRejectSecondProducer = "second_producer";
+/// Real time, shared ownership: a producer silent this long (the liveliness lease of the
+/// real-time profiles) gives its instance up, so a restarted producer (new writer) takes over.
+inline constexpr std::int64_t kProducerSilenceNs = 1000000000;
 
 }  // namespace detail
 
@@ -150,7 +160,20 @@ class InputBase {
 
   /// Lockstep: true when every expected instance has delivered all samples with
   /// step <= step - delay. Otherwise names the first missing instance in *missing.
+  /// Lockstep: the error of the first second producer of an instance (empty: none seen).
+  std::string producer_conflict() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return producer_conflict_;
+  }
+
+  /// Throws RunError once a second producer of an instance was seen in lockstep (producer_conflict()).
   bool ready(std::uint64_t step, std::string* missing) const {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!producer_conflict_.empty()) {
+        throw RunError(producer_conflict_);
+      }
+    }
     if (state_->mode == TimeMode::kRealtime || step < options_.delay_steps) {
       return true;  // real time reads whatever is there; before `delay` steps nothing is due
     }
@@ -176,14 +199,56 @@ class InputBase {
     std::uint64_t next_step = 0;
     std::int64_t received_ns = 0;  // SampleMeta::received_ns of the newest accepted sample
     std::uint64_t writer_id = 0;   // its writer
+    std::uint64_t producer = 0;    // the writer that owns this instance (0: none seen yet)
   };
+
+  /// One producer per instance (docs/architecture.md, "One producer per instance and hot standby"):
+  /// true if the sample of `writer_id` may be used. The first writer of an instance becomes its
+  /// producer. Another writer is, with exclusive ownership, a hand-over (logged); in lockstep an
+  /// error that ends the run (ready() throws it); in real time dropped and counted as
+  /// second_producer (first writer wins) unless the producer was silent for kProducerSilenceNs.
+  /// Call with mutex_ held.
+  bool accept_producer(Progress& p, const std::string& label, const SampleMeta& meta) {
+    if (meta.writer_id == 0 || options_.ignore_step || meta.writer_id == p.producer) {
+      return true;
+    }
+    if (p.producer == 0) {
+      p.producer = meta.writer_id;
+      return true;
+    }
+    const std::string old_writer = writer_label(p.producer);
+    const std::string new_writer = writer_label(meta.writer_id);
+    const bool silent = meta.received_ns != 0 && p.received_ns != 0 && meta.received_ns - p.received_ns > detail::kProducerSilenceNs;
+    if (options_.exclusive_ownership || (state_->mode == TimeMode::kRealtime && silent)) {
+      log::warn(owner_, topic_ + " (" + label + "): hand-over from " + old_writer + " to " + new_writer +
+                            (options_.exclusive_ownership ? " (exclusive ownership)" : " (the old producer fell silent)"));
+      p.producer = meta.writer_id;
+      return true;
+    }
+    if (state_->mode == TimeMode::kLockstep) {
+      if (producer_conflict_.empty()) {
+        producer_conflict_ = "lockstep: topic " + topic_ + " (" + label + ") has two producers: " + old_writer + " and " +
+                             new_writer + " (a second component or a restarted process publishes this instance; one "
+                             "producer per topic instance)";
+        log::error(owner_, producer_conflict_);
+      }
+      ++counts_.rejected[detail::kRejectSecondProducer];
+      return false;
+    }
+    count_rejection(detail::kRejectSecondProducer,
+                    "(" + label + "): this instance's producer is " + old_writer + "; first writer wins", meta.writer_id);
+    return false;
+  }
+  std::string writer_label(std::uint64_t writer_id) const {
+    return options_.writer_name ? options_.writer_name(writer_id) : "writer " + std::to_string(writer_id);
+  }
 
   /// Counts a dropped sample; the first of each (writer, reason) is logged, naming the writer:
   /// "rejected a sample on <topic> from <writer> <detail>; ...". Call with mutex_ held.
   void count_rejection(const std::string& reason, const std::string& detail, std::uint64_t writer_id) {
     ++counts_.rejected[reason];
     if (logged_rejections_.insert({writer_id, reason}).second) {
-      const std::string writer = options_.writer_name ? options_.writer_name(writer_id) : "writer " + std::to_string(writer_id);
+      const std::string writer = writer_label(writer_id);
       log::warn(owner_, "rejected a sample on " + topic_ + " from " + writer + " " + detail +
                             "; such samples are counted and dropped (logged once per writer and reason)");
     }
@@ -232,6 +297,7 @@ class InputBase {
   std::map<std::uint64_t, std::string> labels_{options_.labels};
   InputCounts counts_;
   std::set<std::pair<std::uint64_t, std::string>> logged_rejections_;  // (writer_id, reason)
+  std::string producer_conflict_;  // lockstep: the first second-producer error, thrown by ready()
 };
 
 template <class Msg>
@@ -253,6 +319,9 @@ class Input : public InputBase {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       Progress& p = progress_[key];
+      if (!accept_producer(p, idl::instance_label(sample), meta)) {
+        return;
+      }
       p.step = sample.header().step();
       p.next_step = sample.header().next_step();
       if (labels_.count(key) == 0) {

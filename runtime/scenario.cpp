@@ -73,6 +73,7 @@ class ScenarioParser {
     parse_robots(root["robots"], s);
     parse_components(root["components"], s);
     parse_groups(root["groups"], s);
+    check_standbys(s);
     return s;
   }
 
@@ -119,8 +120,8 @@ class ScenarioParser {
       }
       for (const auto& item : c) {
         const std::string k = item.first.as<std::string>();
-        if (k != "name" && k != "type" && k != "robots" && k != "params") {
-          fail(key + "." + k, "unknown key (known: name, type, robots, params)");
+        if (k != "name" && k != "type" && k != "robots" && k != "params" && k != "standby_for") {
+          fail(key + "." + k, "unknown key (known: name, type, robots, params, standby_for)");
         }
       }
       ComponentSpec spec;
@@ -146,6 +147,9 @@ class ScenarioParser {
         for (const RobotSpec& r : s.robots) {
           spec.robots.push_back(r.id);
         }
+      }
+      if (c["standby_for"]) {
+        spec.standby_for = scalar<std::string>(c["standby_for"], key + ".standby_for", "a component name");
       }
       if (c["params"]) {
         if (!c["params"].IsMap()) {
@@ -203,6 +207,44 @@ class ScenarioParser {
     for (const ComponentSpec& c : s.components) {
       if (placed.count(c.name) == 0) {
         s.groups.push_back(GroupSpec{c.name, {c.name}});
+      }
+    }
+  }
+
+  /// A standby names a primary that is no standby, of the same type and robots, in another group.
+  void check_standbys(const Scenario& s) const {
+    const auto group_of = [&s](const std::string& component) {
+      for (const GroupSpec& g : s.groups) {
+        if (std::find(g.components.begin(), g.components.end(), component) != g.components.end()) {
+          return g.name;
+        }
+      }
+      return std::string();
+    };
+    for (std::size_t i = 0; i < s.components.size(); ++i) {
+      const ComponentSpec& standby = s.components[i];
+      if (standby.standby_for.empty()) {
+        continue;
+      }
+      const std::string key = "components[" + std::to_string(i) + "].standby_for";
+      const auto primary = std::find_if(s.components.begin(), s.components.end(),
+                                        [&](const ComponentSpec& c) { return c.name == standby.standby_for; });
+      if (primary == s.components.end()) {
+        fail(key, "unknown component '" + standby.standby_for + "'");
+      }
+      if (!primary->standby_for.empty()) {
+        fail(key, "'" + primary->name + "' is itself a standby (for '" + primary->standby_for + "')");
+      }
+      if (primary->type != standby.type) {
+        fail(key, "standby '" + standby.name + "' is a " + standby.type + ", its primary '" + primary->name + "' a " +
+                      primary->type + " (a standby has its primary's type)");
+      }
+      if (primary->robots != standby.robots) {
+        fail(key, "standby '" + standby.name + "' serves other robots than its primary '" + primary->name + "'");
+      }
+      if (group_of(primary->name) == group_of(standby.name)) {
+        fail(key, "standby '" + standby.name + "' is in group '" + group_of(standby.name) + "' with its primary '" +
+                      primary->name + "'; put it in another group (another process) to survive the primary's death");
       }
     }
   }

@@ -24,6 +24,9 @@ struct ComponentSpec {
   std::string type;                   // registered component type
   std::vector<std::uint32_t> robots;  // robots it serves (default: all)
   FlatParams overrides;               // scenario values over the type's defaults
+  /// Hot standby of the named component (real time, processes only): same type and robots,
+  /// another group; its outputs take over when the primary dies (exclusive ownership).
+  std::string standby_for;
 };
 
 struct GroupSpec {

@@ -2,8 +2,10 @@
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
@@ -82,7 +84,18 @@ class FastDdsBus : public DdsBus {
     dds::Topic* dds_topic = ensure_topic(topic, type_name);
     auto listener = std::make_unique<WriterListener>(topic, &peers_);
     dds::StatusMask mask = dds::StatusMask::offered_incompatible_qos() << dds::StatusMask::publication_matched();
-    dds::DataWriter* writer = publisher_->create_datawriter_with_profile(dds_topic, profile, listener.get(), mask);
+    dds::DataWriter* writer = nullptr;
+    auto owned = exclusive_.find(topic);
+    if (owned == exclusive_.end()) {
+      writer = publisher_->create_datawriter_with_profile(dds_topic, profile, listener.get(), mask);
+    } else {
+      dds::DataWriterQos qos;
+      if (publisher_->get_datawriter_qos_from_profile(profile, qos) == ReturnCode_t::RETCODE_OK) {
+        qos.ownership().kind = dds::EXCLUSIVE_OWNERSHIP_QOS;
+        qos.ownership_strength().value = owned->second;
+        writer = publisher_->create_datawriter(dds_topic, qos, listener.get(), mask);
+      }
+    }
     if (writer == nullptr) {
       throw ConfigError("cannot create a writer on " + topic + " with QoS profile '" + profile + "'");
     }
@@ -157,6 +170,11 @@ class FastDdsBus : public DdsBus {
 
   std::string writer_name(std::uint64_t writer_id) const override { return peers_.writer_name(writer_id); }
 
+  void set_exclusive_ownership(const std::string& topic, std::uint32_t writer_strength) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    exclusive_[topic] = writer_strength;
+  }
+
  private:
   struct PendingReader {
     std::string topic;
@@ -172,8 +190,16 @@ class FastDdsBus : public DdsBus {
     dds::StatusMask mask = dds::StatusMask::data_available() << dds::StatusMask::requested_incompatible_qos()
                            << dds::StatusMask::requested_deadline_missed() << dds::StatusMask::liveliness_changed()
                            << dds::StatusMask::subscription_matched();
-    pending.reader = subscriber_->create_datareader_with_profile(topics_.at(pending.topic), pending.profile,
-                                                                 pending.listener.get(), mask);
+    if (exclusive_.count(pending.topic) == 0) {
+      pending.reader = subscriber_->create_datareader_with_profile(topics_.at(pending.topic), pending.profile,
+                                                                   pending.listener.get(), mask);
+    } else {
+      dds::DataReaderQos qos;
+      if (subscriber_->get_datareader_qos_from_profile(pending.profile, qos) == ReturnCode_t::RETCODE_OK) {
+        qos.ownership().kind = dds::EXCLUSIVE_OWNERSHIP_QOS;
+        pending.reader = subscriber_->create_datareader(topics_.at(pending.topic), qos, pending.listener.get(), mask);
+      }
+    }
     if (pending.reader == nullptr) {
       throw ConfigError("cannot create a reader on " + pending.topic + " with QoS profile '" + pending.profile + "'");
     }
@@ -212,6 +238,7 @@ class FastDdsBus : public DdsBus {
   std::set<std::string> registered_types_;
   std::map<std::string, dds::Topic*> topics_;
   std::map<std::string, std::shared_ptr<DdsWriter>> writers_;
+  std::map<std::string, std::uint32_t> exclusive_;  // topic -> ownership strength of its writers here
   ParticipantPtr participant_;
   dds::Publisher* publisher_ = nullptr;    // owned by participant_
   dds::Subscriber* subscriber_ = nullptr;  // owned by participant_

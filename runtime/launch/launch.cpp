@@ -1,5 +1,6 @@
 #include "runtime/launch/launch.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +15,7 @@
 #include "runtime/error.hpp"
 #include "runtime/launch/failed_summary.hpp"
 #include "runtime/log.hpp"
+#include "runtime/producer_check.hpp"
 #include "runtime/launch/process_group.hpp"
 #include "runtime/share_dir.hpp"
 #include "runtime/launch/standalone_scenario.hpp"
@@ -200,6 +202,13 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   run.output_dir = in_process.out_dir;
   run.single_process = options.single_process;
   run.deploy_label = in_process.deploy_label;
+  const bool has_standby = std::any_of(scenario.components.begin(), scenario.components.end(),
+                                       [](const ComponentSpec& c) { return !c.standby_for.empty(); });
+  if (has_standby) {  // hot standby: the topics it writes use exclusive ownership
+    const ScenarioProducers producers = scenario_producers(registry, scenario, run.mode);
+    run.exclusive_topics = exclusive_topics(scenario, producers);
+    apply_exclusive_ownership(*bus, scenario, producers, run.exclusive_topics, options.components);
+  }
   Host host(registry, run, options);
   // The readers call into the host's inputs and the notifier: delete them first, also on a throw.
   struct ReaderCloser {
@@ -213,7 +222,14 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   return stats;
 }
 
+/// One producer per topic instance and where standbys may run, before anything starts.
+static void check_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode, bool single_process) {
+  check_standby_deployment(scenario, mode, single_process);
+  check_one_producer_per_instance(scenario, scenario_producers(registry, scenario, mode));
+}
+
 RunStats launch_run(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& options) {
+  check_producers(registry, scenario, time_mode(options.realtime), options.deploy == Deploy::kColocated);
   try {
     return options.deploy == Deploy::kColocated ? run_colocated(registry, scenario, options)
                                                 : run_as_processes(registry, scenario, options);
@@ -254,6 +270,7 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
 
 void run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop) {
   const Scenario scenario = host_scenario(registry, args);
+  check_producers(registry, scenario, time_mode(args.realtime), false);
   if (!args.out.empty() && args.deploy != to_string(Deploy::kProcesses)) {
     make_output_dir(args.out);  // a child of `robodds run --deploy processes` gets a checked one
   }
@@ -278,6 +295,7 @@ void run_host(const ComponentRegistry& registry, const HostArgs& args, const std
   if (!args.member.empty()) {
     options.member = args.member;
   }
+  check_standby_apart(scenario, options.components);
   options.run_id = args.run_id;
   options.coordinator = args.coordinate;
   options.members = !args.members.empty()         ? args.members

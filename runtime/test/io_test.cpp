@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "runtime/sample_checks.hpp"
+#include "runtime/memory_bus.hpp"
 
 namespace robodds {
 namespace {
@@ -174,6 +175,101 @@ TEST_F(InputTest, AppliesThePlausibilityChecksOfTheTopicType) {
   EXPECT_EQ(counts.rejected.at("absurd_magnitude"), 1u);
   ASSERT_NE(input.latest(1), nullptr);
   EXPECT_DOUBLE_EQ(input.latest(1)->v(), 0.5);
+}
+
+/// Options of robot 1's input whose writers are named "writer-<id>".
+detail::InputOptions named_writers() {
+  detail::InputOptions options = robot_one(0);
+  options.writer_name = [](std::uint64_t id) { return "writer-" + std::to_string(id); };
+  return options;
+}
+
+TEST_F(InputTest, LockstepSecondProducerOfAnInstanceEndsTheRunNamingTopicInstanceAndBothWriters) {
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, named_writers());
+  input.on_sample(state(1, 0, 1, 1.0), SampleMeta{7, 0});
+  input.on_sample(state(1, 1, 2, 2.0), SampleMeta{7, 0});
+  EXPECT_TRUE(input.ready(1, nullptr));
+  EXPECT_TRUE(input.producer_conflict().empty());
+  input.on_sample(state(1, 0, 1, 9.0), SampleMeta{8, 0});  // a restarted producer replays step 0
+  try {
+    input.ready(1, nullptr);
+    FAIL() << "expected a RunError";
+  } catch (const RunError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("plant/state"), std::string::npos) << what;
+    EXPECT_NE(what.find("robot_id=1"), std::string::npos) << what;
+    EXPECT_NE(what.find("writer-7"), std::string::npos) << what;
+    EXPECT_NE(what.find("writer-8"), std::string::npos) << what;
+  }
+  EXPECT_EQ(input.counts().rejected.at(detail::kRejectSecondProducer), 1U);
+  clock.step = 1;
+  EXPECT_EQ(input.take_new(1).size(), 2U);  // the second writer's sample was not used
+}
+
+TEST_F(InputTest, OtherInstancesMayHaveOtherProducers) {
+  detail::InputOptions options = named_writers();
+  options.expected = {1, 2};
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, options);
+  input.on_sample(state(1, 0, 1, 1.0), SampleMeta{7, 0});
+  input.on_sample(state(2, 0, 1, 1.0), SampleMeta{8, 0});
+  EXPECT_TRUE(input.ready(0, nullptr));
+  EXPECT_TRUE(input.producer_conflict().empty());
+}
+
+TEST_F(InputTest, RealtimeFirstWriterWinsAndTheSecondIsCountedAsSecondProducer) {
+  clock.mode = TimeMode::kRealtime;
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, named_writers());
+  input.on_sample(state(1, 0, 1, 1.0), SampleMeta{7, 1'000'000'000});
+  input.on_sample(state(1, 1, 2, 5.0), SampleMeta{8, 1'100'000'000});
+  input.on_sample(state(1, 2, 3, 6.0), SampleMeta{8, 1'200'000'000});
+  input.on_sample(state(1, 3, 4, 2.0), SampleMeta{7, 1'300'000'000});
+  EXPECT_TRUE(input.ready(3, nullptr));  // real time never throws: a warning and the rule
+  ASSERT_NE(input.latest(1), nullptr);
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 2.0);
+  EXPECT_EQ(input.counts().accepted, 2U);
+  EXPECT_EQ(input.counts().rejected.at(detail::kRejectSecondProducer), 2U);
+  // The first producer falls silent for longer than the lease: a restarted producer takes over.
+  input.on_sample(state(1, 9, 10, 4.0), SampleMeta{8, 1'300'000'000 + detail::kProducerSilenceNs + 1});
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 4.0);
+  input.on_sample(state(1, 10, 11, 3.0), SampleMeta{7, 2'400'000'000});  // now 7 is the second one
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 4.0);
+  EXPECT_EQ(input.counts().rejected.at(detail::kRejectSecondProducer), 3U);
+}
+
+TEST_F(InputTest, ExclusiveOwnershipMakesAChangeOfWriterAHandOver) {
+  clock.mode = TimeMode::kRealtime;
+  detail::InputOptions options = named_writers();
+  options.exclusive_ownership = true;
+  Input<idl::RobotState> input("estimate/pose", "test", &clock, &notifier, options);
+  input.on_sample(state(1, 0, 1, 1.0), SampleMeta{7, 1'000'000'000});
+  input.on_sample(state(1, 1, 2, 5.0), SampleMeta{8, 1'100'000'000});  // the middleware chose 8
+  ASSERT_NE(input.latest(1), nullptr);
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 5.0);
+  EXPECT_EQ(input.counts().rejected_total(), 0U);
+}
+
+TEST_F(InputTest, TwoWritersOfOneInstanceOnABusAreTwoProducersNamedByTheBus) {
+  // End to end through a bus: SampleMeta from the MemoryBus (one id per writer handle), names
+  // from Bus::writer_name. Two profiles give two writers of plant/state, as two processes would.
+  MemoryBus bus;
+  detail::InputOptions options = robot_one(0);
+  options.writer_name = [&bus](std::uint64_t id) { return bus.writer_name(id); };
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, options);
+  auto reader = bus.reader("plant/state", idl::type_name<idl::RobotState>(), "state",
+                           [&input](const void* sample, const SampleMeta& meta) {
+                             input.on_sample(*static_cast<const idl::RobotState*>(sample), meta);
+                           },
+                           nullptr);
+  auto first = bus.writer("plant/state", idl::type_name<idl::RobotState>(), "state");
+  auto second = bus.writer("plant/state", idl::type_name<idl::RobotState>(), "lockstep");
+  idl::RobotState sample = state(1, 0, 1, 1.0);
+  first->write(&sample);
+  EXPECT_TRUE(input.ready(0, nullptr));
+  second->write(&sample);
+  EXPECT_THROW(input.ready(0, nullptr), RunError);
+  const std::string conflict = input.producer_conflict();
+  EXPECT_NE(conflict.find("(plant/state|state)"), std::string::npos) << conflict;
+  EXPECT_NE(conflict.find("(plant/state|lockstep)"), std::string::npos) << conflict;
 }
 
 }  // namespace

@@ -75,7 +75,7 @@ class NodeHarness {
   explicit NodeHarness(const std::string& scenario_yaml)
       : scenario_file_(test_support::write_test_file("scenario.yaml", scenario_yaml)),
         scenario_(load_scenario(scenario_file_)) {
-    scenario_.components.push_back(ComponentSpec{"feeder", "test_feeder", {}, {}});
+    scenario_.components.push_back(ComponentSpec{"feeder", "test_feeder", {}, {}, {}});
     registry_.add({"test_feeder", "feeds test inputs", kNoParamsFile, [this] {
                      return std::make_unique<ScriptComponent>(nullptr, [this](const StepInfo& info) {
                        if (feed_) {

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# One producer per topic instance (issue #9, finding 4).
+# 1. Two commanders for one robot in a scenario: `robodds run` (both deployments) and a
+#    `robodds host` started alone refuse to start, with one error naming the file, the topic,
+#    the instance and both components (before: exit 0 with doubled plant/cmd samples).
+# 2. A lockstep group killed (SIGKILL) and started again by hand mid-run (input timeout 30 s: the
+#    restarted host must come up before the others give up waiting, also on a loaded machine): its new participant
+#    republishes sensor/position with new writers; the run fails naming the topic and both
+#    writers (before: duplicate samples with different noise, every host exiting 0).
+source "$(dirname "$0")/lib.sh"
+S="$WORK/two_commanders.yaml"
+sed -e 's/  - {name: commander, type: open_loop_commander}/&\n  - {name: second_commander, type: open_loop_commander, robots: [2]}/' \
+  "$SRC/sim/scenarios/plant_smoke.yaml" >"$S"
+grep -q second_commander "$S" || fail "could not add a second commander to plant_smoke.yaml"
+P="two_commanders\.yaml: components: topic plant/cmd, robot_id=2: published by both 'commander' \(open_loop_commander\) and 'second_commander' \(open_loop_commander\)"
+expect_error 2 "$P" -- "$ROBODDS" run "$S" --duration 0.5 --domain "$DOMAIN" --out "$WORK/o1" --no-plots
+expect_error 2 "$P" -- "$ROBODDS" run "$S" --duration 0.5 --domain "$DOMAIN" --out "$WORK/o2" --no-plots --deploy processes
+expect_error 2 "$P" -- "$ROBODDS" host --scenario "$S" --group sim --duration 0.5 --domain "$DOMAIN" --out "$WORK/o3"
+[[ ! -e "$WORK/o1/plant_state.csv" && ! -e "$WORK/o2/plant_state.csv" ]] || fail "a run started despite the error"
+
+# 2. paper1_waypoints, one `robodds host` per group; the sim group coordinates.
+S1="$SRC/sim/scenarios/paper1_waypoints.yaml"
+out="$WORK/restart"
+C=(--scenario "$S1" --run-id "7$$" --domain "$DOMAIN" --out "$out" --duration 400 --start-timeout 15 --input-timeout 30)
+declare -A pid
+for g in sensors estimation control evaluation; do
+  "$ROBODDS" --log warn host --group "$g" "${C[@]}" >"$out.$g.log" 2>&1 &
+  pid[$g]=$!
+  cleanup_pids+=("$!")
+done
+"$ROBODDS" --log warn host --group sim --coordinate --members sim,sensors,estimation,control,evaluation "${C[@]}" \
+  >"$out.sim.log" 2>&1 &
+pid[sim]=$!
+cleanup_pids+=("$!")
+sleep 4  # discovery and a few hundred steps
+kill -0 "${pid[sim]}" 2>/dev/null || fail "the run ended before the restart: $(tail -qn 2 "$out".*.log)"
+kill -9 "${pid[sensors]}"
+wait "${pid[sensors]}" 2>/dev/null || true
+"$ROBODDS" --log warn host --group sensors "${C[@]}" >"$out.sensors2.log" 2>&1 &
+cleanup_pids+=("$!")
+restarted=$(date +%s.%N)
+rc=0
+timeout -k 5 45 tail --pid="${pid[sim]}" -f /dev/null || fail "the coordinator did not end within 45 s of the restart"
+wait "${pid[sim]}" || rc=$?
+[[ $rc -ne 0 ]] || fail "the run exited 0 after a lockstep group restarted mid-run: $(tail -qn 2 "$out".*.log)"
+echo "the coordinator exited $rc, $(echo "$(date +%s.%N) - $restarted" | bc) s after the restart"
+grep -hE "topic sensor/(position|odometry) \(robot_id=1\) has two producers: '[^']+' \(writer [^)]+\) and '[^']+' \(writer [^)]+\)" \
+  "$out".*.log | head -1 | grep -q . || fail "no error names the topic and both writers: $(tail -qn 3 "$out".*.log)"
+# Leave no host behind (a later run on this domain would see its writers).
+for p in "${cleanup_pids[@]}"; do
+  kill "$p" 2>/dev/null || true
+  timeout 10 tail --pid="$p" -f /dev/null || kill -9 "$p" 2>/dev/null || true
+done
+echo "ok: a restarted lockstep group is refused: $(grep -hoE "topic sensor/[a-z]+ \(robot_id=1\) has two producers: .*\)" "$out".*.log | head -1)"
