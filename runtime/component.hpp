@@ -10,6 +10,7 @@
 
 #include "runtime/bus.hpp"
 #include "runtime/error.hpp"
+#include "runtime/host_health.hpp"
 #include "runtime/io.hpp"
 #include "runtime/params.hpp"
 #include "runtime/scenario.hpp"
@@ -39,9 +40,14 @@ class Component {
 
 /// Wall-clock figures of the run so far, for summary.json's "run" section: the host fills them
 /// just before on_finish() (ticks = steps done, wall_time_s = s since this host's run began).
+/// `hosts` (summary.json's "hosts" and "inputs"): this host's health first, then, across
+/// processes, what the other hosts published on run/health; `hosts_not_heard`: members whose
+/// health did not arrive within the wait (docs/architecture.md, "Host health").
 struct RunFigures {
   std::uint64_t ticks = 0;
   double wall_time_s = 0.0;
+  std::vector<HostHealth> hosts;
+  std::vector<std::string> hosts_not_heard;
 };
 
 /// What the host knows about the run, shared by all components of a process.

@@ -8,6 +8,7 @@ namespace robodds {
 using host_detail::Clock;
 using host_detail::dds_report;
 using host_detail::fmt_s;
+using host_detail::host_health;
 using host_detail::seconds_since;
 using host_detail::sim_stamp_ns;
 
@@ -122,7 +123,11 @@ bool LockstepHost::run_due_components() {
     return progressed;
   }
   if (tick_is_final_) {
-    run_.figures = RunFigures{tick_step_ + 1, seconds_since(start_)};
+    run_.figures.ticks = tick_step_ + 1;
+    run_.figures.wall_time_s = seconds_since(start_);
+    OverrunFigures lockstep_figures;  // lockstep waits for every step: none is missed or late
+    lockstep_figures.ticks = tick_step_ + 1;
+    run_.figures.hosts = {host_health(options_.member, lockstep_figures, slots_)};
     for (auto& slot : slots_) {
       slot->finish(tick_step_, static_cast<double>(tick_step_) * step_s);
     }

@@ -14,6 +14,7 @@
 #include "runtime/registry.hpp"
 #include "runtime/sample_format.hpp"
 #include "sim/evaluator/node/evaluator_params.hpp"
+#include "sim/evaluator/node/health_summary.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
 
@@ -219,6 +220,7 @@ class EvaluatorNode : public Component {
     json.end_object();
     json.end_object();
     write_run_section(json);
+    write_health_sections(json, context_->run_figures());
     json.end_object();
     const std::string path = context_->output_dir() + "/summary.json";
     std::ofstream out(path, std::ios::binary);
