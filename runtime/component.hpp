@@ -84,6 +84,10 @@ class ComponentContext {
   const std::string& deploy_label() const { return run_.deploy_label; }
   /// The run's figures; valid in on_finish().
   const RunFigures& run_figures() const { return run_.figures; }
+  /// Asks for every host's health in run_figures().hosts (configure() only): across processes
+  /// this component's host then waits, at the end, for the other hosts' run/health reports.
+  void request_run_health() { wants_run_health_ = true; }
+  bool wants_run_health() const { return wants_run_health_; }
 
   /// Runs the component every round(1 / (rate_hz * step_s)) steps; the rate must divide the
   /// simulation rate (ConfigError naming `key` otherwise).
@@ -139,6 +143,7 @@ class ComponentContext {
   std::vector<std::unique_ptr<InputBase>> inputs_;
   std::vector<std::shared_ptr<void>> outputs_;
   std::vector<std::shared_ptr<ReaderHandle>> readers_;
+  bool wants_run_health_ = false;
 };
 
 }  // namespace robodds

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "common/number_text.hpp"
+#include "runtime/health_exchange.hpp"
 #include "runtime/host_slot.hpp"
 #include "runtime/log.hpp"
 #include "runtime/lockstep_coordinator.hpp"
@@ -35,8 +36,23 @@ struct Host::Impl {
   std::vector<std::unique_ptr<ComponentSlot>> slots;
   std::unique_ptr<LockstepHost> lockstep_host;                // lockstep, when this host runs components
   std::unique_ptr<LockstepCoordinator> lockstep_coordinator;  // lockstep, when it publishes the ticks
+  std::unique_ptr<HealthExchange> health;                     // across processes: run/health
 
   Impl(const ComponentRegistry& r, RunContext rc, HostOptions o) : registry(r), run(std::move(rc)), options(std::move(o)) {}
+
+  /// The groups whose run/health reports this host collects: every other group of the scenario
+  /// when one of its components asked for the run's health, else none.
+  std::vector<std::string> health_sources() const {
+    const bool wanted =
+        std::any_of(slots.begin(), slots.end(), [](const auto& slot) { return slot->context->wants_run_health(); });
+    std::vector<std::string> others;
+    for (const GroupSpec& group : run.scenario->groups) {
+      if (wanted && group.name != options.member) {
+        others.push_back(group.name);
+      }
+    }
+    return others;
+  }
 
   void check_stop() const {
     if (options.stop != nullptr && options.stop->load()) {
@@ -59,11 +75,14 @@ struct Host::Impl {
       slot->context->params().check_all_read();
       slots.push_back(std::move(slot));
     }
+    if (!run.single_process && !slots.empty()) {
+      health = std::make_unique<HealthExchange>(run, options.member, options.run_id, health_sources());
+    }
     if (run.mode != TimeMode::kLockstep) {
       return;
     }
     if (!options.components.empty()) {
-      lockstep_host = std::make_unique<LockstepHost>(run, options, slots);
+      lockstep_host = std::make_unique<LockstepHost>(run, options, slots, health.get());
     }
     if (options.coordinator) {
       lockstep_coordinator = std::make_unique<LockstepCoordinator>(run, options);
@@ -183,6 +202,9 @@ struct Host::Impl {
     run.figures.ticks = last_run + 1;
     run.figures.wall_time_s = seconds_since(start);
     run.figures.hosts = {host_detail::host_health(options.member, overruns.figures(), slots)};
+    if (health) {
+      health->exchange(run.figures, last_run);
+    }
     for (auto& slot : slots) {
       slot->finish(last_run, static_cast<double>(last_run) * step_s);
     }

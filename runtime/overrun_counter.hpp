@@ -18,7 +18,9 @@
 namespace robodds {
 
 /// Default of --max-missed-steps: this fraction of the run's steps (rounded down). One place.
-inline constexpr double kDefaultMaxMissedFraction = 0.01;
+/// 5 %: a host that cannot keep up misses far more (41 % in issue 9's finding 6), while the
+/// hiccups of a busy shared machine (start-up, a neighbour's build) stay below it.
+inline constexpr double kDefaultMaxMissedFraction = 0.05;
 /// Seconds between two overrun warnings of one host (the first one is logged at once).
 inline constexpr double kOverrunWarnIntervalS = 10.0;
 

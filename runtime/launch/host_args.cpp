@@ -6,6 +6,7 @@
 
 #include "common/number_parse.hpp"
 #include "common/number_text.hpp"
+#include "runtime/overrun_counter.hpp"
 
 namespace robodds {
 namespace {
@@ -86,7 +87,8 @@ void add_seed_option(CLI::App* app, std::optional<std::uint64_t>& seed, const st
 void add_max_missed_steps_option(CLI::App* app, std::optional<std::uint64_t>& max_missed_steps) {
   app->add_option_function<std::uint64_t>(
          "--max-missed-steps", [&max_missed_steps](const std::uint64_t& value) { max_missed_steps = value; },
-         "real time: fail the run when a host skips more than N due steps (default: 1 % of the run's steps)")
+         "real time: fail the run when a host skips more than N due steps (default: " +
+             shortest_text(kDefaultMaxMissedFraction * 100.0) + " % of the run's steps)")
       ->check(whole_number("N"));
 }
 

@@ -50,7 +50,7 @@ struct HostArgs {
   std::optional<double> duration_s;     // override the scenario duration (s)
   std::optional<std::uint64_t> seed;    // override the scenario seed
   std::string log_level;                // empty: the global --log (or $ROBODDS_LOG)
-  std::optional<std::uint64_t> max_missed_steps;  // real time: fail past this many skipped steps (default 1 %)
+  std::optional<std::uint64_t> max_missed_steps;  // real time: fail past this many skipped steps (default 5 %)
   // One component without a scenario file (a component executable robodds-<type>, or
   // `robodds host --type`): the host makes a one-component scenario (standalone_scenario()).
   std::string type;                     // registered component type (instead of --scenario)

@@ -68,10 +68,10 @@ TEST(DueStepsBetween, UnionOfThePeriods) {
   EXPECT_EQ(due_steps_between({}, 0, 10), 0u);
 }
 
-TEST(DefaultMaxMissedSteps, OnePercentRoundedDown) {
-  EXPECT_EQ(default_max_missed_steps(1001), 10u);
-  EXPECT_EQ(default_max_missed_steps(99), 0u);
-  EXPECT_EQ(default_max_missed_steps(20001), 200u);
+TEST(DefaultMaxMissedSteps, FivePercentRoundedDown) {
+  EXPECT_EQ(default_max_missed_steps(1001), 50u);
+  EXPECT_EQ(default_max_missed_steps(19), 0u);
+  EXPECT_EQ(default_max_missed_steps(20001), 1000u);
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 # Real-time overruns are reported (issue 9, finding 6): plant_smoke with 200 robots and a 0.5 ms
 # step cannot keep up on any machine. The run counts the due steps its loop skipped and the worst
 # lateness in summary.json's "hosts" section, warns in the log, and fails with one clear line
-# when the skipped steps exceed --max-missed-steps (given, or the default 1 % of the steps).
+# when the skipped steps exceed --max-missed-steps (given, or the default 5 % of the steps).
 source "$(dirname "$0")/lib.sh"
 python3 - "$SRC/sim/scenarios/plant_smoke.yaml" "$WORK/overrun.yaml" <<'PY'
 import sys
@@ -50,9 +50,9 @@ grep -qE "error: colocated: real-time overrun: [0-9]+ due steps skipped, more th
 [[ $(grep -c "error:" "$WORK/strict.log") -eq 1 ]] || fail "expected one error line: $(cat "$WORK/strict.log")"
 echo "ok: --max-missed-steps 0 fails: $(grep "error:" "$WORK/strict.log")"
 
-# 3. The default limit (1 % of the 2001 steps = 20) is exceeded too.
+# 3. The default limit (5 % of the 2001 steps = 100) is exceeded too.
 run_rt default
 [[ $rc -ne 0 ]] || fail "run with the default limit exited 0: $(tail -5 "$WORK/default.log")"
-grep -qE "error: colocated: real-time overrun: [0-9]+ due steps skipped, more than --max-missed-steps 20 \(default: 1 % of the run's steps\)" \
+grep -qE "error: colocated: real-time overrun: [0-9]+ due steps skipped, more than --max-missed-steps 100 \(default: 5 % of the run's steps\)" \
   "$WORK/default.log" || fail "no clear error line for the default limit: $(tail -5 "$WORK/default.log")"
 echo "ok: the default limit fails the run"

@@ -133,6 +133,7 @@ class EvaluatorNode : public Component {
       });
     }
     context_ = &ctx;
+    ctx.request_run_health();  // summary.json "hosts" and "inputs" (health_summary.hpp)
   }
 
   void on_step(const StepInfo&) override {
