@@ -11,6 +11,7 @@
 
 #include "runtime/bus.hpp"
 #include "runtime/error.hpp"
+#include "runtime/host_health.hpp"
 #include "runtime/io.hpp"
 #include "runtime/params.hpp"
 #include "runtime/scenario.hpp"
@@ -44,9 +45,14 @@ class Component {
 
 /// Wall-clock figures of the run so far, for summary.json's "run" section: the host fills them
 /// just before on_finish() (ticks = steps done, wall_time_s = s since this host's run began).
+/// `hosts` (summary.json's "hosts" and "inputs"): this host's health first, then, across
+/// processes, what the other hosts published on run/health; `hosts_not_heard`: members whose
+/// health did not arrive within the wait (docs/architecture.md, "Host health").
 struct RunFigures {
   std::uint64_t ticks = 0;
   double wall_time_s = 0.0;
+  std::vector<HostHealth> hosts;
+  std::vector<std::string> hosts_not_heard;
 };
 
 /// What the host knows about the run, shared by all components of a process.
@@ -86,6 +92,10 @@ class ComponentContext {
   const std::string& deploy_label() const { return run_.deploy_label; }
   /// The run's figures; valid in on_finish().
   const RunFigures& run_figures() const { return run_.figures; }
+  /// Asks for every host's health in run_figures().hosts (configure() only): across processes
+  /// this component's host then waits, at the end, for the other hosts' run/health reports.
+  void request_run_health() { wants_run_health_ = true; }
+  bool wants_run_health() const { return wants_run_health_; }
 
   /// Runs the component every round(1 / (rate_hz * step_s)) steps; the rate must divide the
   /// simulation rate (ConfigError naming `key` otherwise).
@@ -142,6 +152,7 @@ class ComponentContext {
   std::vector<std::unique_ptr<InputBase>> inputs_;
   std::vector<std::shared_ptr<void>> outputs_;
   std::vector<std::shared_ptr<ReaderHandle>> readers_;
+  bool wants_run_health_ = false;
 };
 
 }  // namespace robodds

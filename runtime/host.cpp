@@ -5,10 +5,13 @@
 #include <ctime>
 #include <thread>
 
+#include "common/number_text.hpp"
+#include "runtime/health_exchange.hpp"
 #include "runtime/host_slot.hpp"
 #include "runtime/log.hpp"
 #include "runtime/lockstep_coordinator.hpp"
 #include "runtime/lockstep_host.hpp"
+#include "runtime/overrun_counter.hpp"
 #include "runtime/param_table_reader.hpp"
 
 namespace robodds {
@@ -33,8 +36,23 @@ struct Host::Impl {
   std::vector<std::unique_ptr<ComponentSlot>> slots;
   std::unique_ptr<LockstepHost> lockstep_host;                // lockstep, when this host runs components
   std::unique_ptr<LockstepCoordinator> lockstep_coordinator;  // lockstep, when it publishes the ticks
+  std::unique_ptr<HealthExchange> health;                     // across processes: run/health
 
   Impl(const ComponentRegistry& r, RunContext rc, HostOptions o) : registry(r), run(std::move(rc)), options(std::move(o)) {}
+
+  /// The groups whose run/health reports this host collects: every other group of the scenario
+  /// when one of its components asked for the run's health, else none.
+  std::vector<std::string> health_sources() const {
+    const bool wanted =
+        std::any_of(slots.begin(), slots.end(), [](const auto& slot) { return slot->context->wants_run_health(); });
+    std::vector<std::string> others;
+    for (const GroupSpec& group : run.scenario->groups) {
+      if (wanted && group.name != options.member) {
+        others.push_back(group.name);
+      }
+    }
+    return others;
+  }
 
   void check_stop() const {
     if (options.stop != nullptr && options.stop->load()) {
@@ -57,11 +75,14 @@ struct Host::Impl {
       slot->context->params().check_all_read();
       slots.push_back(std::move(slot));
     }
+    if (!run.single_process && !slots.empty()) {
+      health = std::make_unique<HealthExchange>(run, options.member, options.run_id, health_sources());
+    }
     if (run.mode != TimeMode::kLockstep) {
       return;
     }
     if (!options.components.empty()) {
-      lockstep_host = std::make_unique<LockstepHost>(run, options, slots);
+      lockstep_host = std::make_unique<LockstepHost>(run, options, slots, health.get());
     }
     if (options.coordinator) {
       lockstep_coordinator = std::make_unique<LockstepCoordinator>(run, options);
@@ -112,11 +133,18 @@ struct Host::Impl {
     const std::int64_t epoch_ns = options.realtime_epoch_ns != 0 ? options.realtime_epoch_ns : wall_ns();
     const Clock::time_point start = Clock::now();
     std::vector<std::uint64_t> next_due(slots.size(), 0);
+    std::vector<std::uint64_t> periods;
+    for (const auto& slot : slots) {
+      periods.push_back(slot->state.period_steps);
+    }
+    OverrunCounter overruns(step_s, options.max_missed_steps.value_or(default_max_missed_steps(last + 1)));
     std::uint64_t reported = 0;
     std::uint64_t last_run = 0;  // the last step the components ran at
+    bool stopped = false;
     while (true) {
       if (options.stop_ends_run && options.stop != nullptr && options.stop->load()) {
         log::info(options.member, "stopped by a signal after step " + std::to_string(last_run) + ": finishing");
+        stopped = true;
         break;
       }
       check_stop();
@@ -135,6 +163,10 @@ struct Host::Impl {
         break;
       }
       last_run = current;
+      const std::uint64_t first_due = next_due.empty() ? current : *std::min_element(next_due.begin(), next_due.end());
+      if (first_due <= current) {
+        count_overrun(overruns, first_due, current, due_steps_between(periods, first_due, current), elapsed_s);
+      }
       std::uint64_t soonest = last + 1;
       for (std::size_t i = 0; i < slots.size(); ++i) {
         ComponentSlot& slot = *slots[i];
@@ -158,11 +190,44 @@ struct Host::Impl {
         std::this_thread::sleep_for(std::chrono::nanoseconds(std::min<std::int64_t>(sleep_ns, 50000000)));
       }
     }
-    run.figures = RunFigures{last_run + 1, seconds_since(start)};
+    if (!stopped && !next_due.empty()) {
+      // Due steps after the last one the loop ran that it never got to before the end.
+      const std::uint64_t first_due = *std::min_element(next_due.begin(), next_due.end());
+      overruns.missed_at_end(due_steps_between(periods, std::min(first_due, last + 1), last + 1));
+      check_overrun_limit(overruns);
+    }
+    if (overruns.figures().missed_steps > 0 || overruns.figures().late_steps > 0) {
+      log::warn(options.member, "real-time overruns over the run: " + overruns.totals_text());
+    }
+    run.figures.ticks = last_run + 1;
+    run.figures.wall_time_s = seconds_since(start);
+    run.figures.hosts = {host_detail::host_health(options.member, overruns.figures(), slots)};
+    if (health) {
+      health->exchange(run.figures, last_run);
+    }
     for (auto& slot : slots) {
       slot->finish(last_run, static_cast<double>(last_run) * step_s);
     }
     return RunStats{last_run + 1, seconds_since(start)};
+  }
+
+  /// Books one iteration of the real-time loop; warns (rate-limited) and fails past the limit.
+  void count_overrun(OverrunCounter& overruns, std::uint64_t first_due, std::uint64_t current, std::uint64_t missed,
+                     double elapsed_s) {
+    if (overruns.ran(first_due, current, missed, elapsed_s)) {
+      log::warn(options.member, "real-time overrun at step " + std::to_string(current) + ": skipped " + std::to_string(missed) +
+                                    " due step(s) the loop came to too late; " + overruns.totals_text() +
+                                    " (warned at most every " + host_detail::fmt_s(kOverrunWarnIntervalS) + " s)");
+    }
+    check_overrun_limit(overruns);
+  }
+
+  void check_overrun_limit(const OverrunCounter& overruns) const {
+    if (overruns.exceeded()) {
+      throw RunError(options.member + ": real-time overrun: " + std::to_string(overruns.figures().missed_steps) +
+                     " due steps skipped, more than --max-missed-steps " + std::to_string(overruns.max_missed()) +
+                     (options.max_missed_steps ? "" : " (default: " + shortest_text(kDefaultMaxMissedFraction * 100.0) + " % of the run's steps)") + "; " + overruns.totals_text());
+    }
   }
 };
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,9 @@ struct HostOptions {
   /// Real time: `stop` ends the run normally (components finish, no error) instead of
   /// interrupting it. For hosts that run until stopped (a component executable on a robot).
   bool stop_ends_run = false;
+  /// Real time: the run fails (RunError) when more due steps than this are skipped; nullopt:
+  /// default_max_missed_steps() of the run's steps (runtime/overrun_counter.hpp).
+  std::optional<std::uint64_t> max_missed_steps;
 };
 
 struct RunStats {

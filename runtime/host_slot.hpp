@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "runtime/component.hpp"
 
@@ -68,5 +69,17 @@ struct ComponentSlot {
     }
   }
 };
+
+/// What this host reports about its run (RunFigures::hosts): `figures` and its inputs' counts.
+inline HostHealth host_health(const std::string& member, const OverrunFigures& figures,
+                              const std::vector<std::unique_ptr<ComponentSlot>>& slots) {
+  HostHealth health;
+  health.member = member;
+  health.figures = figures;
+  for (const auto& slot : slots) {
+    health.components.push_back(component_health(slot->spec->name, slot->context->inputs()));
+  }
+  return health;
+}
 
 }  // namespace robodds::host_detail

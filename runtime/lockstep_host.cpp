@@ -8,11 +8,12 @@ namespace robodds {
 using host_detail::Clock;
 using host_detail::dds_report;
 using host_detail::fmt_s;
+using host_detail::host_health;
 using host_detail::seconds_since;
 using host_detail::sim_stamp_ns;
 
-LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& slots)
-    : run_(run), options_(options), slots_(slots) {
+LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& slots, HealthExchange* health)
+    : run_(run), options_(options), slots_(slots), health_(health) {
   state_.mode = run.mode;
   const TopicInfo& clock = topic_info("sim/clock");
   const TopicInfo& done = topic_info("sim/step_done");
@@ -123,7 +124,14 @@ bool LockstepHost::run_due_components() {
     return progressed;
   }
   if (tick_is_final_) {
-    run_.figures = RunFigures{tick_step_ + 1, seconds_since(start_)};
+    run_.figures.ticks = tick_step_ + 1;
+    run_.figures.wall_time_s = seconds_since(start_);
+    OverrunFigures lockstep_figures;  // lockstep waits for every step: none is missed or late
+    lockstep_figures.ticks = tick_step_ + 1;
+    run_.figures.hosts = {host_health(options_.member, lockstep_figures, slots_)};
+    if (health_ != nullptr) {
+      health_->exchange(run_.figures, tick_step_);
+    }
     for (auto& slot : slots_) {
       slot->finish(tick_step_, static_cast<double>(tick_step_) * step_s);
     }

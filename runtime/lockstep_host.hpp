@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/health_exchange.hpp"
 #include "runtime/host.hpp"
 #include "runtime/host_slot.hpp"
 
@@ -21,7 +22,8 @@ class LockstepHost {
 
   /// Subscribes to sim/clock and advertises sim/step_done. `run`, `options` and `slots` must
   /// outlive this object; run.figures is filled before the components finish.
-  LockstepHost(RunContext& run, const HostOptions& options, Slots& slots);
+  /// `health` (nullable): exchanges run/health at the final tick, before the components finish.
+  LockstepHost(RunContext& run, const HostOptions& options, Slots& slots, HealthExchange* health = nullptr);
 
   /// Starts the timeouts (start_timeout_s for the first tick) and the run's wall clock.
   void begin(host_detail::Clock::time_point start);
@@ -46,6 +48,7 @@ class LockstepHost {
   RunContext& run_;
   const HostOptions& options_;
   Slots& slots_;
+  HealthExchange* health_;
   StepState state_;
   std::unique_ptr<Input<idl::SimTick>> tick_input_;
   std::shared_ptr<ReaderHandle> tick_reader_;

@@ -33,6 +33,8 @@ const std::vector<TopicInfo>& topic_catalog() {
       topic<idl::WaypointMission>("mission/waypoints", QosClass::kMission, "mission_source", "waypoint_controller, evaluator"),
       topic<idl::TargetAssignment>("mission/target", QosClass::kMission, "mission source", "guidance controller"),
       topic<idl::ControllerStatus>("control/status", QosClass::kState, "controllers", "evaluator, CLI"),
+      topic<idl::HostReport>("run/health", QosClass::kMission, "every host across processes (once, at its end)",
+                             "the evaluator's host (summary.json `hosts`, `inputs`)"),
   };
   return topics;
 }

@@ -6,6 +6,7 @@
 
 #include "common/number_parse.hpp"
 #include "common/number_text.hpp"
+#include "runtime/overrun_counter.hpp"
 
 namespace robodds {
 namespace {
@@ -58,7 +59,7 @@ CLI::Validator positive_seconds() {
 }
 
 /// A whole number 0..2^64-1 written in decimal digits (CLI11 would turn "-1" into 2^64-1).
-CLI::Validator seed_number() {
+CLI::Validator whole_number(const std::string& placeholder) {
   return CLI::Validator(
       [](std::string& text) -> std::string {
         if (!parse_whole_number(text, std::numeric_limits<std::uint64_t>::max())) {
@@ -66,7 +67,7 @@ CLI::Validator seed_number() {
         }
         return {};
       },
-      "SEED");
+      placeholder);
 }
 
 }  // namespace
@@ -80,7 +81,15 @@ void add_duration_option(CLI::App* app, std::optional<double>& duration_s, const
 void add_seed_option(CLI::App* app, std::optional<std::uint64_t>& seed, const std::string& help) {
   app->add_option_function<std::uint64_t>(
          "--seed", [&seed](const std::uint64_t& value) { seed = value; }, help)
-      ->check(seed_number());
+      ->check(whole_number("SEED"));
+}
+
+void add_max_missed_steps_option(CLI::App* app, std::optional<std::uint64_t>& max_missed_steps) {
+  app->add_option_function<std::uint64_t>(
+         "--max-missed-steps", [&max_missed_steps](const std::uint64_t& value) { max_missed_steps = value; },
+         "real time: fail the run when a host skips more than N due steps (default: " +
+             shortest_text(kDefaultMaxMissedFraction * 100.0) + " % of the run's steps)")
+      ->check(whole_number("N"));
 }
 
 bool DdsArgs::operator==(const DdsArgs& o) const {
@@ -95,7 +104,7 @@ bool HostArgs::operator==(const HostArgs& o) const {
   return scenario == o.scenario && group == o.group && components == o.components && params == o.params &&
          member == o.member && coordinate == o.coordinate && members == o.members && run_id == o.run_id && out == o.out &&
          deploy == o.deploy && realtime == o.realtime && epoch_ns == o.epoch_ns && duration_s == o.duration_s &&
-         seed == o.seed && log_level == o.log_level && type == o.type && name == o.name && robots == o.robots &&
+         seed == o.seed && log_level == o.log_level && max_missed_steps == o.max_missed_steps && type == o.type && name == o.name && robots == o.robots &&
          step_s == o.step_s && dds == o.dds && lockstep == o.lockstep;
 }
 
@@ -117,6 +126,7 @@ std::vector<std::string> to_argv(const HostArgs& args, const ArgPlaceholders& pl
   w.option("--duration", args.duration_s ? shortest_text(*args.duration_s) : "", !args.duration_s);
   w.option("--seed", args.seed ? std::to_string(*args.seed) : "", !args.seed);
   w.option("--log", args.log_level, args.log_level.empty());
+  w.option("--max-missed-steps", args.max_missed_steps ? std::to_string(*args.max_missed_steps) : "", !args.max_missed_steps);
   w.option("--type", args.type, args.type.empty());
   w.option("--name", args.name, args.name.empty());
   for (const std::string& robot : args.robots) {
@@ -172,6 +182,7 @@ void add_run_options(CLI::App* app, HostArgs& args) {
   add_duration_option(app, args.duration_s, "override the scenario duration (s; a component without a scenario: until stopped)");
   add_seed_option(app, args.seed, "override the scenario seed (a component without a scenario: 1)");
   app->add_option("--log", args.log_level, "log level: debug, info, warn, error (default: the global --log)");
+  add_max_missed_steps_option(app, args.max_missed_steps);
   add_dds_options(app, args.dds);
   add_lockstep_options(app, args.lockstep);
 }

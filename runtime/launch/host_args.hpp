@@ -50,6 +50,7 @@ struct HostArgs {
   std::optional<double> duration_s;     // override the scenario duration (s)
   std::optional<std::uint64_t> seed;    // override the scenario seed
   std::string log_level;                // empty: the global --log (or $ROBODDS_LOG)
+  std::optional<std::uint64_t> max_missed_steps;  // real time: fail past this many skipped steps (default 5 %)
   // One component without a scenario file (a component executable robodds-<type>, or
   // `robodds host --type`): the host makes a one-component scenario (standalone_scenario()).
   std::string type;                     // registered component type (instead of --scenario)
@@ -95,6 +96,9 @@ void add_component_options(CLI::App* app, HostArgs& args);
 void add_duration_option(CLI::App* app, std::optional<double>& duration_s, const std::string& help);
 /// --seed: a whole number 0..2^64-1 in decimal digits ("-1" and overflow are CLI errors).
 void add_seed_option(CLI::App* app, std::optional<std::uint64_t>& seed, const std::string& help);
+/// --max-missed-steps: real time, the run fails when a host skips more due steps than this
+/// (default: kDefaultMaxMissedFraction of the run's steps, runtime/overrun_counter.hpp).
+void add_max_missed_steps_option(CLI::App* app, std::optional<std::uint64_t>& max_missed_steps);
 void add_dds_options(CLI::App* app, DdsArgs& args);
 void add_lockstep_options(CLI::App* app, LockstepArgs& args);
 

@@ -77,6 +77,7 @@ RunStats run_colocated(const ComponentRegistry& registry, const Scenario& scenar
   options.coordinator = true;
   options.members = {"colocated"};
   options.single_process = true;
+  options.max_missed_steps = launch.max_missed_steps;
   apply(launch.lockstep, options);
   options.progress = launch.progress;
   options.stop = launch.stop;
@@ -98,6 +99,7 @@ std::vector<std::string> child_argv(const Scenario& scenario, const LaunchOption
   args.seed = scenario.seed;
   args.duration_s = scenario.duration_s;
   args.log_level = launch.log_level;
+  args.max_missed_steps = launch.max_missed_steps;
   args.dds.domain = launch.dds.domain_id;
   args.dds.qos_files = launch.dds.qos_files;
   args.dds.participant_profile = launch.dds.participant_profile;
@@ -302,6 +304,7 @@ void run_host(const ComponentRegistry& registry, const HostArgs& args, const std
                     : options.components.empty() ? all_members(scenario)
                                                  : std::vector<std::string>{options.member};
   options.realtime_epoch_ns = args.epoch_ns;
+  options.max_missed_steps = args.max_missed_steps;
   // A component without a scenario and without --duration runs until stopped: in real time a
   // signal is its normal end (on_finish runs, exit 0); in lockstep the final tick is.
   options.stop_ends_run = !args.type.empty() && !args.duration_s;

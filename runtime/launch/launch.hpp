@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "runtime/dds/dds_bus.hpp"
@@ -32,6 +33,7 @@ struct LaunchOptions {
   DdsOptions dds;             // resolved; the child hosts get the same domain, profile and files
   LockstepArgs lockstep;
   std::string log_level;      // of the child hosts
+  std::optional<std::uint64_t> max_missed_steps;  // real time: HostOptions::max_missed_steps of every host
   std::function<void(std::uint64_t step, std::uint64_t last_step)> progress;
   const std::atomic<bool>* stop = nullptr;  // set by a signal handler
 };

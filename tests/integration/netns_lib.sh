@@ -188,7 +188,8 @@ bridge_bytes() {
            $(ip netns exec "$NETNS_BRIDGE" cat "/sys/class/net/$port/statistics/tx_bytes") ))
 }
 
-# same_outputs A B: byte-identical CSVs and identical summary.json metrics ("run" section aside).
+# same_outputs A B: byte-identical CSVs and identical summary.json metrics ("run", "hosts" and
+# "inputs" sections aside).
 same_outputs() {
   local a="$1" b="$2" n=0 f
   for f in "$a"/*.csv; do
@@ -201,7 +202,9 @@ same_outputs() {
   python3 - "$a/summary.json" "$b/summary.json" <<'PY' || fail "summary.json metrics differ"
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
-a.pop("run", None); b.pop("run", None)
+for summary in (a, b):
+    for section in ("run", "hosts", "inputs"):  # wall-clock and per-deployment figures
+        summary.pop(section, None)
 sys.exit(0 if a == b else 1)
 PY
   # shellcheck disable=SC2034  # read by the tests that call it

@@ -39,6 +39,7 @@ class RunCommand : public Command {
     add_seed_option(cmd_, seed_, "override the scenario seed");
     cmd_->add_flag("--realtime", realtime_, "wall-clock timers instead of lockstep");
     add_duration_option(cmd_, duration_s_, "override the scenario duration (s)");
+    add_max_missed_steps_option(cmd_, max_missed_steps_);
     add_dds_options(cmd_, dds_);
     add_lockstep_options(cmd_, lockstep_);
     cmd_->add_flag("--no-plots", no_plots_, "do not draw the PNG plots at the end");
@@ -56,6 +57,7 @@ class RunCommand : public Command {
     launch.out_dir = out_dir_.empty() ? "out/" + scenario.name : out_dir_;
     launch.lockstep = lockstep_;
     launch.log_level = env_.log_level;
+    launch.max_missed_steps = max_missed_steps_;
     launch.progress = show_progress;
     launch.stop = &env_.stop;
     launch.dds = resolve_dds(dds_, "robodds-run");  // a bad $ROBODDS_DOMAIN_ID creates no --out
@@ -84,6 +86,7 @@ class RunCommand : public Command {
   std::optional<std::uint64_t> seed_;
   bool realtime_ = false;
   std::optional<double> duration_s_;
+  std::optional<std::uint64_t> max_missed_steps_;
   bool no_plots_ = false;
   DdsArgs dds_;
   LockstepArgs lockstep_;

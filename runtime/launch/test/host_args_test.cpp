@@ -40,6 +40,7 @@ HostArgs every_field_set() {
   a.duration_s = 0.1 + 0.2;  // not a short decimal: must survive the text round trip exactly
   a.seed = 0;                // given, although 0
   a.log_level = "debug";
+  a.max_missed_steps = 0;    // given, although 0
   a.dds.domain = 102;
   a.dds.qos_files = {"a.xml", "b.xml"};
   a.dds.participant_profile = "robodds.participant.udp_only";
@@ -71,6 +72,7 @@ TEST(HostArgs, RenderThenParseGivesTheSameStruct) {
   EXPECT_EQ(parsed.duration_s, original.duration_s);
   EXPECT_EQ(parsed.seed, original.seed);
   EXPECT_EQ(parsed.log_level, original.log_level);
+  EXPECT_EQ(parsed.max_missed_steps, original.max_missed_steps);
   EXPECT_TRUE(parsed.dds == original.dds);
   EXPECT_EQ(parsed.lockstep.start_timeout_s, original.lockstep.start_timeout_s);
   EXPECT_EQ(parsed.lockstep.lockstep_window, original.lockstep.lockstep_window);
@@ -91,7 +93,7 @@ TEST(HostArgs, EachFieldAloneSurvivesTheRoundTrip) {
       [&](HostArgs& a) { a.log_level = "warn"; },         [&](HostArgs& a) { a.dds.domain = 0; },
       [&](HostArgs& a) { a.dds.qos_files = {"q.xml"}; },  [&](HostArgs& a) { a.dds.participant_profile = "p"; },
       [&](HostArgs& a) { a.lockstep.input_timeout_s = 3; }, [&](HostArgs& a) { a.lockstep.start_timeout_s = 4; },
-      [&](HostArgs& a) { a.lockstep.lockstep_window = 2; },
+      [&](HostArgs& a) { a.lockstep.lockstep_window = 2; }, [&](HostArgs& a) { a.max_missed_steps = 3; },
   };
   for (std::size_t i = 0; i < set_one.size(); ++i) {
     HostArgs one;
@@ -167,6 +169,15 @@ TEST(HostArgs, SeedIsAWholeNumberThatFits) {
   }
   EXPECT_EQ(parse({"--seed", "18446744073709551615"}).seed, std::numeric_limits<std::uint64_t>::max());
   EXPECT_EQ(parse({"--seed", "0"}).seed, 0u);
+}
+
+TEST(HostArgs, MaxMissedStepsIsAWholeNumber) {
+  EXPECT_FALSE(parse({}).max_missed_steps);
+  EXPECT_EQ(parse({"--max-missed-steps", "0"}).max_missed_steps, 0u);
+  EXPECT_EQ(parse({"--max-missed-steps", "25"}).max_missed_steps, 25u);
+  for (const char* bad : {"-1", "nan", "1.5", ""}) {
+    EXPECT_THROW(parse({"--max-missed-steps", bad}), CLI::ParseError) << bad;
+  }
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "sim/evaluator/node/csv_recorder.hpp"
 #include "sim/evaluator/node/evaluator_params.hpp"
 #include "sim/evaluator/node/sample_metrics.hpp"
+#include "sim/evaluator/node/health_summary.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
 
@@ -54,6 +55,7 @@ class EvaluatorNode : public Component {
     }
     const auto from_step = static_cast<std::uint64_t>(std::llround(params.metrics_after_s / ctx.step_s()));
     metrics_ = std::make_unique<Metrics>(from_step, consumers);
+    ctx.request_run_health();  // summary.json "hosts" and "inputs" (health_summary.hpp)
   }
 
   void on_step(const StepInfo& info) override {
@@ -108,6 +110,7 @@ class EvaluatorNode : public Component {
     json.value("step_s", context_->step_s());
     write_metrics_section(json);
     write_run_section(json);
+    write_health_sections(json, context_->run_figures());
     json.end_object();
     const std::string path = context_->output_dir() + "/summary.json";
     const std::string temporary = path + ".tmp";
