@@ -193,4 +193,12 @@ Failure check_content(const idl::ControllerStatus& s) {
                 within("switch_distance", s.switch_distance(), kPos), within("epsilon", s.epsilon(), kPos)});
 }
 
+Failure check_content(const idl::HostReport& s) {
+  if (s.late_steps() > s.ticks()) {  // late steps were run, so they are among the ticks
+    return fail(check_reason::kBadSize, "late_steps",
+                "is " + std::to_string(s.late_steps()) + ", more than the " + std::to_string(s.ticks()) + " steps run");
+  }
+  return duration("worst_lateness_s", s.worst_lateness_s());
+}
+
 }  // namespace robodds

@@ -70,6 +70,7 @@ std::optional<SampleCheckFailure> check_content(const idl::RangeRateEstimate& s)
 std::optional<SampleCheckFailure> check_content(const idl::WaypointMission& s);
 std::optional<SampleCheckFailure> check_content(const idl::TargetAssignment& s);
 std::optional<SampleCheckFailure> check_content(const idl::ControllerStatus& s);
+std::optional<SampleCheckFailure> check_content(const idl::HostReport& s);
 
 /// This process's wall clock (system_clock) in ns since the Unix epoch: the clock of real-time
 /// stamps.

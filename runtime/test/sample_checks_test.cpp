@@ -166,6 +166,17 @@ TEST(SampleChecks, RuntimeTopics) {
   t.step_s(-0.01);
   EXPECT_EQ(reason_of(t), "negative_duration:step_s");
   EXPECT_EQ(reason_of(fresh<idl::StepDone>()), "ok");
+
+  auto r = fresh<idl::HostReport>();
+  r.ticks(10);
+  r.late_steps(10);
+  r.worst_lateness_s(0.02);
+  EXPECT_EQ(reason_of(r), "ok");
+  r.late_steps(11);
+  EXPECT_EQ(reason_of(r), "bad_size:late_steps");
+  r.late_steps(0);
+  r.worst_lateness_s(-1.0);
+  EXPECT_EQ(reason_of(r), "negative_duration:worst_lateness_s");
 }
 
 }  // namespace
