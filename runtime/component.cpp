@@ -33,6 +33,14 @@ void ComponentContext::set_rate_hz(double rate_hz, const std::string& key) {
   state_->period_steps = static_cast<std::uint64_t>(rounded);
 }
 
+void ComponentContext::require_longer_than_period(const std::string& key, double value_s) {
+  const double period_s = static_cast<double>(state_->period_steps) * step_s();
+  if (!(value_s > period_s)) {
+    params_.fail(key + ": must be longer than the component's period (" + std::to_string(period_s) + " s), is " +
+                 std::to_string(value_s));
+  }
+}
+
 void ComponentRegistry::add(ComponentType type) {
   if (type.name.empty() || !type.create || !type.params) {
     throw ConfigError("component type '" + type.name + "': a registration needs a name, a factory and a parameter table");

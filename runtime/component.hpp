@@ -101,6 +101,10 @@ class ComponentContext {
   /// simulation rate (ConfigError naming `key` otherwise).
   void set_rate_hz(double rate_hz, const std::string& key);
   std::uint64_t period_steps() const { return state_->period_steps; }
+  /// A freshness limit (parameter `key`, `value_s` s) must be longer than this component's period
+  /// (call set_rate_hz() first): an input is only judged stale after at least one of its own due
+  /// steps has passed without it. ConfigError naming the key otherwise.
+  void require_longer_than_period(const std::string& key, double value_s);
 
   /// Subscribes to `topic` (ConfigError if it is not in the catalog or carries another type).
   template <class Msg>

@@ -26,10 +26,7 @@ class PfEstimatorNode : public Component {
     p.validate(params);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     input_timeout_s_ = node_params.input_timeout_s;
-    if (input_timeout_s_ <= 1.0 / rate_hz) {
-      p.fail("input_timeout_s: must be longer than the estimator's period (" + std::to_string(1.0 / rate_hz) + " s at rate_hz " +
-             std::to_string(rate_hz) + "), is " + std::to_string(input_timeout_s_));
-    }
+    ctx.require_longer_than_period("input_timeout_s", input_timeout_s_);
     realtime_ = ctx.mode() == TimeMode::kRealtime;
     for (const RobotSpec& robot : ctx.robots()) {
       filters_.emplace(robot.id, std::make_unique<ParticleFilter>(params, ctx.seed_for("robot" + std::to_string(robot.id))));

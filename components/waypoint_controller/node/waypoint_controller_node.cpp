@@ -24,10 +24,7 @@ class WaypointControllerNode : public Component {
     estimate_timeout_s_ = node_params.estimate_timeout_s;
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
-    if (estimate_timeout_s_ <= 1.0 / rate_hz) {
-      p.fail("estimate_timeout_s: must be longer than the control period (" + std::to_string(1.0 / rate_hz) + " s at rate_hz " +
-             std::to_string(rate_hz) + "), is " + std::to_string(estimate_timeout_s_));
-    }
+    ctx.require_longer_than_period("estimate_timeout_s", estimate_timeout_s_);
     realtime_ = ctx.mode() == TimeMode::kRealtime;
     for (const RobotSpec& robot : ctx.robots()) {
       trackers_.emplace(robot.id, WaypointTracker(params_));

@@ -193,7 +193,7 @@ components:
     h.run({"controller"});
     FAIL() << "a timeout shorter than the control period was accepted";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("estimate_timeout_s: must be longer than the control period"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("estimate_timeout_s: must be longer than the component's period"), std::string::npos) << e.what();
   }
 }
 

@@ -24,10 +24,7 @@ class PlantNode : public Component {
     const double rate_hz = node_params.rate_hz;
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
-    if (params_.command_timeout_s <= 1.0 / rate_hz) {
-      p.fail("command_timeout_s: must be longer than the plant's period (" + std::to_string(1.0 / rate_hz) + " s at rate_hz " +
-             std::to_string(rate_hz) + "), is " + std::to_string(params_.command_timeout_s));
-    }
+    ctx.require_longer_than_period("command_timeout_s", params_.command_timeout_s);
     for (const RobotSpec& robot : ctx.robots()) {
       robots_[robot.id] = Robot{model::Pose2{robot.x, robot.y, robot.theta}, model::Twist{}};
     }

@@ -249,7 +249,7 @@ components:
     h.run({"plant"});
     FAIL() << "a timeout not longer than the plant's period was accepted";
   } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("command_timeout_s: must be longer than the plant's period"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("command_timeout_s: must be longer than the component's period"), std::string::npos) << e.what();
   }
 }
 
