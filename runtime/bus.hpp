@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -75,6 +76,10 @@ class Bus {
   /// DDS EXCLUSIVE ownership, its writers with `writer_strength` (the highest alive strength owns
   /// each instance). Default: nothing (a bus without ownership, e.g. MemoryBus).
   virtual void set_exclusive_ownership(const std::string& /*topic*/, std::uint32_t /*writer_strength*/) {}
+  /// Samples of this process's input topics that the DDS type support could not decode and
+  /// dropped (runtime/dds/undecodable.hpp), per topic; topics with none are left out. Default:
+  /// none (a bus without decoding, e.g. MemoryBus). summary.json "hosts".<member>."undecodable".
+  virtual std::map<std::string, std::uint64_t> undecodable_samples() const { return {}; }
 };
 
 }  // namespace robodds

@@ -55,6 +55,7 @@ idl::HostReport to_report(const HostHealth& health, std::uint64_t run_id) {
       report.inputs().push_back(r);
     }
   }
+  report.undecodable(to_reasons(health.undecodable));
   return report;
 }
 
@@ -76,6 +77,7 @@ HostHealth from_report(const idl::HostReport& report) {
     counts.adjusted = from_reasons(r.adjusted());
     health.components.back().inputs.push_back(InputHealth{r.topic().to_string(), counts});
   }
+  health.undecodable = from_reasons(report.undecodable());
   return health;
 }
 

@@ -201,7 +201,7 @@ struct Host::Impl {
     }
     run.figures.ticks = last_run + 1;
     run.figures.wall_time_s = seconds_since(start);
-    run.figures.hosts = {host_detail::host_health(options.member, overruns.figures(), slots)};
+    run.figures.hosts = {host_detail::host_health(options.member, overruns.figures(), slots, *run.bus)};
     if (health) {
       health->exchange(run.figures, last_run);
     }

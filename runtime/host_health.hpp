@@ -1,8 +1,10 @@
 #pragma once
 // What one host reports about its run for summary.json's "hosts" and "inputs" sections: its
-// real-time overrun figures and, per component, what each input did with its samples. The
-// evaluator's host has its own; across processes the others arrive on `run/health`.
+// real-time overrun figures, the samples its DDS type support could not decode (per topic) and,
+// per component, what each input did with its samples. The evaluator's host has its own; across
+// processes the others arrive on `run/health`.
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,7 @@ struct HostHealth {
   std::string member;        // the host's group (its name in acknowledgements)
   OverrunFigures figures;    // ticks; in lockstep no step is ever missed or late
   std::vector<ComponentHealth> components;
+  std::map<std::string, std::uint64_t> undecodable;  // topic -> samples dropped undecoded (Bus::undecodable_samples)
 };
 
 /// The counts of every input in `inputs` (ComponentContext::inputs()), in subscription order.

@@ -70,12 +70,14 @@ struct ComponentSlot {
   }
 };
 
-/// What this host reports about its run (RunFigures::hosts): `figures` and its inputs' counts.
+/// What this host reports about its run (RunFigures::hosts): `figures`, its inputs' counts and
+/// what `bus` dropped undecoded.
 inline HostHealth host_health(const std::string& member, const OverrunFigures& figures,
-                              const std::vector<std::unique_ptr<ComponentSlot>>& slots) {
+                              const std::vector<std::unique_ptr<ComponentSlot>>& slots, const Bus& bus) {
   HostHealth health;
   health.member = member;
   health.figures = figures;
+  health.undecodable = bus.undecodable_samples();
   for (const auto& slot : slots) {
     health.components.push_back(component_health(slot->spec->name, slot->context->inputs()));
   }

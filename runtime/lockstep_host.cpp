@@ -128,7 +128,7 @@ bool LockstepHost::run_due_components() {
     run_.figures.wall_time_s = seconds_since(start_);
     OverrunFigures lockstep_figures;  // lockstep waits for every step: none is missed or late
     lockstep_figures.ticks = tick_step_ + 1;
-    run_.figures.hosts = {host_health(options_.member, lockstep_figures, slots_)};
+    run_.figures.hosts = {host_health(options_.member, lockstep_figures, slots_, *run_.bus)};
     if (health_ != nullptr) {
       health_->exchange(run_.figures, tick_step_);
     }

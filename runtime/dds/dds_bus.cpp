@@ -23,6 +23,7 @@
 #include "runtime/dds/qos_files.hpp"
 #include "runtime/error.hpp"
 #include "runtime/dds/type_support.hpp"
+#include "runtime/dds/undecodable.hpp"
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;
@@ -114,6 +115,7 @@ class FastDdsBus : public DdsBus {
       ensure_topic(topic, type_name);
       PendingReader pending;
       pending.topic = topic;
+      pending.type_name = type_name;
       pending.profile = profile;
       pending.listener = std::make_unique<ReaderListener>(type_name, topic, &peers_);
       it = readers_.emplace(key, std::move(pending)).first;
@@ -170,6 +172,20 @@ class FastDdsBus : public DdsBus {
 
   std::string writer_name(std::uint64_t writer_id) const override { return peers_.writer_name(writer_id); }
 
+  /// The type support counts per type (it does not know the topic); each of our topics is
+  /// credited with its type's count, exact while no two catalog topics share a type (true today).
+  std::map<std::string, std::uint64_t> undecodable_samples() const override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::map<std::string, std::uint64_t> counts;
+    for (const auto& [key, pending] : readers_) {
+      const std::uint64_t n = robodds::undecodable_samples(pending.type_name);
+      if (n > 0) {
+        counts[pending.topic] = n;
+      }
+    }
+    return counts;
+  }
+
   void set_exclusive_ownership(const std::string& topic, std::uint32_t writer_strength) override {
     std::lock_guard<std::mutex> lock(mutex_);
     exclusive_[topic] = writer_strength;
@@ -178,6 +194,7 @@ class FastDdsBus : public DdsBus {
  private:
   struct PendingReader {
     std::string topic;
+    std::string type_name;
     std::string profile;
     std::unique_ptr<ReaderListener> listener;
     dds::DataReader* reader = nullptr;
@@ -232,7 +249,7 @@ class FastDdsBus : public DdsBus {
   // What the participant and its entities call into: declared before participant_, so that they
   // outlive it (members die in reverse order, also when the constructor throws).
   PeerDirectory peers_;
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::map<std::string, std::unique_ptr<WriterListener>> writer_listeners_;
   std::map<std::string, PendingReader> readers_;
   std::set<std::string> registered_types_;

@@ -20,6 +20,7 @@ HostHealth sample_health(const std::string& member) {
   cmd.adjusted["saturated"] = 2;
   h.components.push_back({"plant", {{"plant/cmd", cmd}, {"plant/state", InputCounts{4, {}, {}}}}});
   h.components.push_back({"sensor", {{"plant/state", InputCounts{5, {}, {}}}}});
+  h.undecodable = {{"plant/cmd", 12}, {"sensor/position", 3}};
   return h;
 }
 
@@ -29,6 +30,7 @@ void expect_same(const HostHealth& a, const HostHealth& b) {
   EXPECT_EQ(a.figures.missed_steps, b.figures.missed_steps);
   EXPECT_EQ(a.figures.late_steps, b.figures.late_steps);
   EXPECT_EQ(a.figures.worst_lateness_s, b.figures.worst_lateness_s);
+  EXPECT_EQ(a.undecodable, b.undecodable);
   ASSERT_EQ(a.components.size(), b.components.size());
   for (std::size_t i = 0; i < a.components.size(); ++i) {
     EXPECT_EQ(a.components[i].component, b.components[i].component);

@@ -2,18 +2,24 @@
 # Fuzz: runtime/dds/fuzz (robodds-fuzz) publishes thousands of random payloads under the topic and
 # type names of every input topic of paper1_waypoints (random lengths and bytes, valid headers with
 # random bodies) into a real-time run of it (plant, sensors, particle filter, controller, mission,
-# evaluator; co-located). Checks: the run exits 0 (no process crashed on an undecodable payload);
+# evaluator; co-located), then a second pass with --key 1 (valid-length random bodies that decode
+# as samples of robot 1). Checks: the run exits 0 (no process crashed on an undecodable payload);
 # every CSV value is finite; robot 1's true and estimated positions stay within a generous box and
 # its states keep coming until the end (the loop kept running under fuzz). Also shows where an
 # undecodable payload is counted: the run logs it once per topic (runtime/dds/type_support.cpp),
 # while Fast DDS's own sample_lost/sample_rejected statuses of a reader stay 0 (robodds-fuzz
-# --self-check reads every topic in its own process with the runtime's type support).
+# --self-check reads every topic in its own process with the runtime's type support). The input
+# counters of summary.json add up: every consumer input of a topic counts the same (one process,
+# one stream), no more than the run's producer (one sample of robot 1 per step) plus the pass-2
+# payloads that carry robot 1, and only pass 2 causes rejections (pass 1's keys are random);
+# summary.json "hosts".<member>."undecodable" counts the dropped payloads per topic.
 # Args: ROBODDS SRC DOMAIN FUZZ (the robodds-fuzz binary).
 source "$(dirname "$0")/lib.sh"
 FUZZ="$4"
 [[ -x "$FUZZ" ]] || fail "robodds-fuzz not found at '$FUZZ'"
 DURATION_S=14
 COUNT=3000   # payloads per topic: 1000 of each kind (random, body, header)
+COUNT_KEYED=1500  # pass 2 (--key 1): 500 of each kind
 TOPICS=plant/cmd,plant/state,sensor/position,sensor/odometry,estimate/pose,mission/waypoints,control/status
 
 timeout -k 5 90 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --realtime --duration "$DURATION_S" \
@@ -26,14 +32,20 @@ fuzz_rc=0
 timeout -k 5 60 "$FUZZ" --domain "$DOMAIN" --topics "$TOPICS" --count "$COUNT" --rate 1000 --seed 9 --self-check \
   --qos "$SRC/deploy/qos/robodds_qos.xml" >"$WORK/fuzz.txt" 2>"$WORK/fuzz.log" || fuzz_rc=$?
 cat "$WORK/fuzz.txt"
-end_ns=$(sed -n 's/^written_until_ns=//p' "$WORK/fuzz.txt")
+[[ $fuzz_rc -eq 0 ]] || fail "robodds-fuzz exited $fuzz_rc: $(cat "$WORK/fuzz.log")"
+# Pass 2: valid-length random bodies of robot 1 (the run's only robot). Plausibility checks and the
+# one-producer rule must keep every one of them out of the loop.
+timeout -k 5 60 "$FUZZ" --domain "$DOMAIN" --topics "$TOPICS" --count "$COUNT_KEYED" --rate 1000 --seed 10 --key 1 \
+  --qos "$SRC/deploy/qos/robodds_qos.xml" >"$WORK/fuzz2.txt" 2>"$WORK/fuzz2.log" || fuzz_rc=$?
+cat "$WORK/fuzz2.txt"
+end_ns=$(sed -n 's/^written_until_ns=//p' "$WORK/fuzz2.txt")
 [[ -n "$end_ns" ]] || fail "robodds-fuzz printed no written_until_ns: $(cat "$WORK/fuzz.log")"
 end=$(python3 -c "print($end_ns / 1e9)")
 rc=0
 wait "$run_pid" || rc=$?
 [[ $rc -eq 0 ]] || fail "robodds run exited $rc under fuzz: $(grep -v 'deadline missed' "$WORK/run.log" | tail -20)"
-[[ $fuzz_rc -eq 0 ]] || fail "robodds-fuzz exited $fuzz_rc: $(cat "$WORK/fuzz.log")"
-echo "ok: robodds run exited 0 after $(grep -c '^fuzz ' "$WORK/fuzz.txt") topics x $COUNT random payloads" \
+[[ $fuzz_rc -eq 0 ]] || fail "robodds-fuzz --key 1 exited $fuzz_rc: $(cat "$WORK/fuzz2.log")"
+echo "ok: robodds run exited 0 after $(grep -c '^fuzz ' "$WORK/fuzz.txt") topics x ($COUNT + $COUNT_KEYED) random payloads" \
   "($(python3 -c "print(f'{$end - $start:.1f}')") s of fuzzing)"
 
 for topic in ${TOPICS//,/ }; do
@@ -93,11 +105,69 @@ for name in ("plant_state.csv", "estimate_pose.csv"):
     after = [s for s in stamps if s > fuzz_end]
     check(during and after, f"{name}: robot 1 has {len(during)} rows while fuzzing and {len(after)} after it")
     print(f"ok: {name}: robot 1 within +-{BOX} m ({len(rows)} rows, {len(during)} while fuzzing, {len(after)} after)")
-# TODO(issue #9, the `fresh` helper's counters): once summary.json counts refused samples per topic
-#   and reason and Fast DDS drops are counted, check that they add up per topic:
-#   received (decoded) + undecodable (dropped by the type support) <= written by robodds-fuzz, and
-#   for plant/cmd: undecodable + non_finite + out_of_range + unknown_instance + accepted = received.
-# TODO(issue #9, plausibility checks): add a second fuzz pass with --key 1 (valid-length random
-#   bodies decoded as samples of robot 1); today they are applied and robot 1 reaches x ~ 1e290.
+PY
+
+python3 - "$WORK/out/summary.json" "$WORK/fuzz.txt" "$WORK/fuzz2.txt" "$TOPICS" <<'PY' || fail "the input counters do not add up"
+import json, sys
+summary = json.load(open(sys.argv[1]))
+topics = sys.argv[4].split(",")
+def check(ok, what):
+    if not ok:
+        print("FAIL:", what, file=sys.stderr)
+        sys.exit(1)
+def written(path):  # topic -> {kind: payloads written}
+    out = {}
+    for line in open(path):
+        if line.startswith("fuzz "):
+            f = line.split()
+            out[f[1]] = {k: int(v) for k, v in (kv.split("=") for kv in f[2:]) if k in ("random", "body", "header", "max_size", "default_size")}
+    return out
+pass1, pass2 = written(sys.argv[2]), written(sys.argv[3])
+check(set(pass1) == set(topics) and set(pass2) == set(topics), f"robodds-fuzz reported {sorted(pass1)} and {sorted(pass2)}, expected {topics}")
+ticks = [h["ticks"] for h in summary["hosts"].values() if "ticks" in h]
+check(len(ticks) == 1, f"expected one host (co-located run), summary.json hosts: {summary['hosts']}")
+steps = ticks[0]
+by_topic = {}
+for component, inputs in summary["inputs"].items():
+    for topic, c in inputs.items():
+        if topic in topics:
+            by_topic.setdefault(topic, []).append((component, c))
+check(set(by_topic) == set(topics), f"summary.json inputs cover {sorted(by_topic)}, expected every fuzzed topic {topics}")
+for topic in topics:
+    consumers = by_topic[topic]
+    # Every consumer wants robot 1 only. Pass 1's keys are random (robot 1 has odds 2^-32 per
+    # payload), so only pass 2's `body` payloads (robot_id 1) can be counted besides the run's own
+    # producer, which writes at most one sample of robot 1 per step (the mission: one in all).
+    fuzz_robot1 = pass2[topic]["body"]
+    for component, c in consumers:
+        rejected = sum(c["rejected"].values())
+        check(c["accepted"] <= steps + 1,
+              f"{component} {topic}: accepted {c['accepted']} > {steps + 1} (steps run + 1): a fuzz payload was accepted as robot 1's")
+        check(rejected <= fuzz_robot1,
+              f"{component} {topic}: rejected {c['rejected']} in all > {fuzz_robot1} payloads of robot 1 robodds-fuzz wrote")
+        check(c["accepted"] + rejected <= steps + 1 + fuzz_robot1,
+              f"{component} {topic}: accepted + rejected {c['accepted'] + rejected} > {steps + 1} + {fuzz_robot1}")
+    # Exact: the consumers of a topic share one process and one stream of samples (same writer,
+    # same reader QoS), so each counts the same, accepted and rejected per reason.
+    first_component, first = consumers[0]
+    for component, c in consumers[1:]:
+        check((c["accepted"], c["rejected"]) == (first["accepted"], first["rejected"]),
+              f"{topic}: {component} counted accepted {c['accepted']} rejected {c['rejected']}, "
+              f"{first_component} accepted {first['accepted']} rejected {first['rejected']}")
+    # Types of fixed size and numbers only decode every `body` payload (a boolean byte other
+    # than 0/1 or a random sequence length does not decode): robot 1's producer is alive, so
+    # they must be refused (second producer, or a plausibility check).
+    if topic in ("plant/cmd", "plant/state", "sensor/position", "sensor/odometry"):
+        check(sum(first["rejected"].values()) >= 1, f"{topic}: no consumer refused any of the {fuzz_robot1} payloads of robot 1")
+    # The run's process dropped undecodable payloads and summary.json says so per topic: at least
+    # the 500 that robodds-fuzz --self-check requires of its own reader, at most twice what was
+    # written (a payload without a key hash is decoded twice: docs/interop.md).
+    undecodable = list(summary["hosts"].values())[0]["undecodable"].get(topic, 0)
+    total_written = sum(pass1[topic][k] + pass2[topic][k] for k in ("random", "body", "header"))
+    check(500 <= undecodable <= 2 * total_written,
+          f"{topic}: summary.json hosts undecodable {undecodable}, expected 500..{2 * total_written} (2 x payloads written)")
+    print(f"ok: {topic}: {undecodable} undecodable payloads dropped and counted (of {total_written} written)")
+    print(f"ok: {topic}: {len(consumers)} consumers ({', '.join(k for k, _ in consumers)}) each accepted {first['accepted']} "
+          f"(<= {steps + 1}), rejected {first['rejected']} (<= {fuzz_robot1} payloads of robot 1)")
 PY
 echo "ok: fuzz"

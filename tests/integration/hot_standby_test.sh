@@ -4,7 +4,8 @@
 # primary's host mid-run: estimate/pose resumes from the standby within 1.1 s (DDS exclusive
 # ownership, the liveliness lease of the `state` profile), no sample of the two is refused as a
 # second producer, the readers log the hand-over, and the robot does not stand still for longer
-# than 1.1 s (plant_state.csv v). A standby in lockstep or co-located is refused at start-up.
+# than 1.1 s (plant_state.csv v); summary.json's "standby" section (the evaluator's hand-over time)
+# agrees with the CSV. A standby in lockstep or co-located is refused at start-up.
 source "$(dirname "$0")/lib.sh"
 S="$WORK/standby.yaml"
 sed -e 's/^  - {name: estimator, type: pf_estimator}$/&\n  - {name: estimator_standby, type: pf_estimator, standby_for: estimator}/' \
@@ -62,6 +63,18 @@ if gap > 1.1:
     sys.exit(f"FAIL: hand-over took {gap:.3f} s > 1.1 s")
 if est[-1] < killed_at + 3.0:
     sys.exit("FAIL: estimate/pose did not continue from the standby")
+# The evaluator's own figure (summary.json "standby", from the same stamps as it takes them; it
+# counts gaps after metrics_after_s = 5 s, before the kill) must be this one.
+import json
+standby = json.load(open(f"{out}/summary.json")).get("standby")
+if standby is None:
+    sys.exit("FAIL: summary.json has no \"standby\" section although the scenario has a hot standby")
+figure = standby["robots"]["1"]
+print(f"evaluator: handover_s {figure['handover_s']}, from {figure['from_s']} s to {figure['to_s']} s")
+if abs(figure["handover_s"] - gap) > 1e-3 or abs(figure["from_s"] - (last_old - epoch)) > 0.05:
+    sys.exit(f"FAIL: the evaluator's hand-over {figure} differs from the CSV's {gap:.6f} s from {last_old - epoch:.6f} s")
+if figure["handover_s"] > 1.1:
+    sys.exit(f"FAIL: the evaluator reports a hand-over of {figure['handover_s']} s > 1.1 s")
 v = column(f"{out}/plant_state.csv", "v")
 moving = [t for t, speed in v if abs(speed) > 1e-9]
 stopped, start = 0.0, None

@@ -2,11 +2,12 @@
 # Interop with another DDS implementation (docs/interop.md): a real-time robodds run (a plant and
 # an evaluator, no robodds commander) whose commands come from Cyclone DDS. tests/interop/
 # cyclone_probe reads plant/state from the run and writes hostile plant/cmd samples (NaN, +-Inf,
-# 1e300, a mode outside the enum, stamps INT64_MAX and INT64_MIN), then valid commands, then stops
-# writing. Checks: the run exits 0; the valid Cyclone commands drive the plant (v = 0.2 recorded);
+# 1e300, a mode outside the enum, stamps INT64_MAX and INT64_MIN), then valid commands, then one
+# command stamped INT64_MAX, then stops writing. Checks: the run exits 0; the valid Cyclone commands drive the plant (v = 0.2 recorded);
 # every plant/state value (CSV and as read by Cyclone) is finite and within a box; the plant stops
 # (v = omega = 0) within its command_timeout_s after the last Cyclone command; the non-finite
-# samples are refused (plant log, evaluator's rejected_samples).
+# samples are refused (plant log, evaluator's rejected_samples); the plant's counters in summary.json
+# ("inputs"."plant"."plant/cmd") are exactly what the probe sent, per rejection reason.
 # Args: ROBODDS SRC DOMAIN PROBE (PROBE "none": Cyclone DDS was not found, the test is skipped).
 source "$(dirname "$0")/lib.sh"
 PROBE="${4:-none}"
@@ -83,11 +84,33 @@ print(f"ok: plant_state finite and within +-{BOX} m ({len(rows)} rows, {n} read 
 summary = json.load(open(summary_json))
 rejected = summary["metrics"]["rejected_samples"]["plant/cmd"]
 check(rejected >= 4, f"evaluator rejected {rejected} plant/cmd samples, expected >= 4 (NaN v, +Inf omega, -Inf v, NaN v_left)")
-print(f"ok: evaluator refused {rejected} non-finite Cyclone commands")
-# TODO(issue #9, `fresh` helper's per-topic/per-reason counters): once summary.json has them, check
-#   plant/cmd rejected: non_finite >= 4, stamp_in_future >= 1, bad_enum >= 1 (and out_of_limits >= 3
-#   for 1e300), counted by the plant, not only by the evaluator.
-# TODO(issue #9, command age by receive time): end the hostile pattern with the INT64_MAX-stamped
-#   sample (no valid command after it) and still require the stop within command_timeout_s.
+print(f"ok: evaluator refused {rejected} hostile Cyclone commands (>= 4 non-finite)")
+
+# The plant's own counters (summary.json "inputs"): exactly what the probe sent, per reason. The
+# probe writes RELIABLE with a history deeper than its pattern, 50 ms apart, after discovery
+# settled (the log check above already requires the very first sample), and the plant's reader
+# takes each sample as it arrives: every sample is delivered and counted once.
+sent = {}
+for line in open(cmd_txt):
+    if line.startswith("cmd "):
+        label = line.split()[1]
+        sent[label] = sent.get(label, 0) + 1
+expected = {
+    "non_finite": sum(sent.get(k, 0) for k in ("nan_v", "inf_omega", "minus_inf_v", "nan_wheel")),
+    "absurd_magnitude": sum(sent.get(k, 0) for k in ("absurd_v", "absurd_omega", "absurd_wheels")),
+    "bad_enum": sent.get("bad_enum", 0),
+    "stamp_in_future": sent.get("stamp_future", 0) + sent.get("stamp_future_last", 0),
+    "negative_stamp": sent.get("stamp_negative", 0),
+}
+check(expected == {"non_finite": 4, "absurd_magnitude": 3, "bad_enum": 1, "stamp_in_future": 2, "negative_stamp": 1},
+      f"the probe's hostile pattern is not what this test expects: {sent}")
+last_label = [l for l in open(cmd_txt) if l.startswith("cmd ")][-1].split()[1]
+check(last_label == "stamp_future_last", f"the probe's last command is {last_label}, not the INT64_MAX-stamped one")
+counts = summary["inputs"]["plant"]["plant/cmd"]
+check(counts["rejected"] == expected,
+      f"plant rejected {counts['rejected']} on plant/cmd, expected exactly {expected} (what the probe sent)")
+check(counts["accepted"] == sent.get("valid", 0),
+      f"plant accepted {counts['accepted']} plant/cmd samples, expected {sent.get('valid', 0)} (the valid commands)")
+print(f"ok: plant counted exactly what Cyclone sent: accepted {counts['accepted']}, rejected {counts['rejected']}")
 PY
 echo "ok: interop with Cyclone DDS"

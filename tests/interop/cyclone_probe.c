@@ -153,7 +153,9 @@ static int write_cmd(dds_domainid_t domain, uint32_t robot, int hostile, double 
   dds_qos_t* qos = dds_create_qos();
   dds_qset_reliability(qos, DDS_RELIABILITY_RELIABLE, DDS_SECS(1));
   dds_qset_durability(qos, DDS_DURABILITY_VOLATILE);
-  dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, 1);
+  /* Deeper than the pattern (31 samples): reliable delivery of every sample, none replaced
+   * before it was acknowledged, so the plant can count each (tests/integration/interop_cyclone_test.sh). */
+  dds_qset_history(qos, DDS_HISTORY_KEEP_LAST, 64);
   dds_qset_deadline(qos, DDS_MSECS(300));
   dds_qset_liveliness(qos, DDS_LIVELINESS_MANUAL_BY_TOPIC, DDS_SECS(1));
   dds_data_representation_id_t xcdr1 = DDS_DATA_REPRESENTATION_XCDR1;
@@ -199,12 +201,16 @@ static int write_cmd(dds_domainid_t domain, uint32_t robot, int hostile, double 
       {"stamp_negative", 0, 0.3, 0.0, 0.0, 0.0, -1},
   };
   static const struct Command kValid = {"valid", 0, 0.2, 0.1, 0.0, 0.0, 0};
+  /* The hostile pattern ends with a valid-looking command stamped INT64_MAX: a plant that aged
+   * commands by their stamp would hold it forever; it must be refused and the plant stop. */
+  static const struct Command kLast = {"stamp_future_last", 0, 0.3, 0.0, 0.0, 0.0, 1};
   const int n_hostile = hostile ? (int)(sizeof kHostile / sizeof kHostile[0]) : 0;
   const int n_valid = 20;
+  const int n_last = hostile ? 1 : 0;
   uint64_t step = 0;
   int64_t last_write = 0;
-  for (int i = 0; i < n_hostile + n_valid; ++i) {
-    const struct Command* c = i < n_hostile ? &kHostile[i] : &kValid;
+  for (int i = 0; i < n_hostile + n_valid + n_last; ++i) {
+    const struct Command* c = i < n_hostile ? &kHostile[i] : i < n_hostile + n_valid ? &kValid : &kLast;
     robodds_probe_RawVelocityCommand s;
     memset(&s, 0, sizeof s);
     s.robot_id = robot;

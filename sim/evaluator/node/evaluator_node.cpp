@@ -55,10 +55,20 @@ class EvaluatorNode : public Component {
     }
     const auto from_step = static_cast<std::uint64_t>(std::llround(params.metrics_after_s / ctx.step_s()));
     metrics_ = std::make_unique<Metrics>(from_step, consumers);
+    metrics_after_s_ = params.metrics_after_s;
+    for (const ComponentSpec& component : ctx.scenario().components) {
+      standby_ |= !component.standby_for.empty() && consumers.estimates;
+    }
     ctx.request_run_health();  // summary.json "hosts" and "inputs" (health_summary.hpp)
   }
 
   void on_step(const StepInfo& info) override {
+    if (!started_) {
+      // The run's start as a stamp (s): sim time 0 in lockstep, the epoch's wall clock in real time.
+      started_ = true;
+      start_s_ = static_cast<double>(info.stamp_ns) * 1e-9 - info.time_s;
+      metrics_->set_gaps_after_s(start_s_ + metrics_after_s_);
+    }
     if (!files_open_ && !context_->output_dir().empty()) {
       // At the first step, not at configure: a run that never starts leaves no files.
       files_open_ = true;
@@ -110,6 +120,7 @@ class EvaluatorNode : public Component {
     json.value("step_s", context_->step_s());
     write_metrics_section(json);
     write_run_section(json);
+    write_standby_section(json);
     write_health_sections(json, context_->run_figures());
     json.end_object();
     const std::string path = context_->output_dir() + "/summary.json";
@@ -124,6 +135,31 @@ class EvaluatorNode : public Component {
     if (std::rename(temporary.c_str(), path.c_str()) != 0) {
       throw RunError("evaluator: cannot rename " + temporary + " to " + path + ": " + std::strerror(errno));
     }
+  }
+
+  /// "standby", only when the scenario has a hot standby (ComponentSpec::standby_for) and
+  /// estimate/pose is recorded: per robot the longest gap between estimate/pose samples after
+  /// metrics_after_s, the hand-over time (handover.hpp), and its ends in s since the run's start.
+  void write_standby_section(JsonWriter& json) const {
+    if (!standby_) {
+      return;
+    }
+    const auto round6 = [](double s) { return std::round(s * 1e6) / 1e6; };
+    json.begin_object("standby");
+    json.value("topic", std::string("estimate/pose"));
+    json.begin_object("robots");
+    for (std::uint64_t key : keys_) {
+      const RobotMetrics* r = metrics_->find(static_cast<std::uint32_t>(key));
+      const Gap gap = r != nullptr ? r->estimate_gaps.longest() : Gap{};
+      json.begin_object(std::to_string(key));
+      json.value("handover_s", round6(gap.length_s));
+      json.value("from_s", round6(gap.length_s > 0.0 ? gap.from_s - start_s_ : 0.0));
+      json.value("to_s", round6(gap.length_s > 0.0 ? gap.to_s - start_s_ : 0.0));
+      json.value("samples", static_cast<std::int64_t>(r != nullptr ? r->estimate_gaps.samples() : 0));
+      json.end_object();
+    }
+    json.end_object();
+    json.end_object();
   }
 
   /// "status": "completed", or "failed" with the error line that ended the run as "reason".
@@ -237,6 +273,10 @@ class EvaluatorNode : public Component {
   const ComponentContext* context_ = nullptr;  // owned by the host, which keeps it while it runs us
   std::uint64_t steps_ = 0;  // steps whose samples were taken (the last one + 1)
   bool files_open_ = false;
+  bool started_ = false;         // the first step was seen (start_s_ is known)
+  bool standby_ = false;         // the scenario has a hot standby: write "standby"
+  double start_s_ = 0.0;         // the run's start as a stamp (s)
+  double metrics_after_s_ = 0.0;
 };
 
 }  // namespace

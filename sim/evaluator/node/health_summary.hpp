@@ -9,7 +9,8 @@
 
 namespace robodds::evaluator {
 
-/// Writes "hosts" ({member: {ticks, missed_steps, late_steps, worst_lateness_s}}, plus
+/// Writes "hosts" ({member: {ticks, missed_steps, late_steps, worst_lateness_s, undecodable:
+/// {topic: samples dropped undecoded}}}, plus
 /// {"reported": false} for each member not heard from) and "inputs" ({component: {topic:
 /// {accepted, rejected: {reason: n}, adjusted: {reason: n}}}}) into the open object of `json`.
 void write_health_sections(JsonWriter& json, const RunFigures& figures);

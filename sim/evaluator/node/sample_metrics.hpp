@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "robodds/idl/robodds.h"
+#include "sim/evaluator/handover.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
 
@@ -18,9 +19,9 @@ namespace robodds::evaluator {
 /// What the metrics need of one robot, updated sample by sample: running figures and the few
 /// samples still waiting for their match, never the whole history.
 struct RobotMetrics {
-  explicit RobotMetrics(std::uint64_t from_step)
+  RobotMetrics(std::uint64_t from_step, double gaps_after_s)
       : fixes(position_distance, from_step), position(position_distance, from_step),
-        heading(heading_difference, from_step) {}
+        heading(heading_difference, from_step), estimate_gaps(gaps_after_s) {}
   TrackSummary truth;
   TruthWindow recent_truth;
   MatchedError fixes;     // sensor/position against truth
@@ -30,6 +31,7 @@ struct RobotMetrics {
   bool has_command = false;
   double max_abs_omega = 0.0;
   double max_abs_v = 0.0;
+  GapTracker estimate_gaps;  // estimate/pose stamps (s): a hot standby's hand-over time
 };
 
 /// Which metrics consume truth samples: those whose topics are recorded.
@@ -57,6 +59,7 @@ class Metrics {
     const PoseSample s{m.header().step(), m.x(), m.y(), m.theta()};
     robot(m.robot_id()).position.add(s);
     robot(m.robot_id()).heading.add(s);
+    robot(m.robot_id()).estimate_gaps.observe(static_cast<double>(m.header().stamp_ns()) * 1e-9);
   }
   void observe(const idl::VelocityCommand& m) {
     RobotMetrics& r = robot(m.robot_id());
@@ -97,15 +100,19 @@ class Metrics {
     }
   }
 
+  /// Gaps between estimate/pose samples count from this stamp (s) on; set before the first sample.
+  void set_gaps_after_s(double after_s) { gaps_after_s_ = after_s; }
+
   const RobotMetrics* find(std::uint32_t id) const {
     auto it = robots_.find(id);
     return it != robots_.end() ? &it->second : nullptr;
   }
 
  private:
-  RobotMetrics& robot(std::uint32_t id) { return robots_.try_emplace(id, from_step_).first->second; }
+  RobotMetrics& robot(std::uint32_t id) { return robots_.try_emplace(id, from_step_, gaps_after_s_).first->second; }
 
   std::uint64_t from_step_;
+  double gaps_after_s_ = 0.0;
   TruthConsumers consumers_;
   std::map<std::uint32_t, RobotMetrics> robots_;
 };

@@ -112,6 +112,54 @@ TEST(EvaluatorNode, AFailedRunKeepsTheRowsSoFarAndSaysWhyInTheSummary) {
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("1": \{\s*"path_length_m": 5,)"))) << "metrics of the data so far: " << summary;
 }
 
+// A scenario with a hot standby (standby_for): summary.json "standby" holds each robot's longest
+// gap between estimate/pose samples (the hand-over time); without one there is no such section.
+const char* kStandbyScenario = R"(name: evaluator_standby
+step_s: 0.01
+duration_s: 0.1
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: estimator, type: pf_estimator}
+  - {name: estimator_standby, type: pf_estimator, standby_for: estimator}
+  - {name: evaluator, type: evaluator, params: {topics: [estimate/pose], metrics_after_s: 0.0}}
+)";
+
+void feed_estimates_with_a_gap(NodeHarness& h) {
+  h.feed([&h](std::uint64_t step) {
+    if (step >= 3 && step <= 6) {
+      return;  // the primary died after step 2, the standby's first sample is step 7
+    }
+    idl::PoseEstimate s;
+    s.robot_id(1);
+    h.publish("estimate/pose", s, step, step == 2 ? 7 : step + 1);  // lockstep: nothing before step 7
+  });
+}
+
+TEST(EvaluatorNode, WithAHotStandbyTheSummaryHasTheHandOverTime) {
+  NodeHarness h(kStandbyScenario);
+  add_evaluator(h);
+  feed_estimates_with_a_gap(h);
+  h.run({"evaluator"});
+  const std::string summary = text_of(h.output_dir() + "/summary.json");
+  EXPECT_TRUE(std::regex_search(
+      summary, std::regex(R"("standby": \{\s*"topic": "estimate/pose",\s*"robots": \{\s*"1": \{\s*"handover_s": 0.05,\s*)"
+                          R"("from_s": 0.02,\s*"to_s": 0.07,\s*"samples": 7\s*\})")))
+      << summary;
+}
+
+TEST(EvaluatorNode, WithoutAHotStandbyTheSummaryHasNoStandbySection) {
+  std::string scenario = kStandbyScenario;
+  scenario.erase(scenario.find("  - {name: estimator_standby"), std::string("  - {name: estimator_standby, type: pf_estimator, standby_for: estimator}\n").size());
+  NodeHarness h(scenario);
+  add_evaluator(h);
+  feed_estimates_with_a_gap(h);
+  h.run({"evaluator"});
+  const std::string summary = text_of(h.output_dir() + "/summary.json");
+  EXPECT_EQ(summary.find("\"standby\""), std::string::npos) << summary;
+}
+
 TEST(EvaluatorNode, ATopicThatIsNotPerRobotIsAConfigError) {
   NodeHarness h(R"(name: evaluator_node
 step_s: 0.01

@@ -27,6 +27,7 @@ TEST(HealthSummary, EveryHostAndEveryInputOfItsComponents) {
   cmd.adjusted["saturated"] = 2;
   sim.components.push_back({"plant", {{"plant/cmd", cmd}}});
   sim.components.push_back({"mission", {}});  // no inputs: not listed under "inputs"
+  sim.undecodable["plant/cmd"] = 7;
   HostHealth eval;
   eval.member = "eval";
   eval.figures.ticks = 1001;
@@ -38,9 +39,9 @@ TEST(HealthSummary, EveryHostAndEveryInputOfItsComponents) {
             "{\n"
             "  \"hosts\": {\n"
             "    \"eval\": {\n      \"ticks\": 1001,\n      \"missed_steps\": 0,\n      \"late_steps\": 0,\n"
-            "      \"worst_lateness_s\": 0\n    },\n"
+            "      \"worst_lateness_s\": 0,\n      \"undecodable\": {}\n    },\n"
             "    \"sim\": {\n      \"ticks\": 1001,\n      \"missed_steps\": 416,\n      \"late_steps\": 30,\n"
-            "      \"worst_lateness_s\": 0.123457\n    },\n"
+            "      \"worst_lateness_s\": 0.123457,\n      \"undecodable\": {\n        \"plant/cmd\": 7\n      }\n    },\n"
             "    \"control\": {\n      \"reported\": false\n    }\n"
             "  },\n"
             "  \"inputs\": {\n"
