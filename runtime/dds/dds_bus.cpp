@@ -22,6 +22,7 @@
 #include "runtime/dds/participant.hpp"
 #include "runtime/dds/qos_files.hpp"
 #include "runtime/error.hpp"
+#include "runtime/shutdown_watchdog.hpp"
 #include "runtime/dds/type_support.hpp"
 #include "runtime/dds/undecodable.hpp"
 
@@ -73,7 +74,11 @@ class FastDdsBus : public DdsBus {
 
   // The readers first (close_readers() waits for a callback in progress), then participant_
   // deletes the other entities and itself before the listeners and peers_ die.
-  ~FastDdsBus() override { close_readers(); }
+  // Histories are emptied before participant_ deletes the writers (see clear_writer_histories()).
+  ~FastDdsBus() override {
+    close_readers();
+    clear_writer_histories();
+  }
 
   std::shared_ptr<WriterHandle> writer(const std::string& topic, const std::string& type_name, const std::string& profile) override {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -137,6 +142,7 @@ class FastDdsBus : public DdsBus {
 
   void close_readers() override {
     std::lock_guard<std::mutex> lock(mutex_);
+    ShutdownWatchdog watchdog("deleting the DDS readers (each waits for its callback in progress)");
     for (auto& [key, pending] : readers_) {
       if (pending.reader != nullptr) {
         // Waits for a callback in progress on this reader (Fast DDS takes the reader's lock).
@@ -147,11 +153,36 @@ class FastDdsBus : public DdsBus {
     started_ = false;  // a reader() call after this must not resurrect readers
   }
 
+  // One deadline for all writers (not `timeout` each: with a peer gone, every reliable writer
+  // would wait it out in turn). A signal meanwhile ends the process (shutting_down()).
+  // Fast DDS 2.9 deletes a writer by releasing its history's samples one by one, each under the
+  // writer's lock but while they are still in the history (RTPSWriter::deinit(); Fast-DDS#4076,
+  // fixed in 2.13). A periodic heartbeat between two releases (every 10 ms while a reader has not
+  // acknowledged, e.g. one of a SIGKILLed peer, matched until its lease ends) sees the released
+  // samples' sequence number 0 as a hole before the first kept one and counts gaps up to it
+  // across 2^64 numbers, holding the writer's lock: the deleting thread waits forever (seen with
+  // gdb: StatefulWriter::add_gaps_for_holes_in_history_ spinning, ~StatefulWriter in
+  // RTPSWriter::release_change). clear_history() removes all samples in one go under that lock,
+  // so deinit() has none left to release.
+  void clear_writer_histories() {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ShutdownWatchdog watchdog("emptying the DDS writers' histories");
+    for (auto& [key, writer] : writers_) {
+      std::size_t removed = 0;
+      writer->writer()->clear_history(&removed);  // RETCODE_ERROR when it was empty already
+    }
+  }
+
   void flush(std::chrono::milliseconds timeout) override {
     std::lock_guard<std::mutex> lock(mutex_);
-    const auto deadline = eprosima::fastrtps::Duration_t(static_cast<double>(timeout.count()) / 1000.0);
+    ShutdownWatchdog watchdog("waiting for the acknowledgement of the last samples", timeout + shutdown_limit());
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
     for (auto& [key, writer] : writers_) {
-      writer->writer()->wait_for_acknowledgments(deadline);
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+      if (left.count() <= 0) {
+        break;
+      }
+      writer->writer()->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(static_cast<double>(left.count()) / 1000.0));
     }
   }
 

@@ -4,6 +4,7 @@
 
 #include "runtime/error.hpp"
 #include "runtime/log.hpp"
+#include "runtime/shutdown_watchdog.hpp"
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;
@@ -13,12 +14,15 @@ void ParticipantDeleter::operator()(dds::DomainParticipant* participant) const {
   if (participant == nullptr) {
     return;
   }
+  const std::string name = participant->get_qos().name().to_string();
+  // Fast DDS waits here for its event/receive threads and locks without a timeout of its own.
+  ShutdownWatchdog watchdog("deleting DDS participant '" + name + "' and its writers and readers");
   participant->set_listener(nullptr);
   if (participant->delete_contained_entities() != ReturnCode_t::RETCODE_OK) {
-    log::warn("dds", "could not delete the entities of participant " + participant->get_qos().name().to_string());
+    log::warn("dds", "could not delete the entities of participant " + name);
   }
   if (dds::DomainParticipantFactory::get_instance()->delete_participant(participant) != ReturnCode_t::RETCODE_OK) {
-    log::warn("dds", "could not delete participant " + participant->get_qos().name().to_string());
+    log::warn("dds", "could not delete participant " + name);
   }
 }
 

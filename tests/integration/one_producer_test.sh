@@ -46,9 +46,16 @@ wait "${pid[sim]}" || rc=$?
 echo "the coordinator exited $rc, $(echo "$(date +%s.%N) - $restarted" | bc) s after the restart"
 grep -hE "topic sensor/(position|odometry) \(robot_id=1\) has two producers: '[^']+' \(writer [^)]+\) and '[^']+' \(writer [^)]+\)" \
   "$out".*.log | head -1 | grep -q . || fail "no error names the topic and both writers: $(tail -qn 3 "$out".*.log)"
-# Leave no host behind (a later run on this domain would see its writers).
+# Leave no host behind (a later run on this domain would see its writers). SIGTERM must stop every
+# host, also one already shutting down (it used to hang in Fast DDS there, ignoring SIGTERM):
+# one that is still running 15 s later fails the test instead of being SIGKILLed out of sight.
 for p in "${cleanup_pids[@]}"; do
   kill "$p" 2>/dev/null || true
-  timeout 10 tail --pid="$p" -f /dev/null || kill -9 "$p" 2>/dev/null || true
+done
+for p in "${cleanup_pids[@]}"; do
+  if ! timeout 15 tail --pid="$p" -f /dev/null; then
+    kill -9 "$p" 2>/dev/null || true
+    fail "host $p did not exit within 15 s of SIGTERM: $(tail -qn 2 "$out".*.log)"
+  fi
 done
 echo "ok: a restarted lockstep group is refused: $(grep -hoE "topic sensor/[a-z]+ \(robot_id=1\) has two producers: .*\)" "$out".*.log | head -1)"

@@ -5,14 +5,28 @@
 #include <cstdlib>
 #include <string>
 
+#include <unistd.h>
+
 #include "runtime/error.hpp"
+#include "runtime/shutdown_watchdog.hpp"
 
 namespace robodds::cli {
 namespace {
 
 std::atomic<bool> g_stop{false};
 
-void on_signal(int) { g_stop = true; }
+// A signal asks the run loop to stop (outputs are written, exit 130). Once the run has ended, no
+// loop looks at g_stop any more: a signal while the process tears down its DDS entities
+// (shutting_down(), a step Fast DDS may block in) ends the process at once with 128 + signal.
+void on_signal(int signal_number) {
+  g_stop = true;
+  if (shutting_down()) {
+    static const char kLine[] = "robodds: error: stopped by a signal during shutdown\n";
+    const ssize_t ignored = ::write(STDERR_FILENO, kLine, sizeof(kLine) - 1);
+    (void)ignored;
+    ::_exit(128 + signal_number);
+  }
+}
 
 }  // namespace
 
