@@ -2,6 +2,7 @@
 #include "sim/plant/node/plant_node.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <map>
 #include <optional>
 
@@ -36,7 +37,7 @@ class PlantNode : public Component {
 
   void on_step(const StepInfo& info) override {
     for (auto& [id, robot] : robots_) {
-      const model::Twist twist = command_for(id);
+      const model::Twist twist = command_for(id, info.stamp_ns);
       if (info.dt_s > 0.0) {
         robot.pose = model::integrate_exact(robot.pose, twist, info.dt_s);
       }
@@ -58,7 +59,23 @@ class PlantNode : public Component {
     model::Twist applied;
   };
 
-  model::Twist command_for(std::uint32_t id) {
+  /// How long `cmd` was held up on its way, beyond the fastest command of this robot so far.
+  /// Its delay (receive wall time - sender's stamp) includes the two clocks' offset; the smallest
+  /// delay seen is that offset plus the fastest transit, so the difference is the hold-up,
+  /// whatever the offset. A command queued in the sender's kernel while a cable was cut is
+  /// delivered when the link returns, seconds old but just received
+  /// (integration.netns_link_cut); the receive age alone would call it fresh.
+  double held_up_s(std::uint32_t id, const idl::VelocityCommand& cmd, std::int64_t now_wall_ns, double age_s) {
+    const std::int64_t received_wall_ns = now_wall_ns - static_cast<std::int64_t>(std::llround(age_s * 1e9));
+    const std::int64_t delay_ns = received_wall_ns - cmd.header().stamp_ns();
+    auto [it, first] = fastest_delay_ns_.try_emplace(id, delay_ns);
+    if (!first && delay_ns < it->second) {
+      it->second = delay_ns;
+    }
+    return static_cast<double>(delay_ns - it->second) * 1e-9;
+  }
+
+  model::Twist command_for(std::uint32_t id, std::int64_t now_wall_ns) {
     const idl::VelocityCommand* cmd = commands_->latest(id);
     if (cmd == nullptr) {
       return model::Twist{};  // no command yet: stand still
@@ -67,7 +84,7 @@ class PlantNode : public Component {
       // Age by this process's receive time (monotonic), never by the sender's stamp: a stamp in
       // the future would otherwise keep a command alive forever.
       const std::optional<double> age_s = commands_->age_s(id);
-      if (!age_s || *age_s > params_.command_timeout_s) {
+      if (!age_s || *age_s + held_up_s(id, *cmd, now_wall_ns, *age_s) > params_.command_timeout_s) {
         return model::Twist{};  // stale command: safe stop
       }
     }
@@ -92,6 +109,7 @@ class PlantNode : public Component {
   }
 
   std::map<std::uint32_t, std::uint64_t> counted_saturation_;  // robot -> step of the last command counted
+  std::map<std::uint32_t, std::int64_t> fastest_delay_ns_;  // robot -> smallest receive wall time - stamp (real time)
 
   PlantParams params_;
   std::map<std::uint32_t, Robot> robots_;

@@ -234,6 +234,39 @@ TEST(PlantNode, RealTimeCommandAgeIsJudgedByReceiveTimeNotTheSendersClock) {
   }
 }
 
+// A command held up on its way (queued in the sender's kernel while a cable was cut, delivered
+// when the link returned: integration.netns_link_cut) is just received but seconds old. The
+// plant measures the hold-up against the fastest delay of that robot's commands, so the clocks'
+// offset cancels out, and adds it to the receive age: robot 1's late command is never applied;
+// robot 2's command of the same step, not held up, is.
+TEST(PlantNode, RealTimeCommandHeldUpOnTheWayIsStale) {
+  NodeHarness h(kRealTimeScenario);
+  add_plant(h);
+  h.set_mode(TimeMode::kRealtime);
+  constexpr std::uint64_t kLate = 40;  // the link is back: a 1 s old command arrives
+  h.feed([&h](std::uint64_t step) {
+    if (step <= 10) {
+      h.publish("plant/cmd", velocity(1, 1.0, 0.0), step, step + 1);
+      h.publish("plant/cmd", velocity(2, 1.0, 0.0), step, step + 1);
+    }
+    if (step == kLate) {
+      h.publish_stamped("plant/cmd", velocity(1, 0.5, 0.0), step, step + 1, wall_clock_now_ns() - 1'000'000'000);
+      h.publish("plant/cmd", velocity(2, 0.5, 0.0), step, step + 1);
+    }
+  });
+  const auto& states = h.record<idl::RobotState>("plant/state");
+  h.run({"plant"});
+  int late_applied = 0;
+  int fresh_applied = 0;
+  for (const idl::RobotState& s : states) {
+    if (s.header().step() > kLate) {
+      (s.robot_id() == 1 ? late_applied : fresh_applied) += s.v() == 0.5 ? 1 : 0;
+    }
+  }
+  EXPECT_EQ(late_applied, 0) << "robot 1 moved on a command held up for 1 s";
+  EXPECT_GT(fresh_applied, 0) << "robot 2 never moved on its fresh command";
+}
+
 TEST(PlantNode, CommandTimeoutMustExceedThePlantPeriod) {
   NodeHarness h(R"(name: bad_timeout
 step_s: 0.01
