@@ -14,7 +14,9 @@ const params::ParamTable<SuperTwistingParams>& super_twisting_param_table() {
           .add("c", &P::c, "1/s^2", params::positive(), "gain on e in the rate equation")
           .add("d", &P::d, "1/s", params::non_negative("0 = plain super-twisting"), "linear gain on e, J of eq. (3)")
           .add("restart_jump_m", &P::restart_jump_m, "m", params::non_negative("0 = never restart"),
-               "a range step the rate misses by more than this restarts the observer");
+               "a range step the rate misses by more than this restarts the observer")
+          .add("restart_window_s", &P::restart_window_s, "s", params::positive(),
+               "after a restart: least-squares window that sets range and rate; not valid until full");
   return table;
 }
 
@@ -25,7 +27,9 @@ const params::ParamTable<LinearObserverParams>& linear_observer_param_table() {
           .add("k1", &P::k1, "1/s", params::positive(), "gain on the range error in the range equation")
           .add("k2", &P::k2, "1/s^2", params::positive(), "gain on the range error in the rate equation")
           .add("restart_jump_m", &P::restart_jump_m, "m", params::non_negative("0 = never restart"),
-               "a range step the rate misses by more than this restarts the observer");
+               "a range step the rate misses by more than this restarts the observer")
+          .add("restart_window_s", &P::restart_window_s, "s", params::positive(),
+               "after a restart: least-squares window that sets range and rate; not valid until full");
   return table;
 }
 

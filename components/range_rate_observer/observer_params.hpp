@@ -25,9 +25,11 @@ struct SuperTwistingParams {
   double c = 1.0;
   double d = 1.0;
   /// The step is measured between two samples; it means a new target or range source. The
-  /// observer restarts at the new range instead of a transient of hundreds of m/s; the next
-  /// sample sets the rate.
+  /// observer restarts at the new range instead of a transient of hundreds of m/s.
   double restart_jump_m = 5.0;
+  /// After a restart the state is re-initialised from a least-squares line through the samples
+  /// of this long a window (s); the estimate is not valid until the window is full.
+  double restart_window_s = 0.5;
 
   /// Throws std::invalid_argument "key: requirement (got value)" for the first bad field.
   void validate() const;
@@ -42,7 +44,8 @@ struct SuperTwistingParams {
 struct LinearObserverParams {
   double k1 = 3.0;
   double k2 = 2.25;
-  double restart_jump_m = 5.0;  // as SuperTwistingParams::restart_jump_m
+  double restart_jump_m = 5.0;    // as SuperTwistingParams::restart_jump_m
+  double restart_window_s = 0.5;  // as SuperTwistingParams::restart_window_s
 
   void validate() const;
 };

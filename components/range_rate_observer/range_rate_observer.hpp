@@ -17,6 +17,9 @@ struct RangeRateEstimate {
   double time_s = 0.0;
   double range_m = 0.0;    // s_hat
   double rate_mps = 0.0;   // v_hat, the range-rate estimate (positive: the range grows)
+  /// false while a restart window fills (see RangeRateObserver::update): do not use the
+  /// estimate then.
+  bool valid = true;
 };
 
 template <class Params, ObserverDerivative (*Derivative)(const Params&, double, double)>
@@ -26,15 +29,26 @@ class RangeRateObserver {
   explicit RangeRateObserver(Params params) : params_(std::move(params)) { params_.validate(); }
 
   /// Feeds the range measured at time_s (s, strictly increasing) and returns the estimate at
-  /// time_s. The first sample starts the observer at (range, rate 0). A non-finite input or a
-  /// time that does not advance throws std::invalid_argument and leaves the state unchanged.
+  /// time_s. The first sample starts the observer at (range, rate 0), valid at once: the
+  /// convergence from an unknown rate is the observer's own transient (the paper's figures). A
+  /// non-finite input or a time that does not advance throws std::invalid_argument and leaves the
+  /// state unchanged.
   ///
   /// Restart: when the range moved between two samples by more than restart_jump_m beyond what
-  /// the rate estimate explains, |(s_k - s_k-1) - v_hat dt| (a new target or range source), the
-  /// observer starts again at the new range and the next sample sets the rate from the difference
-  /// of the two. Measured differences, not s_hat, are compared, so the range error of a converging
-  /// observer never triggers it, and a fast target at a coarse sample rate restarts once at most
-  /// (while v_hat is still far off), not on every sample.
+  /// the rate estimate explains, |(s_k - s_k-1) - v_hat dt| (a new target or range source), or
+  /// after restart(), the observer opens a window at that sample. Measured differences, not
+  /// s_hat, are compared, so the range error of a converging observer never triggers it, and a
+  /// fast target at a coarse sample rate restarts once at most (while v_hat is still far off).
+  ///
+  /// Window: for restart_window_s the samples are collected; the estimate is `valid == false` and
+  /// must not be used. Meanwhile it reports the least-squares line through the window's samples
+  /// (range: the line at time_s; rate: its slope), and with one sample only that range and the
+  /// rate held from before the restart. At the first sample at least restart_window_s after the
+  /// window opened the observer restarts from that line (s_hat = the line at time_s, v_hat = its
+  /// slope) and is valid again. One noisy difference would set v_hat off by sqrt(2) sigma / T
+  /// (0.5 m at 50 Hz: ~35 m/s); the slope over N samples spanning W is off by about
+  /// sigma sqrt(12 / N) / W (0.5 m, 26 samples over 0.5 s: ~0.7 m/s). A jump inside the window
+  /// opens a new one.
   RangeRateEstimate update(double time_s, double range_m) {
     if (!std::isfinite(time_s) || !std::isfinite(range_m)) {
       throw std::invalid_argument("range-rate observer: non-finite input (time_s " + shortest_text(time_s) +
@@ -42,6 +56,7 @@ class RangeRateObserver {
     }
     if (!started_) {
       start_at(time_s, range_m, 0.0);
+      restart_requested_ = false;
       return estimate_;
     }
     if (!(time_s > estimate_.time_s)) {
@@ -49,15 +64,18 @@ class RangeRateObserver {
                                   shortest_text(estimate_.time_s) + " s)");
     }
     const double dt = time_s - estimate_.time_s;
-    if (rate_from_next_difference_) {
-      start_at(time_s, range_m, (range_m - last_range_m_) / dt);
+    // One sample into a window there is no rate to predict with: the second one is not checked.
+    const bool can_predict = !window_open_ || window_.count >= 2;
+    const double unexplained_m = range_m - predicted_range(dt);
+    if (restart_requested_ ||
+        (can_predict && params_.restart_jump_m > 0.0 && std::abs(unexplained_m) > params_.restart_jump_m)) {
+      ++restarts_;
+      restart_requested_ = false;
+      open_window(time_s, range_m);
       return estimate_;
     }
-    const double unexplained_m = (range_m - last_range_m_) - estimate_.rate_mps * dt;
-    if (params_.restart_jump_m > 0.0 && std::abs(unexplained_m) > params_.restart_jump_m) {
-      ++restarts_;
-      start_at(time_s, range_m, estimate_.rate_mps);
-      rate_from_next_difference_ = true;
+    if (window_open_) {
+      add_to_window(time_s, range_m);
       return estimate_;
     }
     const ObserverDerivative derivative = Derivative(params_, estimate_.rate_mps, error_m_);
@@ -69,25 +87,90 @@ class RangeRateObserver {
     return estimate_;
   }
 
+  /// A new target or range source: the next sample opens a restart window (counted in
+  /// restarts()), whatever its range. Before the first sample it does nothing.
+  void restart() { restart_requested_ = started_; }
+
   bool started() const { return started_; }
-  /// How many times a range jump above restart_jump_m restarted the observer.
+  /// false while a restart window fills: the estimate must not be used.
+  bool valid() const { return estimate_.valid; }
+  /// How many times the observer restarted (a range jump above restart_jump_m, or restart()).
   std::size_t restarts() const { return restarts_; }
   const Params& params() const { return params_; }
 
  private:
   void start_at(double time_s, double range_m, double rate_mps) {
-    estimate_ = {time_s, range_m, rate_mps};
+    estimate_ = {time_s, range_m, rate_mps, true};
     error_m_ = 0.0;
     last_range_m_ = range_m;
-    rate_from_next_difference_ = false;
+    window_open_ = false;
     started_ = true;
   }
+
+  /// The range expected dt after the last sample: from the last measured range and v_hat, or
+  /// inside a window (two samples or more) from its least-squares line.
+  double predicted_range(double dt) const {
+    if (window_open_) {
+      return estimate_.range_m + estimate_.rate_mps * dt;
+    }
+    return last_range_m_ + estimate_.rate_mps * dt;
+  }
+
+  void open_window(double time_s, double range_m) {
+    window_ = Window{};
+    window_.t0_s = time_s;
+    window_.r0_m = range_m;
+    window_open_ = true;
+    add_to_window(time_s, range_m);
+  }
+
+  /// Adds a sample to the window; updates the (invalid) estimate from the least-squares line,
+  /// and restarts the observer from it once the window spans restart_window_s.
+  void add_to_window(double time_s, double range_m) {
+    Window& w = window_;
+    const double t = time_s - w.t0_s;  // relative to the window's first sample, for conditioning
+    const double r = range_m - w.r0_m;
+    ++w.count;
+    w.sum_t += t;
+    w.sum_r += r;
+    w.sum_tt += t * t;
+    w.sum_tr += t * r;
+    last_range_m_ = range_m;
+    double line_range_m = range_m;
+    double slope_mps = estimate_.rate_mps;  // one sample: the rate held from before the restart
+    if (w.count >= 2) {
+      const double n = static_cast<double>(w.count);
+      slope_mps = (n * w.sum_tr - w.sum_t * w.sum_r) / (n * w.sum_tt - w.sum_t * w.sum_t);
+      line_range_m = w.r0_m + (w.sum_r - slope_mps * w.sum_t) / n + slope_mps * t;
+    }
+    // 1e-9 s: a window of 0.5 s at 50 Hz must close at the 26th sample whatever the rounding.
+    if (w.count >= 2 && t >= params_.restart_window_s - 1e-9) {
+      start_at(time_s, line_range_m, slope_mps);
+      error_m_ = range_m - line_range_m;
+      last_range_m_ = range_m;
+      return;
+    }
+    estimate_ = {time_s, line_range_m, slope_mps, false};
+  }
+
+  /// Least-squares sums of a restart window, times and ranges relative to its first sample.
+  struct Window {
+    double t0_s = 0.0;
+    double r0_m = 0.0;
+    std::size_t count = 0;
+    double sum_t = 0.0;
+    double sum_r = 0.0;
+    double sum_tt = 0.0;
+    double sum_tr = 0.0;
+  };
 
   Params params_;
   RangeRateEstimate estimate_;
   double error_m_ = 0.0;       // s - s_hat at the last sample, m
   double last_range_m_ = 0.0;  // the last measured range, m
-  bool rate_from_next_difference_ = false;  // just restarted: the next sample sets the rate
+  Window window_;
+  bool window_open_ = false;       // restarted: collecting the window, estimate not valid
+  bool restart_requested_ = false;  // restart(): the next sample opens a window
   bool started_ = false;
   std::size_t restarts_ = 0;
 };

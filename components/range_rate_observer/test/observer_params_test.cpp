@@ -42,6 +42,9 @@ TEST(SuperTwistingParams, EachBadGainNamesItsKey) {
   EXPECT_EQ(validation_error(p), "");
   p.restart_jump_m = kNan;
   EXPECT_EQ(validation_error(p).rfind("restart_jump_m: ", 0), 0u);
+  p = SuperTwistingParams{};
+  p.restart_window_s = 0.0;
+  EXPECT_EQ(validation_error(p), "restart_window_s: must be > 0 and finite (got 0)");
 }
 
 TEST(LinearObserverParams, DefaultsAreValidAndBadGainsNamed) {
@@ -52,17 +55,20 @@ TEST(LinearObserverParams, DefaultsAreValidAndBadGainsNamed) {
   p = LinearObserverParams{};
   p.k2 = kNan;
   EXPECT_EQ(validation_error(p), "k2: must be > 0 and finite (got nan)");
+  p = LinearObserverParams{};
+  p.restart_window_s = -0.5;
+  EXPECT_EQ(validation_error(p), "restart_window_s: must be > 0 and finite (got -0.5)");
 }
 
 TEST(ObserverParamTables, DocumentEveryFieldWithItsDefault) {
   const params::ParamDoc doc = super_twisting_param_table().doc();
-  ASSERT_EQ(doc.params.size(), 5u);
+  ASSERT_EQ(doc.params.size(), 6u);
   EXPECT_EQ(doc.params[0].key, "a");
   EXPECT_EQ(doc.params[0].default_yaml, "2.12");
   EXPECT_EQ(doc.params[0].range, "(0, 2.5)");
   EXPECT_EQ(doc.params[3].range, ">= 0 (0 = plain super-twisting)");
   const params::ParamDoc linear = linear_observer_param_table().doc();
-  ASSERT_EQ(linear.params.size(), 3u);
+  ASSERT_EQ(linear.params.size(), 4u);
   EXPECT_EQ(linear.params[1].key, "k2");
   EXPECT_EQ(linear.params[1].default_yaml, "2.25");
 }
