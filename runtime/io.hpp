@@ -158,14 +158,21 @@ class InputBase {
     return static_cast<double>(now_ns - it->second.received_ns) * 1e-9;
   }
 
-  /// Lockstep: true when every expected instance has delivered all samples with
-  /// step <= step - delay. Otherwise names the first missing instance in *missing.
+  /// Real time: the newest accepted sample of `key` was received at most `max_age_s` before
+  /// `now_ns` (age_s()); false if none was. The freshness rule of every consumer that acts on it.
+  bool fresh(std::uint64_t key, double max_age_s, std::int64_t now_ns = monotonic_now_ns()) const {
+    const std::optional<double> age = age_s(key, now_ns);
+    return age && *age <= max_age_s;
+  }
+
   /// Lockstep: the error of the first second producer of an instance (empty: none seen).
   std::string producer_conflict() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return producer_conflict_;
   }
 
+  /// Lockstep: true when every expected instance has delivered all samples with
+  /// step <= step - delay. Otherwise names the first missing instance in *missing.
   /// Throws RunError once a second producer of an instance was seen in lockstep (producer_conflict()).
   bool ready(std::uint64_t step, std::string* missing) const {
     {
@@ -198,7 +205,6 @@ class InputBase {
     std::uint64_t step = 0;
     std::uint64_t next_step = 0;
     std::int64_t received_ns = 0;  // SampleMeta::received_ns of the newest accepted sample
-    std::uint64_t writer_id = 0;   // its writer
     std::uint64_t producer = 0;    // the writer that owns this instance (0: none seen yet)
   };
 
@@ -311,36 +317,25 @@ class Input : public InputBase {
     if (!wanted(key)) {
       return;
     }
-    const std::string bad_field = first_non_finite_field(sample);
-    // Plausibility checks of the topic type (runtime/sample_checks.hpp), after the non-finite one.
-    const std::optional<SampleCheckFailure> failed =
-        bad_field.empty() ? check_sample(sample, state_->mode, state_->mode == TimeMode::kRealtime ? wall_clock_now_ns() : 0)
-                          : std::nullopt;
+    const std::optional<SampleCheckFailure> failed = first_failed_check(sample);
+    const std::string label = idl::instance_label(sample);
     {
       std::lock_guard<std::mutex> lock(mutex_);
       Progress& p = progress_[key];
-      if (!accept_producer(p, idl::instance_label(sample), meta)) {
+      if (!accept_producer(p, label, meta)) {
         return;
       }
       p.step = sample.header().step();
       p.next_step = sample.header().next_step();
-      if (labels_.count(key) == 0) {
-        labels_[key] = idl::instance_label(sample);
-      }
-      if (bad_field.empty() && !failed) {
+      labels_.emplace(key, label);
+      if (!failed) {
         p.received_ns = meta.received_ns;
-        p.writer_id = meta.writer_id;
         ++counts_.accepted;
         slots_[key].pending.push_back(sample);
-      } else if (failed) {
-        count_rejection(failed->reason,
-                        "(" + idl::instance_label(sample) + ", step " + std::to_string(sample.header().step()) + "): field '" +
-                            failed->field + "' " + failed->detail + " [" + failed->reason + "]",
-                        meta.writer_id);
       } else {
-        count_rejection(detail::kRejectNonFinite,
-                        "(" + idl::instance_label(sample) + ", step " + std::to_string(sample.header().step()) +
-                            "): field '" + bad_field + "' is not finite",
+        count_rejection(failed->reason,
+                        "(" + label + ", step " + std::to_string(sample.header().step()) + "): field '" + failed->field +
+                            "' " + failed->detail,
                         meta.writer_id);
       }
     }
@@ -394,6 +389,21 @@ class Input : public InputBase {
   }
 
  private:
+  /// Why `sample` is refused: a non-finite number first, then the plausibility checks of its
+  /// topic type (runtime/sample_checks.hpp); nullopt when it passes.
+  std::optional<SampleCheckFailure> first_failed_check(const Msg& sample) const {
+    const std::string bad_field = first_non_finite_field(sample);
+    if (!bad_field.empty()) {
+      return SampleCheckFailure{detail::kRejectNonFinite, bad_field, "is not finite"};
+    }
+    if (std::optional<SampleCheckFailure> failed =
+            check_sample(sample, state_->mode, state_->mode == TimeMode::kRealtime ? wall_clock_now_ns() : 0)) {
+      failed->detail += " [" + failed->reason + "]";
+      return failed;
+    }
+    return std::nullopt;
+  }
+
   struct Slot {
     std::deque<Msg> pending;
     std::optional<Msg> latest;

@@ -101,6 +101,9 @@ TEST_F(InputTest, AgeIsMeasuredFromTheReceiveTimeOfTheNewestAcceptedSample) {
   input.on_sample(state(1, 1, 2, std::numeric_limits<double>::quiet_NaN()), SampleMeta{7, 4'000'000'000});
   ASSERT_TRUE(input.age_s(1, 5'000'000'000).has_value());
   EXPECT_DOUBLE_EQ(*input.age_s(1, 5'000'000'000), 4.0);
+  EXPECT_TRUE(input.fresh(1, 4.0, 5'000'000'000));
+  EXPECT_FALSE(input.fresh(1, 3.9, 5'000'000'000));
+  EXPECT_FALSE(input.fresh(2, 100.0, 5'000'000'000)) << "an instance never received is not fresh";
   EXPECT_FALSE(input.age_s(2, 5'000'000'000).has_value());
 }
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <map>
 #include <memory>
-#include <optional>
 
 #include "components/pf_estimator/node/pf_estimator_params.hpp"
 #include "components/pf_estimator/particle_filter.hpp"
@@ -78,9 +77,7 @@ class PfEstimatorNode : public Component {
  private:
   /// Real time: both sensors delivered within input_timeout_s, by this process's receive time.
   bool inputs_fresh(std::uint32_t id) const {
-    const std::optional<double> odometry_age = odometry_->age_s(id);
-    const std::optional<double> fix_age = fixes_->age_s(id);
-    return odometry_age && fix_age && *odometry_age <= input_timeout_s_ && *fix_age <= input_timeout_s_;
+    return odometry_->fresh(id, input_timeout_s_) && fixes_->fresh(id, input_timeout_s_);
   }
 
   static void predict(ParticleFilter& filter, const idl::Odometry& odometry) {

@@ -2,7 +2,6 @@
 #include "components/waypoint_controller/node/waypoint_controller_node.hpp"
 
 #include <map>
-#include <optional>
 
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 #include "robodds/idl/robodds.h"
@@ -85,12 +84,8 @@ class WaypointControllerNode : public Component {
     if (estimate == nullptr) {
       return idl::NO_ESTIMATE;
     }
-    if (realtime_) {
-      // Judged by this process's receive time, never by the estimator's stamp.
-      const std::optional<double> age_s = estimates_->age_s(id);
-      if (!age_s || *age_s > estimate_timeout_s_) {
-        return idl::ESTIMATE_STALE;
-      }
+    if (realtime_ && !estimates_->fresh(id, estimate_timeout_s_)) {
+      return idl::ESTIMATE_STALE;  // judged by this process's receive time, never by the estimator's stamp
     }
     if (!estimate->valid() && require_valid_) {
       return idl::ESTIMATE_INVALID;
