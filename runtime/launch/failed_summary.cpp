@@ -1,10 +1,10 @@
 #include "runtime/launch/failed_summary.hpp"
 
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "common/json_writer.hpp"
+#include "common/replace_file.hpp"
 #include "runtime/log.hpp"
 
 namespace robodds {
@@ -65,17 +65,9 @@ void record_failed_run(const std::string& out_dir, const std::string& reason) {
     std::ifstream in(path, std::ios::binary);
     existing << in.rdbuf();
   }
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << failed_summary_text(existing.str(), reason);
-    if (!out.flush()) {
-      log::warn("run", "cannot write " + temporary + ": the run's status is not recorded");
-      return;
-    }
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    log::warn("run", "cannot rename " + temporary + " to " + path + ": the run's status is not recorded");
+  const std::string error = replace_file(path, failed_summary_text(existing.str(), reason));
+  if (!error.empty()) {
+    log::warn("run", error + ": the run's status is not recorded");
   }
 }
 

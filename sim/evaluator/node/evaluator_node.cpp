@@ -1,15 +1,12 @@
 #include "sim/evaluator/node/evaluator_node.hpp"
 
-#include <cerrno>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <fstream>
 #include <type_traits>
 #include <sys/stat.h>
 
 #include "common/angle.hpp"
 #include "common/json_writer.hpp"
+#include "common/replace_file.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
@@ -123,17 +120,9 @@ class EvaluatorNode : public Component {
     write_standby_section(json);
     write_health_sections(json, context_->run_figures());
     json.end_object();
-    const std::string path = context_->output_dir() + "/summary.json";
-    const std::string temporary = path + ".tmp";
-    {
-      std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-      out << json.str();
-      if (!out.flush()) {
-        throw RunError("evaluator: cannot write " + temporary);
-      }
-    }
-    if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-      throw RunError("evaluator: cannot rename " + temporary + " to " + path + ": " + std::strerror(errno));
+    const std::string error = replace_file(context_->output_dir() + "/summary.json", json.str());
+    if (!error.empty()) {
+      throw RunError("evaluator: " + error);
     }
   }
 
