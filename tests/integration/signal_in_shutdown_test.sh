@@ -30,7 +30,8 @@ in_shutdown || { finish; fail "host A never reached a watched shutdown step: $(c
 sent=$(date +%s.%N)
 kill -TERM "$a"
 rc=0
-timeout 1 tail --pid="$a" -f /dev/null || { finish; fail "host A ignored SIGTERM during shutdown (still running 1 s later)"; }
+# tail checks the pid every -s seconds (default 1 s, as long as the whole bound: a race).
+timeout 1 tail --pid="$a" -s 0.05 -f /dev/null || { finish; fail "host A ignored SIGTERM during shutdown (still running 1 s later)"; }
 wait "$a" || rc=$?
 took=$(echo "$(date +%s.%N) - $sent" | bc)
 finish
