@@ -43,6 +43,12 @@ inline std::int64_t monotonic_now_ns() {
   return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+/// This process's wall clock (system_clock) in ns since the Unix epoch: the clock of real-time
+/// stamps (SampleHeader::stamp_ns) and of a real-time run's epoch.
+inline std::int64_t wall_clock_now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
 /// Called for each valid sample, on a DDS thread or, for a writer in the same process, inside
 /// that writer's write(): it must only store the sample and return.
 using SampleCallback = std::function<void(const void* sample, const SampleMeta& meta)>;

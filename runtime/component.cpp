@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/random.hpp"
+#include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
 
 namespace robodds {
@@ -39,6 +40,11 @@ void ComponentContext::require_longer_than_period(const std::string& key, double
     params_.fail(key + ": must be longer than the component's period (" + std::to_string(period_s) + " s), is " +
                  std::to_string(value_s));
   }
+}
+
+ParamReader scenario_component_params(const ComponentType& type, const ComponentSpec& spec) {
+  const FlatParams defaults = default_params(type.params(), "built-in defaults of " + type.name);
+  return ParamReader(spec.name, merge_params(defaults, spec.overrides));
 }
 
 void ComponentRegistry::add(ComponentType type) {

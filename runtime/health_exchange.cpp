@@ -5,6 +5,7 @@
 #include <map>
 
 #include "common/number_text.hpp"
+#include "runtime/host_slot.hpp"
 #include "runtime/log.hpp"
 #include "runtime/topic_catalog.hpp"
 
@@ -94,16 +95,8 @@ HealthExchange::HealthExchange(RunContext& run, std::string member, std::uint64_
   options.ignore_step = true;
   options.key_names = topic.key;
   input_ = std::make_unique<Input<idl::HostReport>>(topic.name, member_, &state_, run.notifier, options);
-  auto* raw = input_.get();
-  const std::uint64_t id = run_id_;
   reader_ = run.bus->reader(
-      topic.name, topic.type_name, profile,
-      [raw, id](const void* s, const SampleMeta& meta) {
-        const auto& report = *static_cast<const idl::HostReport*>(s);
-        if (report.run_id() == id) {  // ignore reports of other runs
-          raw->on_sample(report, meta);
-        }
-      },
+      topic.name, topic.type_name, profile, host_detail::samples_of_run(input_.get(), run_id_),  // this run's reports only
       [this](const std::string& e) { log::warn(member_, "run/health: " + e); });
 }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <ctime>
 #include <thread>
 
 #include "common/number_text.hpp"
@@ -12,7 +11,6 @@
 #include "runtime/lockstep_coordinator.hpp"
 #include "runtime/lockstep_host.hpp"
 #include "runtime/overrun_counter.hpp"
-#include "runtime/param_table_reader.hpp"
 
 namespace robodds {
 namespace {
@@ -20,12 +18,6 @@ namespace {
 using host_detail::Clock;
 using host_detail::ComponentSlot;
 using host_detail::seconds_since;
-
-std::int64_t wall_ns() {
-  timespec ts{};
-  clock_gettime(CLOCK_REALTIME, &ts);
-  return static_cast<std::int64_t>(ts.tv_sec) * 1000000000LL + ts.tv_nsec;
-}
 
 }  // namespace
 
@@ -64,13 +56,11 @@ struct Host::Impl {
     for (const std::string& name : options.components) {
       const ComponentSpec& spec = run.scenario->component(name);
       const ComponentType& type = registry.get(spec.type);
-      const FlatParams defaults = default_params(type.params(), "built-in defaults of " + type.name);
       auto slot = std::make_unique<ComponentSlot>();
       slot->spec = &spec;
       slot->state.mode = run.mode;
       slot->component = type.create();
-      slot->context = std::make_unique<ComponentContext>(run, spec, ParamReader(spec.name, merge_params(defaults, spec.overrides)),
-                                                         &slot->state);
+      slot->context = std::make_unique<ComponentContext>(run, spec, scenario_component_params(type, spec), &slot->state);
       slot->component->configure(*slot->context);
       slot->context->params().check_all_read();
       slots.push_back(std::move(slot));
@@ -130,7 +120,7 @@ struct Host::Impl {
   RunStats run_realtime() {
     const std::uint64_t last = run.scenario->last_step();
     const double step_s = run.scenario->step_s;
-    const std::int64_t epoch_ns = options.realtime_epoch_ns != 0 ? options.realtime_epoch_ns : wall_ns();
+    const std::int64_t epoch_ns = options.realtime_epoch_ns != 0 ? options.realtime_epoch_ns : wall_clock_now_ns();
     const Clock::time_point start = Clock::now();
     std::vector<std::uint64_t> next_due(slots.size(), 0);
     std::vector<std::uint64_t> periods;
@@ -151,7 +141,7 @@ struct Host::Impl {
       if (options.poll) {
         options.poll();
       }
-      const std::int64_t now_ns = wall_ns();
+      const std::int64_t now_ns = wall_clock_now_ns();
       const double elapsed_s = static_cast<double>(now_ns - epoch_ns) * 1e-9;
       if (elapsed_s < 0.0) {
         std::this_thread::sleep_for(std::chrono::nanoseconds(-(now_ns - epoch_ns)));
@@ -185,7 +175,7 @@ struct Host::Impl {
         reported = current;
       }
       const std::int64_t due_ns = epoch_ns + static_cast<std::int64_t>(static_cast<double>(soonest) * step_s * 1e9);
-      const std::int64_t sleep_ns = due_ns - wall_ns();
+      const std::int64_t sleep_ns = due_ns - wall_clock_now_ns();
       if (sleep_ns > 0) {
         std::this_thread::sleep_for(std::chrono::nanoseconds(std::min<std::int64_t>(sleep_ns, 50000000)));
       }
@@ -199,15 +189,7 @@ struct Host::Impl {
     if (overruns.figures().missed_steps > 0 || overruns.figures().late_steps > 0) {
       log::warn(options.member, "real-time overruns over the run: " + overruns.totals_text());
     }
-    run.figures.ticks = last_run + 1;
-    run.figures.wall_time_s = seconds_since(start);
-    run.figures.hosts = {host_detail::host_health(options.member, overruns.figures(), slots, *run.bus)};
-    if (health) {
-      health->exchange(run.figures, last_run);
-    }
-    for (auto& slot : slots) {
-      slot->finish(last_run, static_cast<double>(last_run) * step_s);
-    }
+    host_detail::finish_run(run, options.member, overruns.figures(), slots, health.get(), last_run, seconds_since(start));
     return RunStats{last_run + 1, seconds_since(start)};
   }
 

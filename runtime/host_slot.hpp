@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "runtime/component.hpp"
+#include "runtime/health_exchange.hpp"
 
 namespace robodds::host_detail {
 
@@ -82,6 +83,35 @@ inline HostHealth host_health(const std::string& member, const OverrunFigures& f
     health.components.push_back(component_health(slot->spec->name, slot->context->inputs()));
   }
   return health;
+}
+
+/// The end of a run on this host, after its last step `last_step` (lockstep or real time): the
+/// run's figures and this host's health into run.figures, across processes the other hosts'
+/// health over run/health (`health`, may be null), then every component's on_finish().
+inline void finish_run(RunContext& run, const std::string& member, const OverrunFigures& overruns,
+                       std::vector<std::unique_ptr<ComponentSlot>>& slots, HealthExchange* health,
+                       std::uint64_t last_step, double wall_time_s) {
+  run.figures.ticks = last_step + 1;
+  run.figures.wall_time_s = wall_time_s;
+  run.figures.hosts = {host_health(member, overruns, slots, *run.bus)};
+  if (health != nullptr) {
+    health->exchange(run.figures, last_step);
+  }
+  for (auto& slot : slots) {
+    slot->finish(last_step, static_cast<double>(last_step) * run.scenario->step_s);
+  }
+}
+
+/// A bus callback that hands `input` the samples of run `run_id` only: ticks, acknowledgements
+/// and health reports of another run sharing the DDS domain are ignored.
+template <class Msg>
+SampleCallback samples_of_run(Input<Msg>* input, std::uint64_t run_id) {
+  return [input, run_id](const void* sample, const SampleMeta& meta) {
+    const auto& message = *static_cast<const Msg*>(sample);
+    if (message.run_id() == run_id) {
+      input->on_sample(message, meta);
+    }
+  };
 }
 
 }  // namespace robodds::host_detail

@@ -33,15 +33,8 @@ LockstepCoordinator::LockstepCoordinator(const RunContext& run, const HostOption
     ack_options.labels[member_key(member)] = "'" + member + "'";
   }
   ack_input_ = std::make_unique<Input<idl::StepDone>>(done.name, "coordinator", &state_, run.notifier, ack_options);
-  auto* raw = ack_input_.get();
-  const std::uint64_t run_id = options.run_id;
-  ack_reader_ = run.bus->reader(done.name, done.type_name, profile,
-                                [raw, run_id](const void* s, const SampleMeta& meta) {
-                                  const auto& ack = *static_cast<const idl::StepDone*>(s);
-                                  if (ack.run_id() == run_id) {  // a stale host of another run must not count
-                                    raw->on_sample(ack, meta);
-                                  }
-                                },
+  // A stale host of another run must not count: samples_of_run() passes this run's acks only.
+  ack_reader_ = run.bus->reader(done.name, done.type_name, profile, host_detail::samples_of_run(ack_input_.get(), options.run_id),
                                 [](const std::string& e) { log::warn("coordinator", "sim/step_done: " + e); });
   tick_output_ = std::make_unique<Output<idl::SimTick>>(run.bus->writer(clock.name, clock.type_name, profile), &state_);
 }

@@ -8,7 +8,8 @@ namespace robodds {
 using host_detail::Clock;
 using host_detail::dds_report;
 using host_detail::fmt_s;
-using host_detail::host_health;
+using host_detail::finish_run;
+using host_detail::samples_of_run;
 using host_detail::seconds_since;
 using host_detail::sim_stamp_ns;
 
@@ -22,14 +23,7 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
   tick_options.ignore_step = true;
   tick_input_ = std::make_unique<Input<idl::SimTick>>(clock.name, options.member, &state_, run.notifier, tick_options);
   auto* raw = tick_input_.get();
-  const std::uint64_t run_id = options.run_id;
-  tick_reader_ = run.bus->reader(clock.name, clock.type_name, profile,
-                                 [raw, run_id](const void* s, const SampleMeta& meta) {
-                                   const auto& tick = *static_cast<const idl::SimTick*>(s);
-                                   if (tick.run_id() == run_id) {  // ignore ticks of other runs
-                                     raw->on_sample(tick, meta);
-                                   }
-                                 },
+  tick_reader_ = run.bus->reader(clock.name, clock.type_name, profile, samples_of_run(raw, options.run_id),
                                  [this](const std::string& e) { log::warn(options_.member, "sim/clock: " + e); });
   ack_writer_ = run.bus->writer(done.name, done.type_name, profile);
   ack_output_ = std::make_unique<Output<idl::StepDone>>(ack_writer_, &state_);
@@ -124,17 +118,9 @@ bool LockstepHost::run_due_components() {
     return progressed;
   }
   if (tick_is_final_) {
-    run_.figures.ticks = tick_step_ + 1;
-    run_.figures.wall_time_s = seconds_since(start_);
     OverrunFigures lockstep_figures;  // lockstep waits for every step: none is missed or late
     lockstep_figures.ticks = tick_step_ + 1;
-    run_.figures.hosts = {host_health(options_.member, lockstep_figures, slots_, *run_.bus)};
-    if (health_ != nullptr) {
-      health_->exchange(run_.figures, tick_step_);
-    }
-    for (auto& slot : slots_) {
-      slot->finish(tick_step_, static_cast<double>(tick_step_) * step_s);
-    }
+    finish_run(run_, options_.member, lockstep_figures, slots_, health_, tick_step_, seconds_since(start_));
     done_ = true;
   }
   publish_ack(tick_step_, components_run_, "");

@@ -6,7 +6,6 @@
 #include "runtime/component.hpp"
 #include "runtime/error.hpp"
 #include "runtime/memory_bus.hpp"
-#include "runtime/param_table_reader.hpp"
 #include "runtime/topic_catalog.hpp"
 
 namespace robodds {
@@ -48,8 +47,7 @@ ScenarioProducers scenario_producers(const ComponentRegistry& registry, const Sc
     run.mode = mode;
     StepState state;
     state.mode = mode;
-    const FlatParams defaults = default_params(type.params(), "built-in defaults of " + type.name);
-    ComponentContext context(run, spec, ParamReader(spec.name, merge_params(defaults, spec.overrides)), &state);
+    ComponentContext context(run, spec, scenario_component_params(type, spec), &state);
     std::unique_ptr<Component> component = type.create();
     component->configure(context);
     producers[spec.name] = bus.topics;

@@ -25,6 +25,10 @@ struct ComponentType {
   std::function<params::ParamDoc()> params;
 };
 
+/// The parameters of the scenario component `spec` of type `type`: the type's defaults (its
+/// parameter table) under the scenario's overrides, as its ComponentContext reads them.
+ParamReader scenario_component_params(const ComponentType& type, const ComponentSpec& spec);
+
 class ComponentRegistry {
  public:
   /// ConfigError if the type has no name, factory or parameter table, or its name is taken.

@@ -1,21 +1,15 @@
 #include "runtime/sample_checks.hpp"
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <initializer_list>
-#include <sstream>
+
+#include "common/number_text.hpp"
 
 namespace robodds {
 namespace {
 
 using Failure = std::optional<SampleCheckFailure>;
-
-std::string number(double value) {
-  std::ostringstream out;
-  out << value;
-  return out.str();
-}
 
 Failure fail(const char* reason, std::string field, std::string detail) {
   return SampleCheckFailure{reason, std::move(field), std::move(detail)};
@@ -26,19 +20,19 @@ Failure within(const char* field, double value, double bound) {
   if (std::fabs(value) <= bound) {
     return std::nullopt;
   }
-  return fail(check_reason::kAbsurdMagnitude, field, "is " + number(value) + ", beyond the bound " + number(bound));
+  return fail(check_reason::kAbsurdMagnitude, field, "is " + shortest_text(value) + ", beyond the bound " + shortest_text(bound));
 }
 
 Failure variance(const char* field, double value) {
   if (value < 0.0) {
-    return fail(check_reason::kNegativeVariance, field, "is " + number(value) + " (a variance is >= 0)");
+    return fail(check_reason::kNegativeVariance, field, "is " + shortest_text(value) + " (a variance is >= 0)");
   }
   return within(field, value, sample_bounds::kVariance);
 }
 
 Failure duration(const char* field, double value) {
   if (value < 0.0) {
-    return fail(check_reason::kNegativeDuration, field, "is " + number(value) + " (a duration is >= 0)");
+    return fail(check_reason::kNegativeDuration, field, "is " + shortest_text(value) + " (a duration is >= 0)");
   }
   return within(field, value, sample_bounds::kDurationS);
 }
@@ -72,10 +66,6 @@ constexpr double kAngle = sample_bounds::kAngleRad;
 
 }  // namespace
 
-std::int64_t wall_clock_now_ns() {
-  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
-}
-
 Failure check_header(const idl::SampleHeader& header, TimeMode mode, std::int64_t wall_now_ns) {
   const std::int64_t stamp = header.stamp_ns();
   if (stamp < 0) {
@@ -84,8 +74,8 @@ Failure check_header(const idl::SampleHeader& header, TimeMode mode, std::int64_
   // stamp >= 0 here and wall_now_ns is a real clock reading: the difference cannot overflow.
   if (mode == TimeMode::kRealtime && wall_now_ns >= 0 && stamp - wall_now_ns > sample_bounds::kFutureStampToleranceNs) {
     return fail(check_reason::kStampInFuture, "header.stamp_ns",
-                "is " + number(static_cast<double>(stamp - wall_now_ns) * 1e-9) + " s ahead of this host's wall clock (tolerance " +
-                    number(static_cast<double>(sample_bounds::kFutureStampToleranceNs) * 1e-9) + " s)");
+                "is " + shortest_text(static_cast<double>(stamp - wall_now_ns) * 1e-9) + " s ahead of this host's wall clock (tolerance " +
+                    shortest_text(static_cast<double>(sample_bounds::kFutureStampToleranceNs) * 1e-9) + " s)");
   }
   if (header.step() > header.next_step()) {
     return fail(check_reason::kBadHeader, "header.next_step",
@@ -138,7 +128,7 @@ Failure check_content(const idl::UwbRanges& s) {
   for (std::size_t i = 0; i < s.ranges().size(); ++i) {
     if (std::fabs(s.ranges()[i]) > kPos) {
       return fail(check_reason::kAbsurdMagnitude, "ranges[" + std::to_string(i) + "]",
-                  "is " + number(s.ranges()[i]) + ", beyond the bound " + number(kPos));
+                  "is " + shortest_text(s.ranges()[i]) + ", beyond the bound " + shortest_text(kPos));
     }
   }
   return std::nullopt;
@@ -161,7 +151,7 @@ Failure check_content(const idl::WaypointMission& s) {
     const idl::Waypoint& w = s.waypoints()[i];
     if (std::fabs(w.x()) > kPos || std::fabs(w.y()) > kPos) {
       return fail(check_reason::kAbsurdMagnitude, "waypoints[" + std::to_string(i) + "]",
-                  "is (" + number(w.x()) + ", " + number(w.y()) + "), beyond the bound " + number(kPos));
+                  "is (" + shortest_text(w.x()) + ", " + shortest_text(w.y()) + "), beyond the bound " + shortest_text(kPos));
     }
   }
   return std::nullopt;
@@ -174,7 +164,7 @@ Failure check_content(const idl::TargetAssignment& s) {
                     " (slot < team_size <= " + std::to_string(sample_bounds::kTeamSize) + " expected)");
   }
   if (s.desired_radius() < 0.0) {
-    return fail(check_reason::kAbsurdMagnitude, "desired_radius", "is " + number(s.desired_radius()) + " (a radius is >= 0)");
+    return fail(check_reason::kAbsurdMagnitude, "desired_radius", "is " + shortest_text(s.desired_radius()) + " (a radius is >= 0)");
   }
   return within("desired_radius", s.desired_radius(), kPos);
 }

@@ -72,10 +72,6 @@ std::optional<SampleCheckFailure> check_content(const idl::TargetAssignment& s);
 std::optional<SampleCheckFailure> check_content(const idl::ControllerStatus& s);
 std::optional<SampleCheckFailure> check_content(const idl::HostReport& s);
 
-/// This process's wall clock (system_clock) in ns since the Unix epoch: the clock of real-time
-/// stamps.
-std::int64_t wall_clock_now_ns();
-
 /// Every check of `sample` (header, then content); the first failure or nullopt. `wall_now_ns`
 /// is read only in real time.
 template <class Msg>

@@ -182,7 +182,7 @@ class FastDdsBus : public DdsBus {
       if (left.count() <= 0) {
         break;
       }
-      writer->writer()->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(static_cast<double>(left.count()) / 1000.0));
+      writer->wait_acknowledged(left);
     }
   }
 

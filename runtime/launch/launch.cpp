@@ -119,9 +119,7 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
   }
   check_qos_profiles(launch.dds);  // one error line here, not one per child and a coordinator
   const std::uint64_t run_id = make_run_id();
-  timespec ts{};
-  clock_gettime(CLOCK_REALTIME, &ts);
-  const std::int64_t epoch_ns = (static_cast<std::int64_t>(ts.tv_sec) + 2) * 1000000000LL;  // start in 2 s
+  const std::int64_t epoch_ns = (wall_clock_now_ns() / 1000000000LL + 2) * 1000000000LL;  // start in 2 s, on a whole second
   ProcessGroup children;
   for (const GroupSpec& group : scenario.groups) {
     children.spawn(group.name, child_argv(scenario, launch, group.name, run_id, epoch_ns));
