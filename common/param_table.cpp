@@ -85,6 +85,15 @@ Check<double> in_open_interval(double low, double high) {
           }};
 }
 
+Check<double> in_half_open_interval(double low, double high) {
+  const std::string text = "[" + shortest_text(low) + ", " + shortest_text(high) + ")";
+  return {text, [low, high, text](std::string_view key, double v) {
+            if (!(v >= low && v < high)) {
+              throw std::invalid_argument(std::string(key) + ": must be in " + text + " (got " + shortest_text(v) + ")");
+            }
+          }};
+}
+
 Check<long long> at_least(long long minimum) {
   return {">= " + std::to_string(minimum),
           [minimum](std::string_view key, long long v) { param_checks::require_at_least(key, v, minimum); }};

@@ -59,6 +59,8 @@ Check<double> positive();
 Check<double> non_negative(std::string meaning_of_zero = {});
 /// In (low, high), finite.
 Check<double> in_open_interval(double low, double high);
+/// In [low, high), finite: e.g. a probability that must leave some samples through, [0, 1).
+Check<double> in_half_open_interval(double low, double high);
 /// An integer >= minimum.
 Check<long long> at_least(long long minimum);
 /// `check` printed as `text`, for a range that a cross-field rule of validate() completes, e.g.
@@ -198,6 +200,29 @@ class ParamTable {
     }
     for (const ParamGroup& group : inner.groups()) {
       groups_.push_back(group);
+    }
+    return *this;
+  }
+
+  /// Every entry of `inner` under the nested map `prefix` (keys "prefix.key"), for the member
+  /// `member` of S: a node that holds two algorithms' structs side by side (the range-rate
+  /// observer node: "sta.b", "linear.k1"). `description` is the map's comment.
+  template <class M>
+  ParamTable& include_as(const std::string& prefix, M S::*member, const ParamTable<M>& inner, std::string description) {
+    groups_.push_back(ParamGroup{prefix, std::move(description)});
+    for (const TableEntry<M>& e : inner.entries()) {
+      ParamInfo info = e.info;
+      info.key = prefix + "." + info.key;
+      entries_.push_back(TableEntry<S>{e.kind, std::move(info), [member, text = e.text](const S& s) { return text(s.*member); },
+                                       [member, set = e.set](S& s, const ParamValue& v) { set(s.*member, v); },
+                                       [member, prefix, check = e.check](const S& s) {
+                                         try {
+                                           check(s.*member);
+                                         } catch (const std::invalid_argument& error) {
+                                           // The inner check names its own key: put the prefix in front.
+                                           throw std::invalid_argument(prefix + "." + error.what());
+                                         }
+                                       }});
     }
     return *this;
   }

@@ -92,6 +92,8 @@ class RangeRateObserver {
   void restart() { restart_requested_ = started_; }
 
   bool started() const { return started_; }
+  /// The estimate after the last sample (what update() returned).
+  const RangeRateEstimate& estimate() const { return estimate_; }
   /// false while a restart window fills: the estimate must not be used.
   bool valid() const { return estimate_.valid; }
   /// How many times the observer restarted (a range jump above restart_jump_m, or restart()).

@@ -200,4 +200,16 @@ std::vector<Msg> of_instance(const std::vector<Msg>& samples, std::uint64_t key)
   return out;
 }
 
+/// The samples of one robot (robot_id), whatever the rest of their key (e.g. target_id), in order.
+template <class Msg>
+std::vector<Msg> of_robot(const std::vector<Msg>& samples, std::uint32_t robot_id) {
+  std::vector<Msg> out;
+  for (const Msg& s : samples) {
+    if (s.robot_id() == robot_id) {
+      out.push_back(s);
+    }
+  }
+  return out;
+}
+
 }  // namespace robodds::testing

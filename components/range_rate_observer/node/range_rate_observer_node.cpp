@@ -1,0 +1,119 @@
+#include "components/range_rate_observer/node/range_rate_observer_node.hpp"
+
+#include <map>
+#include <stdexcept>
+
+#include "components/range_rate_observer/node/observer_node_params.hpp"
+#include "components/range_rate_observer/range_rate_observer.hpp"
+#include "robodds/idl/robodds.h"
+#include "runtime/log.hpp"
+#include "runtime/param_table_reader.hpp"
+#include "runtime/registry.hpp"
+
+namespace robodds::range_rate {
+namespace {
+
+/// One robot's pair of observers on its range stream.
+struct RobotObservers {
+  explicit RobotObservers(const ObserverNodeParams& p) : sta(p.sta), linear(p.linear) {}
+  SuperTwistingObserver sta;
+  LinearRangeRateObserver linear;
+  std::uint32_t target_id = 0;
+  bool ended = false;  // its range stream ended (the robot left): final estimates are out
+};
+
+class RangeRateObserverNode : public Component {
+ public:
+  void configure(ComponentContext& ctx) override {
+    auto& p = ctx.params();
+    params_ = read_params(p, observer_node_param_table());
+    p.validate(params_);
+    ctx.set_rate_hz(params_.rate_hz, "rate_hz");
+    name_ = ctx.name();
+    for (const RobotSpec& robot : ctx.robots()) {
+      robots_.emplace(robot.id, RobotObservers(params_));
+    }
+    ranges_ = &ctx.subscribe<idl::RangeMeasurement>("sensor/range", Subscription::robot_streams(ctx.robot_keys()));
+    sta_out_ = &ctx.advertise<idl::RangeRateEstimate>("observer/range_rate");
+    linear_out_ = &ctx.advertise<idl::RangeRateEstimate>("observer/range_rate_linear");
+  }
+
+  void on_step(const StepInfo&) override {
+    for (auto& [id, robot] : robots_) {
+      if (robot.ended) {
+        continue;
+      }
+      const std::size_t sta_restarts = robot.sta.restarts();
+      const std::size_t linear_restarts = robot.linear.restarts();
+      bool final_sample = false;
+      for (const idl::RangeMeasurement& m : ranges_->take_new_of_robot(id)) {
+        if (robot.sta.started() && m.target_id() != robot.target_id) {
+          robot.sta.restart();  // a new target: its range has nothing to do with the old one's
+          robot.linear.restart();
+        }
+        robot.target_id = m.target_id();
+        feed(id, robot, static_cast<double>(m.header().stamp_ns()) * 1e-9, m.range());
+        final_sample |= m.header().next_step() == kNeverAgain;
+      }
+      if (!robot.sta.started()) {
+        continue;  // real time before the first range
+      }
+      // Without a new sample (a lost one) the last estimates are published again: every due
+      // step carries one, as its next_step promised.
+      publish(*sta_out_, id, robot, robot.sta, robot.sta.restarts() != sta_restarts, final_sample);
+      publish(*linear_out_, id, robot, robot.linear, robot.linear.restarts() != linear_restarts, final_sample);
+      robot.ended = final_sample;
+    }
+  }
+
+ private:
+  /// Both observers take the sample, or neither: the library refuses a time that does not
+  /// advance (e.g. a duplicated sample) and leaves its state unchanged; the sample is dropped.
+  void feed(std::uint32_t id, RobotObservers& robot, double time_s, double range_m) {
+    try {
+      robot.sta.update(time_s, range_m);
+      robot.linear.update(time_s, range_m);
+    } catch (const std::invalid_argument& e) {
+      if (!warned_) {
+        log::warn(name_, "robot " + std::to_string(id) + ": range sample dropped: " + e.what() + " (logged once)");
+        warned_ = true;
+      }
+    }
+  }
+
+  template <class Observer>
+  void publish(Output<idl::RangeRateEstimate>& out, std::uint32_t id, const RobotObservers& robot, const Observer& observer,
+               bool restarted, bool final_sample) {
+    idl::RangeRateEstimate e;
+    e.robot_id(id);
+    e.target_id(robot.target_id);
+    e.range(observer.estimate().range_m);
+    e.range_rate(observer.estimate().rate_mps);
+    e.valid(observer.valid());
+    e.restarted(restarted);
+    if (final_sample) {
+      out.publish_final(e);
+    } else {
+      out.publish(e);
+    }
+  }
+
+  ObserverNodeParams params_;
+  std::string name_;
+  bool warned_ = false;
+  std::map<std::uint32_t, RobotObservers> robots_;
+  Input<idl::RangeMeasurement>* ranges_ = nullptr;
+  Output<idl::RangeRateEstimate>* sta_out_ = nullptr;
+  Output<idl::RangeRateEstimate>* linear_out_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Component> make_range_rate_observer_node() { return std::make_unique<RangeRateObserverNode>(); }
+
+}  // namespace robodds::range_rate
+
+ROBODDS_REGISTER_COMPONENT(range_rate_observer,
+                           "range-rate observers (super-twisting and linear): sensor/range -> observer/range_rate(_linear)",
+                           robodds::range_rate::make_range_rate_observer_node,
+                           robodds::range_rate::observer_node_param_table);

@@ -1,0 +1,142 @@
+// The range-rate observer node on the in-memory bus: both observers on each robot's range stream,
+// a restart (valid false, then valid from the least-squares window) at a target change, final
+// estimates when the stream ends, refused samples that leave the state alone, gains checked.
+#include "components/range_rate_observer/node/range_rate_observer_node.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "robodds/idl/robodds.h"
+#include "runtime/error.hpp"
+#include "runtime/io.hpp"
+#include "runtime/registry.hpp"
+#include "runtime/testing/node_harness.hpp"
+
+ROBODDS_DECLARE_COMPONENT(range_rate_observer);
+
+namespace robodds::range_rate {
+namespace {
+
+using robodds::testing::NodeHarness;
+using robodds::testing::of_robot;
+
+// 50 Hz, steps 0..200 (4 s); the observer at 50 Hz.
+std::string scenario(const std::string& params = "") {
+  return R"(name: observer_node
+step_s: 0.02
+duration_s: 4.0
+seed: 1
+robots:
+  - {id: 1}
+  - {id: 2}
+components:
+  - {name: observer, type: range_rate_observer)" +
+         (params.empty() ? std::string() : ", params: {" + params + "}") + "}\n";
+}
+
+constexpr std::uint64_t kSwitchStep = 100;  // 2 s: robot 1 changes target
+constexpr std::uint64_t kLeaveStep = 50;    // 1 s: robot 2's stream ends
+
+/// Robot 1: target 1 at 100 + 5 t m until 2 s, then target 2 at 300 - 3 t m. Robot 2: 50 m
+/// constant until its final sample at 1 s. `bad_step`: robot 1's range there is `bad_value`.
+void feed(NodeHarness& h, std::uint64_t bad_step = 0, double bad_value = 0.0) {
+  h.feed([&h, bad_step, bad_value](std::uint64_t step) {
+    const double t = static_cast<double>(step) * 0.02;
+    idl::RangeMeasurement one;
+    one.robot_id(1);
+    one.target_id(step < kSwitchStep ? 1 : 2);
+    one.range(step < kSwitchStep ? 100.0 + 5.0 * t : 300.0 - 3.0 * t);
+    if (bad_step != 0 && step == bad_step) {
+      one.range(bad_value);
+    }
+    h.publish("sensor/range", one, step, step + 1);
+    if (step <= kLeaveStep) {
+      idl::RangeMeasurement two;
+      two.robot_id(2);
+      two.target_id(1);
+      two.range(50.0);
+      h.publish("sensor/range", two, step, step == kLeaveStep ? kNeverAgain : step + 1);
+    }
+  });
+}
+
+TEST(RangeRateObserverNode, BothObserversRestartAtATargetChangeAndAreInvalidUntilTheWindowIsFull) {
+  NodeHarness h(scenario());
+  robodds::component_registration::register_range_rate_observer(h.registry());
+  feed(h);
+  const auto& sta = h.record<idl::RangeRateEstimate>("observer/range_rate");
+  const auto& linear = h.record<idl::RangeRateEstimate>("observer/range_rate_linear");
+  h.run({"observer"});
+  for (const auto* topic : {&sta, &linear}) {
+    const auto one = of_robot(*topic, 1);
+    ASSERT_EQ(one.size(), 201u) << "one estimate per step";
+    int restarts = 0;
+    for (const auto& e : one) {
+      const std::uint64_t step = e.header().step();
+      EXPECT_EQ(e.target_id(), step < kSwitchStep ? 1u : 2u) << "step " << step;
+      restarts += e.restarted() ? 1 : 0;
+      EXPECT_EQ(e.restarted(), step == kSwitchStep) << "step " << step;
+      // Invalid for the 0.5 s window after the change (steps 100..124), valid otherwise.
+      EXPECT_EQ(e.valid(), step < kSwitchStep || step >= kSwitchStep + 25) << "step " << step;
+    }
+    EXPECT_EQ(restarts, 1);
+    // Started from the window's slope: exact on a straight line, at once.
+    EXPECT_NEAR(one[kSwitchStep + 25].range_rate(), -3.0, 1e-6);
+    EXPECT_NEAR(one.back().range_rate(), -3.0, 0.05);
+  }
+  // Before the change the super-twisting observer has converged on +5 m/s from rate 0 (2 s).
+  EXPECT_NEAR(of_robot(sta, 1)[kSwitchStep - 1].range_rate(), 5.0, 0.3);
+}
+
+TEST(RangeRateObserverNode, AnEndedStreamGetsFinalEstimatesAndNothingAfter) {
+  NodeHarness h(scenario());
+  robodds::component_registration::register_range_rate_observer(h.registry());
+  feed(h);
+  const auto& sta = h.record<idl::RangeRateEstimate>("observer/range_rate");
+  h.run({"observer"});
+  const auto two = of_robot(sta, 2);
+  ASSERT_EQ(two.size(), kLeaveStep + 1);
+  EXPECT_EQ(two.back().header().next_step(), kNeverAgain);
+  EXPECT_EQ(two.front().header().next_step(), 1u);
+}
+
+// A NaN or a negative range is refused by the input (counted, docs/architecture.md "Input
+// checks"): the observers never see it, their estimate goes on from the good samples.
+TEST(RangeRateObserverNode, RefusedRangesLeaveTheObserversAlone) {
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), -20.0}) {
+    NodeHarness h(scenario());
+    robodds::component_registration::register_range_rate_observer(h.registry());
+    feed(h, 60, bad);
+    const auto& sta = h.record<idl::RangeRateEstimate>("observer/range_rate");
+    h.run({"observer"});
+    const auto one = of_robot(sta, 1);
+    ASSERT_EQ(one.size(), 201u);
+    for (const auto& e : one) {
+      EXPECT_TRUE(std::isfinite(e.range_rate()) && std::isfinite(e.range()));
+      EXPECT_EQ(e.restarted(), e.header().step() == kSwitchStep) << "a refused sample is no range jump";
+    }
+    EXPECT_DOUBLE_EQ(one[60].range_rate(), one[59].range_rate()) << "step 60 republishes the estimate of step 59";
+    EXPECT_NEAR(one[kSwitchStep - 1].range_rate(), 5.0, 0.3);
+  }
+}
+
+TEST(RangeRateObserverNode, GainsOutsideThePapersConditionsAreConfigErrorsNamingTheKey) {
+  for (const auto& [params, key] : {std::pair<std::string, std::string>{"sta: {a: 2.6}", "sta.a"},
+                                    {"sta: {c: -1}", "sta.c"},
+                                    {"linear: {k2: 0}", "linear.k2"},
+                                    {"sta: {restart_window_s: 0}", "sta.restart_window_s"}}) {
+    NodeHarness h(scenario(params));
+    robodds::component_registration::register_range_rate_observer(h.registry());
+    try {
+      h.run({"observer"});
+      ADD_FAILURE() << params << ": expected a ConfigError";
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(key + ":"), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+}  // namespace robodds::range_rate
