@@ -29,7 +29,7 @@ std::vector<model::Pose2> table_one_poses() {
 }
 
 struct LoopResult {
-  double settle_time_s = 0.0;         // from then on every radius within 5 m, every gap within 5 deg
+  double settle_time_s = 0.0;         // from then on every radius within 5 m, every gap within 5 deg of 2 pi / n
   double final_max_radius_error_m = 0.0;
   double final_max_gap_error_deg = 0.0;
   double max_range_accel_mps2 = 0.0;  // |r''| over the run (truth, from the kinematics)
@@ -37,8 +37,7 @@ struct LoopResult {
   double fraction_over_b = 0.0;       // of robot-steps with |r''| > 2.2 m/s^2 (the observer's b)
 };
 
-LoopResult run_loop(const GuidanceParams& params, double duration_s) {
-  std::vector<model::Pose2> poses = table_one_poses();
+LoopResult run_loop(const GuidanceParams& params, double duration_s, std::vector<model::Pose2> poses = table_one_poses()) {
   const std::size_t n = poses.size();
   std::vector<GuidanceLaw> laws(n, GuidanceLaw(params));
   std::vector<model::Twist> applied(n);  // the plant's twist: the previous step's command (rest at 0)
@@ -66,7 +65,7 @@ LoopResult run_loop(const GuidanceParams& params, double duration_s) {
       const double range_rate = v * (hx * ex + hy * ey) / range;
       const Gaps gaps = formation_gaps(bearings[i], bearings);
       max_radius_error = std::max(max_radius_error, std::abs(range - kRadius));
-      max_gap_error = std::max(max_gap_error, std::abs(gaps.ahead_rad - kPi / 2.0));
+      max_gap_error = std::max(max_gap_error, std::abs(gaps.ahead_rad - 2.0 * kPi / static_cast<double>(n)));
       commands[i] = model::saturate(laws[i].step(range, range_rate, kRadius, gaps, kDt), plant_limits);
       // Range acceleration of a unicycle: (v^2 - rdot^2)/r + a_t (e.h) + v omega (e.n), n = h turned left.
       const double a_t = (commands[i].v - v) / kDt;
@@ -114,6 +113,46 @@ TEST(CircumnavigationClosedLoop, WithoutTheSpacingTermTheGapsStayUnequal) {
               r.settle_time_s, r.final_max_radius_error_m, r.final_max_gap_error_deg);
   EXPECT_LE(r.final_max_radius_error_m, kRadiusTolerance);  // the orbit still forms...
   EXPECT_GT(r.final_max_gap_error_deg, 5.0);                 // ...but the robots are not spread
+}
+
+// Beyond Table 1: a single robot from 4 ranges x 6 bearings x 8 headings, and seeded random
+// four-robot starts, all reach the orbit (and the team its even spacing).
+TEST(CircumnavigationClosedLoop, SingleRobotFromEveryStartReachesTheOrbit) {
+  double worst_settle = 0.0;
+  int count = 0;
+  for (const double range : {20.0, 150.0, 600.0, 2000.0}) {
+    for (int b = 0; b < 6; ++b) {
+      for (int h = 0; h < 8; ++h) {
+        const double bearing = b * kPi / 3.0;
+        const model::Pose2 start{kTargetX + range * std::cos(bearing), kTargetY + range * std::sin(bearing), h * kPi / 4.0 - kPi};
+        const LoopResult r = run_loop(GuidanceParams{}, 500.0, {start});
+        worst_settle = std::max(worst_settle, r.settle_time_s);
+        ++count;
+        EXPECT_LE(r.settle_time_s, 400.0) << "range " << range << " bearing " << bearing << " heading " << start.theta;
+      }
+    }
+  }
+  std::printf("single robot, %d starts: worst settle %.2f s\n", count, worst_settle);
+}
+
+TEST(CircumnavigationClosedLoop, RandomFourRobotStartsSpreadEvenly) {
+  std::uint64_t state = 12345;
+  auto uniform = [&state] {  // a fixed LCG: the starts are the same on every machine
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  double worst_settle = 0.0;
+  constexpr int kRuns = 16;
+  for (int run = 0; run < kRuns; ++run) {
+    std::vector<model::Pose2> poses;
+    for (int i = 0; i < 4; ++i) {
+      poses.push_back({-1000.0 + 4000.0 * uniform(), -1000.0 + 4000.0 * uniform(), -kPi + 2.0 * kPi * uniform()});
+    }
+    const LoopResult r = run_loop(GuidanceParams{}, 1000.0, poses);
+    worst_settle = std::max(worst_settle, r.settle_time_s);
+    EXPECT_LE(r.settle_time_s, 800.0) << "run " << run;
+  }
+  std::printf("four robots, %d random starts: worst settle %.2f s\n", kRuns, worst_settle);
 }
 
 }  // namespace
