@@ -163,6 +163,68 @@ TEST(CircumnavigationControllerNode, SpacesOnlyWithRobotsOfTheSameTarget) {
   EXPECT_NEAR(run("max_accel_mps2: 1000", other).back().v(), 10.0, 1e-12);
 }
 
+// Real time: the observer stops at step 20 (0.4 s), robot 2's pose at step 10 (0.2 s). With
+// estimate_timeout_s 0.2 the commands become zero; with peer_timeout_s 0.1 robot 2 drops out of
+// the spacing first (robot 1 alone: 10 m/s instead of 7 with robot 2 30 deg ahead).
+TEST(CircumnavigationControllerNode, RealTimeStaleEstimateStopsAndStalePeerDropsOut) {
+  NodeHarness h(R"(name: circumnavigation_controller_stale
+step_s: 0.02
+duration_s: 1.2
+seed: 1
+robots:
+  - {id: 1}
+  - {id: 2}
+components:
+  - {name: controller, type: circumnavigation_controller, robots: [1],
+     params: {estimate_timeout_s: 0.2, peer_timeout_s: 0.1, max_accel_mps2: 1000}}
+)");
+  robodds::component_registration::register_circumnavigation_controller(h.registry());
+  h.set_mode(TimeMode::kRealtime);
+  constexpr std::uint64_t kLastEstimate = 20;
+  constexpr std::uint64_t kLastPeerPose = 10;
+  bool missions_sent = false;
+  h.feed([&](std::uint64_t step) {
+    if (!missions_sent) {
+      h.publish("mission/target", task(1, true), step, kNeverAgain);
+      h.publish("mission/target", task(2, true), step, kNeverAgain);
+      missions_sent = true;
+    }
+    h.publish("estimate/pose", pose_at(1, 0.0), step, step + 1);
+    if (step <= kLastPeerPose) {
+      h.publish("estimate/pose", pose_at(2, 30.0), step, step + 1);
+    }
+    if (step <= kLastEstimate) {
+      h.publish("observer/range_rate", estimate(kRadius, 0.0, true), step, step + 1);
+    }
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  h.run({"controller"});
+  int spaced = 0;
+  int alone = 0;
+  int stopped = 0;
+  for (const auto& c : commands) {
+    const std::uint64_t step = c.header().step();
+    if (step <= kLastPeerPose && c.v() > 0.0) {
+      ++spaced;
+      EXPECT_NEAR(c.v(), 7.0, 1e-9) << "step " << step << ": robot 2 30 deg ahead";
+    }
+    // 0.1 s limit + 0.1 s margin for a loaded machine.
+    if (step >= kLastPeerPose + 10 && step <= kLastEstimate) {
+      ++alone;
+      EXPECT_NEAR(c.v(), 10.0, 1e-9) << "step " << step << ": robot 2's pose is stale";
+    }
+    // 0.2 s limit + 0.16 s margin.
+    if (step >= kLastEstimate + 18) {
+      ++stopped;
+      EXPECT_EQ(c.v(), 0.0) << "step " << step << ": estimate silent for " << (step - kLastEstimate) * 0.02 << " s";
+      EXPECT_EQ(c.omega(), 0.0) << "step " << step;
+    }
+  }
+  EXPECT_GT(spaced, 0);
+  EXPECT_GT(alone, 0);
+  EXPECT_GT(stopped, 0);
+}
+
 std::string configure_error(const std::string& controller_params, const std::string& extra_components = "") {
   try {
     run(controller_params, Feed{}, extra_components);
