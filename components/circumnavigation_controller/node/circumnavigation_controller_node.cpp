@@ -1,0 +1,219 @@
+// Adapter: RangeRateEstimate / TargetAssignment / PoseEstimate <-> GuidanceLaw <-> VelocityCommand.
+#include "components/circumnavigation_controller/node/circumnavigation_controller_node.hpp"
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "components/circumnavigation_controller/guidance_law.hpp"
+#include "components/circumnavigation_controller/node/circumnavigation_controller_params.hpp"
+#include "robodds/idl/robodds.h"
+#include "runtime/log.hpp"
+#include "runtime/param_table_reader.hpp"
+#include "runtime/registry.hpp"
+
+namespace robodds::guidance {
+namespace {
+
+/// The b the observer bound is checked against, and the key it comes from.
+struct ObserverB {
+  double b_mps2 = 0.0;
+  std::string key;
+};
+
+/// The super-twisting gain b of the scenario's range_rate_observer component: its `sta.b`
+/// override, else the observer library's default (SuperTwistingParams::b = 2.2, which the
+/// observer node's table includes). Without such a component (a test feeding the observer topic,
+/// or a scenario whose observer runs elsewhere): this component's observer_accel_bound_mps2.
+ObserverB observer_b(const Scenario& scenario, double fallback_mps2) {
+  constexpr double kObserverDefaultB = 2.2;
+  for (const ComponentSpec& spec : scenario.components) {
+    if (spec.type == "range_rate_observer") {
+      ParamReader overrides(spec.name, spec.overrides);
+      if (overrides.has("sta.b")) {
+        return {overrides.get_double("sta.b"), spec.name + ".sta.b"};
+      }
+      return {kObserverDefaultB, spec.name + ".sta.b (default)"};
+    }
+  }
+  return {fallback_mps2, "observer_accel_bound_mps2"};
+}
+
+/// Plant limits of the scenario's plant component that are lower than what the law commands: the
+/// plant then saturates the commands (the bound still holds; the spacing has less room). Warns.
+void warn_about_lower_plant_limits(const ComponentContext& ctx, const GuidanceParams& law) {
+  for (const ComponentSpec& spec : ctx.scenario().components) {
+    if (spec.type != "plant") {
+      continue;
+    }
+    ParamReader overrides(spec.name, spec.overrides);
+    const double v = overrides.has("max_speed_mps") ? overrides.get_double("max_speed_mps") : 0.0;
+    const double w = overrides.has("max_turn_rate_radps") ? overrides.get_double("max_turn_rate_radps") : 0.0;
+    if ((v > 0.0 && v < max_commanded_speed(law)) || (w > 0.0 && w < law.max_turn_rate_radps)) {
+      log::warn(ctx.name(), "plant " + spec.name + " limits (max_speed_mps " + std::to_string(v) + ", max_turn_rate_radps " +
+                                std::to_string(w) + ") are below the law's V_max " + std::to_string(max_commanded_speed(law)) +
+                                " m/s / max_turn_rate_radps " + std::to_string(law.max_turn_rate_radps) +
+                                " rad/s: the plant saturates the commands");
+    }
+  }
+}
+
+class CircumnavigationControllerNode : public Component {
+ public:
+  void configure(ComponentContext& ctx) override {
+    auto& p = ctx.params();
+    const CircumnavigationControllerParams params = read_params(p, circumnavigation_controller_param_table());
+    p.validate(params.guidance);
+    ctx.set_rate_hz(params.rate_hz, "rate_hz");
+    ctx.require_longer_than_period("estimate_timeout_s", params.estimate_timeout_s);
+    ctx.require_longer_than_period("peer_timeout_s", params.peer_timeout_s);
+    const ObserverB b = observer_b(ctx.scenario(), params.observer_accel_bound_mps2);
+    p.check([&] { check_observer_bound(params.guidance, b.b_mps2, b.key); });
+    warn_about_lower_plant_limits(ctx, params.guidance);
+    estimate_timeout_s_ = params.estimate_timeout_s;
+    peer_timeout_s_ = params.peer_timeout_s;
+    dt_s_ = static_cast<double>(ctx.period_steps()) * ctx.step_s();
+    realtime_ = ctx.mode() == TimeMode::kRealtime;
+    name_ = ctx.name();
+    for (const RobotSpec& robot : ctx.robots()) {
+      robots_.emplace(robot.id, Robot{GuidanceLaw(params.guidance), "(not started)"});
+    }
+    std::vector<std::uint64_t> all_robots;
+    for (const RobotSpec& robot : ctx.scenario().robots) {
+      all_robots.push_back(robot.id);
+      scenario_robots_.push_back(robot.id);
+    }
+    observer_ = &ctx.subscribe<idl::RangeRateEstimate>(to_string(params.observer_topic),
+                                                        Subscription::robot_streams(ctx.robot_keys()));
+    missions_ = &ctx.subscribe<idl::TargetAssignment>("mission/target", Subscription::instances(all_robots));
+    poses_ = &ctx.subscribe<idl::PoseEstimate>("estimate/pose", Subscription::instances(all_robots));
+    cmd_out_ = &ctx.advertise<idl::VelocityCommand>("plant/cmd");
+  }
+
+  void on_step(const StepInfo&) override {
+    // Read every robot's newest task and pose first (latest() consumes what is readable).
+    std::map<std::uint32_t, const idl::TargetAssignment*> tasks;
+    std::map<std::uint32_t, const idl::PoseEstimate*> poses;
+    for (std::uint32_t id : scenario_robots_) {
+      tasks[id] = missions_->latest(id);
+      poses[id] = poses_->latest(id);
+    }
+    for (auto& [id, robot] : robots_) {
+      idl::VelocityCommand cmd;
+      cmd.robot_id(id);
+      cmd.mode(idl::VELOCITY);
+      const idl::TargetAssignment* task = tasks[id];
+      const idl::RangeRateEstimate* estimate = observer_->latest_of_robot(id);
+      const std::string why_zero = zero_reason(id, task, estimate);
+      if (why_zero.empty()) {
+        const model::Twist twist = robot.law.step(estimate->range(), estimate->range_rate(), task->desired_radius(),
+                                                  gaps_of(id, *task, tasks, poses), dt_s_);
+        cmd.v(twist.v);
+        cmd.omega(twist.omega);
+      } else {
+        robot.law.reset();  // the robot stops; it starts again from rest
+      }
+      report(id, robot, why_zero);
+      cmd_out_->publish(cmd);
+    }
+  }
+
+ private:
+  struct Robot {
+    GuidanceLaw law;
+    std::string last_reason = "(not started)";  // why the last command was zero ("" = steering)
+  };
+
+  /// Why robot `id` must get a zero command, or "" when the law may run.
+  std::string zero_reason(std::uint32_t id, const idl::TargetAssignment* task, const idl::RangeRateEstimate* estimate) const {
+    if (task == nullptr) {
+      return "no task on mission/target yet";
+    }
+    if (!task->active()) {
+      return "no target (LEAVE on mission/target)";
+    }
+    if (!(task->desired_radius() > 0.0)) {
+      return "desired_radius: must be > 0 (got " + std::to_string(task->desired_radius()) + ") for target " +
+             std::to_string(task->target_id());
+    }
+    if (estimate == nullptr) {
+      return "no estimate on " + observer_->topic() + " yet";
+    }
+    if (estimate->target_id() != task->target_id()) {
+      return "the estimate on " + observer_->topic() + " is of target " + std::to_string(estimate->target_id()) +
+             ", the task's is " + std::to_string(task->target_id());
+    }
+    if (realtime_ && !observer_->fresh(id, estimate_timeout_s_)) {
+      return "the estimate on " + observer_->topic() + " is older than estimate_timeout_s " +
+             std::to_string(estimate_timeout_s_) + " s";  // the receive time of this process, not the stamp
+    }
+    if (!estimate->valid()) {
+      return "the estimate on " + observer_->topic() + " is not valid (observer restart window)";
+    }
+    return "";
+  }
+
+  /// The gaps of robot `id` among the robots with the same active target and a known (in real
+  /// time: fresh) pose; alone (no spacing) while its own pose is unknown.
+  Gaps gaps_of(std::uint32_t id, const idl::TargetAssignment& task,
+               const std::map<std::uint32_t, const idl::TargetAssignment*>& tasks,
+               const std::map<std::uint32_t, const idl::PoseEstimate*>& poses) const {
+    auto bearing_of = [&](std::uint32_t robot) {
+      const idl::PoseEstimate* pose = poses.at(robot);
+      return TeamBearing{robot, bearing_from_target(pose->x(), pose->y(), task.target_x(), task.target_y())};
+    };
+    if (!pose_usable(id, poses)) {
+      return Gaps{};
+    }
+    std::vector<TeamBearing> peers;
+    for (const auto& [peer, peer_task] : tasks) {
+      if (peer != id && peer_task != nullptr && peer_task->active() && peer_task->target_id() == task.target_id() &&
+          pose_usable(peer, poses)) {
+        peers.push_back(bearing_of(peer));
+      }
+    }
+    return formation_gaps(bearing_of(id), peers);
+  }
+
+  bool pose_usable(std::uint32_t robot, const std::map<std::uint32_t, const idl::PoseEstimate*>& poses) const {
+    return poses.at(robot) != nullptr && (!realtime_ || poses_->fresh(robot, peer_timeout_s_));
+  }
+
+  /// Says once why a robot's commands are zero, and once when it steers again.
+  void report(std::uint32_t id, Robot& robot, const std::string& why_zero) {
+    if (why_zero == robot.last_reason) {
+      return;
+    }
+    if (why_zero.empty()) {
+      log::info(name_, "robot " + std::to_string(id) + ": steering (" + observer_->topic() + ")");
+    } else {
+      log::info(name_, "robot " + std::to_string(id) + ": zero command: " + why_zero);
+    }
+    robot.last_reason = why_zero;
+  }
+
+  double estimate_timeout_s_ = 0.5;
+  double peer_timeout_s_ = 1.0;
+  double dt_s_ = 0.02;
+  bool realtime_ = false;
+  std::string name_;
+  std::map<std::uint32_t, Robot> robots_;
+  std::vector<std::uint32_t> scenario_robots_;
+  Input<idl::RangeRateEstimate>* observer_ = nullptr;
+  Input<idl::TargetAssignment>* missions_ = nullptr;
+  Input<idl::PoseEstimate>* poses_ = nullptr;
+  Output<idl::VelocityCommand>* cmd_out_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<Component> make_circumnavigation_controller_node() {
+  return std::make_unique<CircumnavigationControllerNode>();
+}
+
+}  // namespace robodds::guidance
+
+ROBODDS_REGISTER_COMPONENT(circumnavigation_controller,
+                           "paper 2 circumnavigation guidance: observer/range_rate + mission/target + estimate/pose -> plant/cmd",
+                           robodds::guidance::make_circumnavigation_controller_node,
+                           robodds::guidance::circumnavigation_controller_param_table);

@@ -1,0 +1,9 @@
+#pragma once
+#include <memory>
+
+#include "runtime/component.hpp"
+
+namespace robodds::guidance {
+/// observer/range_rate (or _linear) + mission/target + estimate/pose (all robots) in; plant/cmd out.
+std::unique_ptr<Component> make_circumnavigation_controller_node();
+}  // namespace robodds::guidance

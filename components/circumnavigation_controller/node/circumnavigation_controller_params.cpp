@@ -1,0 +1,43 @@
+#include "components/circumnavigation_controller/node/circumnavigation_controller_params.hpp"
+
+#include <stdexcept>
+
+namespace robodds::guidance {
+
+ObserverTopic observer_topic_from_string(std::string_view text) {
+  if (text == "observer/range_rate") {
+    return ObserverTopic::kSuperTwisting;
+  }
+  if (text == "observer/range_rate_linear") {
+    return ObserverTopic::kLinear;
+  }
+  throw std::invalid_argument("observer_topic: must be \"observer/range_rate\" or \"observer/range_rate_linear\" (got \"" +
+                              std::string(text) + "\")");
+}
+
+std::string to_string(ObserverTopic topic) {
+  return topic == ObserverTopic::kLinear ? "observer/range_rate_linear" : "observer/range_rate";
+}
+
+const params::ParamTable<CircumnavigationControllerParams>& circumnavigation_controller_param_table() {
+  using P = CircumnavigationControllerParams;
+  static const params::ParamTable<P> table =
+      params::ParamTable<P>(
+          "Circumnavigation guidance of paper 2 (issue 10): observed range and range rate + the team's poses ->\n"
+          "plant/cmd. The orbit radius and the team come from mission/target. At start-up V_max omega_max <= b\n"
+          "is checked against the b of the scenario's range_rate_observer (README.md).")
+          .add("rate_hz", &P::rate_hz, "Hz", params::positive(), "control rate; must divide the simulation rate")
+          .include(&P::guidance, guidance_param_table())
+          .add_enum("observer_topic", &P::observer_topic, observer_topic_from_string, to_string,
+                    {"observer/range_rate", "observer/range_rate_linear"},
+                    "range-rate estimate used: super-twisting (the paper's) or the linear baseline")
+          .add("estimate_timeout_s", &P::estimate_timeout_s, "s", params::positive(),
+               "real time only: an observer estimate received longer ago than this stops the robot; > the control period")
+          .add("peer_timeout_s", &P::peer_timeout_s, "s", params::positive(),
+               "real time only: a team mate whose pose was received longer ago than this drops out of the spacing")
+          .add("observer_accel_bound_mps2", &P::observer_accel_bound_mps2, "m/s^2", params::positive(),
+               "the observer's b for the start-up bound check when the scenario has no range_rate_observer");
+  return table;
+}
+
+}  // namespace robodds::guidance

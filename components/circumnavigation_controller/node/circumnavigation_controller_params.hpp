@@ -1,0 +1,37 @@
+#pragma once
+// Every parameter of the circumnavigation_controller component: the law's (GuidanceParams) plus
+// the node's own. config/circumnavigation_controller.params.yaml is generated from the table.
+
+#include <string>
+#include <string_view>
+
+#include "common/param_table.hpp"
+#include "components/circumnavigation_controller/guidance_params.hpp"
+
+namespace robodds::guidance {
+
+/// Which range-rate estimate the law uses: the super-twisting observer's (the paper's) or the
+/// linear baseline's.
+enum class ObserverTopic { kSuperTwisting, kLinear };
+
+/// "observer/range_rate" / "observer/range_rate_linear"; throws std::invalid_argument
+/// ("observer_topic: ...") otherwise.
+ObserverTopic observer_topic_from_string(std::string_view text);
+std::string to_string(ObserverTopic topic);
+
+// Units, ranges and one-line descriptions of these fields: circumnavigation_controller_param_table()
+// (the one source; `robodds components --params circumnavigation_controller` prints it).
+// Defaults: the member initialisers.
+struct CircumnavigationControllerParams {
+  double rate_hz = 50.0;
+  GuidanceParams guidance;
+  ObserverTopic observer_topic = ObserverTopic::kSuperTwisting;
+  double estimate_timeout_s = 0.5;
+  double peer_timeout_s = 1.0;
+  /// The observer's b when the scenario has no range_rate_observer component to read it from.
+  double observer_accel_bound_mps2 = 2.2;
+};
+
+const params::ParamTable<CircumnavigationControllerParams>& circumnavigation_controller_param_table();
+
+}  // namespace robodds::guidance

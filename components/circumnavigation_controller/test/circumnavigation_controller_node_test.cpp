@@ -1,0 +1,257 @@
+// The circumnavigation controller node on the in-memory bus: observer/range_rate + mission/target +
+// estimate/pose (all robots) in, plant/cmd out.
+#include "components/circumnavigation_controller/node/circumnavigation_controller_node.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "robodds/idl/robodds.h"
+#include "runtime/error.hpp"
+#include "runtime/io.hpp"
+#include "runtime/registry.hpp"
+#include "runtime/testing/node_harness.hpp"
+
+ROBODDS_DECLARE_COMPONENT(circumnavigation_controller);
+
+namespace robodds::guidance {
+namespace {
+
+using robodds::testing::NodeHarness;
+using robodds::testing::of_instance;
+
+constexpr double kTargetX = 1000.0;
+constexpr double kTargetY = 1000.0;
+constexpr double kRadius = 200.0;
+
+// Steps 0..5 at 50 Hz; the controller serves robot 1, robot 2 is a peer.
+std::string scenario(const std::string& controller_params, const std::string& extra_components = "") {
+  return "name: circumnavigation_controller_node\nstep_s: 0.02\nduration_s: 0.1\nseed: 1\nrobots:\n  - {id: 1}\n  - {id: 2}\n"
+         "components:\n  - {name: controller, type: circumnavigation_controller, robots: [1], params: {" +
+         controller_params + "}}\n" + extra_components;
+}
+
+idl::TargetAssignment task(std::uint32_t robot, bool active, std::uint32_t target = 1) {
+  idl::TargetAssignment a;
+  a.robot_id(robot);
+  a.active(active);
+  a.target_id(target);
+  a.target_x(kTargetX);
+  a.target_y(kTargetY);
+  a.desired_radius(kRadius);
+  a.team_size(2);
+  a.slot(robot - 1);
+  return a;
+}
+
+idl::RangeRateEstimate estimate(double range, double range_rate, bool valid, std::uint32_t target = 1) {
+  idl::RangeRateEstimate e;
+  e.robot_id(1);
+  e.target_id(target);
+  e.range(range);
+  e.range_rate(range_rate);
+  e.valid(valid);
+  return e;
+}
+
+/// A pose at `bearing_deg` seen from the target, on the orbit.
+idl::PoseEstimate pose_at(std::uint32_t robot, double bearing_deg) {
+  const double b = bearing_deg * 3.14159265358979323846 / 180.0;
+  idl::PoseEstimate p;
+  p.robot_id(robot);
+  p.x(kTargetX + kRadius * std::cos(b));
+  p.y(kTargetY + kRadius * std::sin(b));
+  p.valid(true);
+  return p;
+}
+
+struct Feed {
+  bool active1 = true;
+  bool valid = true;
+  double range = kRadius;
+  double range_rate = 0.0;
+  std::uint32_t target2 = 1;
+  double bearing2_deg = 90.0;
+  std::uint64_t invalid_step = kNeverAgain;  // the estimate is not valid at this one step
+};
+
+/// Runs the controller with missions at step 0 (never again), poses and estimates every step.
+std::vector<idl::VelocityCommand> run(const std::string& controller_params, const Feed& f,
+                                      const std::string& extra_components = "") {
+  NodeHarness h(scenario(controller_params, extra_components));
+  robodds::component_registration::register_circumnavigation_controller(h.registry());
+  h.feed([&h, f](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/target", task(1, f.active1), 0, kNeverAgain);
+      h.publish("mission/target", task(2, true, f.target2), 0, kNeverAgain);
+    }
+    h.publish("estimate/pose", pose_at(1, 0.0), step, step + 1);
+    h.publish("estimate/pose", pose_at(2, f.bearing2_deg), step, step + 1);
+    h.publish("observer/range_rate", estimate(f.range, f.range_rate, f.valid && step != f.invalid_step), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  h.run({"controller"});
+  return commands;
+}
+
+TEST(CircumnavigationControllerNode, CommandsZeroOnLeave) {
+  Feed f;
+  f.active1 = false;
+  const auto commands = run("", f);
+  ASSERT_EQ(commands.size(), 6u) << "a command at every step, also when stopped";
+  for (const auto& c : commands) {
+    EXPECT_EQ(c.robot_id(), 1u);
+    EXPECT_EQ(c.v(), 0.0);
+    EXPECT_EQ(c.omega(), 0.0);
+  }
+}
+
+TEST(CircumnavigationControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
+  Feed f;
+  f.valid = false;
+  for (const auto& c : run("", f)) {
+    EXPECT_EQ(c.v(), 0.0);
+    EXPECT_EQ(c.omega(), 0.0);
+  }
+  f.valid = true;  // the same inputs with a valid estimate steer
+  const auto commands = run("", f);
+  ASSERT_EQ(commands.size(), 6u);
+  EXPECT_GT(commands.back().v(), 0.0);
+}
+
+TEST(CircumnavigationControllerNode, AfterAZeroCommandTheSpeedStartsFromRestAgain) {
+  Feed f;
+  f.invalid_step = 3;
+  const auto commands = run("", f);
+  ASSERT_EQ(commands.size(), 6u);
+  EXPECT_NEAR(commands[2].v(), 0.03, 1e-12);
+  EXPECT_EQ(commands[3].v(), 0.0);
+  EXPECT_NEAR(commands[4].v(), 0.01, 1e-12) << "the robot stood still at step 3: |dV/dt| <= max_accel from rest";
+}
+
+TEST(CircumnavigationControllerNode, FarFromTheTargetTurnsTowardsItFromRestAtMaxAccel) {
+  Feed far;
+  far.range = 1000.0;  // 800 m too far, range constant: turn left harder than the orbit's V / R
+  const auto commands = run("", far);
+  ASSERT_EQ(commands.size(), 6u);
+  for (std::size_t k = 0; k < commands.size(); ++k) {
+    const double v = 0.01 * static_cast<double>(k + 1);  // 0.5 m/s^2 x 0.02 s per step from rest
+    EXPECT_NEAR(commands[k].v(), v, 1e-12);
+    // omega = V / R + 0.02 (0 - (-0.8 V))
+    EXPECT_NEAR(commands[k].omega(), v / kRadius + 0.02 * 0.8 * v, 1e-12);
+    EXPECT_GT(commands[k].omega(), v / kRadius);
+  }
+  Feed on_orbit;  // on the radius with rate 0: exactly the orbit's turn rate
+  const auto orbit = run("", on_orbit);
+  EXPECT_NEAR(orbit.back().omega(), orbit.back().v() / kRadius, 1e-15);
+}
+
+TEST(CircumnavigationControllerNode, SpacesOnlyWithRobotsOfTheSameTarget) {
+  // max_accel so large that V reaches the spacing speed at once. Robot 2 is 30 deg ahead of
+  // robot 1: gap ahead 30, behind 330 deg -> V = 10 (1 - 0.3) = 7 m/s. On another target it is
+  // no team mate: robot 1 alone -> V0 = 10 m/s.
+  Feed same;
+  same.bearing2_deg = 30.0;
+  EXPECT_NEAR(run("max_accel_mps2: 1000", same).back().v(), 7.0, 1e-12);
+  Feed behind = same;
+  behind.bearing2_deg = -30.0;
+  EXPECT_NEAR(run("max_accel_mps2: 1000", behind).back().v(), 13.0, 1e-12);
+  Feed other = same;
+  other.target2 = 2;
+  EXPECT_NEAR(run("max_accel_mps2: 1000", other).back().v(), 10.0, 1e-12);
+}
+
+// Real time: the observer stops at step 20 (0.4 s), robot 2's pose at step 10 (0.2 s). With
+// estimate_timeout_s 0.2 the commands become zero; with peer_timeout_s 0.1 robot 2 drops out of
+// the spacing first (robot 1 alone: 10 m/s instead of 7 with robot 2 30 deg ahead).
+TEST(CircumnavigationControllerNode, RealTimeStaleEstimateStopsAndStalePeerDropsOut) {
+  NodeHarness h(R"(name: circumnavigation_controller_stale
+step_s: 0.02
+duration_s: 1.2
+seed: 1
+robots:
+  - {id: 1}
+  - {id: 2}
+components:
+  - {name: controller, type: circumnavigation_controller, robots: [1],
+     params: {estimate_timeout_s: 0.2, peer_timeout_s: 0.1, max_accel_mps2: 1000}}
+)");
+  robodds::component_registration::register_circumnavigation_controller(h.registry());
+  h.set_mode(TimeMode::kRealtime);
+  constexpr std::uint64_t kLastEstimate = 20;
+  constexpr std::uint64_t kLastPeerPose = 10;
+  bool missions_sent = false;
+  h.feed([&](std::uint64_t step) {
+    if (!missions_sent) {
+      h.publish("mission/target", task(1, true), step, kNeverAgain);
+      h.publish("mission/target", task(2, true), step, kNeverAgain);
+      missions_sent = true;
+    }
+    h.publish("estimate/pose", pose_at(1, 0.0), step, step + 1);
+    if (step <= kLastPeerPose) {
+      h.publish("estimate/pose", pose_at(2, 30.0), step, step + 1);
+    }
+    if (step <= kLastEstimate) {
+      h.publish("observer/range_rate", estimate(kRadius, 0.0, true), step, step + 1);
+    }
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  h.run({"controller"});
+  int spaced = 0;
+  int alone = 0;
+  int stopped = 0;
+  for (const auto& c : commands) {
+    const std::uint64_t step = c.header().step();
+    if (step <= kLastPeerPose && c.v() > 0.0) {
+      ++spaced;
+      EXPECT_NEAR(c.v(), 7.0, 1e-9) << "step " << step << ": robot 2 30 deg ahead";
+    }
+    // 0.1 s limit + 0.1 s margin for a loaded machine.
+    if (step >= kLastPeerPose + 10 && step <= kLastEstimate) {
+      ++alone;
+      EXPECT_NEAR(c.v(), 10.0, 1e-9) << "step " << step << ": robot 2's pose is stale";
+    }
+    // 0.2 s limit + 0.16 s margin.
+    if (step >= kLastEstimate + 18) {
+      ++stopped;
+      EXPECT_EQ(c.v(), 0.0) << "step " << step << ": estimate silent for " << (step - kLastEstimate) * 0.02 << " s";
+      EXPECT_EQ(c.omega(), 0.0) << "step " << step;
+    }
+  }
+  EXPECT_GT(spaced, 0);
+  EXPECT_GT(alone, 0);
+  EXPECT_GT(stopped, 0);
+}
+
+std::string configure_error(const std::string& controller_params, const std::string& extra_components = "") {
+  try {
+    run(controller_params, Feed{}, extra_components);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+TEST(CircumnavigationControllerNode, ABrokenObserverBoundIsAConfigureErrorNamingTheKeys) {
+  // No observer component in the scenario: b is observer_accel_bound_mps2 (2.2).
+  const std::string turn = configure_error("max_turn_rate_radps: 0.2");
+  EXPECT_TRUE(contains(turn, "max_turn_rate_radps")) << turn;
+  EXPECT_TRUE(contains(turn, "13 m/s x 0.2 rad/s = 2.6 m/s^2 > observer_accel_bound_mps2 = 2.2")) << turn;
+  // The scenario's range_rate_observer's sta.b when there is one.
+  const std::string observer_b =
+      configure_error("", "  - {name: observer, type: range_rate_observer, params: {sta: {b: 1.5}}}\n");
+  EXPECT_TRUE(contains(observer_b, "> observer.sta.b = 1.5")) << observer_b;
+  EXPECT_EQ(configure_error(""), "");
+}
+
+TEST(CircumnavigationControllerNode, BadParamsNameTheKey) {
+  EXPECT_TRUE(contains(configure_error("cruise_speed_mps: 0"), "cruise_speed_mps: must be > 0"));
+  EXPECT_TRUE(contains(configure_error("observer_topic: observer/foo"), "observer_topic"));
+}
+
+}  // namespace
+}  // namespace robodds::guidance
