@@ -7,6 +7,7 @@
 
 #include "components/circumnavigation_controller/guidance_law.hpp"
 #include "components/circumnavigation_controller/node/circumnavigation_controller_params.hpp"
+#include "components/range_rate_observer/observer_params.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
@@ -22,11 +23,11 @@ struct ObserverB {
 };
 
 /// The super-twisting gain b of the scenario's range_rate_observer component: its `sta.b`
-/// override, else the observer library's default (SuperTwistingParams::b = 2.2, which the
+/// override, else the observer library's default (SuperTwistingParams::b, which the
 /// observer node's table includes). Without such a component (a test feeding the observer topic,
 /// or a scenario whose observer runs elsewhere): this component's observer_accel_bound_mps2.
 ObserverB observer_b(const Scenario& scenario, double fallback_mps2) {
-  constexpr double kObserverDefaultB = 2.2;
+  const double kObserverDefaultB = range_rate::SuperTwistingParams{}.b;  // the observer's own default
   for (const ComponentSpec& spec : scenario.components) {
     if (spec.type == "range_rate_observer") {
       ParamReader overrides(spec.name, spec.overrides);
