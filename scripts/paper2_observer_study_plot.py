@@ -86,7 +86,8 @@ def draw_lag_vs_noise(rows, path):
         ax.set_yscale("log")
         ax.set_xlabel("lag: RMS rate error, signal without noise (m/s)")
         ax.set_ylabel("noise floor: RMS rate error, constant range with noise (m/s)")
-        ax.set_title(SIGNAL_TITLE.get(signal, signal) + "\nlinear k1 = 2w, k2 = w^2 (w grows leftwards); star: super-twisting"
+        ax.set_title(SIGNAL_TITLE.get(signal, signal)
+                     + "\nlinear k1 = 2w, k2 = w^2 (w grows leftwards); star: super-twisting"
                      "\nhollow star: super-twisting's lag under noise, sqrt(total^2 - noise^2)", fontsize=9)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=6, ncol=2)
@@ -150,10 +151,12 @@ def table_by_observer(rows, signal, columns, key, ci_key=None, title=""):
     head = " | ".join(f"{rate:g} Hz" + (f", {sigma:g} m" if sigma is not None else "") for rate, sigma in columns)
     print(f"| observer | {head} |")
     print("|---|" + "---:|" * len(columns))
-    first = pick(rows, signal=signal, rate_hz=columns[0][0], sigma_m=columns[0][1] if columns[0][1] is not None else 0.0)
+    first_sigma = columns[0][1] if columns[0][1] is not None else 0.0
+    first = pick(rows, signal=signal, rate_hz=columns[0][0], sigma_m=first_sigma)
     observers = [("sta", None)] + [("linear", r["w_radps"]) for r in linear_sorted(first)]
     for name, w in observers:
-        label = "super-twisting (a 2.12, b 2.2, c 1, d 1)" if name == "sta" else f"linear w {w:g} (k1 {2 * w:g}, k2 {w * w:g})"
+        label = ("super-twisting (a 2.12, b 2.2, c 1, d 1)" if name == "sta"
+                 else f"linear w {w:g} (k1 {2 * w:g}, k2 {w * w:g})")
         cells = []
         for rate, sigma in columns:
             group = pick(rows, signal=signal, rate_hz=rate, sigma_m=sigma if sigma is not None else 0.0)
