@@ -11,6 +11,17 @@ reads the per-topic CSV files that `robodds run SCENARIO --out OUT_DIR` wrote an
   pf_error.png           (paper Fig. 2) x / y error of the PF estimate and of the raw position fixes
   measurement_error.png  as pf_error.png, for runs without estimate_pose.csv (raw fixes only)
 
+and, for paper 2 (Lin & Zhang 2020, range-rate observer; a team circling targets) runs:
+
+  p2_trajectories.png    (paper Fig. 3/5) every robot's path, the targets and their circles
+  p2_range_rate.png      (paper Fig. 4/6) per robot, true and observed (super-twisting) range rate
+  p2_observer_zoom.png   (paper Fig. 7) true vs super-twisting vs linear range rate over the first 60 s
+                         after each target assignment (0 s and each event of mission_target.csv)
+  p2_formation.png       radius error and spacing error (gap to the next robot - 360/n deg) over time
+
+The true range rate comes from plant_state.csv and the assigned target (mission_target.csv):
+rdot = (p - T) . (v cos theta, v sin theta) / |p - T|. Long runs are decimated for drawing only.
+
 A figure whose input files are absent is skipped. Prints the path of each written file, one per line.
 Exit status: 0 on success (also when no figure had its inputs), 2 when OUT_DIR is missing, holds no CSV
 file, or a CSV file is malformed (the one-line message names the file and the column or line), 1 when
@@ -20,6 +31,7 @@ numpy / matplotlib cannot be imported.
 import csv
 import os
 import sys
+import warnings
 
 import importlib.util
 
@@ -57,6 +69,7 @@ def _load_matplotlib():
 
 
 HEADER = ["t_s", "robot_id", "header.step", "header.next_step", "header.stamp_ns"]
+HEADER_TARGET = ["t_s", "robot_id", "target_id", "header.step", "header.next_step", "header.stamp_ns"]
 
 # Columns every known file must have (extra columns are ignored). Files not named here are ignored.
 SCHEMAS = {
@@ -68,6 +81,13 @@ SCHEMAS = {
     "control_status.csv": HEADER + ["waypoint_index", "waypoints_total", "waypoints_reached",
                                     "distance_to_waypoint", "distance_to_final", "alpha", "sigma", "done"],
     "mission_waypoints.csv": HEADER + ["waypoints"],
+    # Paper 2. Two-part keys (RangeMeasurement, RangeRateEstimate): target_id after robot_id, as the
+    # recorder writes the IDL members in order.
+    "sensor_range.csv": HEADER_TARGET + ["range", "var"],
+    "observer_range_rate.csv": HEADER_TARGET + ["range", "range_rate", "valid", "restarted"],
+    "observer_range_rate_linear.csv": HEADER_TARGET + ["range", "range_rate", "valid", "restarted"],
+    "mission_target.csv": HEADER + ["active", "target_id", "target_x", "target_y", "desired_radius", "slot",
+                                    "team_size"],
 }
 TEXT_COLUMNS = {"waypoints"}  # parsed separately; every other column is a number
 
@@ -81,9 +101,45 @@ class ReportError(Exception):
 
 # ---- reading ----------------------------------------------------------------------------------
 
+def read_header(path):
+    """The stripped fields of the first line; ReportError if unreadable or empty."""
+    try:
+        with open(path, newline="") as f:
+            first = next(csv.reader(f), [])
+    except (OSError, UnicodeDecodeError, csv.Error) as e:
+        raise ReportError("%s: cannot read: %s" % (path, e))
+    if not any(field.strip() for field in first):
+        raise ReportError("%s: empty file, no header row" % path)
+    return [field.strip() for field in first]
+
+
+def read_numbers_fast(path, header, columns):
+    """numpy's C parser for an all-numeric file (~10x faster than csv on the 100k-row files of a long
+    run); None whenever anything is unusual (text, a bad field, a wrong field count, no rows), and
+    read_table's checked path then reads the file and names the problem."""
+    if any(column in TEXT_COLUMNS for column in header):
+        return None
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")  # "input contained no data" -> the checked path
+            values = np.loadtxt(path, delimiter=",", skiprows=1, ndmin=2, dtype=float, comments=None)
+    except (ValueError, UserWarning, OSError, UnicodeDecodeError):
+        return None
+    if values.shape[1] != len(header):
+        return None
+    return {column: values[:, header.index(column)].copy() for column in columns}
+
+
 def read_table(path, columns):
     """Reads a CSV file into {column: array} (floats; str arrays for TEXT_COLUMNS); checks the columns."""
     name = os.path.basename(path)
+    header = read_header(path)
+    for column in columns:
+        if column not in header:
+            raise ReportError("%s: missing column '%s'" % (path, column))
+    fast = read_numbers_fast(path, header, columns)
+    if fast is not None:
+        return fast
     try:
         with open(path, newline="") as f:
             rows = list(csv.reader(f))
@@ -364,6 +420,257 @@ def plot_errors(data, out_dir, written):
     save(fig, out_dir, name, written)
 
 
+# ---- paper 2: circumnavigation with range-rate observers ---------------------------------------
+
+MAX_DRAWN_POINTS = 4000  # per line; long runs (100k rows per robot) are decimated for drawing only
+ZOOM_WINDOW_S = 60.0
+MAX_ZOOM_WINDOWS = 4
+
+
+def drawn(n):
+    """Index slice that keeps at most MAX_DRAWN_POINTS of n rows, evenly spaced."""
+    return slice(None, None, max(1, -(-n // MAX_DRAWN_POINTS)))
+
+
+def target_schedule(table):
+    """mission_target.csv -> {robot_id: rows in step order}: the robot's assignments (active, target_id,
+    target_x, target_y, desired_radius, ...), each valid from its header.step to the next one's."""
+    return by_robot(table)
+
+
+def assignment_index(schedule, steps):
+    """For each step, the row of the robot's schedule in force (-1 before its first assignment)."""
+    if schedule is None or len(schedule["header.step"]) == 0:
+        return np.full(len(steps), -1, dtype=int)
+    return np.searchsorted(schedule["header.step"], steps, side="right") - 1
+
+
+def truth_to_target(state, schedule):
+    """True range and range rate of one robot to its assigned target, per plant_state row:
+    {t_s, step, x, y, active, target_id, target_x, target_y, desired_radius, range, range_rate, bearing}; rows
+    without an active assignment have NaN range, range rate and bearing."""
+    steps = state["header.step"]
+    i = assignment_index(schedule, steps)
+    has = i >= 0
+    take = np.where(has, i, 0)
+
+    def field(name, missing):
+        if schedule is None or len(schedule["header.step"]) == 0:
+            return np.full(len(steps), missing, dtype=float)
+        return np.where(has, schedule[name][take], missing)
+
+    active = field("active", 0.0) != 0
+    tx, ty = field("target_x", np.nan), field("target_y", np.nan)
+    dx, dy = state["x"] - tx, state["y"] - ty
+    rng = np.hypot(dx, dy)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        rdot = (dx * state["v"] * np.cos(state["theta"]) + dy * state["v"] * np.sin(state["theta"])) / rng
+    nan = np.full(len(steps), np.nan)
+    return {"t_s": state["t_s"], "step": steps, "x": state["x"], "y": state["y"], "active": active,
+            "target_id": field("target_id", -1.0), "target_x": tx, "target_y": ty,
+            "desired_radius": field("desired_radius", np.nan),
+            "range": np.where(active, rng, nan), "range_rate": np.where(active, rdot, nan),
+            "bearing": np.where(active, np.arctan2(dy, dx), nan)}
+
+
+def spacing_errors(truths):
+    """Angular spacing error (rad) of each robot: its gap to the next robot counter-clockwise around the
+    same target minus 2 pi / n, n the robots active on that target at that step (NaN when alone or
+    inactive). truths: {robot: truth_to_target(...)}; returns ({robot: error array per its rows}, steps)."""
+    robots = sorted(truths)
+    steps = np.unique(np.concatenate([truths[r]["step"] for r in robots])) if robots else np.zeros(0)
+    count = len(steps)
+    bearing = np.full((count, len(robots)), np.nan)
+    target = np.full((count, len(robots)), -1.0)
+    for j, r in enumerate(robots):
+        rows = np.searchsorted(steps, truths[r]["step"])
+        bearing[rows, j] = truths[r]["bearing"]
+        target[rows, j] = np.where(truths[r]["active"], truths[r]["target_id"], -1.0)
+    error = np.full((count, len(robots)), np.nan)
+    for tid in np.unique(target[target >= 0]):
+        angles = np.where((target == tid) & np.isfinite(bearing), bearing, np.nan)
+        n = np.sum(np.isfinite(angles), axis=1)
+        order = np.argsort(angles, axis=1)  # NaN last
+        ordered = np.take_along_axis(angles, order, axis=1)
+        k = np.arange(len(robots))[None, :]
+        nxt = np.where(k + 1 < n[:, None], k + 1, 0)
+        gap = np.take_along_axis(ordered, nxt, axis=1) - ordered
+        gap = np.where(nxt == 0, gap + 2.0 * np.pi, gap)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            err_sorted = np.where((k < n[:, None]) & (n[:, None] >= 2), gap - 2.0 * np.pi / n[:, None], np.nan)
+        rows = np.nonzero(np.isfinite(err_sorted))
+        error[rows[0], order[rows]] = err_sorted[rows]
+    return {r: error[np.searchsorted(steps, truths[r]["step"]), j] for j, r in enumerate(robots)}
+
+
+def assignment_starts(schedules):
+    """Times (s) at which some robot gets a new active assignment (its first one, or another target):
+    the starts of the observer zoom windows, sorted, at most MAX_ZOOM_WINDOWS."""
+    starts = set()
+    for rows in schedules.values():
+        previous = None
+        for t, active, tid in zip(rows["t_s"], rows["active"], rows["target_id"]):
+            current = tid if active != 0 else None
+            if current is not None and current != previous:
+                starts.add(round(float(t), 6))
+            previous = current
+    return sorted(starts)[:MAX_ZOOM_WINDOWS]
+
+
+def masked_estimate(rows):
+    """(t_s, range_rate with invalid samples as NaN, restart times) of one robot's observer rows."""
+    rate = np.where(rows["valid"] != 0, rows["range_rate"], np.nan)
+    return rows["t_s"], rate, rows["t_s"][rows["restarted"] != 0]
+
+
+def paper2_truths(data):
+    states = by_robot(data.get("plant_state.csv"))
+    schedules = target_schedule(data.get("mission_target.csv"))
+    if not states or not schedules:
+        return {}, schedules
+    return {r: truth_to_target(states[r], schedules.get(r)) for r in states}, schedules
+
+
+def plot_p2_trajectories(data, truths, schedules, out_dir, written):
+    if not truths:
+        return
+    colors = robot_colors(truths)
+    fig, ax = plt.subplots(figsize=(7.5, 7.0))
+    for robot, tr in truths.items():
+        c = colors[robot]
+        d = drawn(len(tr["x"]))
+        ax.plot(tr["x"][d], tr["y"][d], "-", color=c, lw=1.2, label="robot %d" % robot)
+        if len(tr["x"]):
+            ax.plot(tr["x"][0], tr["y"][0], "o", ms=8, mfc=c, mec="black", zorder=5)
+            ax.plot(tr["x"][-1], tr["y"][-1], "s", ms=6, mfc=c, mec="black", zorder=5)
+    targets = {}
+    for rows in schedules.values():
+        for active, tid, x, y, radius in zip(rows["active"], rows["target_id"], rows["target_x"], rows["target_y"],
+                                             rows["desired_radius"]):
+            if active != 0:
+                targets[int(tid)] = (x, y, radius)
+    circle = np.linspace(0.0, 2.0 * np.pi, 361)
+    for tid, (x, y, radius) in sorted(targets.items()):
+        ax.plot(x, y, "kx", ms=10, mew=2, zorder=6)
+        ax.plot(x + radius * np.cos(circle), y + radius * np.sin(circle), "k:", lw=1.0)
+        ax.annotate("target %d" % tid, (x, y), xytext=(6, 6), textcoords="offset points", fontsize=9)
+    handles = [Line2D([], [], color=colors[r], lw=2, label="robot %d" % r) for r in sorted(colors)]
+    handles += [Line2D([], [], color="gray", ls="none", marker="o", mec="black", ms=7, label="start"),
+                Line2D([], [], color="gray", ls="none", marker="s", mec="black", ms=6, label="end"),
+                Line2D([], [], color="black", ls=":", marker="x", label="target, desired radius")]
+    ax.legend(handles=handles, loc="best", fontsize=8, framealpha=0.85)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title("Trajectories around the targets (paper 2 Fig. 3/5)")
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    save(fig, out_dir, "p2_trajectories.png", written)
+
+
+def plot_p2_range_rate(data, truths, out_dir, written):
+    estimates = by_robot(data.get("observer_range_rate.csv"))
+    if not estimates:
+        return
+    robots = sorted(set(estimates) | set(truths))
+    colors = robot_colors(robots)
+    fig, axes = plt.subplots(len(robots), 1, sharex=True, figsize=(9.0, 2.2 * len(robots) + 0.8), squeeze=False)
+    for ax, robot in zip(axes[:, 0], robots):
+        if robot in truths:
+            tr = truths[robot]
+            d = drawn(len(tr["t_s"]))
+            ax.plot(tr["t_s"][d], tr["range_rate"][d], "-", color="black", lw=1.0, label="true")
+        if robot in estimates:
+            t, rate, restarts = masked_estimate(estimates[robot])
+            d = drawn(len(t))
+            ax.plot(t[d], rate[d], "-", color=colors[robot], lw=0.9, alpha=0.85, label="super-twisting (valid)")
+            for i, tr_s in enumerate(restarts):
+                ax.axvline(tr_s, color="gray", ls=":", lw=1.0, label="restart" if i == 0 else None)
+        ax.set_ylabel("robot %d\nrange rate [m/s]" % robot, fontsize=8)
+        ax.grid(True, alpha=0.3)
+        ax.legend(loc="upper right", fontsize=7, framealpha=0.85)
+    axes[-1, 0].set_xlabel("time [s]")
+    axes[0, 0].set_title("True and observed range rate (paper 2 Fig. 4/6)")
+    fig.tight_layout()
+    save(fig, out_dir, "p2_range_rate.png", written)
+
+
+def plot_p2_observer_zoom(data, truths, schedules, out_dir, written):
+    sta = by_robot(data.get("observer_range_rate.csv"))
+    linear = by_robot(data.get("observer_range_rate_linear.csv"))
+    if not sta and not linear:
+        return
+    starts = assignment_starts(schedules) or [0.0]
+    robots = sorted(set(sta) | set(linear))
+    fig, axes = plt.subplots(len(robots), len(starts), figsize=(4.5 * len(starts) + 1.0, 2.2 * len(robots) + 0.8),
+                             squeeze=False)
+    for i, robot in enumerate(robots):
+        for j, start in enumerate(starts):
+            ax = axes[i, j]
+            end = start + ZOOM_WINDOW_S
+            drew = False
+            if robot in truths:
+                tr = truths[robot]
+                keep = (tr["t_s"] >= start) & (tr["t_s"] < end) & np.isfinite(tr["range_rate"])
+                drew = drew or bool(np.any(keep))
+                d = drawn(int(np.sum(keep)))
+                ax.plot(tr["t_s"][keep][d], tr["range_rate"][keep][d], "-", color="black", lw=1.2, label="true")
+            for rows_by_robot, color, label in ((sta, "C0", "super-twisting"), (linear, "C1", "linear")):
+                if robot not in rows_by_robot:
+                    continue
+                t, rate, _ = masked_estimate(rows_by_robot[robot])
+                keep = (t >= start) & (t < end)
+                drew = drew or bool(np.any(keep))
+                d = drawn(int(np.sum(keep)))
+                ax.plot(t[keep][d], rate[keep][d], "-", color=color, lw=1.0, label=label)
+            if not drew:
+                ax.text(0.5, 0.5, "no target", transform=ax.transAxes, ha="center", va="center", color="gray")
+            ax.set_xlim(start, end)
+            ax.grid(True, alpha=0.3)
+            if j == 0:
+                ax.set_ylabel("robot %d\nrange rate [m/s]" % robot, fontsize=8)
+            if i == 0:
+                ax.set_title("%g-%g s" % (start, end), fontsize=9)
+            if i == len(robots) - 1:
+                ax.set_xlabel("time [s]")
+    axes[0, 0].legend(loc="best", fontsize=7, framealpha=0.85)
+    fig.suptitle("True vs super-twisting vs linear range rate after each assignment (paper 2 Fig. 7)", fontsize=10)
+    fig.tight_layout()
+    save(fig, out_dir, "p2_observer_zoom.png", written)
+
+
+def plot_p2_formation(truths, out_dir, written):
+    if not truths:
+        return
+    spacing = spacing_errors(truths)
+    colors = robot_colors(truths)
+    fig, (ax_r, ax_s) = plt.subplots(2, 1, sharex=True, figsize=(9.0, 6.0))
+    for robot, tr in truths.items():
+        d = drawn(len(tr["t_s"]))
+        ax_r.plot(tr["t_s"][d], (tr["range"] - tr["desired_radius"])[d], color=colors[robot], lw=1.0,
+                  label="robot %d" % robot)
+        ax_s.plot(tr["t_s"][d], np.degrees(spacing[robot])[d], color=colors[robot], lw=1.0, label="robot %d" % robot)
+    ax_r.set_ylabel("radius error [m]")
+    ax_s.set_ylabel("spacing error [deg]\n(gap to next - 360/n)")
+    ax_s.set_xlabel("time [s]")
+    ax_r.set_title("Formation: distance to the target minus the desired radius, angular spacing")
+    for ax in (ax_r, ax_s):
+        ax.grid(True, alpha=0.3)
+        ax.axhline(0.0, color="black", lw=0.6)
+        ax.legend(loc="upper right", fontsize=7)
+        ax.set_yscale("symlog", linthresh=1.0)
+    fig.tight_layout()
+    save(fig, out_dir, "p2_formation.png", written)
+
+
+def plot_paper2(data, out_dir, written):
+    truths, schedules = paper2_truths(data)
+    plot_p2_trajectories(data, truths, schedules, out_dir, written)
+    plot_p2_range_rate(data, truths, out_dir, written)
+    plot_p2_observer_zoom(data, truths, schedules, out_dir, written)
+    plot_p2_formation(truths, out_dir, written)
+
+
 def report(out_dir):
     """Writes the figures of out_dir; returns the written paths. Raises ReportError on bad input."""
     data = load(out_dir)
@@ -376,6 +683,7 @@ def report(out_dir):
     plot_velocity(data, out_dir, written)
     plot_distance(data, out_dir, written)
     plot_errors(data, out_dir, written)
+    plot_paper2(data, out_dir, written)
     return written
 
 
