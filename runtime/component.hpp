@@ -113,6 +113,11 @@ class ComponentContext {
     detail::InputOptions options;
     options.expected = subscription.expected();
     options.delay_steps = subscription.delay_steps();
+    options.by_robot = subscription.by_robot();
+    if (options.by_robot && info.key.find(',') == std::string::npos) {
+      throw ConfigError(spec_.name + ": robot_streams() needs a topic keyed (robot_id, X); " + topic + " is keyed " +
+                        (info.key.empty() ? std::string("by nothing") : info.key));
+    }
     options.key_names = info.key;
     Bus* bus = run_.bus;
     options.writer_name = [bus](std::uint64_t writer_id) { return bus->writer_name(writer_id); };

@@ -7,7 +7,9 @@
 // arrived, whatever the delivery order across topics and processes. It then reads only
 // samples with step <= m - d. The result is the same co-located, across processes or hosts.
 
+#include <algorithm>
 #include <cstdint>
+#include <iterator>
 #include <deque>
 #include <functional>
 #include <limits>
@@ -52,6 +54,18 @@ class Subscription {
     s.expected_ = std::move(keys);
     return s;
   }
+  /// For topics keyed (robot_id, X) whose robot moves from one X to another (sensor/range and
+  /// observer/range_rate: X is the target, which a mission event changes): these robot ids, and
+  /// per robot ONE stream whatever its X. In lockstep the component waits, per robot, for the
+  /// newest sample of any X, so a producer that switches a robot from (r, 1) to (r, 2) at step S
+  /// is waited for at S without the consumer knowing the new X in advance. Read with
+  /// Input::latest_of_robot() / take_new_of_robot(). A producer ends a robot's stream with
+  /// publish_final() (e.g. the robot leaves the mission).
+  static Subscription robot_streams(std::vector<std::uint64_t> robot_ids) {
+    Subscription s = instances(std::move(robot_ids));
+    s.by_robot_ = true;
+    return s;
+  }
   /// Takes every instance and waits for none: reads whatever has arrived, which is not
   /// deterministic across deployments (monitoring only).
   static Subscription any_instance() { return Subscription{}; }
@@ -65,11 +79,13 @@ class Subscription {
 
   const std::vector<std::uint64_t>& expected() const { return expected_; }
   std::uint64_t delay_steps() const { return delay_steps_; }
+  bool by_robot() const { return by_robot_; }
 
  private:
   Subscription() = default;
   std::vector<std::uint64_t> expected_;
   std::uint64_t delay_steps_ = 0;
+  bool by_robot_ = false;
 };
 
 namespace detail {
@@ -84,6 +100,9 @@ struct InputOptions {
   std::uint64_t delay_steps = 0;
   /// Host-level inputs (ticks, acks) see every sample regardless of the component's step.
   bool ignore_step = false;
+  /// Subscription::robot_streams(): `expected` holds robot ids, and readiness and producers are
+  /// tracked per robot id (the key's upper 32 bits), whatever the second key part.
+  bool by_robot = false;
   /// The topic's key field names (from the topic catalog), used in error messages.
   std::string key_names;
   /// Labels for instances whose key cannot be spelled from key_names (e.g. hashed strings).
@@ -268,6 +287,9 @@ class InputBase {
     // Not seen yet: spell the key with the topic's key field names ("robot_id, target_id").
     const std::string& names = options_.key_names;
     const std::size_t comma = names.find(',');
+    if (options_.by_robot) {
+      return names.substr(0, comma) + "=" + std::to_string(key) + " (any " + names.substr(comma + 2) + ")";
+    }
     if (names.empty()) {
       return "instance " + std::to_string(key);
     }
@@ -278,6 +300,8 @@ class InputBase {
     second.erase(0, second.find_first_not_of(' '));
     return names.substr(0, comma) + "=" + std::to_string(key >> 32) + " " + second + "=" + std::to_string(key & 0xffffffffULL);
   }
+  /// The unit of readiness and producer tracking: the instance, or its robot id (by_robot).
+  std::uint64_t stream_of(std::uint64_t key) const { return options_.by_robot ? key >> 32 : key; }
   bool wanted(std::uint64_t key) const {
     return options_.expected.empty() || expected_set_.count(key) != 0;
   }
@@ -314,20 +338,25 @@ class Input : public InputBase {
   /// Stores a sample; called by the bus (listener thread or inside a local writer's write()).
   void on_sample(const Msg& sample, const SampleMeta& meta = SampleMeta{}) {
     const std::uint64_t key = idl::instance_key(sample);
-    if (!wanted(key)) {
+    const std::uint64_t stream = stream_of(key);
+    if (!wanted(stream)) {
       return;
     }
     const std::optional<SampleCheckFailure> failed = first_failed_check(sample);
     const std::string label = idl::instance_label(sample);
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      Progress& p = progress_[key];
+      Progress& p = progress_[stream];
       if (!accept_producer(p, label, meta)) {
         return;
       }
       p.step = sample.header().step();
       p.next_step = sample.header().next_step();
-      labels_.emplace(key, label);
+      if (options_.by_robot) {
+        labels_[stream] = label;  // the robot's current instance, for "waiting for" messages
+      } else {
+        labels_.emplace(key, label);
+      }
       if (!failed) {
         p.received_ns = meta.received_ns;
         ++counts_.accepted;
@@ -378,6 +407,31 @@ class Input : public InputBase {
     return slot.latest ? &*slot.latest : nullptr;
   }
 
+  /// Subscription::robot_streams(): the readable samples of robot `robot_id` not taken before,
+  /// whatever their second key part, in step order.
+  std::vector<Msg> take_new_of_robot(std::uint32_t robot_id) {
+    std::vector<Msg> out;
+    for (std::uint64_t key : keys_of_robot(robot_id)) {
+      std::vector<Msg> taken = take_new(key);
+      out.insert(out.end(), std::make_move_iterator(taken.begin()), std::make_move_iterator(taken.end()));
+    }
+    std::stable_sort(out.begin(), out.end(), [](const Msg& a, const Msg& b) { return a.header().step() < b.header().step(); });
+    return out;
+  }
+
+  /// Subscription::robot_streams(): the newest readable sample of robot `robot_id` over all its
+  /// second key parts (older unread ones are skipped), or nullptr.
+  const Msg* latest_of_robot(std::uint32_t robot_id) {
+    const Msg* newest = nullptr;
+    for (std::uint64_t key : keys_of_robot(robot_id)) {
+      const Msg* m = latest(key);
+      if (m != nullptr && (newest == nullptr || m->header().step() >= newest->header().step())) {
+        newest = m;
+      }
+    }
+    return newest;
+  }
+
   /// Instances that have delivered at least one valid sample, in key order.
   std::vector<std::uint64_t> instances() const {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -404,6 +458,17 @@ class Input : public InputBase {
     return std::nullopt;
   }
 
+  /// Keys (robot_id << 32 | X) of the robot's instances that delivered a valid sample.
+  std::vector<std::uint64_t> keys_of_robot(std::uint32_t robot_id) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<std::uint64_t> keys;
+    const std::uint64_t first = std::uint64_t{robot_id} << 32;
+    for (auto it = slots_.lower_bound(first); it != slots_.end() && (it->first >> 32) == robot_id; ++it) {
+      keys.push_back(it->first);
+    }
+    return keys;
+  }
+
   struct Slot {
     std::deque<Msg> pending;
     std::optional<Msg> latest;
@@ -420,6 +485,9 @@ class Output {
   void publish(Msg& sample) { publish_with_next(sample, state_->step + state_->period_steps); }
   /// For samples that will not be followed by another (e.g. a mission): next_step = never.
   void publish_final(Msg& sample) { publish_with_next(sample, kNeverAgain); }
+  /// For a producer that publishes an instance only when it changes (e.g. a mission with events):
+  /// the next sample of this instance comes at `next_step` (> the current step), or kNeverAgain.
+  void publish_next_at(Msg& sample, std::uint64_t next_step) { publish_with_next(sample, next_step); }
   const std::string& topic() const { return writer_->topic(); }
 
  private:

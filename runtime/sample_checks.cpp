@@ -112,7 +112,11 @@ Failure check_content(const idl::Odometry& s) {
 }
 
 Failure check_content(const idl::RangeMeasurement& s) {
-  // A noisy range may be slightly negative: only its magnitude is bounded.
+  // A range sensor reports distances: the simulated one clamps its noisy value at 0, so a
+  // negative range is a broken or hostile writer, not noise.
+  if (s.range() < 0.0) {
+    return fail(check_reason::kAbsurdMagnitude, "range", "is " + shortest_text(s.range()) + " (a range is >= 0)");
+  }
   return first({within("range", s.range(), kPos), variance("var", s.var())});
 }
 
@@ -166,7 +170,8 @@ Failure check_content(const idl::TargetAssignment& s) {
   if (s.desired_radius() < 0.0) {
     return fail(check_reason::kAbsurdMagnitude, "desired_radius", "is " + shortest_text(s.desired_radius()) + " (a radius is >= 0)");
   }
-  return within("desired_radius", s.desired_radius(), kPos);
+  return first({within("desired_radius", s.desired_radius(), kPos), within("target_x", s.target_x(), kPos),
+                within("target_y", s.target_y(), kPos)});
 }
 
 Failure check_content(const idl::ControllerStatus& s) {

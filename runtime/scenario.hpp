@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/model/target_plan.hpp"
 #include "runtime/params.hpp"
 
 namespace robodds {
@@ -44,6 +45,8 @@ struct Scenario {
   std::vector<RobotSpec> robots;
   std::vector<ComponentSpec> components;
   std::vector<GroupSpec> groups;
+  /// Paper 2's `targets:` and `events:` (empty in scenarios without them).
+  model::TargetPlan mission;
 
   /// Index of the last step: steps 0..last_step() run, at times step * step_s (checked_last_step()).
   std::uint64_t last_step() const;

@@ -51,6 +51,47 @@ TEST_F(InputTest, WaitsUntilNextStepPassesTheConsumerStep) {
   EXPECT_FALSE(input.ready(10, nullptr));
 }
 
+idl::RangeMeasurement range(std::uint32_t robot, std::uint32_t target, std::uint64_t step, std::uint64_t next_step, double r) {
+  idl::RangeMeasurement m;
+  m.robot_id(robot);
+  m.target_id(target);
+  m.header().step(step);
+  m.header().next_step(next_step);
+  m.range(r);
+  return m;
+}
+
+// A robot switches from target 1 to target 2 at step 4: the consumer waits per robot, so it
+// waits at step 4 for the (1, 2) sample it could not name in advance.
+TEST_F(InputTest, RobotStreamsWaitPerRobotWhateverTheSecondKey) {
+  detail::InputOptions options;
+  options.expected = {1};
+  options.by_robot = true;
+  options.key_names = "robot_id, target_id";
+  Input<idl::RangeMeasurement> input("sensor/range", "test", &clock, &notifier, options);
+  std::string missing;
+  EXPECT_FALSE(input.ready(0, &missing));
+  EXPECT_EQ(missing, "robot_id=1 (any target_id) (nothing received yet)");
+  input.on_sample(range(1, 1, 0, 2, 100.0));
+  input.on_sample(range(1, 1, 2, 4, 101.0));
+  input.on_sample(range(2, 1, 0, 2, 5.0));  // another robot: not wanted
+  EXPECT_TRUE(input.ready(3, nullptr));
+  EXPECT_FALSE(input.ready(4, &missing));  // the switch: the robot's next sample is due at 4
+  EXPECT_NE(missing.find("target_id=1"), std::string::npos) << missing;
+  input.on_sample(range(1, 2, 4, kNeverAgain, 300.0));  // the new target, then the robot leaves
+  EXPECT_TRUE(input.ready(4, nullptr));
+  EXPECT_TRUE(input.ready(1000, nullptr));
+  clock.step = 2;
+  const auto first = input.take_new_of_robot(1);  // step 4 is not readable yet
+  ASSERT_EQ(first.size(), 2u);
+  EXPECT_DOUBLE_EQ(first[0].range(), 100.0);
+  EXPECT_DOUBLE_EQ(first[1].range(), 101.0);
+  clock.step = 4;
+  ASSERT_NE(input.latest_of_robot(1), nullptr);
+  EXPECT_EQ(input.latest_of_robot(1)->target_id(), 2u);  // the newest over both targets
+  EXPECT_TRUE(input.take_new_of_robot(2).empty());
+}
+
 TEST_F(InputTest, ReadsOnlySamplesUpToTheCurrentStepMinusDelay) {
   detail::InputOptions options;
   options.expected = {1};

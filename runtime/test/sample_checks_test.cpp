@@ -91,7 +91,7 @@ TEST(SampleChecks, SensorVariancesDurationsAndPositions) {
   EXPECT_EQ(reason_of(o), "negative_variance:var_omega");
 
   auto r = fresh<idl::RangeMeasurement>();
-  r.range(-0.01);  // noise around a short range
+  r.range(0.0);  // the simulated sensor clamps noise at 0
   EXPECT_EQ(reason_of(r), "ok");
   r.var(-1.0);
   EXPECT_EQ(reason_of(r), "negative_variance:var");
@@ -125,6 +125,9 @@ TEST(SampleChecks, EstimatesCovarianceDiagonal) {
   auto rel = fresh<idl::RelativePoseEstimate>();
   rel.theta(1e4);
   EXPECT_EQ(reason_of(rel), "absurd_magnitude:theta");
+  auto range = fresh<idl::RangeMeasurement>();
+  range.range(-0.01);
+  EXPECT_EQ(reason_of(range), "absurd_magnitude:range");
   auto rr = fresh<idl::RangeRateEstimate>();
   rr.range_rate(5e3);
   EXPECT_EQ(reason_of(rr), "absurd_magnitude:range_rate");
@@ -147,6 +150,9 @@ TEST(SampleChecks, MissionsAssignmentsAndStatus) {
   a.slot(0);
   a.desired_radius(-1.0);
   EXPECT_EQ(reason_of(a), "absurd_magnitude:desired_radius");
+  a.desired_radius(5.0);
+  a.target_x(2e6);
+  EXPECT_EQ(reason_of(a), "absurd_magnitude:target_x");
 
   auto s = fresh<idl::ControllerStatus>();
   s.waypoints_total(4);
