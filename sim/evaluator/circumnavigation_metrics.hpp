@@ -138,6 +138,8 @@ class CircumnavigationMetrics {
 
   /// Truth of `kind` is kept for matching only when it is expected (the topic is recorded).
   void expect_observer(ObserverKind kind) { expected_[static_cast<std::size_t>(kind)] = true; }
+  bool expects(ObserverKind kind) const { return expected_[static_cast<std::size_t>(kind)]; }
+  double b() const { return b_; }
   void add_truth(std::uint32_t robot, const PlantSample& sample);
   void add_assignment(std::uint32_t robot, std::uint64_t step, const TargetAssignmentInfo& assignment);
   void add_estimate(ObserverKind kind, std::uint32_t robot, const RateEstimateSample& estimate);
