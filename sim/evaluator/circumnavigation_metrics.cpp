@@ -58,11 +58,23 @@ void TailSum::add(std::uint64_t step, double error) {
   if (step + window_steps_ <= newest_) {
     return;  // older than the window of a newer step
   }
-  steps_[step].add(error);
+  if (steps_.empty() || step > steps_.back().first) {
+    steps_.emplace_back(step, SquareSum{});
+    steps_.back().second.add(error);
+  } else if (step == steps_.back().first) {
+    steps_.back().second.add(error);
+  } else {  // a step already there or between (estimates of several robots, out of order)
+    auto it = std::lower_bound(steps_.begin(), steps_.end(), step,
+                               [](const auto& entry, std::uint64_t s) { return entry.first < s; });
+    if (it == steps_.end() || it->first != step) {
+      it = steps_.emplace(it, step, SquareSum{});
+    }
+    it->second.add(error);
+  }
   if (step > newest_) {
     newest_ = step;
-    while (!steps_.empty() && steps_.begin()->first + window_steps_ <= newest_) {
-      steps_.erase(steps_.begin());
+    while (!steps_.empty() && steps_.front().first + window_steps_ <= newest_) {
+      steps_.pop_front();
     }
   }
 }

@@ -98,7 +98,7 @@ class TailSum {
 
  private:
   std::uint64_t window_steps_;
-  std::map<std::uint64_t, SquareSum> steps_;
+  std::deque<std::pair<std::uint64_t, SquareSum>> steps_;  // step order, one entry per step
   std::uint64_t newest_ = 0;
 };
 

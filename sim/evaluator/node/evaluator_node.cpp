@@ -302,7 +302,10 @@ class EvaluatorNode : public Component {
       optional("spacing_rmse_deg", phase.spacing_rmse_deg);
       json.end_object();
     }
-    json.begin_object("observer");
+    const bool any_observer = m->expects(ObserverKind::kSta) || m->expects(ObserverKind::kLinear);
+    if (any_observer) {
+      json.begin_object("observer");
+    }
     for (std::size_t k = 0; k < kObserverKinds; ++k) {
       const auto kind = static_cast<ObserverKind>(k);
       if (!m->expects(kind)) {
@@ -320,7 +323,9 @@ class EvaluatorNode : public Component {
       json.value("matched_samples", static_cast<std::int64_t>(o.matched));
       json.end_object();
     }
-    json.end_object();
+    if (any_observer) {
+      json.end_object();
+    }
     optional("range_accel_over_b_fraction", s.range_accel_over_b_fraction);
     json.value("range_accel_b", m->b());
   }

@@ -357,14 +357,22 @@ TEST(CircumnavigationMetrics, KeepsOnlyTheTruthThatLateEstimatesNeed) {
 TEST(TailSum, KeepsTheWindowOfTheNewestStep) {
   TailSum tail(10);
   for (std::uint64_t k = 0; k < 100; ++k) {
-    tail.add(k, k < 90 ? 5.0 : 1.0);
+    if (k != 95) {
+      tail.add(k, k < 90 ? 5.0 : 1.0);
+    }
   }
-  EXPECT_EQ(tail.size(), 10u);
+  EXPECT_EQ(tail.size(), 9u);
   const SquareSum s = tail.over_window_ending(99);
-  EXPECT_EQ(s.count, 10u);
+  EXPECT_EQ(s.count, 9u);
   EXPECT_DOUBLE_EQ(*s.rms(), 1.0);
   tail.add(50, 100.0);  // older than the window: dropped
-  EXPECT_EQ(tail.over_window_ending(99).count, 10u);
+  EXPECT_EQ(tail.over_window_ending(99).count, 9u);
+  tail.add(95, 3.0);  // late but within the window: counts, at its step
+  tail.add(95, 3.0);
+  EXPECT_EQ(tail.over_window_ending(99).count, 11u);
+  EXPECT_DOUBLE_EQ(tail.over_window_ending(99).sum_squares, 9.0 + 18.0);
+  EXPECT_EQ(tail.over_window_ending(94).count, 5u) << "steps 90..94 and nothing of 95";
+  EXPECT_EQ(tail.over_window_ending(95).count, 7u) << "steps 90..94 and both of 95 (not of 96)";
 }
 
 }  // namespace

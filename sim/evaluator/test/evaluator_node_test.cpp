@@ -258,6 +258,20 @@ TEST(EvaluatorNode, WithoutMissionTargetThereAreNoPaper2Metrics) {
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("observer/range_rate": 22,)"))) << summary;
 }
 
+TEST(EvaluatorNode, WithoutObserverTopicsThePaper2MetricsHaveNoObserverPart) {
+  std::string scenario = kPaper2Scenario;
+  const std::string observers = ", observer/range_rate,\n     observer/range_rate_linear";
+  ASSERT_NE(scenario.find(observers), std::string::npos);
+  scenario.replace(scenario.find(observers), observers.size(), "");
+  NodeHarness h(scenario);
+  add_evaluator(h);
+  feed_paper2(h);
+  h.run({"evaluator"});
+  const std::string summary = text_of(h.output_dir() + "/summary.json");
+  EXPECT_NE(summary.find("\"phase1\""), std::string::npos) << summary;
+  EXPECT_EQ(summary.find("\"observer\""), std::string::npos) << summary;
+}
+
 TEST(EvaluatorNode, ATopicThatIsNotPerRobotIsAConfigError) {
   NodeHarness h(R"(name: evaluator_node
 step_s: 0.01
