@@ -93,6 +93,10 @@ class EvaluatorNode : public Component {
   void on_finish(const StepInfo& info) override {
     on_step(info);
     metrics_->finish();
+    if (b_is_default_ && metrics_->circumnavigation() != nullptr) {  // once a run (configure may run twice)
+      log::info(context_->name(), "range_accel_over_b_fraction: no range_rate_observer with sta.b in the scenario, b = " +
+                                      shortest_text(metrics_->circumnavigation()->b()) + " (the observer's default)");
+    }
     if (context_->output_dir().empty()) {
       return;
     }
@@ -138,10 +142,7 @@ class EvaluatorNode : public Component {
         }
       }
     }
-    if (!given) {
-      log::info(context_->name(), "range_accel_over_b_fraction: no range_rate_observer with sta.b in the scenario, "
-                                  "b = " + shortest_text(b) + " (the observer's default)");
-    }
+    b_is_default_ = !given;
     metrics_->enable_circumnavigation(context_->step_s(), b, recorded("observer/range_rate"),
                                       recorded("observer/range_rate_linear"));
   }
@@ -358,6 +359,7 @@ class EvaluatorNode : public Component {
   bool standby_ = false;         // the scenario has a hot standby: write "standby"
   double start_s_ = 0.0;         // the run's start as a stamp (s)
   double metrics_after_s_ = 0.0;
+  bool b_is_default_ = false;    // paper 2: no sta.b in the scenario, b is the observer's default
 };
 
 }  // namespace
