@@ -38,10 +38,13 @@ class RecorderBase {
 };
 
 /// Writes each sample of its topic as a CSV row when it is taken (not opened: no file).
+/// `by_robot`: a topic keyed (robot_id, target_id) subscribed with Subscription::robot_streams():
+/// each robot's samples, whatever the target, in step order.
 template <class Msg>
 class Recorder : public RecorderBase {
  public:
-  Recorder(std::string topic, Input<Msg>* input) : topic_(std::move(topic)), input_(input) {}
+  Recorder(std::string topic, Input<Msg>* input, bool by_robot = false)
+      : topic_(std::move(topic)), input_(input), by_robot_(by_robot) {}
   void open(const std::string& dir) override {
     path_ = dir + "/" + csv_file_name(topic_);
     file_.open(path_, std::ios::binary | std::ios::trunc);
@@ -53,13 +56,15 @@ class Recorder : public RecorderBase {
   void collect(const std::vector<std::uint64_t>& keys, Metrics& metrics) override {
     text_.clear();
     for (std::uint64_t key : keys) {
-      for (const Msg& sample : input_->take_new(key)) {
+      const std::vector<Msg> samples =
+          by_robot_ ? input_->take_new_of_robot(static_cast<std::uint32_t>(key)) : input_->take_new(key);
+      for (const Msg& sample : samples) {
         append_seconds(text_, static_cast<std::int64_t>(sample.header().stamp_ns()));
         text_ += ',';
         append_csv_row(text_, sample);
         text_ += '\n';
         ++rows_;
-        metrics.observe(sample);
+        metrics.observe(sample, topic_);
       }
     }
     if (file_.is_open()) {
@@ -78,6 +83,7 @@ class Recorder : public RecorderBase {
  private:
   std::string topic_;
   Input<Msg>* input_;
+  bool by_robot_;
   std::string path_;
   std::ofstream file_;  // buffered: rows reach the disk in blocks, and at flush()
   std::string text_;    // the rows of one collect()

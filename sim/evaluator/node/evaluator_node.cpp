@@ -1,13 +1,17 @@
 #include "sim/evaluator/node/evaluator_node.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <optional>
 #include <type_traits>
 #include <sys/stat.h>
 
 #include "common/angle.hpp"
 #include "common/json_writer.hpp"
+#include "common/number_text.hpp"
 #include "common/replace_file.hpp"
 #include "robodds/idl/robodds.h"
+#include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
 #include "sim/evaluator/node/csv_recorder.hpp"
@@ -21,6 +25,7 @@ namespace robodds::evaluator {
 namespace {
 
 constexpr double kDegPerRad = 180.0 / kPi;
+constexpr double kDefaultObserverB = 2.2;  // m/s^2, range_rate_observer's default sta.b
 
 /// How the run ended, for summary.json's "status" (and "reason" when it failed).
 struct RunEnd {
@@ -38,20 +43,24 @@ class EvaluatorNode : public Component {
     TruthConsumers consumers;
     for (const std::string& topic : params.topics) {
       const TopicInfo* info = find_topic(topic);
-      if (info == nullptr || info->key != "robot_id") {
-        p.fail("topics: '" + topic + "' is not a per-robot topic of the catalog (see docs/topics.md)");
+      // Keyed (robot_id, target_id): one stream per robot whatever its target (a mission event moves it).
+      const bool by_robot = info != nullptr && info->key == "robot_id, target_id";
+      if (info == nullptr || (info->key != "robot_id" && !by_robot)) {
+        p.fail("topics: '" + topic + "' is not a per-robot topic (key robot_id or robot_id, target_id) of the catalog "
+               "(see docs/topics.md)");
       }
       idl::dispatch_type(info->type_name, [&](auto tag) {
         using Msg = typename decltype(tag)::type;
         consumers.fixes |= std::is_same_v<Msg, idl::PositionMeasurement>;
         consumers.estimates |= std::is_same_v<Msg, idl::PoseEstimate>;
         consumers.status |= std::is_same_v<Msg, idl::ControllerStatus>;
-        auto* input = &ctx.subscribe<Msg>(topic, Subscription::instances(keys_));
-        recorders_.push_back(std::make_unique<Recorder<Msg>>(topic, input));
+        auto* input = &ctx.subscribe<Msg>(topic, by_robot ? Subscription::robot_streams(keys_) : Subscription::instances(keys_));
+        recorders_.push_back(std::make_unique<Recorder<Msg>>(topic, input, by_robot));
       });
     }
     const auto from_step = static_cast<std::uint64_t>(std::llround(params.metrics_after_s / ctx.step_s()));
     metrics_ = std::make_unique<Metrics>(from_step, consumers);
+    configure_paper2(params.topics);
     metrics_after_s_ = params.metrics_after_s;
     for (const ComponentSpec& component : ctx.scenario().components) {
       standby_ |= !component.standby_for.empty() && consumers.estimates;
@@ -83,6 +92,11 @@ class EvaluatorNode : public Component {
 
   void on_finish(const StepInfo& info) override {
     on_step(info);
+    metrics_->finish();
+    if (b_is_default_ && metrics_->circumnavigation() != nullptr) {  // once a run (configure may run twice)
+      log::info(context_->name(), "range_accel_over_b_fraction: no range_rate_observer with sta.b in the scenario, b = " +
+                                      shortest_text(metrics_->circumnavigation()->b()) + " (the observer's default)");
+    }
     if (context_->output_dir().empty()) {
       return;
     }
@@ -102,10 +116,37 @@ class EvaluatorNode : public Component {
     for (const auto& recorder : recorders_) {
       recorder->flush();
     }
+    metrics_->finish();
     write_summary(RunEnd{false, reason});
   }
 
  private:
+  /// The paper-2 metrics, when plant/state and mission/target are recorded: b (the observer's
+  /// bound on |r''|) is the sta.b the scenario gives its range_rate_observer, else the
+  /// observer's default.
+  void configure_paper2(const std::vector<std::string>& topics) {
+    const auto recorded = [&topics](const char* topic) {
+      return std::find(topics.begin(), topics.end(), topic) != topics.end();
+    };
+    if (!recorded("plant/state") || !recorded("mission/target")) {
+      return;
+    }
+    double b = kDefaultObserverB;
+    bool given = false;
+    for (const ComponentSpec& component : context_->scenario().components) {
+      if (component.type == "range_rate_observer" && !given) {
+        ParamReader observer(component.name, component.overrides);
+        if (observer.has("sta.b")) {
+          b = observer.get_double("sta.b");
+          given = true;
+        }
+      }
+    }
+    b_is_default_ = !given;
+    metrics_->enable_circumnavigation(context_->step_s(), b, recorded("observer/range_rate"),
+                                      recorded("observer/range_rate_linear"));
+  }
+
   /// summary.json: one function per section. Written to a temporary file and renamed, so that
   /// it is whole or absent even if the process dies meanwhile.
   void write_summary(const RunEnd& end) const {
@@ -208,6 +249,7 @@ class EvaluatorNode : public Component {
     if (!heading_rmse_rad.empty()) {
       json.value("heading_rmse_deg", heading_rmse_rad.rmse() * kDegPerRad);
     }
+    write_paper2_metrics(json);
     json.begin_object("samples");
     for (const auto& recorder : recorders_) {
       json.value(recorder->topic(), static_cast<std::int64_t>(recorder->rows()));
@@ -238,6 +280,57 @@ class EvaluatorNode : public Component {
     json.end_object();
   }
 
+  /// Paper 2 (issue 10): "phase1", "phase2", ... {settle_time_s, radius_rmse_m, spacing_rmse_deg},
+  /// "observer": {"sta": {...}, "linear": {...}} for each recorded observer topic, and
+  /// range_accel_over_b_fraction. A figure without data is left out.
+  void write_paper2_metrics(JsonWriter& json) const {
+    const CircumnavigationMetrics* m = metrics_->circumnavigation();
+    if (m == nullptr) {
+      return;
+    }
+    const auto optional = [&json](const char* key, const std::optional<double>& v) {
+      if (v) {
+        json.value(key, *v);
+      }
+    };
+    const CircumnavigationSummary s = m->summary();
+    for (std::size_t i = 0; i < s.phases.size(); ++i) {
+      const PhaseMetrics& phase = s.phases[i];
+      json.begin_object("phase" + std::to_string(i + 1));
+      json.value("start_s", phase.start_s);
+      json.value("settle_time_s", phase.settle_time_s);
+      optional("radius_rmse_m", phase.radius_rmse_m);
+      optional("spacing_rmse_deg", phase.spacing_rmse_deg);
+      json.end_object();
+    }
+    const bool any_observer = m->expects(ObserverKind::kSta) || m->expects(ObserverKind::kLinear);
+    if (any_observer) {
+      json.begin_object("observer");
+    }
+    for (std::size_t k = 0; k < kObserverKinds; ++k) {
+      const auto kind = static_cast<ObserverKind>(k);
+      if (!m->expects(kind)) {
+        continue;
+      }
+      const ObserverMetrics& o = s.observers[k];
+      json.begin_object(observer_kind_name(kind));
+      optional("transient_rmse_mps", o.transient_rmse_mps);
+      optional("steady_rmse_mps", o.steady_rmse_mps);
+      if (kind == ObserverKind::kSta) {
+        json.value("convergence_s", o.convergence_s);
+      }
+      optional("max_error_after_restart_mps", o.max_error_after_restart_mps);
+      json.value("restarts", static_cast<std::int64_t>(o.restarts));
+      json.value("matched_samples", static_cast<std::int64_t>(o.matched));
+      json.end_object();
+    }
+    if (any_observer) {
+      json.end_object();
+    }
+    optional("range_accel_over_b_fraction", s.range_accel_over_b_fraction);
+    json.value("range_accel_b", m->b());
+  }
+
   void write_waypoint_metrics(JsonWriter& json, const RobotMetrics& r) const {
     if (!r.waypoints.has_status() || !r.waypoints.has_mission()) {
       return;
@@ -266,6 +359,7 @@ class EvaluatorNode : public Component {
   bool standby_ = false;         // the scenario has a hot standby: write "standby"
   double start_s_ = 0.0;         // the run's start as a stamp (s)
   double metrics_after_s_ = 0.0;
+  bool b_is_default_ = false;    // paper 2: no sta.b in the scenario, b is the observer's default
 };
 
 }  // namespace

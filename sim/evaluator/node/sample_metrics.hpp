@@ -1,15 +1,18 @@
 #pragma once
 // The evaluator's metrics fed sample by sample (node side: it knows the IDL types; the maths is
-// in sim/evaluator/track.hpp and waypoint_metrics.hpp).
+// in sim/evaluator/track.hpp, waypoint_metrics.hpp and circumnavigation_metrics.hpp).
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <memory>
+#include <string>
 #include <utility>
 
 #include "robodds/idl/robodds.h"
+#include "sim/evaluator/circumnavigation_metrics.hpp"
 #include "sim/evaluator/handover.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
@@ -46,6 +49,32 @@ class Metrics {
  public:
   Metrics(std::uint64_t from_step, TruthConsumers consumers) : from_step_(from_step), consumers_(consumers) {}
 
+  /// Paper-2 metrics (circumnavigation_metrics.hpp) from plant/state, mission/target and the
+  /// recorded observer topics; `b`: the observer's bound on |r''|. Set before the first sample.
+  void enable_circumnavigation(double step_s, double b, bool sta, bool linear) {
+    circumnavigation_ = std::make_unique<CircumnavigationMetrics>(step_s, b);
+    if (sta) {
+      circumnavigation_->expect_observer(ObserverKind::kSta);
+    }
+    if (linear) {
+      circumnavigation_->expect_observer(ObserverKind::kLinear);
+    }
+  }
+  const CircumnavigationMetrics* circumnavigation() const { return circumnavigation_.get(); }
+
+  /// A sample of `topic`: the topic matters only where two topics share a type.
+  template <class Msg>
+  void observe(const Msg& m, const std::string& /*topic*/) {
+    observe(m);
+  }
+  void observe(const idl::RangeRateEstimate& m, const std::string& topic) {
+    if (circumnavigation_ != nullptr) {
+      const ObserverKind kind = topic == "observer/range_rate_linear" ? ObserverKind::kLinear : ObserverKind::kSta;
+      circumnavigation_->add_estimate(kind, m.robot_id(),
+                                      {m.header().step(), m.target_id(), m.range_rate(), m.valid(), m.restarted()});
+    }
+  }
+
   template <class Msg>
   void observe(const Msg&) {}
   void observe(const idl::RobotState& m) {
@@ -53,6 +82,15 @@ class Metrics {
     RobotMetrics& r = robot(m.robot_id());
     r.truth.add(s);
     r.recent_truth.add(s);
+    if (circumnavigation_ != nullptr) {
+      circumnavigation_->add_truth(m.robot_id(), {m.header().step(), m.x(), m.y(), m.theta(), m.v(), m.omega()});
+    }
+  }
+  void observe(const idl::TargetAssignment& m) {
+    if (circumnavigation_ != nullptr) {
+      circumnavigation_->add_assignment(m.robot_id(), m.header().step(),
+                                        {m.active(), m.target_id(), m.target_x(), m.target_y(), m.desired_radius()});
+    }
   }
   void observe(const idl::PositionMeasurement& m) { robot(m.robot_id()).fixes.add({m.header().step(), m.x(), m.y(), 0.0}); }
   void observe(const idl::PoseEstimate& m) {
@@ -98,6 +136,16 @@ class Metrics {
       }
       r.recent_truth.drop_before(needed);
     }
+    if (circumnavigation_ != nullptr) {
+      circumnavigation_->update();
+    }
+  }
+
+  /// The run is over: the paper-2 metrics evaluate what is left.
+  void finish() {
+    if (circumnavigation_ != nullptr) {
+      circumnavigation_->finish();
+    }
   }
 
   /// Gaps between estimate/pose samples count from this stamp (s) on; set before the first sample.
@@ -115,6 +163,7 @@ class Metrics {
   double gaps_after_s_ = 0.0;
   TruthConsumers consumers_;
   std::map<std::uint32_t, RobotMetrics> robots_;
+  std::unique_ptr<CircumnavigationMetrics> circumnavigation_;
 };
 
 }  // namespace robodds::evaluator
