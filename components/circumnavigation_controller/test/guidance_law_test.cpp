@@ -83,8 +83,11 @@ TEST(RateLimited, MovesAtMostMaxChangeEitherWay) {
   EXPECT_DOUBLE_EQ(rate_limited(10.0, 10.005, 0.01), 10.005);
 }
 
-TEST(GuidanceLaw, SpeedStartsAtRestAndRampsAtMaxAccel) {
-  GuidanceLaw law{GuidanceParams{}};
+TEST(GuidanceLaw, SpeedStartsAtStartSpeedThenRampsAtMaxAccel) {
+  EXPECT_EQ(GuidanceLaw{GuidanceParams{}}.speed_mps(), 10.0) << "cruising at the start by default";
+  GuidanceParams from_rest;
+  from_rest.start_speed_mps = 0.0;
+  GuidanceLaw law{from_rest};
   EXPECT_EQ(law.speed_mps(), 0.0);
   const model::Twist first = law.step(kR, 0.0, kR, even_gaps(4), 0.02);
   EXPECT_DOUBLE_EQ(first.v, 0.01);  // 0.5 m/s^2 * 0.02 s
