@@ -7,7 +7,7 @@
 
 #include "components/circumnavigation_controller/guidance_law.hpp"
 #include "components/circumnavigation_controller/node/circumnavigation_controller_params.hpp"
-#include "components/range_rate_observer/observer_params.hpp"
+#include "components/range_rate_observer/node/scenario_observer_bound.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
@@ -22,20 +22,12 @@ struct ObserverB {
   std::string key;
 };
 
-/// The super-twisting gain b of the scenario's range_rate_observer component: its `sta.b`
-/// override, else the observer library's default (SuperTwistingParams::b, which the
-/// observer node's table includes). Without such a component (a test feeding the observer topic,
-/// or a scenario whose observer runs elsewhere): this component's observer_accel_bound_mps2.
+/// The super-twisting gain b of the scenario's range_rate_observer component (its `sta.b`, else the
+/// observer's default). Without such a component (a test feeding the observer topic, or a scenario
+/// whose observer runs elsewhere): this component's observer_accel_bound_mps2.
 ObserverB observer_b(const Scenario& scenario, double fallback_mps2) {
-  const double kObserverDefaultB = range_rate::SuperTwistingParams{}.b;  // the observer's own default
-  for (const ComponentSpec& spec : scenario.components) {
-    if (spec.type == "range_rate_observer") {
-      ParamReader overrides(spec.name, spec.overrides);
-      if (overrides.has("sta.b")) {
-        return {overrides.get_double("sta.b"), spec.name + ".sta.b"};
-      }
-      return {kObserverDefaultB, spec.name + ".sta.b (default)"};
-    }
+  if (const auto bound = range_rate::scenario_observer_bound(scenario)) {
+    return {bound->b_mps2, bound->key};
   }
   return {fallback_mps2, "observer_accel_bound_mps2"};
 }

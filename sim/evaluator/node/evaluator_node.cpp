@@ -14,6 +14,8 @@
 #include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "components/range_rate_observer/node/scenario_observer_bound.hpp"
+#include "components/range_rate_observer/observer_params.hpp"
 #include "sim/evaluator/node/csv_recorder.hpp"
 #include "sim/evaluator/node/evaluator_params.hpp"
 #include "sim/evaluator/node/sample_metrics.hpp"
@@ -25,7 +27,6 @@ namespace robodds::evaluator {
 namespace {
 
 constexpr double kDegPerRad = 180.0 / kPi;
-constexpr double kDefaultObserverB = 2.2;  // m/s^2, range_rate_observer's default sta.b
 
 /// How the run ended, for summary.json's "status" (and "reason" when it failed).
 struct RunEnd {
@@ -131,18 +132,9 @@ class EvaluatorNode : public Component {
     if (!recorded("plant/state") || !recorded("mission/target")) {
       return;
     }
-    double b = kDefaultObserverB;
-    bool given = false;
-    for (const ComponentSpec& component : context_->scenario().components) {
-      if (component.type == "range_rate_observer" && !given) {
-        ParamReader observer(component.name, component.overrides);
-        if (observer.has("sta.b")) {
-          b = observer.get_double("sta.b");
-          given = true;
-        }
-      }
-    }
-    b_is_default_ = !given;
+    const auto bound = range_rate::scenario_observer_bound(context_->scenario());
+    const double b = bound ? bound->b_mps2 : range_rate::SuperTwistingParams{}.b;
+    b_is_default_ = !bound || bound->is_default;
     metrics_->enable_circumnavigation(context_->step_s(), b, recorded("observer/range_rate"),
                                       recorded("observer/range_rate_linear"));
   }
