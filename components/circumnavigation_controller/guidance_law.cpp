@@ -60,7 +60,7 @@ void check_observer_bound(const GuidanceParams& params, double b_mps2, std::stri
   check_observer_bound(max_commanded_speed(params), params.max_turn_rate_radps, b_mps2, b_key);
 }
 
-GuidanceLaw::GuidanceLaw(const GuidanceParams& params) : params_(params), speed_mps_(params.start_speed_mps) {
+GuidanceLaw::GuidanceLaw(const GuidanceParams& params) : params_(params), speed_mps_(params.start_cruising ? params.cruise_speed_mps : 0.0) {
   params_.validate();
 }
 

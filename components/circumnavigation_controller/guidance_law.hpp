@@ -54,7 +54,7 @@ class GuidanceLaw {
   explicit GuidanceLaw(const GuidanceParams& params);
 
   /// One control step of dt_s seconds (> 0): the speed moves towards spacing_speed(gaps) by at
-  /// most max_accel dt (from start_speed_mps after construction, from 0 after reset()), then omega follows
+  /// most max_accel dt (from V0 after construction with start_cruising, else and after reset() from 0), then omega follows
   /// from the range, the range rate and that speed. Throws std::invalid_argument for a bad radius
   /// or dt, or non-finite range / range rate (state unchanged).
   model::Twist step(double range_m, double range_rate_mps, double radius_m, const Gaps& gaps, double dt_s);

@@ -23,8 +23,8 @@ const params::ParamTable<GuidanceParams>& guidance_param_table() {
                "|V / V0 - 1| limit; V_max = V0 (1 + this) enters the observer bound")
           .add("max_accel_mps2", &P::max_accel_mps2, "m/s^2", params::positive(),
                "|dV/dt| limit of the speed command (rate limiter per robot)")
-          .add("start_speed_mps", &P::start_speed_mps, "m/s", params::shown_as(params::non_negative(), "[0, V_max]"),
-               "speed of the first command (cruising at the start, as in the paper; 0 = from rest); after a stop, from rest");
+          .add("start_cruising", &P::start_cruising, "", params::any<bool>(),
+               "the first command cruises at V0 (moving at the start, as in the paper); false: from rest. After a stop, from rest");
   return table;
 }
 
@@ -35,9 +35,6 @@ void GuidanceParams::validate() const {
   }
   if (!(spacing_saturation < 1.0)) {
     param_checks::reject("spacing_saturation", "must be in [0, 1) (the speed must stay > 0)", spacing_saturation);
-  }
-  if (!(start_speed_mps <= max_commanded_speed(*this))) {
-    param_checks::reject("start_speed_mps", "must be at most V_max = cruise_speed_mps (1 + spacing_saturation)", start_speed_mps);
   }
 }
 

@@ -19,10 +19,10 @@ struct GuidanceParams {
   double spacing_gain = 0.5;        // V = V0 (1 + sat(spacing_gain (g+ - g-) / (2 pi / n)))
   double spacing_saturation = 0.3;  // |V / V0 - 1| <= spacing_saturation
   double max_accel_mps2 = 0.5;      // |dV/dt| limit of the speed command
-  /// The speed of the first command: the robots are cruising when the mission starts (the
-  /// paper's robots move at a constant speed), so the observer's first transient, from rate 0,
-  /// is the paper's. After a stop (zero commands) the law starts again from rest.
-  double start_speed_mps = 10.0;
+  /// The first command cruises at V0: the robots are moving when the mission starts (the paper's
+  /// robots move at a constant speed), so the observer's first transient, from rate 0, is the
+  /// paper's. false: from rest. After a stop (zero commands) the law starts again from rest.
+  bool start_cruising = true;
 
   /// Throws std::invalid_argument "key: requirement (got value)" for the first bad field.
   void validate() const;

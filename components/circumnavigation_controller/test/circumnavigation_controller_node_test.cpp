@@ -124,7 +124,7 @@ TEST(CircumnavigationControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
 TEST(CircumnavigationControllerNode, AfterAZeroCommandTheSpeedStartsFromRestAgain) {
   Feed f;
   f.invalid_step = 3;
-  const auto commands = run("start_speed_mps: 0", f);
+  const auto commands = run("start_cruising: false", f);
   ASSERT_EQ(commands.size(), 6u);
   EXPECT_NEAR(commands[2].v(), 0.03, 1e-12);
   EXPECT_EQ(commands[3].v(), 0.0);
@@ -134,8 +134,8 @@ TEST(CircumnavigationControllerNode, AfterAZeroCommandTheSpeedStartsFromRestAgai
 TEST(CircumnavigationControllerNode, FarFromTheTargetTurnsTowardsItFromRestAtMaxAccel) {
   Feed far;
   far.range = 1000.0;  // 800 m too far, range constant: turn left harder than the orbit's V / R
-  EXPECT_NEAR(run("", far).front().v(), 10.0, 0.0101) << "by default the first command cruises (start_speed_mps), moved by at most max_accel dt";
-  const auto commands = run("start_speed_mps: 0", far);
+  EXPECT_NEAR(run("", far).front().v(), 10.0, 0.0101) << "by default the first command cruises (start_cruising), moved by at most max_accel dt";
+  const auto commands = run("start_cruising: false", far);
   ASSERT_EQ(commands.size(), 6u);
   for (std::size_t k = 0; k < commands.size(); ++k) {
     const double v = 0.01 * static_cast<double>(k + 1);  // 0.5 m/s^2 x 0.02 s per step from rest

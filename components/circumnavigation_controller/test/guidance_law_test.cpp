@@ -86,7 +86,7 @@ TEST(RateLimited, MovesAtMostMaxChangeEitherWay) {
 TEST(GuidanceLaw, SpeedStartsAtStartSpeedThenRampsAtMaxAccel) {
   EXPECT_EQ(GuidanceLaw{GuidanceParams{}}.speed_mps(), 10.0) << "cruising at the start by default";
   GuidanceParams from_rest;
-  from_rest.start_speed_mps = 0.0;
+  from_rest.start_cruising = false;
   GuidanceLaw law{from_rest};
   EXPECT_EQ(law.speed_mps(), 0.0);
   const model::Twist first = law.step(kR, 0.0, kR, even_gaps(4), 0.02);

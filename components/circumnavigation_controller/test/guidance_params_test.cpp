@@ -73,7 +73,7 @@ TEST(GuidanceParams, TableListsEveryKeyOnce) {
   }
   EXPECT_EQ(keys, (std::vector<std::string>{"cruise_speed_mps", "approach_gain", "approach_width_m", "heading_gain",
                                             "max_turn_rate_radps", "spacing_gain", "spacing_saturation",
-                                            "max_accel_mps2", "start_speed_mps"}));
+                                            "max_accel_mps2", "start_cruising"}));
 }
 
 }  // namespace
