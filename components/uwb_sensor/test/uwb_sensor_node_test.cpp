@@ -183,6 +183,42 @@ TEST(UwbSensorNode, BothDirectionsShareTheLinkErrorsAndTheSeedDecides) {
   EXPECT_NE(other[0].ranges(), first[0].ranges()) << "another seed, other ranges";
 }
 
+// Two instances, one per robot: the link errors are seeded by the pair, not by the instance name,
+// so the two directions still measure one link.
+TEST(UwbSensorNode, TwoInstancesServingTheTwoRobotsAgreeOnTheirLink) {
+  NodeHarness h(R"(name: uwb_sensor_two_instances
+step_s: 0.1
+duration_s: 1.0
+seed: 1
+robots:
+  - {id: 1}
+  - {id: 2}
+  - {id: 3}
+components:
+  - {name: uwb_one, type: uwb_sensor, robots: [1], params: {rate_hz: 5, white_sigma_m: 0}}
+  - {name: uwb_two, type: uwb_sensor, robots: [2], params: {rate_hz: 5, white_sigma_m: 0}}
+)");
+  robodds::component_registration::register_uwb_sensor(h.registry());
+  feed_static(h);
+  const auto& out = h.record<idl::UwbRanges>("sensor/uwb");
+  h.run({"uwb_one", "uwb_two"});
+  std::map<std::pair<std::uint64_t, std::uint64_t>, std::vector<double>> ranges;  // (key, step)
+  for (const idl::UwbRanges& m : out) {
+    ranges[{idl::instance_key(m), m.header().step()}] = m.ranges();
+  }
+  for (std::uint64_t step = 0; step <= 10; step += 2) {
+    const std::vector<double>& r12 = ranges.at({key(1, 2), step});
+    const std::vector<double>& r21 = ranges.at({key(2, 1), step});
+    ASSERT_EQ(r12.size(), 16u);
+    ASSERT_EQ(r21.size(), 16u);
+    for (std::size_t k = 0; k < 4; ++k) {
+      for (std::size_t l = 0; l < 4; ++l) {
+        EXPECT_DOUBLE_EQ(r21[l * 4 + k], r12[k * 4 + l]) << "step " << step;
+      }
+    }
+  }
+}
+
 // Real time: nobody waits on next_step, so an out-of-range pair or a lost frame is simply not sent.
 TEST(UwbSensorNode, RealTimeSendsNothingForFarPairsAndLostFrames) {
   NodeHarness h(scenario(std::string(kNoiseOff) + ", frame_loss_probability: 0.5"));
