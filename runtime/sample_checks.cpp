@@ -130,6 +130,12 @@ Failure check_content(const idl::UwbRanges& s) {
                     std::to_string(cols) + " (rows * cols entries expected, at most 64)");
   }
   for (std::size_t i = 0; i < s.ranges().size(); ++i) {
+    // The simulated sensor clamps its noisy ranges at 0 (as RangeMeasurement); rows = cols = 0
+    // with no ranges is the sensor's empty sample (out of range, lost frame).
+    if (s.ranges()[i] < 0.0) {
+      return fail(check_reason::kAbsurdMagnitude, "ranges[" + std::to_string(i) + "]",
+                  "is " + shortest_text(s.ranges()[i]) + " (a range is >= 0)");
+    }
     if (std::fabs(s.ranges()[i]) > kPos) {
       return fail(check_reason::kAbsurdMagnitude, "ranges[" + std::to_string(i) + "]",
                   "is " + shortest_text(s.ranges()[i]) + ", beyond the bound " + shortest_text(kPos));

@@ -26,7 +26,7 @@ const std::vector<TopicInfo>& topic_catalog() {
       topic<idl::PositionMeasurement>("sensor/position", QosClass::kSensor, "position_sensor", "pf_estimator, evaluator"),
       topic<idl::Odometry>("sensor/odometry", QosClass::kSensor, "odometry_sensor", "pf_estimator, evaluator"),
       topic<idl::RangeMeasurement>("sensor/range", QosClass::kSensor, "range_sensor", "range_rate_observer, evaluator"),
-      topic<idl::UwbRanges>("sensor/uwb", QosClass::kSensor, "UWB sensor", "relative estimator"),
+      topic<idl::UwbRanges>("sensor/uwb", QosClass::kSensor, "uwb_sensor", "relative estimator"),
       topic<idl::PoseEstimate>("estimate/pose", QosClass::kState, "pf_estimator, truth_estimator", "waypoint_controller, circumnavigation_controller, route_follower, evaluator"),
       topic<idl::RelativePoseEstimate>("estimate/relative_pose", QosClass::kState, "UWB estimator", "evaluator"),
       topic<idl::RangeRateEstimate>("observer/range_rate", QosClass::kState, "range_rate_observer (super-twisting, eq. 1)",

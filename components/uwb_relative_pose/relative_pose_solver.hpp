@@ -12,9 +12,14 @@
 
 #include "common/param_table.hpp"
 #include "components/uwb_relative_pose/relative_pose.hpp"
-#include "components/uwb_relative_pose/uwb_array.hpp"
+#include "common/model/uwb_array.hpp"
 
 namespace robodds::uwb {
+
+// The arrays are shared with the UWB sensor (common/model/uwb_array.hpp); these names keep
+// uwb::UwbArray and uwb::square_array working.
+using model::square_array;
+using model::UwbArray;
 
 enum class RobustLoss {
   kNone,    // plain least squares, as the paper

@@ -113,6 +113,14 @@ TEST(SampleChecks, UwbRangesSizesMustAgree) {
   u.cols(1);
   u.ranges({1e7});
   EXPECT_EQ(reason_of(u), "absurd_magnitude:ranges[0]");
+  u.ranges({0.0});  // the sensor clamps at 0
+  EXPECT_EQ(reason_of(u), "ok");
+  u.ranges({-0.01});
+  EXPECT_EQ(reason_of(u), "absurd_magnitude:ranges[0]");
+  u.rows(0);  // the sensor's empty sample: out of range or a lost frame
+  u.cols(0);
+  u.ranges({});
+  EXPECT_EQ(reason_of(u), "ok");
 }
 
 TEST(SampleChecks, EstimatesCovarianceDiagonal) {

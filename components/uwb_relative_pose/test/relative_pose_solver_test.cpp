@@ -27,16 +27,6 @@ Eigen::MatrixXd true_ranges(const UwbArray& own, const UwbArray& other, const mo
 double position_error(const model::Pose2& a, const model::Pose2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
 double heading_error(const model::Pose2& a, const model::Pose2& b) { return std::abs(wrap_angle(a.theta - b.theta)); }
 
-TEST(SquareArray, LabelsGoCounterClockwiseFromFrontLeft) {
-  const UwbArray a = square_array(0.5);
-  ASSERT_EQ(a.nodes_m.size(), 4u);
-  EXPECT_EQ(a.nodes_m[0], Eigen::Vector2d(0.25, 0.25));
-  EXPECT_EQ(a.nodes_m[1], Eigen::Vector2d(-0.25, 0.25));
-  EXPECT_EQ(a.nodes_m[2], Eigen::Vector2d(-0.25, -0.25));
-  EXPECT_EQ(a.nodes_m[3], Eigen::Vector2d(0.25, -0.25));
-  EXPECT_THROW(square_array(0.0), std::invalid_argument);
-}
-
 TEST(PredictedRange, IsTheDistanceOfTheTransformedNodes) {
   // j at (3, 4) turned by 90 deg: its node (1, 0) sits at (3, 5) in i's frame.
   EXPECT_DOUBLE_EQ(predicted_range(model::Pose2{3.0, 4.0, kPi / 2.0}, Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(1.0, 0.0)),
