@@ -83,7 +83,7 @@ void RelativePoseFilter::update_with_pose(const model::Pose2& measured, RandomEn
   apply_log_likelihood(engine);
 }
 
-void RelativePoseFilter::update_with_ranges(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m,
+void RelativePoseFilter::update_with_ranges(const model::UwbArray& own, const model::UwbArray& other, const Eigen::MatrixXd& ranges_m,
                                             RandomEngine& engine) {
   require_valid_ranges("RelativePoseFilter::update_with_ranges", own, other, ranges_m);
   if (!initialized_) {

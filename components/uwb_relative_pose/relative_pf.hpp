@@ -29,7 +29,7 @@
 #include "components/pf_estimator/particle_set.hpp"
 #include "components/pf_estimator/pose_estimate.hpp"
 #include "components/uwb_relative_pose/relative_pf_params.hpp"
-#include "components/uwb_relative_pose/uwb_array.hpp"
+#include "common/model/uwb_array.hpp"
 
 namespace robodds::uwb {
 
@@ -67,7 +67,7 @@ class RelativePoseFilter {
   /// l of `other` = robot j). Throws std::invalid_argument (state and engine untouched) on a wrong
   /// size or a negative or non-finite range, std::logic_error before initialisation (the ranges
   /// alone give no starting cloud: initialise from a solve of eq. 1).
-  void update_with_ranges(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m,
+  void update_with_ranges(const model::UwbArray& own, const model::UwbArray& other, const Eigen::MatrixXd& ranges_m,
                           RandomEngine& engine);
 
   /// Weighted mean of x and y, circular mean of theta, and the weighted covariance

@@ -19,7 +19,7 @@ double pose_log_likelihood(const model::Pose2& particle, const model::Pose2& mea
   return -0.5 * ((dx * dx + dy * dy) / (lambda_d_m * lambda_d_m) + dtheta * dtheta / (lambda_theta_rad * lambda_theta_rad));
 }
 
-double range_log_likelihood(const model::Pose2& particle, const UwbArray& own, const UwbArray& other,
+double range_log_likelihood(const model::Pose2& particle, const model::UwbArray& own, const model::UwbArray& other,
                             const Eigen::MatrixXd& ranges_m, double range_std_m) {
   double sum_sq = 0.0;
   for (std::size_t k = 0; k < own.nodes_m.size(); ++k) {
@@ -38,7 +38,7 @@ void require_finite_pose(const char* caller, const model::Pose2& pose) {
   }
 }
 
-void require_valid_ranges(const char* caller, const UwbArray& own, const UwbArray& other,
+void require_valid_ranges(const char* caller, const model::UwbArray& own, const model::UwbArray& other,
                           const Eigen::MatrixXd& ranges_m) {
   if (own.nodes_m.empty() || other.nodes_m.empty()) {
     throw std::invalid_argument(std::string(caller) + ": both arrays need at least one node (got " +

@@ -61,7 +61,7 @@ void BM_BaselinePfEpoch(benchmark::State& state) {
   RandomEngine world(2);
   RelativePoseFilter filter = make_filter(state, engine);
   Pose2 truth = kStart;
-  const robodds::uwb::UwbArray array = robodds::uwb::square_array(0.5);
+  const robodds::model::UwbArray array = robodds::model::square_array(0.5);
   Eigen::MatrixXd ranges(4, 4);
   for (auto _ : state) {
     truth = advance(truth);

@@ -15,7 +15,7 @@
 namespace robodds::uwb {
 namespace {
 
-Eigen::MatrixXd ranges_for(const model::Pose2& pose, const UwbArray& own, const UwbArray& other) {
+Eigen::MatrixXd ranges_for(const model::Pose2& pose, const model::UwbArray& own, const model::UwbArray& other) {
   Eigen::MatrixXd ranges(static_cast<Eigen::Index>(own.nodes_m.size()), static_cast<Eigen::Index>(other.nodes_m.size()));
   for (std::size_t k = 0; k < own.nodes_m.size(); ++k) {
     for (std::size_t l = 0; l < other.nodes_m.size(); ++l) {
@@ -25,7 +25,7 @@ Eigen::MatrixXd ranges_for(const model::Pose2& pose, const UwbArray& own, const 
   return ranges;
 }
 
-std::string error_of(const Eigen::MatrixXd& ranges, const UwbArray& own, const UwbArray& other) {
+std::string error_of(const Eigen::MatrixXd& ranges, const model::UwbArray& own, const model::UwbArray& other) {
   try {
     require_valid_ranges("test", own, other, ranges);
   } catch (const std::invalid_argument& e) {
@@ -55,7 +55,7 @@ TEST(PoseLogLikelihood, HeadingDifferenceIsWrappedAcrossPi) {
 TEST(RangeLogLikelihood, PrefersTheTruePoseOverA90DegreeRotatedOne) {
   // The baseline [22] must see the heading through the 16 node-to-node ranges: j turned by 90 deg
   // on the spot keeps its centre (and so the mean range) but moves every node.
-  const UwbArray array = square_array(0.5);
+  const model::UwbArray array = model::square_array(0.5);
   RandomEngine engine(derive_seed(3, "range_likelihood"));
   for (const double bearing : {0.3, 2.0, -2.5}) {
     const model::Pose2 truth{4.0 * std::cos(bearing), 4.0 * std::sin(bearing), 0.7 - bearing};
@@ -72,7 +72,7 @@ TEST(RangeLogLikelihood, PrefersTheTruePoseOverA90DegreeRotatedOne) {
 }
 
 TEST(RangeLogLikelihood, IsTheSumOfSquaredResidualsOverTwoSigmaSquared) {
-  const UwbArray array = square_array(0.5);
+  const model::UwbArray array = model::square_array(0.5);
   const model::Pose2 truth{3.0, -1.0, 0.4};
   const Eigen::MatrixXd ranges = ranges_for(truth, array, array);
   EXPECT_NEAR(range_log_likelihood(truth, array, array, ranges, 0.3), 0.0, 1e-12);
@@ -85,7 +85,7 @@ TEST(RangeLogLikelihood, IsTheSumOfSquaredResidualsOverTwoSigmaSquared) {
 }
 
 TEST(RequireValidRanges, NamesTheBadRangeOrTheSizeMismatch) {
-  const UwbArray array = square_array(0.5);
+  const model::UwbArray array = model::square_array(0.5);
   Eigen::MatrixXd ranges = ranges_for({3.0, 0.0, 0.0}, array, array);
   EXPECT_EQ(error_of(ranges, array, array), "");
   ranges(1, 2) = std::numeric_limits<double>::quiet_NaN();
@@ -93,7 +93,7 @@ TEST(RequireValidRanges, NamesTheBadRangeOrTheSizeMismatch) {
   ranges(1, 2) = -0.5;
   EXPECT_EQ(error_of(ranges, array, array), "test: range (1, 2): must be >= 0 and finite (got -0.5)");
   EXPECT_EQ(error_of(Eigen::MatrixXd::Ones(4, 3), array, array), "test: ranges are 4 x 3, the arrays need 4 x 4");
-  EXPECT_EQ(error_of(Eigen::MatrixXd::Ones(4, 0), array, UwbArray{}), "test: both arrays need at least one node (got 4 and 0)");
+  EXPECT_EQ(error_of(Eigen::MatrixXd::Ones(4, 0), array, model::UwbArray{}), "test: both arrays need at least one node (got 4 and 0)");
 }
 
 TEST(RequireFinitePose, NamesTheCallerAndThePose) {

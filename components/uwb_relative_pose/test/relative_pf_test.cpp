@@ -44,7 +44,7 @@ model::Pose2 noisy_increment(const model::Pose2& from, const model::Pose2& to, R
   return m;
 }
 
-Eigen::MatrixXd ranges_for(const model::Pose2& pose, const UwbArray& array) {
+Eigen::MatrixXd ranges_for(const model::Pose2& pose, const model::UwbArray& array) {
   Eigen::MatrixXd ranges(4, 4);
   for (Eigen::Index k = 0; k < 4; ++k) {
     for (Eigen::Index l = 0; l < 4; ++l) {
@@ -72,7 +72,7 @@ RunErrors run(const RelativePfParams& params, std::uint64_t filter_seed, Observa
   RelativePoseFilter filter(params);
   RandomEngine engine(filter_seed);
   RandomEngine world(derive_seed(5, "relative_pf_test/world"));
-  const UwbArray array = square_array(0.5);
+  const model::UwbArray array = model::square_array(0.5);
   filter.initialize(model::compose(relative_truth(0), {1.0, -1.0, 0.3}), engine);
   std::optional<model::Pose2> previous_solve = relative_truth(0);
   RunErrors out;
@@ -225,7 +225,7 @@ TEST(RelativePoseFilter, RefusedInputLeavesParticlesWeightsAndEngineUntouched) {
   const pf::ParticleSet particles = filter.particles();
   const Eigen::ArrayXd weights = filter.weights();
   const RandomEngine engine_before = engine;
-  const UwbArray array = square_array(0.5);
+  const model::UwbArray array = model::square_array(0.5);
   Eigen::MatrixXd ranges = ranges_for({3.0, 1.0, 0.2}, array);
   ranges(2, 3) = kNan;
   EXPECT_THROW(filter.update_with_pose({3.0, kNan, 0.2}, engine), std::invalid_argument);
@@ -249,7 +249,7 @@ TEST(RelativePoseFilter, RefusedInputLeavesParticlesWeightsAndEngineUntouched) {
 TEST(RelativePoseFilter, RangesBeforeInitialisationAreALogicError) {
   RelativePoseFilter filter(RelativePfParams{});
   RandomEngine engine(7);
-  const UwbArray array = square_array(0.5);
+  const model::UwbArray array = model::square_array(0.5);
   EXPECT_THROW(filter.update_with_ranges(array, array, ranges_for({3.0, 0.0, 0.0}, array), engine), std::logic_error);
   EXPECT_FALSE(filter.initialized());
 }
@@ -261,7 +261,7 @@ TEST(RelativePoseFilter, LogWeightsSurviveRangesFarFromEveryParticle) {
   params.resample_ess_fraction = 0.01;  // keep the weights to look at them
   RelativePoseFilter filter(params);
   RandomEngine engine(8);
-  const UwbArray array = square_array(0.5);
+  const model::UwbArray array = model::square_array(0.5);
   const model::Pose2 truth{6.0, 0.0, 0.0};
   filter.initialize({2.0, 0.0, 0.0}, engine);
   const double before = filter.estimated_pose().x;
@@ -295,7 +295,7 @@ TEST(RelativePoseFilter, OneParticleWorks) {
   params.num_particles = 1;
   RelativePoseFilter filter(params);
   RandomEngine engine(10);
-  const UwbArray array = square_array(0.5);
+  const model::UwbArray array = model::square_array(0.5);
   filter.update_with_pose(relative_truth(0), engine);
   for (int e = 1; e < 50; ++e) {
     filter.predict(model::between(robot_i(e - 1), robot_i(e)), model::between(robot_j(e - 1), robot_j(e)), engine);
