@@ -2,8 +2,10 @@
 // UWB antenna arrays of paper 3 (Liu et al. 2022): each robot carries K nodes at known positions
 // in its body frame (x forward, y left, metres, origin at the robot centre).
 
-#include <Eigen/Core>
+#include <string_view>
 #include <vector>
+
+#include <Eigen/Core>
 
 namespace robodds::uwb {
 
@@ -17,5 +19,13 @@ struct UwbArray {
 /// turns every estimate by 90 degrees without raising the cost (tested).
 /// Throws std::invalid_argument unless side_m > 0 and finite.
 UwbArray square_array(double side_m);
+
+/// Nodes closer than this count as coincident (m).
+inline constexpr double kMinNodeSeparationM = 1e-3;
+
+/// Refuses an array the relative pose cannot use: fewer than 3 nodes, a non-finite position, or two
+/// nodes closer than kMinNodeSeparationM. Throws std::invalid_argument "key: reason (got ...)",
+/// naming `key` (the parameter that set the array, e.g. the node's YAML key).
+void validate_array(const UwbArray& array, std::string_view key);
 
 }  // namespace robodds::uwb

@@ -37,6 +37,25 @@ TEST(SquareArray, LabelsGoCounterClockwiseFromFrontLeft) {
   EXPECT_THROW(square_array(0.0), std::invalid_argument);
 }
 
+TEST(ValidateArray, RefusesFewerThanThreeNodesAndCoincidentNodesNamingTheKey) {
+  const auto message = [](const UwbArray& array) -> std::string {
+    try {
+      validate_array(array, "nodes_m");
+    } catch (const std::invalid_argument& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  EXPECT_EQ(message(square_array(0.3)), "accepted");
+  EXPECT_EQ(message(UwbArray{{{0.0, 0.0}, {0.5, 0.0}, {0.0, 0.5}}}), "accepted");
+  EXPECT_EQ(message(UwbArray{}), "nodes_m: needs at least 3 nodes (got 0 nodes)");
+  EXPECT_EQ(message(UwbArray{{{0.0, 0.0}, {0.5, 0.0}}}), "nodes_m: needs at least 3 nodes (got 2 nodes)");
+  EXPECT_EQ(message(UwbArray{{{0.0, 0.0}, {0.5, 0.0}, {0.5, 0.0008}}}),
+            "nodes_m: nodes 1 and 2 coincide (closer than 1 mm) (got [0.5, 0] and [0.5, 8e-04])");
+  EXPECT_EQ(message(UwbArray{{{0.0, 0.0}, {0.5, 0.0}, {std::numeric_limits<double>::quiet_NaN(), 0.0}}}),
+            "nodes_m: node 2 must be finite (got [nan, 0])");
+}
+
 TEST(PredictedRange, IsTheDistanceOfTheTransformedNodes) {
   // j at (3, 4) turned by 90 deg: its node (1, 0) sits at (3, 5) in i's frame.
   EXPECT_DOUBLE_EQ(predicted_range(model::Pose2{3.0, 4.0, kPi / 2.0}, Eigen::Vector2d(0.0, 0.0), Eigen::Vector2d(1.0, 0.0)),
