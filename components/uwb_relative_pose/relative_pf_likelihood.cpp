@@ -38,26 +38,5 @@ void require_finite_pose(const char* caller, const model::Pose2& pose) {
   }
 }
 
-void require_valid_ranges(const char* caller, const model::UwbArray& own, const model::UwbArray& other,
-                          const Eigen::MatrixXd& ranges_m) {
-  if (own.nodes_m.empty() || other.nodes_m.empty()) {
-    throw std::invalid_argument(std::string(caller) + ": both arrays need at least one node (got " +
-                                std::to_string(own.nodes_m.size()) + " and " + std::to_string(other.nodes_m.size()) + ")");
-  }
-  if (ranges_m.rows() != static_cast<Eigen::Index>(own.nodes_m.size()) ||
-      ranges_m.cols() != static_cast<Eigen::Index>(other.nodes_m.size())) {
-    throw std::invalid_argument(std::string(caller) + ": ranges are " + std::to_string(ranges_m.rows()) + " x " +
-                                std::to_string(ranges_m.cols()) + ", the arrays need " +
-                                std::to_string(own.nodes_m.size()) + " x " + std::to_string(other.nodes_m.size()));
-  }
-  for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
-    for (Eigen::Index l = 0; l < ranges_m.cols(); ++l) {
-      if (!(ranges_m(k, l) >= 0.0) || !std::isfinite(ranges_m(k, l))) {
-        param_checks::reject(std::string(caller) + ": range (" + std::to_string(k) + ", " + std::to_string(l) + ")",
-                             "must be >= 0 and finite", ranges_m(k, l));
-      }
-    }
-  }
-}
 
 }  // namespace robodds::uwb

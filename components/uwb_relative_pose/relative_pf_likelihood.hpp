@@ -10,6 +10,7 @@
 
 #include "common/model/pose2.hpp"
 #include "common/model/uwb_array.hpp"
+#include "components/uwb_relative_pose/relative_pose_solver.hpp"
 
 namespace robodds::uwb {
 
@@ -20,16 +21,11 @@ double pose_log_likelihood(const model::Pose2& particle, const model::Pose2& mea
 
 /// log prod_{k,l} N(r_kl - d(x, C_i^k, C_j^l); 0, range_std^2) up to a constant, d = predicted_range
 /// (relative_pose.hpp). `ranges_m` is K x L: row k node k of `own` (robot i), column l node l of
-/// `other` (robot j); the sizes are the caller's to check (require_valid_ranges).
+/// `other` (robot j); the sizes are the caller's to check (require_valid_ranges, relative_pose_solver.hpp).
 double range_log_likelihood(const model::Pose2& particle, const model::UwbArray& own, const model::UwbArray& other,
                             const Eigen::MatrixXd& ranges_m, double range_std_m);
 
 /// Throws std::invalid_argument("<caller>: measured pose is not finite (got x=.., y=.., theta=..)").
 void require_finite_pose(const char* caller, const model::Pose2& pose);
-
-/// Throws std::invalid_argument naming the caller and the problem: an empty array, a matrix that is
-/// not own.size() x other.size(), or a range (k, l) that is negative or not finite.
-void require_valid_ranges(const char* caller, const model::UwbArray& own, const model::UwbArray& other,
-                          const Eigen::MatrixXd& ranges_m);
 
 }  // namespace robodds::uwb

@@ -39,27 +39,6 @@ ceres::LossFunction* make_loss(const SolverOptions& options) {
   return nullptr;
 }
 
-void require_valid_ranges(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m) {
-  if (own.nodes_m.empty() || other.nodes_m.empty()) {
-    throw std::invalid_argument("solve_relative_pose: both arrays need at least one node (got " +
-                                std::to_string(own.nodes_m.size()) + " and " + std::to_string(other.nodes_m.size()) + ")");
-  }
-  if (ranges_m.rows() != static_cast<Eigen::Index>(own.nodes_m.size()) ||
-      ranges_m.cols() != static_cast<Eigen::Index>(other.nodes_m.size())) {
-    throw std::invalid_argument("solve_relative_pose: ranges are " + std::to_string(ranges_m.rows()) + " x " +
-                                std::to_string(ranges_m.cols()) + ", the arrays need " +
-                                std::to_string(own.nodes_m.size()) + " x " + std::to_string(other.nodes_m.size()));
-  }
-  for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
-    for (Eigen::Index l = 0; l < ranges_m.cols(); ++l) {
-      if (!(ranges_m(k, l) >= 0.0) || !std::isfinite(ranges_m(k, l))) {
-        param_checks::reject("solve_relative_pose: range (" + std::to_string(k) + ", " + std::to_string(l) + ")",
-                             "must be >= 0 and finite", ranges_m(k, l));
-      }
-    }
-  }
-}
-
 /// One Levenberg-Marquardt solve from `start`.
 SolverResult solve_from(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m, model::Pose2 start,
                         const SolverOptions& options) {
@@ -90,6 +69,27 @@ SolverResult solve_from(const UwbArray& own, const UwbArray& other, const Eigen:
 }
 
 }  // namespace
+
+void require_valid_ranges(const char* caller, const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m) {
+  if (own.nodes_m.empty() || other.nodes_m.empty()) {
+    throw std::invalid_argument(std::string(caller) + ": both arrays need at least one node (got " +
+                                std::to_string(own.nodes_m.size()) + " and " + std::to_string(other.nodes_m.size()) + ")");
+  }
+  if (ranges_m.rows() != static_cast<Eigen::Index>(own.nodes_m.size()) ||
+      ranges_m.cols() != static_cast<Eigen::Index>(other.nodes_m.size())) {
+    throw std::invalid_argument(std::string(caller) + ": ranges are " + std::to_string(ranges_m.rows()) + " x " +
+                                std::to_string(ranges_m.cols()) + ", the arrays need " +
+                                std::to_string(own.nodes_m.size()) + " x " + std::to_string(other.nodes_m.size()));
+  }
+  for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
+    for (Eigen::Index l = 0; l < ranges_m.cols(); ++l) {
+      if (!(ranges_m(k, l) >= 0.0) || !std::isfinite(ranges_m(k, l))) {
+        param_checks::reject(std::string(caller) + ": range (" + std::to_string(k) + ", " + std::to_string(l) + ")",
+                             "must be >= 0 and finite", ranges_m(k, l));
+      }
+    }
+  }
+}
 
 RobustLoss robust_loss_from_string(std::string_view text) {
   if (text == "none") return RobustLoss::kNone;
@@ -131,7 +131,7 @@ void SolverOptions::validate() const { solver_param_table().check_ranges(*this);
 SolverResult solve_relative_pose(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m,
                                  const std::optional<model::Pose2>& initial, const SolverOptions& options) {
   options.validate();
-  require_valid_ranges(own, other, ranges_m);
+  require_valid_ranges("solve_relative_pose", own, other, ranges_m);
   if (initial) {
     if (!std::isfinite(initial->x) || !std::isfinite(initial->y) || !std::isfinite(initial->theta)) {
       throw std::invalid_argument("solve_relative_pose: initial pose is not finite (got " + model::to_text(*initial) + ")");

@@ -57,6 +57,11 @@ struct SolverResult {
   bool converged = false;   // the winning start reported convergence
 };
 
+/// Throws std::invalid_argument naming the caller and the problem: an empty array, a matrix that is
+/// not own.size() x other.size(), or a range (k, l) that is negative or not finite. The one check of
+/// a UWB range matrix (the solver, the tracker and the particle filters call it).
+void require_valid_ranges(const char* caller, const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m);
+
 /// Solves eq. (1) for the K x L matrix `ranges_m` (row k: node k of `own`, column l: node l of
 /// `other`). With `initial` (e.g. the previous epoch's pose) one start from there; without it the
 /// multi-start of SolverOptions. Throws std::invalid_argument if the matrix does not match the

@@ -1,5 +1,7 @@
 #include "components/uwb_relative_pose/relative_pose_tracker.hpp"
 
+#include <stdexcept>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -125,18 +127,10 @@ std::optional<std::string> RelativePoseTracker::check_input(const Eigen::MatrixX
   if (last_time_s_ && time_s < *last_time_s_) {
     return "time " + shortest_text(time_s) + " s is before the previous epoch's " + shortest_text(*last_time_s_) + " s";
   }
-  if (ranges_m.rows() != static_cast<Eigen::Index>(own_.nodes_m.size()) ||
-      ranges_m.cols() != static_cast<Eigen::Index>(peer_.nodes_m.size())) {
-    return "ranges are " + std::to_string(ranges_m.rows()) + " x " + std::to_string(ranges_m.cols()) + ", the arrays need " +
-           std::to_string(own_.nodes_m.size()) + " x " + std::to_string(peer_.nodes_m.size());
-  }
-  for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
-    for (Eigen::Index l = 0; l < ranges_m.cols(); ++l) {
-      if (!(ranges_m(k, l) >= 0.0) || !std::isfinite(ranges_m(k, l))) {
-        return "range (" + std::to_string(k) + ", " + std::to_string(l) + ") is " + shortest_text(ranges_m(k, l)) +
-               ", must be >= 0 and finite";
-      }
-    }
+  try {
+    require_valid_ranges("RelativePoseTracker", own_, peer_, ranges_m);  // the one range-matrix check
+  } catch (const std::invalid_argument& error) {
+    return std::string(error.what());
   }
   return std::nullopt;
 }

@@ -226,10 +226,10 @@ TEST(RelativePoseTracker, BadInputIsRejectedCountedAndChangesNothing) {
   };
   Eigen::MatrixXd bad = ranges;
   bad(1, 3) = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(rejected(bad, 1.0), "range (1, 3) is nan, must be >= 0 and finite");
+  EXPECT_EQ(rejected(bad, 1.0), "RelativePoseTracker: range (1, 3): must be >= 0 and finite (got nan)");
   bad(1, 3) = -0.5;
-  EXPECT_EQ(rejected(bad, 1.0), "range (1, 3) is -0.5, must be >= 0 and finite");
-  EXPECT_EQ(rejected(Eigen::MatrixXd::Ones(4, 3), 1.0), "ranges are 4 x 3, the arrays need 4 x 4");
+  EXPECT_EQ(rejected(bad, 1.0), "RelativePoseTracker: range (1, 3): must be >= 0 and finite (got -0.5)");
+  EXPECT_EQ(rejected(Eigen::MatrixXd::Ones(4, 3), 1.0), "RelativePoseTracker: ranges are 4 x 3, the arrays need 4 x 4");
   EXPECT_EQ(rejected(ranges, std::numeric_limits<double>::infinity()), "time inf s is not finite");
   EXPECT_EQ(rejected(ranges, 0.5), "time 0.5 s is before the previous epoch's 0.8999999999999999 s");  // nine 0.1 s steps
   EXPECT_EQ(tracker.counts().rejected, 5u);
