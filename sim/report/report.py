@@ -255,6 +255,17 @@ def save(fig, out_dir, name, written):
     written.append(path)
 
 
+def save_world_plot(fig, ax, handles, title, out_dir, name, written):
+    """Legend, equal axes in world metres, title and grid of an x-y plot, then save() it."""
+    ax.legend(handles=handles, loc="best", fontsize=8, framealpha=0.85)
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+    fig.tight_layout()
+    save(fig, out_dir, name, written)
+
 def plot_trajectory(data, missions, out_dir, written):
     truth = by_robot(data.get("plant_state.csv"))
     estimate = {r: valid_rows(t) for r, t in by_robot(data.get("estimate_pose.csv")).items()}
@@ -288,14 +299,7 @@ def plot_trajectory(data, missions, out_dir, written):
     if missions:
         handles.append(Line2D([], [], color="gray", ls="none", marker="^", mfc="none", ms=9, label="way-point (order)"))
     handles.append(Line2D([], [], color="gray", ls="none", marker="o", mec="black", ms=8, label="start"))
-    ax.legend(handles=handles, loc="best", fontsize=8, framealpha=0.85)
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    ax.set_title("Trajectory (paper Fig. 3)")
-    ax.grid(True, alpha=0.3)
-    fig.tight_layout()
-    save(fig, out_dir, "trajectory.png", written)
+    save_world_plot(fig, ax, handles, "Trajectory (paper Fig. 3)", out_dir, "trajectory.png", written)
 
 
 def command_twist(cmd, state):
@@ -558,14 +562,8 @@ def plot_p2_trajectories(data, truths, schedules, out_dir, written):
     handles += [Line2D([], [], color="gray", ls="none", marker="o", mec="black", ms=7, label="start"),
                 Line2D([], [], color="gray", ls="none", marker="s", mec="black", ms=6, label="end"),
                 Line2D([], [], color="black", ls=":", marker="x", label="target, desired radius")]
-    ax.legend(handles=handles, loc="best", fontsize=8, framealpha=0.85)
-    ax.set_aspect("equal", adjustable="datalim")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    ax.set_title("Trajectories around the targets (paper 2 Fig. 3/5)")
-    ax.grid(True, alpha=0.3)
-    fig.tight_layout()
-    save(fig, out_dir, "p2_trajectories.png", written)
+    save_world_plot(fig, ax, handles, "Trajectories around the targets (paper 2 Fig. 3/5)", out_dir, "p2_trajectories.png",
+                    written)
 
 
 def plot_p2_range_rate(data, truths, out_dir, written):
