@@ -279,7 +279,14 @@ class InputBase {
     }
   }
 
+  /// `key`: an instance, or with by_robot a robot id (then its current instance's label).
   std::string label_of(std::uint64_t key) const {
+    if (options_.by_robot) {
+      auto current = current_key_.find(key);
+      if (current != current_key_.end()) {
+        key = current->second;
+      }
+    }
     auto it = labels_.find(key);
     if (it != labels_.end()) {
       return it->second;
@@ -324,7 +331,8 @@ class InputBase {
   std::set<std::uint64_t> expected_set_{options_.expected.begin(), options_.expected.end()};
   mutable std::mutex mutex_;
   std::map<std::uint64_t, Progress> progress_;
-  std::map<std::uint64_t, std::string> labels_{options_.labels};
+  std::map<std::uint64_t, std::string> labels_{options_.labels};  // instance key -> label
+  std::map<std::uint64_t, std::uint64_t> current_key_;  // by_robot: robot id -> its newest instance key
   InputCounts counts_;
   std::set<std::pair<std::uint64_t, std::string>> logged_rejections_;  // (writer_id, reason)
   std::string producer_conflict_;  // lockstep: the first second-producer error, thrown by ready()
@@ -343,9 +351,14 @@ class Input : public InputBase {
       return;
     }
     const std::optional<SampleCheckFailure> failed = first_failed_check(sample);
-    const std::string label = idl::instance_label(sample);
     {
       std::lock_guard<std::mutex> lock(mutex_);
+      // Spelled once per instance, for messages only: no string is built for an ordinary sample.
+      auto labelled = labels_.find(key);
+      if (labelled == labels_.end()) {
+        labelled = labels_.emplace(key, idl::instance_label(sample)).first;
+      }
+      const std::string& label = labelled->second;
       Progress& p = progress_[stream];
       if (!accept_producer(p, label, meta)) {
         return;
@@ -353,9 +366,7 @@ class Input : public InputBase {
       p.step = sample.header().step();
       p.next_step = sample.header().next_step();
       if (options_.by_robot) {
-        labels_[stream] = label;  // the robot's current instance, for "waiting for" messages
-      } else {
-        labels_.emplace(key, label);
+        current_key_[stream] = key;  // the robot's current instance, for "waiting for" messages
       }
       if (!failed) {
         p.received_ns = meta.received_ns;
