@@ -174,6 +174,18 @@ class NodeHarness {
     return host.run();
   }
 
+  /// run() expecting it to fail with `Error` (ConfigError, RunError): the error's message, or ""
+  /// when the run completed. Another exception type propagates (the test fails).
+  template <class Error>
+  std::string run_error(const std::vector<std::string>& components) {
+    try {
+      run(components);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  }
+
  private:
   std::string scenario_file_;
   Scenario scenario_;

@@ -129,12 +129,8 @@ TEST(RangeRateObserverNode, GainsOutsideThePapersConditionsAreConfigErrorsNaming
                                     {"sta: {restart_window_s: 0}", "sta.restart_window_s"}}) {
     NodeHarness h(scenario(params));
     robodds::component_registration::register_range_rate_observer(h.registry());
-    try {
-      h.run({"observer"});
-      ADD_FAILURE() << params << ": expected a ConfigError";
-    } catch (const ConfigError& e) {
-      EXPECT_NE(std::string(e.what()).find(key + ":"), std::string::npos) << e.what();
-    }
+    const std::string error = h.run_error<ConfigError>({"observer"});
+    EXPECT_NE(error.find(key + ":"), std::string::npos) << params << ": expected a ConfigError, got: " << error;
   }
 }
 

@@ -130,12 +130,8 @@ TEST(RangeSensorNode, ARobotWithoutATargetIsAnErrorInLockstep) {
       h.publish("mission/target", task(2, false, 0, 0.0), 0, kNeverAgain);
     }
   });
-  try {
-    h.run({"sensor"});
-    FAIL() << "expected a RunError";
-  } catch (const RunError& e) {
-    EXPECT_NE(std::string(e.what()).find("robot 2 has no target at step 0"), std::string::npos) << e.what();
-  }
+  const std::string error = h.run_error<RunError>({"sensor"});
+  EXPECT_NE(error.find("robot 2 has no target at step 0"), std::string::npos) << "expected a RunError, got: " << error;
 }
 
 }  // namespace

@@ -143,14 +143,9 @@ components:
   - {name: follower, type: route_follower, params: {route: [[0, 0], [0.01, 0]]}}
 )");
   robodds::component_registration::register_route_follower(h.registry());
-  try {
-    h.run({"follower"});
-    FAIL() << "points 1 cm apart (tolerance 5 cm) were accepted";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("route: consecutive points must be at least position_tolerance_m 0.05 m apart"),
-              std::string::npos)
-        << e.what();
-  }
+  const std::string error = h.run_error<ConfigError>({"follower"});
+  EXPECT_NE(error.find("route: consecutive points must be at least position_tolerance_m 0.05 m apart"), std::string::npos)
+      << "points 1 cm apart (tolerance 5 cm) must be a ConfigError, got: " << error;
 }
 
 }  // namespace

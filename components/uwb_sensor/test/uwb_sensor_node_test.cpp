@@ -234,12 +234,8 @@ TEST(UwbSensorNode, RealTimeSendsNothingForFarPairsAndLostFrames) {
 TEST(UwbSensorNode, TooFewNodesIsAConfigErrorNamingTheKey) {
   NodeHarness h(scenario("nodes_m: [[0.3, 0], [-0.3, 0]]"));
   robodds::component_registration::register_uwb_sensor(h.registry());
-  try {
-    h.run({"uwb"});
-    FAIL() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("nodes_m: needs at least 3 nodes"), std::string::npos) << e.what();
-  }
+  const std::string error = h.run_error<ConfigError>({"uwb"});
+  EXPECT_NE(error.find("nodes_m: needs at least 3 nodes"), std::string::npos) << "expected a ConfigError, got: " << error;
 }
 
 }  // namespace

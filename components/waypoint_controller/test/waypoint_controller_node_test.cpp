@@ -189,12 +189,9 @@ components:
   - {name: controller, type: waypoint_controller, params: {estimate_timeout_s: 0.005}}
 )");
   add_controller(h);
-  try {
-    h.run({"controller"});
-    FAIL() << "a timeout shorter than the control period was accepted";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("estimate_timeout_s: must be longer than the component's period"), std::string::npos) << e.what();
-  }
+  const std::string error = h.run_error<ConfigError>({"controller"});
+  EXPECT_NE(error.find("estimate_timeout_s: must be longer than the component's period"), std::string::npos)
+      << "a timeout shorter than the control period must be a ConfigError, got: " << error;
 }
 
 }  // namespace

@@ -283,12 +283,8 @@ components:
   - {name: evaluator, type: evaluator, params: {topics: [sim/clock]}}
 )");
   add_evaluator(h);
-  try {
-    h.run({"evaluator"});
-    FAIL() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("sim/clock"), std::string::npos) << e.what();
-  }
+  const std::string error = h.run_error<ConfigError>({"evaluator"});
+  EXPECT_NE(error.find("sim/clock"), std::string::npos) << "expected a ConfigError, got: " << error;
 }
 
 }  // namespace

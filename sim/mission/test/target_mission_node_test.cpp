@@ -67,12 +67,9 @@ TEST(TargetMissionNode, AScenarioWithoutEventsIsAConfigError) {
   const std::string no_events = std::string(kScenario).substr(0, std::string(kScenario).find("targets:"));
   NodeHarness h(no_events);
   robodds::component_registration::register_target_mission(h.registry());
-  try {
-    h.run({"mission"});
-    FAIL() << "expected a ConfigError";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("needs the scenario's 'targets:' and 'events:'"), std::string::npos) << e.what();
-  }
+  const std::string error = h.run_error<ConfigError>({"mission"});
+  EXPECT_NE(error.find("needs the scenario's 'targets:' and 'events:'"), std::string::npos)
+      << "expected a ConfigError, got: " << error;
 }
 
 }  // namespace

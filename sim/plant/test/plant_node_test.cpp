@@ -278,12 +278,9 @@ components:
   - {name: plant, type: plant, params: {command_timeout_s: 0.01}}
 )");
   add_plant(h);
-  try {
-    h.run({"plant"});
-    FAIL() << "a timeout not longer than the plant's period was accepted";
-  } catch (const ConfigError& e) {
-    EXPECT_NE(std::string(e.what()).find("command_timeout_s: must be longer than the component's period"), std::string::npos) << e.what();
-  }
+  const std::string error = h.run_error<ConfigError>({"plant"});
+  EXPECT_NE(error.find("command_timeout_s: must be longer than the component's period"), std::string::npos)
+      << "a timeout not longer than the plant's period must be a ConfigError, got: " << error;
 }
 
 }  // namespace
