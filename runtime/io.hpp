@@ -387,17 +387,8 @@ class Input : public InputBase {
     std::vector<Msg> out;
     std::lock_guard<std::mutex> lock(mutex_);
     auto it = slots_.find(key);
-    if (it == slots_.end() || nothing_readable()) {
-      return out;
-    }
-    const std::uint64_t limit = readable_limit();
-    Slot& slot = it->second;
-    while (!slot.pending.empty() && slot.pending.front().header().step() <= limit) {
-      out.push_back(std::move(slot.pending.front()));
-      slot.pending.pop_front();
-    }
-    if (!out.empty()) {
-      slot.latest = out.back();
+    if (it != slots_.end() && !nothing_readable()) {
+      take_readable(it->second, out);
     }
     return out;
   }
@@ -409,22 +400,19 @@ class Input : public InputBase {
     if (it == slots_.end() || nothing_readable()) {
       return nullptr;
     }
-    const std::uint64_t limit = readable_limit();
-    Slot& slot = it->second;
-    while (!slot.pending.empty() && slot.pending.front().header().step() <= limit) {
-      slot.latest = std::move(slot.pending.front());
-      slot.pending.pop_front();
-    }
-    return slot.latest ? &*slot.latest : nullptr;
+    return newest_readable(it->second);
   }
 
   /// Subscription::robot_streams(): the readable samples of robot `robot_id` not taken before,
   /// whatever their second key part, in step order.
   std::vector<Msg> take_new_of_robot(std::uint32_t robot_id) {
     std::vector<Msg> out;
-    for (std::uint64_t key : keys_of_robot(robot_id)) {
-      std::vector<Msg> taken = take_new(key);
-      out.insert(out.end(), std::make_move_iterator(taken.begin()), std::make_move_iterator(taken.end()));
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (nothing_readable()) {
+      return out;
+    }
+    for (auto it = first_slot_of(robot_id); it != slots_.end() && (it->first >> 32) == robot_id; ++it) {
+      take_readable(it->second, out);
     }
     std::stable_sort(out.begin(), out.end(), [](const Msg& a, const Msg& b) { return a.header().step() < b.header().step(); });
     return out;
@@ -433,9 +421,13 @@ class Input : public InputBase {
   /// Subscription::robot_streams(): the newest readable sample of robot `robot_id` over all its
   /// second key parts (older unread ones are skipped), or nullptr.
   const Msg* latest_of_robot(std::uint32_t robot_id) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (nothing_readable()) {
+      return nullptr;
+    }
     const Msg* newest = nullptr;
-    for (std::uint64_t key : keys_of_robot(robot_id)) {
-      const Msg* m = latest(key);
+    for (auto it = first_slot_of(robot_id); it != slots_.end() && (it->first >> 32) == robot_id; ++it) {
+      const Msg* m = newest_readable(it->second);
       if (m != nullptr && (newest == nullptr || m->header().step() >= newest->header().step())) {
         newest = m;
       }
@@ -469,21 +461,38 @@ class Input : public InputBase {
     return std::nullopt;
   }
 
-  /// Keys (robot_id << 32 | X) of the robot's instances that delivered a valid sample.
-  std::vector<std::uint64_t> keys_of_robot(std::uint32_t robot_id) const {
-    std::lock_guard<std::mutex> lock(mutex_);
-    std::vector<std::uint64_t> keys;
-    const std::uint64_t first = std::uint64_t{robot_id} << 32;
-    for (auto it = slots_.lower_bound(first); it != slots_.end() && (it->first >> 32) == robot_id; ++it) {
-      keys.push_back(it->first);
-    }
-    return keys;
-  }
-
   struct Slot {
     std::deque<Msg> pending;
     std::optional<Msg> latest;
   };
+  /// The first slot of robot `robot_id`'s instances (keys robot_id << 32 | X). Call with mutex_ held.
+  typename std::map<std::uint64_t, Slot>::iterator first_slot_of(std::uint32_t robot_id) {
+    return slots_.lower_bound(std::uint64_t{robot_id} << 32);
+  }
+  /// Moves the slot's readable pending samples to `out`, in step order; the last becomes its
+  /// latest. Call with mutex_ held.
+  void take_readable(Slot& slot, std::vector<Msg>& out) const {
+    const std::uint64_t limit = readable_limit();
+    const std::size_t first = out.size();
+    while (!slot.pending.empty() && slot.pending.front().header().step() <= limit) {
+      out.push_back(std::move(slot.pending.front()));
+      slot.pending.pop_front();
+    }
+    if (out.size() > first) {
+      slot.latest = out.back();
+    }
+  }
+  /// Skips the slot's readable pending samples to the newest; that one, or the last kept, or
+  /// nullptr. Call with mutex_ held.
+  const Msg* newest_readable(Slot& slot) const {
+    const std::uint64_t limit = readable_limit();
+    while (!slot.pending.empty() && slot.pending.front().header().step() <= limit) {
+      slot.latest = std::move(slot.pending.front());
+      slot.pending.pop_front();
+    }
+    return slot.latest ? &*slot.latest : nullptr;
+  }
+
   std::map<std::uint64_t, Slot> slots_;
 };
 
