@@ -74,7 +74,7 @@ class CircumnavigationControllerNode : public Component {
     std::vector<std::uint64_t> all_robots;
     for (const RobotSpec& robot : ctx.scenario().robots) {
       all_robots.push_back(robot.id);
-      scenario_robots_.push_back(robot.id);
+      team_[robot.id] = TeamMate{};
     }
     observer_ = &ctx.subscribe<idl::RangeRateEstimate>(to_string(params.observer_topic),
                                                         Subscription::robot_streams(ctx.robot_keys()));
@@ -85,22 +85,20 @@ class CircumnavigationControllerNode : public Component {
 
   void on_step(const StepInfo&) override {
     // Read every robot's newest task and pose first (latest() consumes what is readable).
-    std::map<std::uint32_t, const idl::TargetAssignment*> tasks;
-    std::map<std::uint32_t, const idl::PoseEstimate*> poses;
-    for (std::uint32_t id : scenario_robots_) {
-      tasks[id] = missions_->latest(id);
-      poses[id] = poses_->latest(id);
+    for (auto& [id, team_mate] : team_) {
+      team_mate.task = missions_->latest(id);
+      team_mate.pose = poses_->latest(id);
     }
     for (auto& [id, robot] : robots_) {
       idl::VelocityCommand cmd;
       cmd.robot_id(id);
       cmd.mode(idl::VELOCITY);
-      const idl::TargetAssignment* task = tasks[id];
+      const idl::TargetAssignment* task = team_.at(id).task;
       const idl::RangeRateEstimate* estimate = observer_->latest_of_robot(id);
       const std::string why_zero = zero_reason(id, task, estimate);
       if (why_zero.empty()) {
         const model::Twist twist = robot.law.step(estimate->range(), estimate->range_rate(), task->desired_radius(),
-                                                  gaps_of(id, *task, tasks, poses), dt_s_);
+                                                  gaps_of(id, *task), dt_s_);
         cmd.v(twist.v);
         cmd.omega(twist.omega);
       } else {
@@ -148,28 +146,27 @@ class CircumnavigationControllerNode : public Component {
 
   /// The gaps of robot `id` among the robots with the same active target and a known (in real
   /// time: fresh) pose; alone (no spacing) while its own pose is unknown.
-  Gaps gaps_of(std::uint32_t id, const idl::TargetAssignment& task,
-               const std::map<std::uint32_t, const idl::TargetAssignment*>& tasks,
-               const std::map<std::uint32_t, const idl::PoseEstimate*>& poses) const {
+  Gaps gaps_of(std::uint32_t id, const idl::TargetAssignment& task) const {
     auto bearing_of = [&](std::uint32_t robot) {
-      const idl::PoseEstimate* pose = poses.at(robot);
+      const idl::PoseEstimate* pose = team_.at(robot).pose;
       return TeamBearing{robot, bearing_from_target(pose->x(), pose->y(), task.target_x(), task.target_y())};
     };
-    if (!pose_usable(id, poses)) {
+    if (!pose_usable(id)) {
       return Gaps{};
     }
     std::vector<TeamBearing> peers;
-    for (const auto& [peer, peer_task] : tasks) {
+    for (const auto& [peer, team_mate] : team_) {
+      const idl::TargetAssignment* peer_task = team_mate.task;
       if (peer != id && peer_task != nullptr && peer_task->active() && peer_task->target_id() == task.target_id() &&
-          pose_usable(peer, poses)) {
+          pose_usable(peer)) {
         peers.push_back(bearing_of(peer));
       }
     }
     return formation_gaps(bearing_of(id), peers);
   }
 
-  bool pose_usable(std::uint32_t robot, const std::map<std::uint32_t, const idl::PoseEstimate*>& poses) const {
-    return poses.at(robot) != nullptr && (!realtime_ || poses_->fresh(robot, peer_timeout_s_));
+  bool pose_usable(std::uint32_t robot) const {
+    return team_.at(robot).pose != nullptr && (!realtime_ || poses_->fresh(robot, peer_timeout_s_));
   }
 
   /// Says once why a robot's commands are zero, and once when it steers again.
@@ -191,7 +188,13 @@ class CircumnavigationControllerNode : public Component {
   bool realtime_ = false;
   std::string name_;
   std::map<std::uint32_t, Robot> robots_;
-  std::vector<std::uint32_t> scenario_robots_;
+  /// Every scenario robot's newest task and pose, read at the start of each step (pointers into
+  /// the inputs, valid for the step).
+  struct TeamMate {
+    const idl::TargetAssignment* task = nullptr;
+    const idl::PoseEstimate* pose = nullptr;
+  };
+  std::map<std::uint32_t, TeamMate> team_;
   Input<idl::RangeRateEstimate>* observer_ = nullptr;
   Input<idl::TargetAssignment>* missions_ = nullptr;
   Input<idl::PoseEstimate>* poses_ = nullptr;
