@@ -6,24 +6,18 @@
 #include <vector>
 
 #include "common/model/uwb_array.hpp"
+#include "common/model/uwb_array_params.hpp"
 #include "common/param_table.hpp"
 #include "components/uwb_sensor/uwb_error_model.hpp"
 
 namespace robodds::uwb_sensor {
 
-/// At most this many nodes per array: K x L ranges must fit UwbRanges' sequence<double, 64>.
-inline constexpr std::size_t kMaxNodes = 8;
-
 // Units, ranges and one-line descriptions of these fields: uwb_sensor_param_table(), the one
 // source (`robodds components --params uwb_sensor` prints it). Defaults: the initialisers.
 struct UwbSensorParams {
   double rate_hz = 50.0;
-  /// Used when nodes_m is empty: model::square_array(array_side_m), the labelling the estimator
-  /// (components/uwb_relative_pose) assumes.
-  double array_side_m = 0.5;
-  /// Explicit node positions (body frame, label = index) instead of the square; every robot
-  /// carries the same array. 3 to kMaxNodes nodes, none closer than 1 mm (validate()).
-  std::vector<params::Point2> nodes_m;
+  /// array_side_m, nodes_m (common/model/uwb_array_params.hpp: the estimator reads the same keys).
+  model::UwbArrayParams array_params;
   /// A pair whose largest node-to-node range exceeds this gets no ranges (an empty sample in
   /// lockstep).
   double max_range_m = 100.0;
@@ -34,7 +28,7 @@ struct UwbSensorParams {
   void validate() const;
 
   /// The array every robot carries: nodes_m, or the square of side array_side_m.
-  model::UwbArray array() const;
+  model::UwbArray array() const { return array_params.array(); }
 };
 
 const params::ParamTable<UwbSensorParams>& uwb_sensor_param_table();

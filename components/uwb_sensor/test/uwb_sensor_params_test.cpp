@@ -42,7 +42,7 @@ TEST(UwbSensorParams, DefaultsAreIssue11s) {
 
 TEST(UwbSensorParams, BadValuesNameTheKey) {
   UwbSensorParams p;
-  p.array_side_m = 0.0;
+  p.array_params.array_side_m = 0.0;
   EXPECT_EQ(message_of(p), "array_side_m: must be > 0 and finite (got 0)");
   p = UwbSensorParams{};
   p.max_range_m = -1.0;
@@ -57,16 +57,16 @@ TEST(UwbSensorParams, BadValuesNameTheKey) {
 
 TEST(UwbSensorParams, ExplicitNodesNeedThreeToEightDistinctNodes) {
   UwbSensorParams p;
-  p.nodes_m = {{0.3, 0.0}, {-0.3, 0.0}};
+  p.array_params.nodes_m = {{0.3, 0.0}, {-0.3, 0.0}};
   EXPECT_EQ(message_of(p), "nodes_m: needs at least 3 nodes (a relative heading needs them) (got 2 nodes)");
-  p.nodes_m = {{0.3, 0.0}, {-0.3, 0.0}, {0.3, 0.0005}};
+  p.array_params.nodes_m = {{0.3, 0.0}, {-0.3, 0.0}, {0.3, 0.0005}};
   EXPECT_EQ(message_of(p), "nodes_m: nodes 0 and 2 coincide (closer than 0.001 m) (got 5e-04 m apart)");
-  p.nodes_m = {{0.3, 0.0}, {-0.3, 0.0}, {0.0, 0.3}};
+  p.array_params.nodes_m = {{0.3, 0.0}, {-0.3, 0.0}, {0.0, 0.3}};
   EXPECT_EQ(message_of(p), "ok");
   EXPECT_EQ(p.array().nodes_m[2], Eigen::Vector2d(0.0, 0.3)) << "explicit nodes replace the square";
-  p.nodes_m.clear();
+  p.array_params.nodes_m.clear();
   for (int k = 0; k < 9; ++k) {
-    p.nodes_m.push_back({std::cos(k * 0.6), std::sin(k * 0.6)});
+    p.array_params.nodes_m.push_back({std::cos(k * 0.6), std::sin(k * 0.6)});
   }
   EXPECT_EQ(message_of(p), "nodes_m: must have at most 8 nodes (K x L ranges per sample, at most 64) (got 9 nodes)");
 }

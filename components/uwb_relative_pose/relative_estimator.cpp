@@ -1,0 +1,209 @@
+#include "components/uwb_relative_pose/relative_estimator.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+namespace robodds::uwb {
+namespace {
+
+bool finite(const model::Pose2& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta); }
+
+/// Wall-clock milliseconds since `start`.
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+StageEstimate filter_estimate(const RelativePoseFilter& filter) {
+  StageEstimate out;
+  if (!filter.initialized()) {
+    return out;
+  }
+  const pf::PoseEstimate e = filter.estimate();
+  out.pose = model::Pose2{e.mean.x(), e.mean.y(), e.mean.z()};
+  out.covariance = e.covariance;
+  out.valid = true;
+  return out;
+}
+
+}  // namespace
+
+const char* stage_name(Stage stage) {
+  switch (stage) {
+    case Stage::kUwb:
+      return "uwb";
+    case Stage::kWindow:
+      return "window";
+    case Stage::kPf:
+      return "pf";
+    case Stage::kPfBaseline:
+      return "pf_baseline";
+    case Stage::kOdometry:
+      return "odometry";
+  }
+  return "?";
+}
+
+RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<PeerSetup> peers, RelativeEstimatorParams params,
+                                     std::uint64_t seed)
+    : own_array_(std::move(own_array)), setups_(std::move(peers)), params_(std::move(params)) {
+  params_.validate();
+  model::check_array("own_array", own_array_);
+  if (setups_.empty()) {
+    throw std::invalid_argument("peers: a relative estimator needs at least one peer");
+  }
+  std::set<std::uint32_t> ids;
+  for (const PeerSetup& peer : setups_) {
+    if (!ids.insert(peer.id).second) {
+      throw std::invalid_argument("peers: robot " + std::to_string(peer.id) + " is listed twice");
+    }
+    model::check_array("peer " + std::to_string(peer.id) + " array", peer.array);
+    if (peer.known_start && !finite(*peer.known_start)) {
+      throw std::invalid_argument("peer " + std::to_string(peer.id) + " known_start is not finite (got " +
+                                  model::to_text(*peer.known_start) + ")");
+    }
+  }
+  peers_.reserve(setups_.size());
+  for (const PeerSetup& peer : setups_) {
+    const std::string stream = "peer" + std::to_string(peer.id);
+    peers_.push_back(PeerState{RelativePoseTracker(own_array_, peer.array, params_.solver, params_.tracker),
+                               RelativePoseFilter(params_.pf), RelativePoseFilter(params_.pf),
+                               RandomEngine(derive_seed(seed, stream + "/pf")),
+                               RandomEngine(derive_seed(seed, stream + "/pf_baseline")), peer.known_start, {}});
+  }
+}
+
+EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers) {
+  if (peers.size() != setups_.size()) {
+    throw std::invalid_argument("step: " + std::to_string(peers.size()) + " peer entries for " +
+                                std::to_string(setups_.size()) + " peers");
+  }
+  if (!std::isfinite(time_s)) {
+    throw std::invalid_argument("step: time is not finite");
+  }
+  if (!finite(own_increment)) {
+    throw std::invalid_argument("step: own odometry increment is not finite (got " + model::to_text(own_increment) + ")");
+  }
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    if (!finite(peers[k].odometry_increment)) {
+      throw std::invalid_argument("step: odometry increment of peer " + std::to_string(setups_[k].id) +
+                                  " is not finite (got " + model::to_text(peers[k].odometry_increment) + ")");
+    }
+  }
+  ++counts_.epochs;
+  EpochResult result;
+  result.peers.resize(peers.size());
+
+  auto start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    PeerResult& out = result.peers[k];
+    out.had_ranges = peers[k].ranges_m.has_value();
+    if (!out.had_ranges) {
+      ++counts_.frames_missing;
+      out.uwb_reason = "no frame";
+      continue;
+    }
+    const TrackerOutput solved = peers_[k].tracker.update(*peers[k].ranges_m, time_s);
+    out.uwb_status = solved.status;
+    out.uwb_reason = solved.reason;
+    StageEstimate& uwb = out.stages[static_cast<std::size_t>(Stage::kUwb)];
+    uwb.pose = solved.pose;
+    uwb.valid = solved.status == TrackStatus::kOk;
+  }
+  result.stage_ms[static_cast<std::size_t>(Stage::kUwb)] = ms_since(start);
+
+  start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    PeerState& peer = peers_[k];
+    const StageEstimate& uwb = result.peers[k].stages[static_cast<std::size_t>(Stage::kUwb)];
+    if (peer.odometry_pose) {
+      peer.odometry_pose = model::compose(model::between(own_increment, *peer.odometry_pose), peers[k].odometry_increment);
+    } else if (uwb.valid) {
+      peer.odometry_pose = uwb.pose;  // no known start: dead reckoning from the first valid fix
+    }
+    StageEstimate& odometry = result.peers[k].stages[static_cast<std::size_t>(Stage::kOdometry)];
+    odometry.valid = peer.odometry_pose.has_value();
+    if (odometry.valid) {
+      odometry.pose = *peer.odometry_pose;
+    }
+  }
+  result.stage_ms[static_cast<std::size_t>(Stage::kOdometry)] = ms_since(start);
+
+  start = std::chrono::steady_clock::now();
+  run_window(own_increment, peers, result);
+  result.stage_ms[static_cast<std::size_t>(Stage::kWindow)] = ms_since(start);
+
+  start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    PeerState& peer = peers_[k];
+    peer.pf.predict(own_increment, peers[k].odometry_increment, peer.pf_random);
+    const StageEstimate& window = result.peers[k].stages[static_cast<std::size_t>(Stage::kWindow)];
+    if (window.valid) {
+      peer.pf.update_with_pose(window.pose, peer.pf_random);
+    }
+    result.peers[k].stages[static_cast<std::size_t>(Stage::kPf)] = filter_estimate(peer.pf);
+  }
+  result.stage_ms[static_cast<std::size_t>(Stage::kPf)] = ms_since(start);
+
+  start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    PeerState& peer = peers_[k];
+    const PeerResult& solved = result.peers[k];
+    peer.baseline.predict(own_increment, peers[k].odometry_increment, peer.baseline_random);
+    if (solved.had_ranges && solved.uwb_status != TrackStatus::kRejected) {
+      if (peer.baseline.initialized()) {
+        peer.baseline.update_with_ranges(own_array_, setups_[k].array, *peers[k].ranges_m, peer.baseline_random);
+      } else if (solved.stages[static_cast<std::size_t>(Stage::kUwb)].valid) {
+        peer.baseline.initialize(solved.stages[static_cast<std::size_t>(Stage::kUwb)].pose, peer.baseline_random);
+      }
+    }
+    result.peers[k].stages[static_cast<std::size_t>(Stage::kPfBaseline)] = filter_estimate(peer.baseline);
+  }
+  result.stage_ms[static_cast<std::size_t>(Stage::kPfBaseline)] = ms_since(start);
+  return result;
+}
+
+void RelativeEstimator::run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers, EpochResult& result) {
+  std::vector<PairMeasurement> edges;
+  std::vector<bool> has_edge(peers.size(), false);
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    const StageEstimate& uwb = result.peers[k].stages[static_cast<std::size_t>(Stage::kUwb)];
+    if (uwb.valid) {
+      edges.push_back(PairMeasurement{0, k + 1, uwb.pose});
+      has_edge[k] = true;
+    }
+  }
+  if (!window_) {
+    if (edges.size() != peers.size()) {
+      return;  // not every peer measured yet: no window (every peer's window estimate invalid)
+    }
+    window_.emplace(peers.size() + 1, static_cast<std::size_t>(params_.window_epochs), params_.window);
+  }
+  std::vector<model::Pose2> increments;
+  increments.reserve(peers.size() + 1);
+  increments.push_back(own_increment);
+  for (const PeerEpoch& peer : peers) {
+    increments.push_back(peer.odometry_increment);
+  }
+  window_->add_epoch(increments, edges);
+  const bool converged = window_->optimize();
+  if (!converged) {
+    ++counts_.window_not_converged;
+  }
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    std::deque<bool>& recent = peers_[k].window_edges;
+    recent.push_back(has_edge[k]);
+    if (recent.size() > static_cast<std::size_t>(params_.window_epochs)) {
+      recent.pop_front();
+    }
+    StageEstimate& window = result.peers[k].stages[static_cast<std::size_t>(Stage::kWindow)];
+    window.pose = window_->latest_relative(0, k + 1);
+    // Valid while the window holds at least one measurement of this peer and the solve converged.
+    window.valid = converged && std::find(recent.begin(), recent.end(), true) != recent.end();
+  }
+}
+
+}  // namespace robodds::uwb
