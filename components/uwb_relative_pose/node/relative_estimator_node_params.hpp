@@ -1,0 +1,37 @@
+#pragma once
+// Every parameter of the uwb_relative_estimator component (config/uwb_relative_estimator.params.yaml
+// is generated from the table): rate, peers, the array (the same keys as the UWB sensor's), the
+// node's freshness rules and the estimator's stages (relative_estimator_params.hpp).
+#include <vector>
+
+#include "common/model/uwb_array_params.hpp"
+#include "common/param_table.hpp"
+#include "components/uwb_relative_pose/relative_estimator_params.hpp"
+
+namespace robodds::uwb {
+
+// Units, ranges and descriptions: relative_estimator_node_param_table() (the one source).
+// Defaults: the member initialisers here and in the included structs.
+struct RelativeEstimatorNodeParams {
+  double rate_hz = 10.0;
+  /// Robot ids of the peers each served robot estimates; [] = every other robot of the scenario.
+  std::vector<double> peers;
+  model::UwbArrayParams array_params;  // keys array_side_m, nodes_m (the UWB sensor's keys)
+  /// The odometry stage starts from the scenario's initial poses (the paper's robots start at known
+  /// places); false: from the first valid eq. (1) solve.
+  bool odometry_known_start = true;
+  /// The window, pf and pf_baseline estimates of a peer are not valid while its last accepted
+  /// frame is older than this (sim time in lockstep, receive time in real time).
+  double uwb_timeout_s = 2.0;
+  /// Real time only: every stage of a peer is not valid while this robot's or the peer's
+  /// odometry was last received longer ago than this.
+  double odometry_timeout_s = 0.5;
+  RelativeEstimatorParams estimator;  // keys window_epochs, window.*, solver.*, tracker.*, pf.*
+
+  /// Throws std::invalid_argument "key: reason (got value)" for the first bad field.
+  void validate() const;
+};
+
+const params::ParamTable<RelativeEstimatorNodeParams>& relative_estimator_node_param_table();
+
+}  // namespace robodds::uwb
