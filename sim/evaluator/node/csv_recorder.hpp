@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <fstream>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,7 +30,13 @@ class RecorderBase {
   virtual ~RecorderBase() = default;
   /// Creates the CSV file in `dir` and writes its header.
   virtual void open(const std::string& dir) = 0;
-  virtual void collect(const std::vector<std::uint64_t>& keys, Metrics& metrics) = 0;
+  /// Takes the readable samples of its instances (rows written now, or at settle()).
+  virtual void collect(Metrics& metrics) = 0;
+  /// Called after every recorder's collect() of the step (the step's truth is in `metrics`):
+  /// writes the rows that waited for truth; `final`: the run is over, nothing waits any more.
+  virtual void settle(Metrics& /*metrics*/, bool /*final*/) {}
+  /// The oldest step of truth (Metrics::relative_truth) this recorder may still need.
+  virtual std::uint64_t truth_needed_from() const { return std::numeric_limits<std::uint64_t>::max(); }
   /// Pushes the rows written so far to the file; RunError if it cannot.
   virtual void flush() = 0;
   virtual const std::string& topic() const = 0;
@@ -37,14 +44,15 @@ class RecorderBase {
   virtual std::size_t rows() const = 0;
 };
 
-/// Writes each sample of its topic as a CSV row when it is taken (not opened: no file).
-/// `by_robot`: a topic keyed (robot_id, target_id) subscribed with Subscription::robot_streams():
-/// each robot's samples, whatever the target, in step order.
+/// Writes each sample of its topic as a CSV row when it is taken (not opened: no file). `keys`:
+/// the instances it reads, in this order at each step. `by_robot`: a topic keyed (robot_id,
+/// target_id) subscribed with Subscription::robot_streams(), `keys` robot ids: each robot's
+/// samples, whatever the target, in step order.
 template <class Msg>
 class Recorder : public RecorderBase {
  public:
-  Recorder(std::string topic, Input<Msg>* input, bool by_robot = false)
-      : topic_(std::move(topic)), input_(input), by_robot_(by_robot) {}
+  Recorder(std::string topic, Input<Msg>* input, std::vector<std::uint64_t> keys, bool by_robot = false)
+      : topic_(std::move(topic)), input_(input), keys_(std::move(keys)), by_robot_(by_robot) {}
   void open(const std::string& dir) override {
     path_ = dir + "/" + csv_file_name(topic_);
     file_.open(path_, std::ios::binary | std::ios::trunc);
@@ -53,9 +61,9 @@ class Recorder : public RecorderBase {
       throw RunError("evaluator: cannot write " + path_);
     }
   }
-  void collect(const std::vector<std::uint64_t>& keys, Metrics& metrics) override {
+  void collect(Metrics& metrics) override {
     text_.clear();
-    for (std::uint64_t key : keys) {
+    for (std::uint64_t key : keys_) {
       const std::vector<Msg> samples =
           by_robot_ ? input_->take_new_of_robot(static_cast<std::uint32_t>(key)) : input_->take_new(key);
       for (const Msg& sample : samples) {
@@ -83,6 +91,7 @@ class Recorder : public RecorderBase {
  private:
   std::string topic_;
   Input<Msg>* input_;
+  std::vector<std::uint64_t> keys_;
   bool by_robot_;
   std::string path_;
   std::ofstream file_;  // buffered: rows reach the disk in blocks, and at flush()

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <type_traits>
 #include <sys/stat.h>
@@ -20,6 +21,7 @@
 #include "sim/evaluator/node/evaluator_params.hpp"
 #include "sim/evaluator/node/sample_metrics.hpp"
 #include "sim/evaluator/node/health_summary.hpp"
+#include "sim/evaluator/node/relative_recorder.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
 
@@ -41,26 +43,43 @@ class EvaluatorNode : public Component {
     const EvaluatorParams params = read_params(p, evaluator_param_table());
     keys_ = ctx.robot_keys();
     context_ = &ctx;
+    recorders_.clear();
     TruthConsumers consumers;
+    std::vector<std::string> stages;  // paper 3: the stages of the relative pose topics
+    const bool relative = std::any_of(params.topics.begin(), params.topics.end(),
+                                      [](const std::string& topic) { return relative_stage_of(topic) != nullptr; });
     for (const std::string& topic : params.topics) {
       const TopicInfo* info = find_topic(topic);
       // Keyed (robot_id, target_id): one stream per robot whatever its target (a mission event moves it).
       const bool by_robot = info != nullptr && info->key == "robot_id, target_id";
-      if (info == nullptr || (info->key != "robot_id" && !by_robot)) {
-        p.fail("topics: '" + topic + "' is not a per-robot topic (key robot_id or robot_id, target_id) of the catalog "
-               "(see docs/topics.md)");
+      if (const char* stage = relative_stage_of(topic)) {
+        add_relative_topic(ctx, topic, stage, params.topics);
+        stages.emplace_back(stage);
+        continue;
       }
+      if (info == nullptr || (info->key != "robot_id" && !by_robot)) {
+        p.fail("topics: '" + topic + "' is not a per-robot topic (key robot_id or robot_id, target_id) of the catalog, "
+               "nor a relative pose topic (key robot_id, peer_id; see docs/topics.md)");
+      }
+      // With relative topics, the truth of every robot (the peers' too): plant/state of all.
+      const std::vector<std::uint64_t>& keys = topic == "plant/state" && relative ? all_robot_keys() : keys_;
       idl::dispatch_type(info->type_name, [&](auto tag) {
         using Msg = typename decltype(tag)::type;
         consumers.fixes |= std::is_same_v<Msg, idl::PositionMeasurement>;
         consumers.estimates |= std::is_same_v<Msg, idl::PoseEstimate>;
         consumers.status |= std::is_same_v<Msg, idl::ControllerStatus>;
-        auto* input = &ctx.subscribe<Msg>(topic, by_robot ? Subscription::robot_streams(keys_) : Subscription::instances(keys_));
-        recorders_.push_back(std::make_unique<Recorder<Msg>>(topic, input, by_robot));
+        auto* input = &ctx.subscribe<Msg>(topic, by_robot ? Subscription::robot_streams(keys) : Subscription::instances(keys));
+        recorders_.push_back(std::make_unique<Recorder<Msg>>(topic, input, keys, by_robot));
       });
     }
     const auto from_step = static_cast<std::uint64_t>(std::llround(params.metrics_after_s / ctx.step_s()));
     metrics_ = std::make_unique<Metrics>(from_step, consumers);
+    if (!stages.empty()) {
+      metrics_->enable_relative(params.metrics_after_s);
+      for (const std::string& stage : stages) {
+        metrics_->relative()->expect_stage(stage);
+      }
+    }
     configure_paper2(params.topics);
     metrics_after_s_ = params.metrics_after_s;
     for (const ComponentSpec& component : ctx.scenario().components) {
@@ -85,14 +104,16 @@ class EvaluatorNode : public Component {
       }
     }
     for (auto& recorder : recorders_) {
-      recorder->collect(keys_, *metrics_);
+      recorder->collect(*metrics_);
     }
     metrics_->match();
+    settle(false);
     steps_ = info.step + 1;
   }
 
   void on_finish(const StepInfo& info) override {
     on_step(info);
+    settle(true);
     metrics_->finish();
     if (b_is_default_ && metrics_->circumnavigation() != nullptr) {  // once a run (configure may run twice)
       log::info(context_->name(), "range_accel_over_b_fraction: no range_rate_observer with sta.b in the scenario, b = " +
@@ -114,6 +135,7 @@ class EvaluatorNode : public Component {
       return;
     }
     ::mkdir(context_->output_dir().c_str(), 0755);
+    settle(true);
     for (const auto& recorder : recorders_) {
       recorder->flush();
     }
@@ -122,6 +144,47 @@ class EvaluatorNode : public Component {
   }
 
  private:
+  /// Paper 3: records relative pose topic `topic` of stage `stage` (relative_recorder.hpp),
+  /// subscribed for every pair (served robot i, other robot j of the scenario).
+  void add_relative_topic(ComponentContext& ctx, const std::string& topic, const char* stage,
+                          const std::vector<std::string>& topics) {
+    if (all_robot_keys().size() < 2) {
+      ctx.params().fail("topics: '" + topic + "' is a relative pose topic (key robot_id, peer_id), but scenario '" +
+                        ctx.scenario().name + "' has a single robot: there is no peer to estimate");
+    }
+    if (std::find(topics.begin(), topics.end(), "plant/state") == topics.end()) {
+      ctx.params().fail("topics: '" + topic + "' needs plant/state in topics too (the true poses its errors "
+                        "are measured against)");
+    }
+    const std::vector<std::uint64_t> pairs = relative_pair_keys(keys_, robot_ids());
+    auto* input = &ctx.subscribe<idl::RelativePoseEstimate>(topic, Subscription::instances(pairs));
+    recorders_.push_back(std::make_unique<RelativeRecorder>(topic, stage, input, pairs, ctx.step_s()));
+  }
+
+  /// Every robot id of the scenario.
+  std::vector<std::uint32_t> robot_ids() const {
+    std::vector<std::uint32_t> ids;
+    for (const RobotSpec& robot : context_->scenario().robots) {
+      ids.push_back(robot.id);
+    }
+    return ids;
+  }
+  std::vector<std::uint64_t> all_robot_keys() const {
+    const std::vector<std::uint32_t> ids = robot_ids();
+    return std::vector<std::uint64_t>(ids.begin(), ids.end());
+  }
+
+  /// After the step's samples are taken: the relative recorders write what the truth now
+  /// allows (`final`: everything), then the truth no one waits for is dropped.
+  void settle(bool final) {
+    std::uint64_t needed = std::numeric_limits<std::uint64_t>::max();
+    for (auto& recorder : recorders_) {
+      recorder->settle(*metrics_, final);
+      needed = std::min(needed, recorder->truth_needed_from());
+    }
+    metrics_->relative_truth().drop_before(needed);
+  }
+
   /// The paper-2 metrics, when plant/state and mission/target are recorded: b (the observer's
   /// bound on |r''|) is the sta.b the scenario gives its range_rate_observer, else the
   /// observer's default.
@@ -242,6 +305,7 @@ class EvaluatorNode : public Component {
       json.value("heading_rmse_deg", heading_rmse_rad.rmse() * kDegPerRad);
     }
     write_paper2_metrics(json);
+    write_relative_metrics(json);
     json.begin_object("samples");
     for (const auto& recorder : recorders_) {
       json.value(recorder->topic(), static_cast<std::int64_t>(recorder->rows()));
@@ -321,6 +385,30 @@ class EvaluatorNode : public Component {
     }
     optional("range_accel_over_b_fraction", s.range_accel_over_b_fraction);
     json.value("range_accel_b", m->b());
+  }
+
+  /// Paper 3 (issue 11): "stages": {"<stage>": {position_error_m_mean, position_error_m_std,
+  /// heading_error_deg_mean, heading_error_deg_std, epochs, invalid_epochs}} for each recorded
+  /// relative pose topic, pooled over its (robot, peer) pairs; means and stds only with epochs.
+  void write_relative_metrics(JsonWriter& json) const {
+    const RelativePoseMetrics* m = metrics_->relative();
+    if (m == nullptr) {
+      return;
+    }
+    json.begin_object("stages");
+    for (const auto& [name, stage] : m->stages()) {
+      json.begin_object(name);
+      if (stage.epochs > 0) {
+        json.value("position_error_m_mean", stage.position_error_m_mean);
+        json.value("position_error_m_std", stage.position_error_m_std);
+        json.value("heading_error_deg_mean", stage.heading_error_deg_mean);
+        json.value("heading_error_deg_std", stage.heading_error_deg_std);
+      }
+      json.value("epochs", static_cast<std::int64_t>(stage.epochs));
+      json.value("invalid_epochs", static_cast<std::int64_t>(stage.invalid_epochs));
+      json.end_object();
+    }
+    json.end_object();
   }
 
   void write_waypoint_metrics(JsonWriter& json, const RobotMetrics& r) const {

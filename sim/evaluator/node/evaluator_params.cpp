@@ -12,7 +12,7 @@ const params::ParamTable<EvaluatorParams>& evaluator_param_table() {
           "<out>/summary.json at the end of the run, with \"status\": \"completed\", or when the run\n"
           "fails, with \"status\": \"failed\", the \"reason\" and the metrics of the data so far.")
           .add("topics", &EvaluatorParams::topics, "", params::any<std::vector<std::string>>(),
-               "topics to record (each needs a producer per robot)")
+               "topics to record (each needs a producer per robot; a relative pose topic, one per robot and peer, needs plant/state too)")
           .add("metrics_after_s", &EvaluatorParams::metrics_after_s, "s", params::non_negative(),
                "error statistics ignore samples before this time (filter start-up)");
   return table;

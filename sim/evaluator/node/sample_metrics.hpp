@@ -1,6 +1,7 @@
 #pragma once
 // The evaluator's metrics fed sample by sample (node side: it knows the IDL types; the maths is
-// in sim/evaluator/track.hpp, waypoint_metrics.hpp and circumnavigation_metrics.hpp).
+// in sim/evaluator/track.hpp, waypoint_metrics.hpp, circumnavigation_metrics.hpp and
+// relative_pose_metrics.hpp).
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +15,7 @@
 #include "robodds/idl/robodds.h"
 #include "sim/evaluator/circumnavigation_metrics.hpp"
 #include "sim/evaluator/handover.hpp"
+#include "sim/evaluator/relative_pose_metrics.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
 
@@ -44,6 +46,31 @@ struct TruthConsumers {
   bool status = false;
 };
 
+/// Paper 3: the true poses of every robot of the scenario (peers included), kept by step while
+/// a relative pose estimate of that step may still come (relative_recorder.hpp).
+class TruthByRobot {
+ public:
+  void add(std::uint32_t robot, const PoseSample& sample) { robots_[robot].add(sample); }
+  /// Truth of `robot` has arrived up to `step` (a sample at that step is there, or never comes).
+  bool reached(std::uint32_t robot, std::uint64_t step) const {
+    auto it = robots_.find(robot);
+    return it != robots_.end() && it->second.reached(step);
+  }
+  /// The true pose of `robot` at `step`, nullptr if there is none.
+  const PoseSample* at(std::uint32_t robot, std::uint64_t step) const {
+    auto it = robots_.find(robot);
+    return it != robots_.end() ? it->second.at(step) : nullptr;
+  }
+  void drop_before(std::uint64_t step) {
+    for (auto& [id, window] : robots_) {
+      window.drop_before(step);
+    }
+  }
+
+ private:
+  std::map<std::uint32_t, TruthWindow> robots_;
+};
+
 /// The metrics of all robots, fed with every recorded sample.
 class Metrics {
  public:
@@ -61,6 +88,13 @@ class Metrics {
     }
   }
   const CircumnavigationMetrics* circumnavigation() const { return circumnavigation_.get(); }
+
+  /// Paper-3 metrics (relative_pose_metrics.hpp): plant/state samples are kept by step in
+  /// relative_truth() for the relative recorders, which feed relative(). Set before the first sample.
+  void enable_relative(double metrics_after_s) { relative_ = std::make_unique<RelativePoseMetrics>(metrics_after_s); }
+  RelativePoseMetrics* relative() { return relative_.get(); }
+  const RelativePoseMetrics* relative() const { return relative_.get(); }
+  TruthByRobot& relative_truth() { return relative_truth_; }
 
   /// A sample of `topic`: the topic matters only where two topics share a type.
   template <class Msg>
@@ -82,6 +116,9 @@ class Metrics {
     RobotMetrics& r = robot(m.robot_id());
     r.truth.add(s);
     r.recent_truth.add(s);
+    if (relative_ != nullptr) {
+      relative_truth_.add(m.robot_id(), s);
+    }
     if (circumnavigation_ != nullptr) {
       circumnavigation_->add_truth(m.robot_id(), {m.header().step(), m.x(), m.y(), m.theta(), m.v(), m.omega()});
     }
@@ -164,6 +201,8 @@ class Metrics {
   TruthConsumers consumers_;
   std::map<std::uint32_t, RobotMetrics> robots_;
   std::unique_ptr<CircumnavigationMetrics> circumnavigation_;
+  std::unique_ptr<RelativePoseMetrics> relative_;
+  TruthByRobot relative_truth_;
 };
 
 }  // namespace robodds::evaluator

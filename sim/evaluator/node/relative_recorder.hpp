@@ -1,0 +1,154 @@
+#pragma once
+// Paper 3 (issue 11): one relative pose topic of the evaluator, keyed (robot_id, peer_id). Its
+// samples become CSV rows with the true pose of the peer in the robot's frame appended, and feed
+// the stage's errors (relative_pose_metrics.hpp), once the truth of both robots at the sample's
+// step is known. Only steps decide what is matched and in which order: in lockstep the figures
+// are the same co-located and across processes.
+
+#include <algorithm>
+#include <cstdint>
+#include <deque>
+#include <fstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common/model/pose2.hpp"
+#include "common/number_text.hpp"
+#include "robodds/idl/robodds.h"
+#include "runtime/error.hpp"
+#include "runtime/io.hpp"
+#include "runtime/sample_format.hpp"
+#include "sim/evaluator/node/csv_recorder.hpp"
+#include "sim/evaluator/node/sample_metrics.hpp"
+
+namespace robodds::evaluator {
+
+/// The stage (summary.json metrics.stages.<stage>) a relative pose topic carries, nullptr if
+/// `topic` is not one of them (docs/topics.md).
+inline const char* relative_stage_of(const std::string& topic) {
+  static const std::pair<const char*, const char*> kStages[] = {
+      {"estimate/relative_pose", "pf"},
+      {"estimate/relative_pose_uwb", "uwb"},
+      {"estimate/relative_pose_window", "window"},
+      {"estimate/relative_pose_pf_baseline", "pf_baseline"},
+      {"estimate/relative_pose_odometry", "odometry"},
+  };
+  for (const auto& [name, stage] : kStages) {
+    if (topic == name) {
+      return stage;
+    }
+  }
+  return nullptr;
+}
+
+/// The instance keys (robot_id, peer_id) of a relative topic: every served robot i with every
+/// other robot j of the scenario, in key order.
+inline std::vector<std::uint64_t> relative_pair_keys(const std::vector<std::uint64_t>& served,
+                                                     const std::vector<std::uint32_t>& all_robots) {
+  std::vector<std::uint64_t> keys;
+  for (std::uint64_t i : served) {
+    for (std::uint32_t j : all_robots) {
+      if (j != i) {
+        keys.push_back((i << 32) | j);
+      }
+    }
+  }
+  return keys;
+}
+
+class RelativeRecorder : public RecorderBase {
+ public:
+  using Msg = idl::RelativePoseEstimate;
+  /// Rows waiting for truth beyond this many are written without it (a robot's plant fell silent).
+  static constexpr std::size_t kMaxWaiting = 4096;
+
+  RelativeRecorder(std::string topic, std::string stage, Input<Msg>* input, std::vector<std::uint64_t> keys, double step_s)
+      : topic_(std::move(topic)), stage_(std::move(stage)), input_(input), keys_(std::move(keys)), step_s_(step_s) {}
+
+  void open(const std::string& dir) override {
+    path_ = dir + "/" + csv_file_name(topic_);
+    file_.open(path_, std::ios::binary | std::ios::trunc);
+    file_ << "t_s," << csv_header<Msg>() << ",true_x,true_y,true_theta\n";
+    if (!file_) {
+      throw RunError("evaluator: cannot write " + path_);
+    }
+  }
+  void collect(Metrics& /*metrics*/) override {
+    for (std::uint64_t key : keys_) {
+      for (Msg& sample : input_->take_new(key)) {
+        last_step_ = std::max(last_step_, sample.header().step());
+        pending_.push_back(std::move(sample));
+        ++rows_;
+      }
+    }
+  }
+  /// Writes the waiting samples, in the order taken, whose truth (both robots at the sample's
+  /// step) has arrived; a sample without truth at its step gets empty truth columns and is left
+  /// out of the errors (an invalid one is still counted as such).
+  void settle(Metrics& metrics, bool final) override {
+    text_.clear();
+    TruthByRobot& truth = metrics.relative_truth();
+    while (!pending_.empty()) {
+      const Msg& s = pending_.front();
+      const std::uint64_t step = s.header().step();
+      if (!final && pending_.size() <= kMaxWaiting && !(truth.reached(s.robot_id(), step) && truth.reached(s.peer_id(), step))) {
+        break;  // its truth may still come
+      }
+      const PoseSample* world_i = truth.at(s.robot_id(), step);
+      const PoseSample* world_j = truth.at(s.peer_id(), step);
+      append_seconds(text_, static_cast<std::int64_t>(s.header().stamp_ns()));
+      text_ += ',';
+      append_csv_row(text_, s);
+      const double t_s = static_cast<double>(step) * step_s_;
+      if (world_i != nullptr && world_j != nullptr) {
+        const model::Pose2 i{world_i->x, world_i->y, world_i->theta};
+        const model::Pose2 j{world_j->x, world_j->y, world_j->theta};
+        const model::Pose2 between = model::between(i, j);
+        for (double v : {between.x, between.y, between.theta}) {
+          text_ += ',';
+          append_shortest(text_, v);
+        }
+        if (s.valid()) {
+          metrics.relative()->add_valid(stage_, t_s, i, j, {s.x(), s.y(), s.theta()});
+        }
+      } else {
+        text_ += ",,,";
+      }
+      if (!s.valid()) {
+        metrics.relative()->add_invalid(stage_, t_s);
+      }
+      text_ += '\n';
+      pending_.pop_front();
+    }
+    if (file_.is_open()) {
+      file_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+    }
+  }
+  std::uint64_t truth_needed_from() const override {
+    return pending_.empty() ? last_step_ : pending_.front().header().step();
+  }
+  void flush() override {
+    if (file_.is_open() && !file_.flush()) {
+      throw RunError("evaluator: cannot write " + path_);
+    }
+  }
+  const std::string& topic() const override { return topic_; }
+  std::uint64_t rejected() const override { return input_->rejected_count(); }
+  std::size_t rows() const override { return rows_; }
+
+ private:
+  std::string topic_;
+  std::string stage_;
+  Input<Msg>* input_;
+  std::vector<std::uint64_t> keys_;
+  double step_s_;
+  std::string path_;
+  std::ofstream file_;
+  std::string text_;
+  std::deque<Msg> pending_;     // taken, waiting for the truth of their step
+  std::uint64_t last_step_ = 0; // the newest step taken
+  std::size_t rows_ = 0;        // samples taken
+};
+
+}  // namespace robodds::evaluator
