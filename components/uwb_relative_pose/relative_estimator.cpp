@@ -74,12 +74,23 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
                                RandomEngine(derive_seed(seed, stream + "/pf")),
                                RandomEngine(derive_seed(seed, stream + "/pf_baseline")), peer.known_start, {}});
   }
+  for (std::size_t a = 0; a < setups_.size(); ++a) {
+    for (std::size_t b = a + 1; b < setups_.size(); ++b) {
+      links_.push_back(PeerLink{a, b});
+      link_trackers_.emplace_back(setups_[a].array, setups_[b].array, params_.solver, params_.tracker);
+    }
+  }
 }
 
-EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers) {
+EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
+                                    const std::vector<std::optional<Eigen::MatrixXd>>& link_ranges) {
   if (peers.size() != setups_.size()) {
     throw std::invalid_argument("step: " + std::to_string(peers.size()) + " peer entries for " +
                                 std::to_string(setups_.size()) + " peers");
+  }
+  if (!link_ranges.empty() && link_ranges.size() != links_.size()) {
+    throw std::invalid_argument("step: " + std::to_string(link_ranges.size()) + " link entries for " +
+                                std::to_string(links_.size()) + " links between peers");
   }
   if (!std::isfinite(time_s)) {
     throw std::invalid_argument("step: time is not finite");
@@ -113,6 +124,15 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
     uwb.pose = solved.pose;
     uwb.valid = solved.status == TrackStatus::kOk;
   }
+  std::vector<PairMeasurement> link_edges;
+  for (std::size_t l = 0; l < link_ranges.size(); ++l) {
+    if (link_ranges[l]) {
+      const TrackerOutput solved = link_trackers_[l].update(*link_ranges[l], time_s);
+      if (solved.status == TrackStatus::kOk) {
+        link_edges.push_back(PairMeasurement{links_[l].first + 1, links_[l].second + 1, solved.pose});
+      }
+    }
+  }
   result.stage_ms[static_cast<std::size_t>(Stage::kUwb)] = ms_since(start);
 
   start = std::chrono::steady_clock::now();
@@ -133,7 +153,7 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
   result.stage_ms[static_cast<std::size_t>(Stage::kOdometry)] = ms_since(start);
 
   start = std::chrono::steady_clock::now();
-  run_window(own_increment, peers, result);
+  run_window(own_increment, peers, link_edges, result);
   result.stage_ms[static_cast<std::size_t>(Stage::kWindow)] = ms_since(start);
 
   start = std::chrono::steady_clock::now();
@@ -166,7 +186,8 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
   return result;
 }
 
-void RelativeEstimator::run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers, EpochResult& result) {
+void RelativeEstimator::run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
+                                   const std::vector<PairMeasurement>& link_edges, EpochResult& result) {
   std::vector<PairMeasurement> edges;
   std::vector<bool> has_edge(peers.size(), false);
   for (std::size_t k = 0; k < peers.size(); ++k) {
@@ -182,6 +203,7 @@ void RelativeEstimator::run_window(const model::Pose2& own_increment, const std:
     }
     window_.emplace(peers.size() + 1, static_cast<std::size_t>(params_.window_epochs), params_.window);
   }
+  edges.insert(edges.end(), link_edges.begin(), link_edges.end());
   std::vector<model::Pose2> increments;
   increments.reserve(peers.size() + 1);
   increments.push_back(own_increment);

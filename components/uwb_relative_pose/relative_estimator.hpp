@@ -5,7 +5,10 @@
 //   uwb          eq. (1), one solve per epoch from that epoch's K x L ranges (RelativePoseTracker:
 //                warm start, cold-start recovery; only kOk is valid);
 //   window       eq. (2), one sliding-window pose graph of this robot and all its peers (robot 0 =
-//                this robot), odometry edges between epochs and the uwb stage's kOk poses as edges;
+//                this robot), odometry edges between epochs and the uwb stage's kOk poses as edges,
+//                plus, as the paper's server that has every robot's data, the eq. (1) poses between
+//                pairs of peers ("links": ranges measured by the lower id of the two), which close
+//                loops in the graph;
 //   pf           eq. (3)-(6), one filter per peer: predicted by both robots' odometry (eq. 4),
 //                weighted by the window's estimate (eq. 5-6);
 //   pf_baseline  the paper's [22]: the same filter weighted directly by the K x L ranges,
@@ -84,6 +87,13 @@ struct EstimatorCounts {
   std::uint64_t window_not_converged = 0;  // optimisations Ceres did not report converged
 };
 
+/// Two peers (indices into the constructor's peers, first < second) whose ranges also enter the
+/// window: the first measures the second.
+struct PeerLink {
+  std::size_t first = 0;
+  std::size_t second = 0;
+};
+
 class RelativeEstimator {
  public:
   /// Throws std::invalid_argument naming the problem: invalid params (the key), no peers, a peer
@@ -93,11 +103,18 @@ class RelativeEstimator {
                     std::uint64_t seed);
 
   /// One epoch at `time_s` (non-decreasing): `own_increment` is this robot's motion since the
-  /// previous epoch in its own frame, `peers` one entry per peer in the constructor's order.
-  /// Throws std::invalid_argument (nothing changed) on a wrong peer count or a non-finite increment.
-  EpochResult step(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers);
+  /// previous epoch in its own frame, `peers` one entry per peer in the constructor's order,
+  /// `link_ranges` empty (no link measured) or one entry per links() (the first peer's nodes in
+  /// rows; nullopt: no frame). Throws std::invalid_argument (nothing changed) on a wrong count or
+  /// a non-finite increment.
+  EpochResult step(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
+                   const std::vector<std::optional<Eigen::MatrixXd>>& link_ranges = {});
 
   const std::vector<PeerSetup>& peers() const { return setups_; }
+  /// Every pair of peers, (0, 1), (0, 2), ..., (1, 2), ...: the order of step()'s link_ranges.
+  const std::vector<PeerLink>& links() const { return links_; }
+  /// Eq. (1) status counts of link `index` (links() order).
+  const TrackerCounts& link_tracker_counts(std::size_t index) const { return link_trackers_.at(index).counts(); }
   const EstimatorCounts& counts() const { return counts_; }
   /// Eq. (1) status counts of peer `index` (constructor order).
   const TrackerCounts& tracker_counts(std::size_t index) const { return peers_.at(index).tracker.counts(); }
@@ -113,12 +130,15 @@ class RelativeEstimator {
     std::deque<bool> window_edges;  // per epoch in the window: an eq. (1) edge to this peer
   };
 
-  void run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers, EpochResult& result);
+  void run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
+                  const std::vector<PairMeasurement>& link_edges, EpochResult& result);
 
   model::UwbArray own_array_;
   std::vector<PeerSetup> setups_;
   RelativeEstimatorParams params_;
   std::vector<PeerState> peers_;
+  std::vector<PeerLink> links_;
+  std::vector<RelativePoseTracker> link_trackers_;  // one per link
   /// Started at the first epoch in which every peer has a valid eq. (1) pose, so that each peer's
   /// first pose in the graph comes from a measurement, not from a guess (add_epoch's start).
   std::optional<SlidingWindowGraph> window_;

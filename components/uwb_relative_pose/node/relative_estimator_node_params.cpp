@@ -21,6 +21,8 @@ const params::ParamTable<RelativeEstimatorNodeParams>& relative_estimator_node_p
           .include(&P::array_params, model::uwb_array_param_table())
           .add("odometry_known_start", &P::odometry_known_start, "", params::any<bool>(),
                "odometry stage: start from the scenario's initial poses (true) or from the first valid eq. (1) solve")
+          .add("peer_links", &P::peer_links, "", params::any<bool>(),
+               "the window also uses the ranges between each two peers (sensor/uwb of the lower id to the higher)")
           .add("uwb_timeout_s", &P::uwb_timeout_s, "s", params::positive(),
                "window, pf, pf_baseline: not valid while the peer's last accepted UWB frame is older than this; > the period")
           .add("odometry_timeout_s", &P::odometry_timeout_s, "s", params::positive(),

@@ -20,6 +20,10 @@ struct RelativeEstimatorNodeParams {
   /// The odometry stage starts from the scenario's initial poses (the paper's robots start at known
   /// places); false: from the first valid eq. (1) solve.
   bool odometry_known_start = true;
+  /// The window also takes the ranges between pairs of peers (each measured by the lower id: its
+  /// sensor/uwb (lower, higher) stream), as the paper's server, which has every robot's data;
+  /// false: only this robot's own ranges.
+  bool peer_links = true;
   /// The window, pf and pf_baseline estimates of a peer are not valid while its last accepted
   /// frame is older than this (sim time in lockstep, receive time in real time).
   double uwb_timeout_s = 2.0;

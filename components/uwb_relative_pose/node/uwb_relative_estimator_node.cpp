@@ -61,6 +61,15 @@ class UwbRelativeEstimatorNode : public Component {
         uwb_keys.push_back(pair_key(robot.id, peer));
         odometry_ids.insert(peer);
       }
+      if (params_.peer_links) {
+        for (std::size_t a = 0; a < setups.size(); ++a) {
+          for (std::size_t b = a + 1; b < setups.size(); ++b) {
+            const std::uint32_t low = std::min(setups[a].id, setups[b].id);
+            const std::uint32_t high = std::max(setups[a].id, setups[b].id);
+            uwb_keys.push_back(pair_key(low, high));
+          }
+        }
+      }
       odometry_ids.insert(robot.id);
       try {
         robots_.emplace(robot.id, RobotEstimator{RelativeEstimator(array, setups, params_.estimator,
@@ -70,6 +79,8 @@ class UwbRelativeEstimatorNode : public Component {
         p.fail(e.what());
       }
     }
+    std::sort(uwb_keys.begin(), uwb_keys.end());
+    uwb_keys.erase(std::unique(uwb_keys.begin(), uwb_keys.end()), uwb_keys.end());  // links shared by robots
     ranges_ = &ctx.subscribe<idl::UwbRanges>("sensor/uwb", Subscription::instances(uwb_keys));
     odometry_ = &ctx.subscribe<idl::Odometry>("sensor/odometry",
                                               Subscription::instances({odometry_ids.begin(), odometry_ids.end()}));
@@ -83,6 +94,7 @@ class UwbRelativeEstimatorNode : public Component {
 
   void on_step(const StepInfo& info) override {
     collect_odometry();
+    frames_.clear();
     for (auto& [id, robot] : robots_) {
       estimate(id, robot, info.time_s);
     }
@@ -137,10 +149,15 @@ class UwbRelativeEstimatorNode : public Component {
     }
   }
 
-  /// The newest non-empty frame of this epoch (an empty lockstep sample means lost or out of range).
-  std::optional<Eigen::MatrixXd> newest_frame(std::uint32_t robot, std::uint32_t peer) {
-    std::optional<Eigen::MatrixXd> frame;
-    for (const idl::UwbRanges& m : ranges_->take_new(pair_key(robot, peer))) {
+  /// The newest non-empty frame of this epoch from `robot` to `peer` (an empty lockstep sample
+  /// means lost or out of range), read once per epoch and kept for every served robot that uses it.
+  const std::optional<Eigen::MatrixXd>& newest_frame(std::uint32_t robot, std::uint32_t peer) {
+    const std::uint64_t key = pair_key(robot, peer);
+    if (const auto it = frames_.find(key); it != frames_.end()) {
+      return it->second;
+    }
+    std::optional<Eigen::MatrixXd>& frame = frames_[key];
+    for (const idl::UwbRanges& m : ranges_->take_new(key)) {
       if (m.rows() == 0 || m.cols() == 0) {
         continue;
       }
@@ -162,7 +179,19 @@ class UwbRelativeEstimatorNode : public Component {
     for (const PeerSetup& peer : setups) {
       inputs.push_back(PeerEpoch{increments_.at(peer.id), newest_frame(id, peer.id)});
     }
-    const EpochResult result = robot.estimator.step(time_s, increments_.at(id), inputs);
+    std::vector<std::optional<Eigen::MatrixXd>> links;
+    if (params_.peer_links) {
+      for (const PeerLink& link : robot.estimator.links()) {
+        const std::uint32_t a = setups[link.first].id;
+        const std::uint32_t b = setups[link.second].id;
+        std::optional<Eigen::MatrixXd> frame = newest_frame(std::min(a, b), std::max(a, b));
+        if (frame && a > b) {
+          frame->transposeInPlace();  // measured by b: rows are b's nodes; the link wants a's first
+        }
+        links.push_back(std::move(frame));
+      }
+    }
+    const EpochResult result = robot.estimator.step(time_s, increments_.at(id), inputs, links);
     for (std::size_t k = 0; k < setups.size(); ++k) {
       const PeerResult& peer = result.peers[k];
       if (peer.had_ranges && peer.uwb_status != TrackStatus::kRejected) {
@@ -203,6 +232,7 @@ class UwbRelativeEstimatorNode : public Component {
   bool realtime_ = false;
   bool warned_rejected_ = false;
   std::map<std::uint32_t, RobotEstimator> robots_;
+  std::map<std::uint64_t, std::optional<Eigen::MatrixXd>> frames_;  // this epoch's, by (robot, peer) key
   std::map<std::uint32_t, model::Pose2> increments_;  // per robot (served and peers): motion since the last epoch
   Input<idl::UwbRanges>* ranges_ = nullptr;
   Input<idl::Odometry>* odometry_ = nullptr;

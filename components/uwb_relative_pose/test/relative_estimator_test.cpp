@@ -164,6 +164,35 @@ TEST(RelativeEstimator, TheWindowWaitsForAFixOfEveryPeerAndTheOdometryStartsAtTh
   EXPECT_NEAR(w3.theta, p3.theta, 1e-3);
 }
 
+TEST(RelativeEstimator, RangesBetweenPeersEnterTheWindowAsLinks) {
+  // Noise-free links that contradict this robot's own measurements pull the window: proof that
+  // they are edges of the graph. Peer 3 is where the own ranges say; the link says 3 is 1 m
+  // further along x as seen from 2 (same heading as 2 here), so the window moves 3 towards it.
+  const model::UwbArray array = square_array(0.5);
+  const model::Pose2 p2{4.0, 0.0, 0.0};
+  const model::Pose2 p3{4.0, 3.0, 0.0};
+  RelativeEstimator estimator(array, {PeerSetup{2, array, p2}, PeerSetup{3, array, p3}}, RelativeEstimatorParams{}, 1);
+  ASSERT_EQ(estimator.links().size(), 1u);
+  EXPECT_EQ(estimator.links()[0].first, 0u);
+  EXPECT_EQ(estimator.links()[0].second, 1u);
+  const Eigen::MatrixXd link = model::array_ranges(array, p2, array, model::Pose2{5.0, 3.0, 0.0});
+  EpochResult without;
+  EpochResult with;
+  RelativeEstimator plain(array, {PeerSetup{2, array, p2}, PeerSetup{3, array, p3}}, RelativeEstimatorParams{}, 1);
+  for (int e = 1; e <= 5; ++e) {
+    const std::vector<PeerEpoch> inputs{PeerEpoch{{}, exact_ranges(p2)}, PeerEpoch{{}, exact_ranges(p3)}};
+    with = estimator.step(0.1 * e, {}, inputs, {link});
+    without = plain.step(0.1 * e, {}, inputs, {std::nullopt});
+  }
+  const auto window_x = [](const EpochResult& r) { return r.peers[1].stages[static_cast<std::size_t>(Stage::kWindow)].pose.x; };
+  EXPECT_NEAR(window_x(without), 4.0, 1e-6) << "no link: the own measurements alone";
+  EXPECT_GT(window_x(with), 4.2) << "the link pulls peer 3 towards x = 5";
+  EXPECT_LT(window_x(with), 4.8);
+  EXPECT_EQ(estimator.link_tracker_counts(0).ok, 5u);
+  EXPECT_THROW(estimator.step(0.6, {}, {PeerEpoch{{}, exact_ranges(p2)}, PeerEpoch{{}, exact_ranges(p3)}}, {link, link}),
+               std::invalid_argument);
+}
+
 TEST(RelativeEstimator, BadFramesAreRejectedAndUsedByNoStage) {
   const model::UwbArray array = square_array(0.5);
   const model::Pose2 p2{4.0, 1.0, 0.3};

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "common/model/uwb_array.hpp"
@@ -54,7 +55,8 @@ model::Pose2 world(std::uint32_t robot) {
 std::uint64_t key(std::uint32_t robot, std::uint32_t peer) { return (std::uint64_t{robot} << 32) | peer; }
 
 /// Feeds odometry of standing robots every 5 steps (10 Hz) and exact ranges from robot 1 to its
-/// peers every step (50 Hz) while `frames(step)` says so.
+/// peers, and from robot 2 to robot 3 (the peers' link), every step (50 Hz) while `frames(step)`
+/// says so.
 void feed(NodeHarness& h, std::function<bool(std::uint64_t)> frames, std::function<idl::UwbRanges(idl::UwbRanges, std::uint64_t)> edit = nullptr) {
   h.feed([&h, frames, edit](std::uint64_t step) {
     if (step % 5 == 0) {
@@ -65,13 +67,13 @@ void feed(NodeHarness& h, std::function<bool(std::uint64_t)> frames, std::functi
         h.publish("sensor/odometry", o, step, step + 5);
       }
     }
-    for (std::uint32_t peer : {2u, 3u}) {
+    for (const auto& [robot, peer] : {std::pair{1u, 2u}, std::pair{1u, 3u}, std::pair{2u, 3u}}) {
       idl::UwbRanges m;
-      m.robot_id(1);
+      m.robot_id(robot);
       m.peer_id(peer);
       if (frames(step)) {
         const model::UwbArray a = model::square_array(0.5);
-        const Eigen::MatrixXd r = model::array_ranges(a, world(1), a, world(peer));
+        const Eigen::MatrixXd r = model::array_ranges(a, world(robot), a, world(peer));
         m.rows(4);
         m.cols(4);
         std::vector<double> flat;
