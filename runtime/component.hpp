@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "runtime/bus.hpp"
+#include "runtime/compute_times.hpp"
 #include "runtime/error.hpp"
 #include "runtime/host_health.hpp"
 #include "runtime/io.hpp"
@@ -96,6 +97,11 @@ class ComponentContext {
   /// this component's host then waits, at the end, for the other hosts' run/health reports.
   void request_run_health() { wants_run_health_ = true; }
   bool wants_run_health() const { return wants_run_health_; }
+  /// This component's wall-clock compute times per stage (summary.json run.timing): e.g.
+  /// `ScopedComputeTimer timer(ctx.compute_times(), "cycle");` around the work of a step. Keep
+  /// the reference from configure(); the host reports the summaries after the last step.
+  ComputeTimes& compute_times() { return compute_times_; }
+  const ComputeTimes& compute_times() const { return compute_times_; }
 
   /// Runs the component every round(1 / (rate_hz * step_s)) steps; the rate must divide the
   /// simulation rate (ConfigError naming `key` otherwise).
@@ -162,6 +168,7 @@ class ComponentContext {
   std::vector<std::shared_ptr<void>> outputs_;
   std::vector<std::shared_ptr<ReaderHandle>> readers_;
   bool wants_run_health_ = false;
+  ComputeTimes compute_times_;
 };
 
 }  // namespace robodds

@@ -12,9 +12,11 @@
 namespace robodds {
 namespace {
 
-constexpr std::size_t kNameBound = 64;  // string<64> of the IDL
+constexpr std::size_t kNameBound = 64;       // string<64> of the IDL
+constexpr std::size_t kStageBound = 32;      // StageTiming::stage, string<32>
+constexpr std::size_t kTimingBound = 256;    // HostReport::timing, sequence<StageTiming, 256>
 
-std::string bounded(const std::string& text) { return text.substr(0, kNameBound); }
+std::string bounded(const std::string& text, std::size_t bound = kNameBound) { return text.substr(0, bound); }
 
 std::vector<idl::ReasonCount> to_reasons(const std::map<std::string, std::uint64_t>& counts) {
   std::vector<idl::ReasonCount> out;
@@ -57,6 +59,19 @@ idl::HostReport to_report(const HostHealth& health, std::uint64_t run_id) {
     }
   }
   report.undecodable(to_reasons(health.undecodable));
+  for (const StageTiming& timing : health.timing) {
+    if (report.timing().size() == kTimingBound) {
+      break;  // the IDL bound: a host with more stages reports its first 256
+    }
+    idl::StageTiming t;
+    t.component_name(bounded(timing.component));
+    t.stage(bounded(timing.times.stage, kStageBound));
+    t.count(timing.times.count);
+    t.median_ms(timing.times.median_ms);
+    t.p99_ms(timing.times.p99_ms);
+    t.max_ms(timing.times.max_ms);
+    report.timing().push_back(t);
+  }
   return report;
 }
 
@@ -79,6 +94,10 @@ HostHealth from_report(const idl::HostReport& report) {
     health.components.back().inputs.push_back(InputHealth{r.topic().to_string(), counts});
   }
   health.undecodable = from_reasons(report.undecodable());
+  for (const idl::StageTiming& t : report.timing()) {
+    health.timing.push_back(StageTiming{t.component_name().to_string(),
+                                        ComputeTimes::Summary{t.stage().to_string(), t.count(), t.median_ms(), t.p99_ms(), t.max_ms()}});
+  }
   return health;
 }
 

@@ -11,4 +11,10 @@ ComponentHealth component_health(const std::string& component, const std::vector
   return health;
 }
 
+void add_stage_timing(std::vector<StageTiming>& timing, const std::string& component, const ComputeTimes& times) {
+  for (ComputeTimes::Summary& summary : times.summaries()) {
+    timing.push_back(StageTiming{component, std::move(summary)});
+  }
+}
+
 }  // namespace robodds

@@ -71,8 +71,8 @@ struct ComponentSlot {
   }
 };
 
-/// What this host reports about its run (RunFigures::hosts): `figures`, its inputs' counts and
-/// what `bus` dropped undecoded.
+/// What this host reports about its run (RunFigures::hosts): `figures`, its inputs' counts, its
+/// components' compute times and what `bus` dropped undecoded.
 inline HostHealth host_health(const std::string& member, const OverrunFigures& figures,
                               const std::vector<std::unique_ptr<ComponentSlot>>& slots, const Bus& bus) {
   HostHealth health;
@@ -81,6 +81,7 @@ inline HostHealth host_health(const std::string& member, const OverrunFigures& f
   health.undecodable = bus.undecodable_samples();
   for (const auto& slot : slots) {
     health.components.push_back(component_health(slot->spec->name, slot->context->inputs()));
+    add_stage_timing(health.timing, slot->spec->name, slot->context->compute_times());
   }
   return health;
 }

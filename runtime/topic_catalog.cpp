@@ -47,7 +47,7 @@ const std::vector<TopicInfo>& topic_catalog() {
                                     "range_sensor, circumnavigation_controller, evaluator"),
       topic<idl::ControllerStatus>("control/status", QosClass::kState, "controllers", "evaluator, CLI"),
       topic<idl::HostReport>("run/health", QosClass::kMission, "every host across processes (once, at its end)",
-                             "the evaluator's host (summary.json `hosts`, `inputs`)"),
+                             "the evaluator's host (summary.json `hosts`, `inputs`, `run.timing`)"),
   };
   return topics;
 }

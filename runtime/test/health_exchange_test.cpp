@@ -21,6 +21,9 @@ HostHealth sample_health(const std::string& member) {
   h.components.push_back({"plant", {{"plant/cmd", cmd}, {"plant/state", InputCounts{4, {}, {}}}}});
   h.components.push_back({"sensor", {{"plant/state", InputCounts{5, {}, {}}}}});
   h.undecodable = {{"plant/cmd", 12}, {"sensor/position", 3}};
+  h.timing.push_back({"plant", {"cycle", 1001, 0.012, 0.25, 1.5}});
+  h.timing.push_back({"estimator_robot1", {"window", 100, 2.5, 7.25, 9.0}});
+  h.timing.push_back({"estimator_robot1", {"pf", 100, 3.5, 8.25, 10.0}});
   return h;
 }
 
@@ -31,6 +34,15 @@ void expect_same(const HostHealth& a, const HostHealth& b) {
   EXPECT_EQ(a.figures.late_steps, b.figures.late_steps);
   EXPECT_EQ(a.figures.worst_lateness_s, b.figures.worst_lateness_s);
   EXPECT_EQ(a.undecodable, b.undecodable);
+  ASSERT_EQ(a.timing.size(), b.timing.size());
+  for (std::size_t i = 0; i < a.timing.size(); ++i) {
+    EXPECT_EQ(a.timing[i].component, b.timing[i].component);
+    EXPECT_EQ(a.timing[i].times.stage, b.timing[i].times.stage);
+    EXPECT_EQ(a.timing[i].times.count, b.timing[i].times.count);
+    EXPECT_EQ(a.timing[i].times.median_ms, b.timing[i].times.median_ms);
+    EXPECT_EQ(a.timing[i].times.p99_ms, b.timing[i].times.p99_ms);
+    EXPECT_EQ(a.timing[i].times.max_ms, b.timing[i].times.max_ms);
+  }
   ASSERT_EQ(a.components.size(), b.components.size());
   for (std::size_t i = 0; i < a.components.size(); ++i) {
     EXPECT_EQ(a.components[i].component, b.components[i].component);

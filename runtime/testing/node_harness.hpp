@@ -122,6 +122,8 @@ class NodeHarness {
 
   /// The time mode of run() (default lockstep).
   void set_mode(TimeMode mode) { mode_ = mode; }
+  /// RunContext::deploy_label of run() (default empty: the evaluator writes no "run" section).
+  void set_deploy_label(std::string label) { deploy_label_ = std::move(label); }
 
   /// Runs `feed(step)` at every step, before the components under test.
   void feed(std::function<void(std::uint64_t step)> feed) { feed_ = std::move(feed); }
@@ -166,6 +168,7 @@ class NodeHarness {
     run.mode = mode_;
     run.output_dir = output_dir_;
     run.single_process = true;
+    run.deploy_label = deploy_label_;
     HostOptions options = options_;
     options.components = {"feeder"};
     options.components.insert(options.components.end(), components.begin(), components.end());
@@ -192,6 +195,7 @@ class NodeHarness {
   ComponentRegistry registry_;
   HostOptions options_;
   TimeMode mode_ = TimeMode::kLockstep;
+  std::string deploy_label_;
   Notifier notifier_;
   MemoryBus bus_;
   std::string output_dir_;

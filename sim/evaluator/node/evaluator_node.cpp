@@ -22,6 +22,7 @@
 #include "sim/evaluator/node/sample_metrics.hpp"
 #include "sim/evaluator/node/health_summary.hpp"
 #include "sim/evaluator/node/relative_recorder.hpp"
+#include "sim/evaluator/node/timing_summary.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
 
@@ -319,7 +320,8 @@ class EvaluatorNode : public Component {
     json.end_object();
   }
 
-  /// How the run went on the wall clock (kept apart from "metrics", which are deterministic).
+  /// How the run went on the wall clock (kept apart from "metrics", which are deterministic),
+  /// with the components' compute times per stage ("timing").
   /// A host started on its own knows no deployment and writes none.
   void write_run_section(JsonWriter& json) const {
     if (context_->deploy_label().empty()) {
@@ -333,6 +335,7 @@ class EvaluatorNode : public Component {
     json.value("wall_time_s", std::round(run.wall_time_s * 1e6) / 1e6);  // us, like the runner's log
     json.value("ticks", static_cast<std::int64_t>(run.ticks));
     json.value("ticks_per_s", std::round(ticks_per_s * 10.0) / 10.0);
+    write_timing_section(json, run);  // the components' compute times (timing_summary.hpp)
     json.end_object();
   }
 
