@@ -22,6 +22,14 @@ and, for paper 2 (Lin & Zhang 2020, range-rate observer; a team circling targets
 The true range rate comes from plant_state.csv and the assigned target (mission_target.csv):
 rdot = (p - T) . (v cos theta, v sin theta) / |p - T|. Long runs are decimated for drawing only.
 
+and, for paper 3 (relative localization from UWB arrays and odometry) runs, from the relative pose
+files estimate_relative_pose*.csv (one per stage, each row with the true pose of the peer appended):
+
+  p3_relative_trajectory_<i>_<j>.png  (paper Fig. 6/7) robot j in robot i's frame: true and each stage's
+                                      estimate (valid rows), one figure per (robot, peer) pair
+  p3_relative_error.png               (paper Fig. 8) position and |heading| error over time, per stage,
+                                      one column per pair
+
 A figure whose input files are absent is skipped. Prints the path of each written file, one per line.
 Exit status: 0 on success (also when no figure had its inputs), 2 when OUT_DIR is missing, holds no CSV
 file, or a CSV file is malformed (the one-line message names the file and the column or line), 1 when
@@ -89,7 +97,18 @@ SCHEMAS = {
     "mission_target.csv": HEADER + ["active", "target_id", "target_x", "target_y", "desired_radius", "slot",
                                     "team_size"],
 }
+# Paper 3: the relative estimator's stages, one file each (key robot_id, peer_id; the evaluator appends
+# the true pose of the peer in the robot's frame, empty when it had none), in drawing order.
+HEADER_PEER = ["t_s", "robot_id", "peer_id", "header.step", "header.next_step", "header.stamp_ns"]
+P3_STAGES = [("estimate_relative_pose_odometry.csv", "odometry"), ("estimate_relative_pose_uwb.csv", "uwb"),
+             ("estimate_relative_pose_window.csv", "window"),
+             ("estimate_relative_pose_pf_baseline.csv", "pf_baseline"), ("estimate_relative_pose.csv", "pf")]
+P3_STAGE_COLORS = {"odometry": "C7", "uwb": "C1", "window": "C2", "pf_baseline": "C4", "pf": "C3"}
+for _file, _stage in P3_STAGES:
+    SCHEMAS[_file] = (HEADER_PEER + ["x", "y", "theta"] + ["cov[%d]" % i for i in range(9)]
+                      + ["valid", "true_x", "true_y", "true_theta"])
 TEXT_COLUMNS = {"waypoints"}  # parsed separately; every other column is a number
+EMPTY_AS_NAN = {"true_x", "true_y", "true_theta"}  # an empty field is NaN (no truth at that step)
 
 MODE_WHEEL_SPEEDS = 1  # idl::CommandMode (VELOCITY = 0, WHEEL_SPEEDS = 1)
 DPI = 120
@@ -159,6 +178,8 @@ def read_table(path, columns):
     for column in columns:
         index = header.index(column)
         values = [row[index].strip() for _, row in body]
+        if column in EMPTY_AS_NAN:
+            values = [value or "nan" for value in values]
         if column in TEXT_COLUMNS:
             table[column] = np.array(values, dtype=object)
             continue
@@ -669,6 +690,106 @@ def plot_paper2(data, out_dir, written):
     plot_p2_formation(truths, out_dir, written)
 
 
+# ---- paper 3: relative poses from UWB arrays and odometry ---------------------------------------
+
+def by_pair(table):
+    """Splits a relative pose table into {(robot_id, peer_id): table}, rows of each pair in step order."""
+    groups = {}
+    if table is None or len(table["robot_id"]) == 0:
+        return groups
+    keys = table["robot_id"].astype(np.int64) * (1 << 32) + table["peer_id"].astype(np.int64)
+    for key in sorted(set(keys.tolist())):
+        rows = np.flatnonzero(keys == key)
+        rows = rows[np.argsort(table["header.step"][rows], kind="stable")]
+        groups[(key >> 32, key & 0xffffffff)] = {column: values[rows] for column, values in table.items()}
+    return groups
+
+
+def wrap_angle(a):
+    """Angles wrapped to [-pi, pi)."""
+    return (a + np.pi) % (2.0 * np.pi) - np.pi
+
+
+def relative_errors(rows):
+    """(t_s, position error m, |heading error| deg) of the valid rows with a truth, as the evaluator's
+    metrics.stages take them (heading wrapped)."""
+    keep = (rows["valid"] != 0) & np.isfinite(rows["true_x"]) & np.isfinite(rows["true_theta"])
+    position = np.hypot(rows["x"][keep] - rows["true_x"][keep], rows["y"][keep] - rows["true_y"][keep])
+    heading = np.degrees(np.abs(wrap_angle(rows["theta"][keep] - rows["true_theta"][keep])))
+    return rows["t_s"][keep], position, heading
+
+
+def paper3_stages(data):
+    """[(stage, {(robot, peer): rows})] of the relative pose files present, in P3_STAGES order."""
+    return [(stage, by_pair(data[name])) for name, stage in P3_STAGES if name in data]
+
+
+def plot_p3_trajectories(stages, out_dir, written):
+    pairs = sorted(set(pair for _, by in stages for pair in by))
+    for robot, peer in pairs:
+        fig, ax = plt.subplots(figsize=(7.0, 6.5))
+        # The truth of the stage file with the most of it (every file carries it for its own rows).
+        truths = [by[(robot, peer)] for _, by in stages if (robot, peer) in by]
+        truth = max(truths, key=lambda rows: int(np.sum(np.isfinite(rows["true_x"]))))
+        handles = []
+        for stage, by in stages:
+            rows = by.get((robot, peer))
+            if rows is None:
+                continue
+            keep = rows["valid"] != 0
+            d = drawn(int(np.sum(keep)))
+            color = P3_STAGE_COLORS[stage]
+            if stage == "uwb":  # single epochs: a cloud, not a path
+                ax.plot(rows["x"][keep][d], rows["y"][keep][d], ".", color=color, ms=2.0, alpha=0.5)
+                handles.append(Line2D([], [], color=color, ls="none", marker=".", ms=6, label=stage))
+            else:
+                ax.plot(rows["x"][keep][d], rows["y"][keep][d], "-", color=color, lw=1.0, alpha=0.9)
+                handles.append(Line2D([], [], color=color, lw=1.5, label=stage))
+        d = drawn(len(truth["true_x"]))
+        ax.plot(truth["true_x"][d], truth["true_y"][d], "-", color="black", lw=1.6, zorder=4)
+        ax.plot(0.0, 0.0, "^", ms=10, mfc="white", mec="black", zorder=6)
+        handles = [Line2D([], [], color="black", lw=1.6, label="true")] + handles
+        handles.append(Line2D([], [], color="black", ls="none", marker="^", mfc="white", ms=8,
+                              label="robot %d (origin, facing +x)" % robot))
+        save_world_plot(fig, ax, handles, "Robot %d in robot %d's frame: true and estimated (paper 3 Fig. 6/7)"
+                        % (peer, robot), out_dir, "p3_relative_trajectory_%d_%d.png" % (robot, peer), written)
+
+
+def plot_p3_errors(stages, out_dir, written):
+    pairs = sorted(set(pair for _, by in stages for pair in by))
+    if not pairs:
+        return
+    fig, axes = plt.subplots(2, len(pairs), sharex=True, figsize=(5.0 * len(pairs) + 1.5, 6.0), squeeze=False)
+    for column, pair in enumerate(pairs):
+        ax_p, ax_h = axes[0, column], axes[1, column]
+        for stage, by in stages:
+            if pair not in by:
+                continue
+            t, position, heading = relative_errors(by[pair])
+            d = drawn(len(t))
+            color = P3_STAGE_COLORS[stage]
+            ax_p.plot(t[d], position[d], "-", color=color, lw=0.9, label=stage)
+            ax_h.plot(t[d], heading[d], "-", color=color, lw=0.9, label=stage)
+        ax_p.set_title("robot %d -> peer %d" % pair, fontsize=9)
+        ax_h.set_xlabel("time [s]")
+        for ax in (ax_p, ax_h):
+            ax.grid(True, alpha=0.3)
+            ax.set_ylim(bottom=0.0)
+    axes[0, 0].set_ylabel("position error [m]")
+    axes[1, 0].set_ylabel("|heading error| [deg]")
+    if axes[0, 0].get_legend_handles_labels()[0]:
+        axes[0, 0].legend(loc="upper right", fontsize=7, framealpha=0.85)
+    fig.suptitle("Relative pose error per stage (paper 3 Fig. 8)", fontsize=10)
+    fig.tight_layout()
+    save(fig, out_dir, "p3_relative_error.png", written)
+
+
+def plot_paper3(data, out_dir, written):
+    stages = paper3_stages(data)
+    plot_p3_trajectories(stages, out_dir, written)
+    plot_p3_errors(stages, out_dir, written)
+
+
 def report(out_dir):
     """Writes the figures of out_dir; returns the written paths. Raises ReportError on bad input."""
     data = load(out_dir)
@@ -682,6 +803,7 @@ def report(out_dir):
     plot_distance(data, out_dir, written)
     plot_errors(data, out_dir, written)
     plot_paper2(data, out_dir, written)
+    plot_paper3(data, out_dir, written)
     return written
 
 
