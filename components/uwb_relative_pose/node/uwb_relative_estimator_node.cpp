@@ -2,6 +2,7 @@
 #include "components/uwb_relative_pose/node/uwb_relative_estimator_node.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <map>
 #include <optional>
@@ -90,6 +91,7 @@ class UwbRelativeEstimatorNode : public Component {
     for (const std::uint64_t id : odometry_ids) {
       increments_[static_cast<std::uint32_t>(id)] = model::Pose2{};
     }
+    times_ = &ctx.compute_times();
   }
 
   void on_step(const StepInfo& info) override {
@@ -191,7 +193,16 @@ class UwbRelativeEstimatorNode : public Component {
         links.push_back(std::move(frame));
       }
     }
-    const EpochResult result = robot.estimator.step(time_s, increments_.at(id), inputs, links);
+    EpochResult result;
+    {
+      // One robot's whole epoch (every peer, every stage): the "cycle"; the stages' own
+      // times come from the library (wall clock around each stage).
+      ScopedComputeTimer cycle(*times_, "cycle");
+      result = robot.estimator.step(time_s, increments_.at(id), inputs, links);
+    }
+    for (std::size_t s = 0; s < kStageCount; ++s) {
+      times_->add_ms(stage_name(static_cast<Stage>(s)), result.stage_ms[s]);
+    }
     for (std::size_t k = 0; k < setups.size(); ++k) {
       const PeerResult& peer = result.peers[k];
       if (peer.had_ranges && peer.uwb_status != TrackStatus::kRejected) {
@@ -217,13 +228,19 @@ class UwbRelativeEstimatorNode : public Component {
     idl::RelativePoseEstimate m;
     m.robot_id(robot);
     m.peer_id(peer);
-    m.x(stage.pose.x);
-    m.y(stage.pose.y);
-    m.theta(stage.pose.theta);
-    for (int i = 0; i < 9; ++i) {
-      m.cov()[static_cast<std::size_t>(i)] = stage.covariance(i / 3, i % 3);
+    // A failed solve may leave a non-finite pose: such a sample would be rejected by every reader
+    // (and leave a lockstep step without this instance's sample), so it goes out as zeros, invalid.
+    const bool finite = std::isfinite(stage.pose.x) && std::isfinite(stage.pose.y) && std::isfinite(stage.pose.theta) &&
+                        stage.covariance.allFinite();
+    if (finite) {
+      m.x(stage.pose.x);
+      m.y(stage.pose.y);
+      m.theta(stage.pose.theta);
+      for (int i = 0; i < 9; ++i) {
+        m.cov()[static_cast<std::size_t>(i)] = stage.covariance(i / 3, i % 3);
+      }
     }
-    m.valid(valid);
+    m.valid(valid && finite);
     out.publish(m);
   }
 
@@ -237,6 +254,7 @@ class UwbRelativeEstimatorNode : public Component {
   Input<idl::UwbRanges>* ranges_ = nullptr;
   Input<idl::Odometry>* odometry_ = nullptr;
   std::array<Output<idl::RelativePoseEstimate>*, kStageCount> outputs_{};
+  ComputeTimes* times_ = nullptr;  // this component's (ctx.compute_times()): summary.json run.timing
 };
 
 }  // namespace

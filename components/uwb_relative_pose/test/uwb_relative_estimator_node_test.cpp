@@ -57,8 +57,9 @@ std::uint64_t key(std::uint32_t robot, std::uint32_t peer) { return (std::uint64
 /// Feeds odometry of standing robots every 5 steps (10 Hz) and exact ranges from robot 1 to its
 /// peers, and from robot 2 to robot 3 (the peers' link), every step (50 Hz) while `frames(step)`
 /// says so.
-void feed(NodeHarness& h, std::function<bool(std::uint64_t)> frames, std::function<idl::UwbRanges(idl::UwbRanges, std::uint64_t)> edit = nullptr) {
-  h.feed([&h, frames, edit](std::uint64_t step) {
+void feed(NodeHarness& h, std::function<bool(std::uint64_t)> frames, std::function<idl::UwbRanges(idl::UwbRanges, std::uint64_t)> edit = nullptr,
+          bool with_link = true) {
+  h.feed([&h, frames, edit, with_link](std::uint64_t step) {
     if (step % 5 == 0) {
       for (std::uint32_t robot : {1u, 2u, 3u}) {
         idl::Odometry o;
@@ -68,6 +69,9 @@ void feed(NodeHarness& h, std::function<bool(std::uint64_t)> frames, std::functi
       }
     }
     for (const auto& [robot, peer] : {std::pair{1u, 2u}, std::pair{1u, 3u}, std::pair{2u, 3u}}) {
+      if (robot == 2 && !with_link) {
+        continue;
+      }
       idl::UwbRanges m;
       m.robot_id(robot);
       m.peer_id(peer);
@@ -165,6 +169,24 @@ TEST(UwbRelativeEstimatorNode, WhenAPeersFramesStopItsFrameStagesBecomeInvalidAf
     }
   }
   EXPECT_TRUE(robodds::testing::of_instance(odometry, key(1, 2)).back().valid()) << "odometry needs no frame";
+}
+
+TEST(UwbRelativeEstimatorNode, WithPeerLinksTheEstimatorWaitsForThePeersStreamAndNamesIt) {
+  {
+    NodeHarness h(scenario(""));
+    robodds::component_registration::register_uwb_relative_estimator(h.registry());
+    h.options().input_timeout_s = 0.3;
+    feed(h, [](std::uint64_t) { return true; }, nullptr, /*with_link=*/false);
+    const std::string error = h.run_error<RunError>({"estimator"});
+    EXPECT_NE(error.find("sensor/uwb, robot_id=2 peer_id=3"), std::string::npos) << error;
+  }
+  NodeHarness h(scenario("peer_links: false"));
+  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  h.options().input_timeout_s = 0.3;
+  feed(h, [](std::uint64_t) { return true; }, nullptr, /*with_link=*/false);
+  const auto& pf = h.record<idl::RelativePoseEstimate>("estimate/relative_pose");
+  EXPECT_EQ(h.run_error<RunError>({"estimator"}), "") << "peer_links: false needs only the robot's own ranges";
+  EXPECT_TRUE(robodds::testing::of_instance(pf, key(1, 3)).back().valid());
 }
 
 std::string start_error(const std::string& yaml) {
