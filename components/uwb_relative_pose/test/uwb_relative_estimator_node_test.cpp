@@ -152,6 +152,30 @@ TEST(UwbRelativeEstimatorNode, AFrameThatDoesNotFitTheArraysIsRejectedAndCounted
   EXPECT_TRUE(to2.back().valid()) << "the other peer is not affected";
 }
 
+TEST(UwbRelativeEstimatorNode, NanAndNegativeRangesAreRefusedByTheInputAndNeverReachAnEstimate) {
+  NodeHarness h(scenario(""));
+  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  // From step 50 on robot 1's frames to peer 3 carry a NaN range (odd steps) or a negative one.
+  feed(h, [](std::uint64_t) { return true; }, [](idl::UwbRanges m, std::uint64_t step) {
+    if (m.peer_id() == 3 && step >= 50) {
+      m.ranges()[5] = step % 2 == 1 ? std::nan("") : -1.0;
+    }
+    return m;
+  });
+  const auto& uwb = h.record<idl::RelativePoseEstimate>("estimate/relative_pose_uwb");
+  const auto& pf = h.record<idl::RelativePoseEstimate>("estimate/relative_pose");
+  h.run({"estimator"});
+  const model::Pose2 truth3 = model::between(world(1), world(3));
+  // The epoch of step 50 still has the good frame of step 49 (its newest accepted one).
+  for (const auto& e : robodds::testing::of_instance(uwb, key(1, 3))) {
+    EXPECT_EQ(e.valid(), e.header().step() <= 50) << "step " << e.header().step();
+    EXPECT_TRUE(std::isfinite(e.x()) && std::isfinite(e.y()) && std::isfinite(e.theta()));
+  }
+  const auto last = robodds::testing::of_instance(pf, key(1, 3)).back();
+  EXPECT_NEAR(last.x(), truth3.x, 0.1) << "the filter was never fed a bad frame";
+  EXPECT_TRUE(robodds::testing::of_instance(uwb, key(1, 2)).back().valid()) << "the other peer is not affected";
+}
+
 TEST(UwbRelativeEstimatorNode, WhenAPeersFramesStopItsFrameStagesBecomeInvalidAfterTheTimeout) {
   NodeHarness h(scenario("uwb_timeout_s: 0.5"));
   robodds::component_registration::register_uwb_relative_estimator(h.registry());
