@@ -72,7 +72,8 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
     peers_.push_back(PeerState{RelativePoseTracker(own_array_, peer.array, params_.solver, params_.tracker),
                                RelativePoseFilter(params_.pf), RelativePoseFilter(params_.pf),
                                RandomEngine(derive_seed(seed, stream + "/pf")),
-                               RandomEngine(derive_seed(seed, stream + "/pf_baseline")), peer.known_start, {}});
+                               RandomEngine(derive_seed(seed, stream + "/pf_baseline")), peer.known_start, {}, std::nullopt,
+                               std::nullopt});
   }
   for (std::size_t a = 0; a < setups_.size(); ++a) {
     for (std::size_t b = a + 1; b < setups_.size(); ++b) {
@@ -95,6 +96,10 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
   if (!std::isfinite(time_s)) {
     throw std::invalid_argument("step: time is not finite");
   }
+  if (last_time_s_ && time_s < *last_time_s_) {
+    throw std::invalid_argument("step: time " + std::to_string(time_s) + " s is before the previous epoch's (" +
+                                std::to_string(*last_time_s_) + " s)");
+  }
   if (!finite(own_increment)) {
     throw std::invalid_argument("step: own odometry increment is not finite (got " + model::to_text(own_increment) + ")");
   }
@@ -105,6 +110,7 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
     }
   }
   ++counts_.epochs;
+  last_time_s_ = time_s;
   EpochResult result;
   result.peers.resize(peers.size());
 
@@ -161,8 +167,16 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
     PeerState& peer = peers_[k];
     peer.pf.predict(own_increment, peers[k].odometry_increment, peer.pf_random);
     const StageEstimate& window = result.peers[k].stages[static_cast<std::size_t>(Stage::kWindow)];
+    const bool fix = result.peers[k].stages[static_cast<std::size_t>(Stage::kUwb)].valid;
     if (window.valid) {
-      peer.pf.update_with_pose(window.pose, peer.pf_random);
+      if (fix && peer.pf.initialized() && peer.last_fix_s && time_s - *peer.last_fix_s > params_.restart_after_gap_s) {
+        peer.pf.initialize(window.pose, peer.pf_random);  // the cloud (and the window) drifted on odometry alone
+      } else {
+        peer.pf.update_with_pose(window.pose, peer.pf_random);  // initialises at the first one
+      }
+    }
+    if (fix) {
+      peer.last_fix_s = time_s;
     }
     result.peers[k].stages[static_cast<std::size_t>(Stage::kPf)] = filter_estimate(peer.pf);
   }
@@ -174,10 +188,14 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
     const PeerResult& solved = result.peers[k];
     peer.baseline.predict(own_increment, peers[k].odometry_increment, peer.baseline_random);
     if (solved.had_ranges && solved.uwb_status != TrackStatus::kRejected) {
-      if (peer.baseline.initialized()) {
+      const bool after_gap = peer.last_frame_s && time_s - *peer.last_frame_s > params_.restart_after_gap_s;
+      const StageEstimate& fix = solved.stages[static_cast<std::size_t>(Stage::kUwb)];
+      if (peer.baseline.initialized() && !after_gap) {
         peer.baseline.update_with_ranges(own_array_, setups_[k].array, *peers[k].ranges_m, peer.baseline_random);
-      } else if (solved.stages[static_cast<std::size_t>(Stage::kUwb)].valid) {
-        peer.baseline.initialize(solved.stages[static_cast<std::size_t>(Stage::kUwb)].pose, peer.baseline_random);
+        peer.last_frame_s = time_s;
+      } else if (fix.valid) {
+        peer.baseline.initialize(fix.pose, peer.baseline_random);  // first fix, or the cloud drifted
+        peer.last_frame_s = time_s;
       }
     }
     result.peers[k].stages[static_cast<std::size_t>(Stage::kPfBaseline)] = filter_estimate(peer.baseline);
@@ -198,12 +216,17 @@ void RelativeEstimator::run_window(const model::Pose2& own_increment, const std:
     }
   }
   if (!window_) {
-    if (edges.size() != peers.size()) {
-      return;  // not every peer measured yet: no window (every peer's window estimate invalid)
+    if (edges.empty()) {
+      return;  // no peer measured yet: no window (every peer's window estimate invalid)
     }
     window_.emplace(peers.size() + 1, static_cast<std::size_t>(params_.window_epochs), params_.window);
   }
-  edges.insert(edges.end(), link_edges.begin(), link_edges.end());
+  // A link to a peer whose poses are still a guess would pull the other towards the guess.
+  for (const PairMeasurement& link : link_edges) {
+    if (placed(link.own - 1) && placed(link.other - 1)) {
+      edges.push_back(link);
+    }
+  }
   std::vector<model::Pose2> increments;
   increments.reserve(peers.size() + 1);
   increments.push_back(own_increment);
@@ -211,21 +234,34 @@ void RelativeEstimator::run_window(const model::Pose2& own_increment, const std:
     increments.push_back(peer.odometry_increment);
   }
   window_->add_epoch(increments, edges);
-  const bool converged = window_->optimize();
-  if (!converged) {
-    ++counts_.window_not_converged;
-  }
   for (std::size_t k = 0; k < peers.size(); ++k) {
+    if (has_edge[k] && !placed(k)) {
+      // Its poses are a guess (its first edge, or none in the window for window_epochs epochs).
+      window_->place_robot(k + 1, 0, result.peers[k].stages[static_cast<std::size_t>(Stage::kUwb)].pose);
+    }
     std::deque<bool>& recent = peers_[k].window_edges;
     recent.push_back(has_edge[k]);
     if (recent.size() > static_cast<std::size_t>(params_.window_epochs)) {
       recent.pop_front();
     }
+  }
+  const bool converged = window_->optimize();
+  if (!converged) {
+    ++counts_.window_not_converged;
+  }
+  for (std::size_t k = 0; k < peers.size(); ++k) {
     StageEstimate& window = result.peers[k].stages[static_cast<std::size_t>(Stage::kWindow)];
     window.pose = window_->latest_relative(0, k + 1);
-    // Valid while the window holds at least one measurement of this peer and the solve converged.
-    window.valid = converged && std::find(recent.begin(), recent.end(), true) != recent.end();
+    // Valid while the window holds at least one measurement of this peer and the solve converged
+    // to a finite pose.
+    window.valid = converged && placed(k) && std::isfinite(window.pose.x) && std::isfinite(window.pose.y) &&
+                   std::isfinite(window.pose.theta);
   }
+}
+
+bool RelativeEstimator::placed(std::size_t k) const {
+  const std::deque<bool>& recent = peers_[k].window_edges;
+  return std::find(recent.begin(), recent.end(), true) != recent.end();
 }
 
 }  // namespace robodds::uwb

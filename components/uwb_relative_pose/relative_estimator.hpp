@@ -10,9 +10,11 @@
 //                pairs of peers ("links": ranges measured by the lower id of the two), which close
 //                loops in the graph;
 //   pf           eq. (3)-(6), one filter per peer: predicted by both robots' odometry (eq. 4),
-//                weighted by the window's estimate (eq. 5-6);
+//                weighted by the window's estimate (eq. 5-6); started around the window's first
+//                estimate, restarted around it when a fix ends a gap of more than
+//                restart_after_gap_s without one (the window too drifted on odometry meanwhile);
 //   pf_baseline  the paper's [22]: the same filter weighted directly by the K x L ranges,
-//                initialised from the first kOk solve;
+//                (re)started from a kOk solve at the first one and after such a gap;
 //   odometry     dead reckoning of the relative pose from both odometries (the paper's first row),
 //                from a known start or, without one, from the first kOk solve.
 // Pure: Eigen + std + Ceres, time in plain seconds; wall-clock compute time per stage is measured
@@ -20,7 +22,8 @@
 //
 // Ranges of an epoch: the newest frame the node has for the peer (none: lost, out of range). A
 // frame of the wrong shape, with a negative or non-finite range is rejected by the tracker and used
-// by no stage (counted). Odometry increments must be finite (std::invalid_argument, state untouched).
+// by no stage (counted). Odometry increments must be finite and the time must not go back
+// (std::invalid_argument, state untouched); past those checks step() does not throw.
 #include <array>
 #include <cstdint>
 #include <deque>
@@ -128,10 +131,14 @@ class RelativeEstimator {
     RandomEngine baseline_random;
     std::optional<model::Pose2> odometry_pose;
     std::deque<bool> window_edges;  // per epoch in the window: an eq. (1) edge to this peer
+    std::optional<double> last_fix_s;     // last epoch with a valid eq. (1) pose (the window's edges)
+    std::optional<double> last_frame_s;   // last epoch with an accepted frame (the baseline's input)
   };
 
   void run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
                   const std::vector<PairMeasurement>& link_edges, EpochResult& result);
+  /// Peer `k` has an eq. (1) edge in the window: its poses there rest on a measurement.
+  bool placed(std::size_t k) const;
 
   model::UwbArray own_array_;
   std::vector<PeerSetup> setups_;
@@ -139,9 +146,10 @@ class RelativeEstimator {
   std::vector<PeerState> peers_;
   std::vector<PeerLink> links_;
   std::vector<RelativePoseTracker> link_trackers_;  // one per link
-  /// Started at the first epoch in which every peer has a valid eq. (1) pose, so that each peer's
-  /// first pose in the graph comes from a measurement, not from a guess (add_epoch's start).
+  /// Started at the first epoch with a valid eq. (1) pose of any peer; a peer whose poses in it are
+  /// a guess (no edge of it in the window yet) is placed by its first edge (place_robot).
   std::optional<SlidingWindowGraph> window_;
+  std::optional<double> last_time_s_;
   EstimatorCounts counts_;
 };
 

@@ -20,6 +20,10 @@ WindowWeights paper_window_weights();
 struct RelativeEstimatorParams {
   /// Eq. (2): epochs in the sliding window (the paper's w; >= 2).
   int window_epochs = 30;
+  /// After a gap longer than this without a measurement of a peer (no valid window estimate for
+  /// the filter, no frame for the baseline), its filter restarts around the next measurement
+  /// instead of weighting a cloud that drifted on odometry alone.
+  double restart_after_gap_s = 2.0;
   WindowWeights window = paper_window_weights();  // keys window.*
   SolverOptions solver = paper_solver_options();  // keys solver.* (eq. 1)
   TrackerParams tracker;                          // keys tracker.* (cold-start recovery)

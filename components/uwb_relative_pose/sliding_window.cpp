@@ -164,6 +164,24 @@ bool SlidingWindowGraph::optimize() {
   return summary.termination_type == ceres::CONVERGENCE;
 }
 
+void SlidingWindowGraph::place_robot(std::size_t robot, std::size_t own, const model::Pose2& relative) {
+  if (epochs_.empty()) {
+    throw std::invalid_argument("place_robot: no epoch added yet");
+  }
+  if (robot >= num_robots_ || own >= num_robots_ || robot == own) {
+    throw std::invalid_argument("place_robot: robots (" + std::to_string(robot) + ", " + std::to_string(own) +
+                                ") are not two different robots of " + std::to_string(num_robots_));
+  }
+  if (!finite(relative)) {
+    throw std::invalid_argument("place_robot: pose is not finite (got " + model::to_text(relative) + ")");
+  }
+  epochs_.back().poses[robot] = model::compose(epochs_.back().poses[own], relative);
+  for (std::size_t e = epochs_.size() - 1; e > 0; --e) {
+    // The odometry of epoch e leads from e - 1 to e: undo it.
+    epochs_[e - 1].poses[robot] = model::compose(epochs_[e].poses[robot], inverse(epochs_[e].odometry[robot]));
+  }
+}
+
 model::Pose2 SlidingWindowGraph::latest_relative(std::size_t own, std::size_t other) const {
   if (epochs_.empty()) {
     throw std::invalid_argument("latest_relative: no epoch added yet");

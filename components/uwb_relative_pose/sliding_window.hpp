@@ -53,6 +53,12 @@ class SlidingWindowGraph {
   /// report convergence; the poses are still its best estimate.
   bool optimize();
 
+  /// Moves every pose of robot `robot` in the window so that at the newest epoch it sits at
+  /// `relative` in robot `own`'s frame (own != robot), and at earlier epochs back along its own
+  /// odometry. For a robot whose poses were a guess: its first measurement came after the window
+  /// started, or none was in the window for a while. Throws std::invalid_argument (nothing changed)
+  /// on an empty window, bad indices or a non-finite pose.
+  void place_robot(std::size_t robot, std::size_t own, const model::Pose2& relative);
   /// Robot `other` in robot `own`'s frame at the newest epoch.
   model::Pose2 latest_relative(std::size_t own, std::size_t other) const;
 

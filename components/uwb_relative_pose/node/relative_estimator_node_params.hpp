@@ -27,8 +27,9 @@ struct RelativeEstimatorNodeParams {
   /// The window, pf and pf_baseline estimates of a peer are not valid while its last accepted
   /// frame is older than this (sim time in lockstep, receive time in real time).
   double uwb_timeout_s = 2.0;
-  /// Real time only: every stage of a peer is not valid while this robot's or the peer's
-  /// odometry was last received longer ago than this.
+  /// Real time only: every stage of a peer that uses odometry (all but uwb) is not valid while
+  /// this robot's or the peer's odometry was last received longer ago than this. Samples lost in
+  /// between are motion the dead reckoning never sees: the odometry stage keeps that offset.
   double odometry_timeout_s = 0.5;
   RelativeEstimatorParams estimator;  // keys window_epochs, window.*, solver.*, tracker.*, pf.*
 

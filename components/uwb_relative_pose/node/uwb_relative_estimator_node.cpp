@@ -51,6 +51,9 @@ class UwbRelativeEstimatorNode : public Component {
     std::vector<std::uint64_t> uwb_keys;
     std::set<std::uint64_t> odometry_ids;
     for (const RobotSpec& robot : ctx.robots()) {
+      if (robots_.count(robot.id) != 0) {
+        p.fail("robots: robot " + std::to_string(robot.id) + " is served twice by " + name_);
+      }
       std::vector<PeerSetup> setups;
       for (const std::uint32_t peer : peer_ids(p, scenario, robot.id)) {
         const RobotSpec& other = scenario.robot(peer);
@@ -217,7 +220,8 @@ class UwbRelativeEstimatorNode : public Component {
                                                  odometry_->fresh(setups[k].id, params_.odometry_timeout_s));
       for (std::size_t s = 0; s < kStageCount; ++s) {
         const StageEstimate& stage = peer.stages[s];
-        const bool valid = stage.valid && odometry_fresh && (frames_fresh || !uses_frames(static_cast<Stage>(s)));
+        const auto kind = static_cast<Stage>(s);
+        const bool valid = stage.valid && (odometry_fresh || kind == Stage::kUwb) && (frames_fresh || !uses_frames(kind));
         publish(*outputs_[s], id, setups[k].id, stage, valid);
       }
     }

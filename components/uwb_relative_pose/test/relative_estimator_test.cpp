@@ -135,33 +135,89 @@ Eigen::MatrixXd exact_ranges(const model::Pose2& peer) {
   return model::array_ranges(square_array(0.5), model::Pose2{}, square_array(0.5), peer);
 }
 
-TEST(RelativeEstimator, TheWindowWaitsForAFixOfEveryPeerAndTheOdometryStartsAtTheFirstFixWithoutAKnownStart) {
+const StageEstimate& stage(const EpochResult& r, std::size_t peer, Stage s) { return r.peers[peer].stages[static_cast<std::size_t>(s)]; }
+
+TEST(RelativeEstimator, APeerNotMeasuredYetBlocksNoOtherAndIsPlacedByItsFirstFix) {
   const model::UwbArray array = square_array(0.5);
   const model::Pose2 p2{4.0, 1.0, 0.3};
   const model::Pose2 p3{-3.0, 2.0, -1.0};
   RelativeEstimator estimator(array, {PeerSetup{2, array, std::nullopt}, PeerSetup{3, array, std::nullopt}},
                               RelativeEstimatorParams{}, 1);
-  EpochResult r = estimator.step(0.1, {}, {PeerEpoch{{}, exact_ranges(p2)}, PeerEpoch{{}, std::nullopt}});
-  EXPECT_TRUE(r.peers[0].stages[static_cast<std::size_t>(Stage::kUwb)].valid);
-  EXPECT_FALSE(r.peers[1].stages[static_cast<std::size_t>(Stage::kUwb)].valid);
+  EpochResult r;
+  for (int e = 1; e <= 40; ++e) {  // peer 3 unseen for 4 s, longer than the window
+    r = estimator.step(0.1 * e, {}, {PeerEpoch{{}, exact_ranges(p2)}, PeerEpoch{{}, std::nullopt}});
+  }
   EXPECT_EQ(r.peers[1].uwb_reason, "no frame");
-  EXPECT_FALSE(r.peers[0].stages[static_cast<std::size_t>(Stage::kWindow)].valid) << "peer 3 not measured yet";
-  EXPECT_FALSE(r.peers[0].stages[static_cast<std::size_t>(Stage::kPf)].valid) << "the filter starts from the window";
-  EXPECT_TRUE(r.peers[0].stages[static_cast<std::size_t>(Stage::kPfBaseline)].valid) << "started from the first fix";
-  EXPECT_TRUE(r.peers[0].stages[static_cast<std::size_t>(Stage::kOdometry)].valid);
-  EXPECT_FALSE(r.peers[1].stages[static_cast<std::size_t>(Stage::kOdometry)].valid);
-  EXPECT_EQ(estimator.counts().frames_missing, 1u);
+  for (Stage s : {Stage::kUwb, Stage::kWindow, Stage::kPf, Stage::kPfBaseline, Stage::kOdometry}) {
+    EXPECT_TRUE(stage(r, 0, s).valid) << "peer 2 " << stage_name(s) << ": not held back by peer 3";
+  }
+  for (Stage s : {Stage::kUwb, Stage::kWindow, Stage::kPf, Stage::kPfBaseline, Stage::kOdometry}) {
+    EXPECT_FALSE(stage(r, 1, s).valid) << "peer 3 " << stage_name(s) << ": never measured";
+  }
+  EXPECT_EQ(estimator.counts().frames_missing, 40u);
 
-  r = estimator.step(0.2, {}, {PeerEpoch{{}, exact_ranges(p2)}, PeerEpoch{{}, exact_ranges(p3)}});
+  r = estimator.step(4.1, {}, {PeerEpoch{{}, exact_ranges(p2)}, PeerEpoch{{}, exact_ranges(p3)}});
   for (std::size_t k = 0; k < 2; ++k) {
     for (Stage s : {Stage::kUwb, Stage::kWindow, Stage::kPf, Stage::kPfBaseline, Stage::kOdometry}) {
-      EXPECT_TRUE(r.peers[k].stages[static_cast<std::size_t>(s)].valid) << "peer " << k << " " << stage_name(s);
+      EXPECT_TRUE(stage(r, k, s).valid) << "peer " << k << " " << stage_name(s);
     }
   }
-  const model::Pose2& w3 = r.peers[1].stages[static_cast<std::size_t>(Stage::kWindow)].pose;
-  EXPECT_NEAR(w3.x, p3.x, 1e-3);
+  const model::Pose2& w3 = stage(r, 1, Stage::kWindow).pose;
+  EXPECT_NEAR(w3.x, p3.x, 1e-3) << "placed by its first fix, not dragged from a guess";
   EXPECT_NEAR(w3.y, p3.y, 1e-3);
   EXPECT_NEAR(w3.theta, p3.theta, 1e-3);
+  EXPECT_NEAR(stage(r, 1, Stage::kOdometry).pose.x, p3.x, 1e-6) << "no known start: odometry starts at the first fix";
+}
+
+TEST(RelativeEstimator, AfterAGapInTheFramesTheWindowLapsesAndTheFiltersRestartAroundTheNextFix) {
+  // Peer 2 stands at p2; for 4 s (longer than the window, 3 s) no frames come while its odometry
+  // reports a turn that never happens (a biased wheel): the dead-reckoned clouds drift away.
+  const model::UwbArray array = square_array(0.5);
+  const model::Pose2 p2{4.0, 1.0, 0.3};
+  RelativeEstimator estimator(array, {PeerSetup{2, array, p2}}, RelativeEstimatorParams{}, 1);
+  EpochResult r;
+  double t = 0.0;
+  for (int e = 0; e < 30; ++e) {
+    r = estimator.step(t += 0.1, {}, {PeerEpoch{{}, exact_ranges(p2)}});
+  }
+  const model::Pose2 phantom_turn{0.02, 0.0, 0.02};  // per epoch: 0.2 m/s and 0.2 rad/s that are not there
+  for (int e = 0; e < 40; ++e) {
+    r = estimator.step(t += 0.1, {}, {PeerEpoch{phantom_turn, std::nullopt}});
+  }
+  EXPECT_FALSE(stage(r, 0, Stage::kWindow).valid) << "no edge left in the window";
+  EXPECT_GT(std::hypot(stage(r, 0, Stage::kPf).pose.x - p2.x, stage(r, 0, Stage::kPf).pose.y - p2.y), 0.5)
+      << "the filter drifted on the odometry alone";
+  r = estimator.step(t += 0.1, {}, {PeerEpoch{{}, exact_ranges(p2)}});
+  for (Stage s : {Stage::kWindow, Stage::kPf, Stage::kPfBaseline}) {
+    const model::Pose2& p = stage(r, 0, s).pose;
+    EXPECT_TRUE(stage(r, 0, s).valid) << stage_name(s);
+    EXPECT_LT(std::hypot(p.x - p2.x, p.y - p2.y), 0.35) << stage_name(s) << ": back at the fix at once";
+    EXPECT_LT(std::abs(wrap_angle(p.theta - p2.theta)), 0.15) << stage_name(s);
+  }
+}
+
+TEST(RelativeEstimator, EveryStageFollowsAPeerWhileThisRobotMovesToo) {
+  // Both robots drive circles (noise-free): the own increment must be inverted on every stage.
+  const model::UwbArray array = square_array(0.5);
+  model::Pose2 own{0.0, 0.0, 0.0};
+  model::Pose2 peer{4.0, 2.0, 1.0};
+  const model::Twist own_twist{0.2, 0.1};
+  const model::Twist peer_twist{0.15, -0.05};
+  RelativeEstimator estimator(array, {PeerSetup{2, array, model::between(own, peer)}}, RelativeEstimatorParams{}, 1);
+  EpochResult r;
+  for (int e = 1; e <= 300; ++e) {
+    own = model::integrate_exact(own, own_twist, kEpochS);
+    peer = model::integrate_exact(peer, peer_twist, kEpochS);
+    r = estimator.step(e * kEpochS, increment_of(own_twist),
+                       {PeerEpoch{increment_of(peer_twist), model::array_ranges(array, own, array, peer)}});
+  }
+  const model::Pose2 truth = model::between(own, peer);
+  for (Stage s : {Stage::kUwb, Stage::kWindow, Stage::kPf, Stage::kPfBaseline, Stage::kOdometry}) {
+    const model::Pose2& p = stage(r, 0, s).pose;
+    EXPECT_LT(std::hypot(p.x - truth.x, p.y - truth.y), 0.1) << stage_name(s);
+    EXPECT_LT(std::abs(wrap_angle(p.theta - truth.theta)), 0.03) << stage_name(s);
+  }
+  EXPECT_LT(std::hypot(stage(r, 0, Stage::kOdometry).pose.x - truth.x, stage(r, 0, Stage::kOdometry).pose.y - truth.y), 1e-9);
 }
 
 TEST(RelativeEstimator, RangesBetweenPeersEnterTheWindowAsLinks) {
@@ -198,7 +254,7 @@ TEST(RelativeEstimator, BadFramesAreRejectedAndUsedByNoStage) {
   const model::Pose2 p2{4.0, 1.0, 0.3};
   RelativeEstimator estimator(array, {PeerSetup{2, array, p2}}, RelativeEstimatorParams{}, 1);
   estimator.step(0.1, {}, {PeerEpoch{{}, exact_ranges(p2)}});
-  const model::Pose2 before = estimator.step(0.2, {}, {PeerEpoch{{}, exact_ranges(p2)}}).peers[0].stages[2].pose;
+  const model::Pose2 before = estimator.step(0.2, {}, {PeerEpoch{{}, exact_ranges(p2)}}).peers[0].stages[static_cast<std::size_t>(Stage::kPf)].pose;
 
   Eigen::MatrixXd nan = exact_ranges(p2);
   nan(1, 2) = std::numeric_limits<double>::quiet_NaN();
@@ -235,6 +291,11 @@ TEST(RelativeEstimator, BadCallsThrowAndChangeNothing) {
   const EpochResult r = estimator.step(0.1, {}, {PeerEpoch{{}, exact_ranges(p2)}});
   EXPECT_NEAR(r.peers[0].stages[static_cast<std::size_t>(Stage::kOdometry)].pose.x, p2.x, 1e-12)
       << "the odometry stage was not moved by a refused call";
+  // Time going back: refused before anything moves (odometry, window and filters included).
+  EXPECT_THROW(estimator.step(0.05, {}, {PeerEpoch{model::Pose2{1.0, 0.0, 0.0}, exact_ranges(p2)}}), std::invalid_argument);
+  EXPECT_EQ(estimator.counts().epochs, 1u);
+  const EpochResult again = estimator.step(0.2, {}, {PeerEpoch{{}, exact_ranges(p2)}});
+  EXPECT_NEAR(again.peers[0].stages[static_cast<std::size_t>(Stage::kOdometry)].pose.x, p2.x, 1e-12);
 }
 
 std::string construction_error(const model::UwbArray& own, std::vector<PeerSetup> peers, RelativeEstimatorParams params) {

@@ -7,10 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "common/model/diff_drive_kinematics.hpp"
 #include "common/model/uwb_array.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/error.hpp"
@@ -213,6 +215,78 @@ TEST(UwbRelativeEstimatorNode, WithPeerLinksTheEstimatorWaitsForThePeersStreamAn
   EXPECT_TRUE(robodds::testing::of_instance(pf, key(1, 3)).back().valid());
 }
 
+// Three robots driving circles (exact odometry at 10 Hz, exact ranges at 50 Hz in all four streams
+// (1,2), (1,3), (2,1), (2,3)); ONE estimator serves robots 1 and 2 with peers [3, 2, 1]: robot 1
+// estimates 3 and 2 (link 3-2 from the stream (2,3), transposed), robot 2 estimates 3 and 1 (link
+// 3-1 from (1,3), transposed), and the streams (1,3), (2,3) serve both robots.
+TEST(UwbRelativeEstimatorNode, TwoServedRobotsThatMoveSharedStreamsAndTransposedLinks) {
+  const std::string yaml = R"(name: uwb_relative_estimator_moving
+step_s: 0.02
+duration_s: 3.0
+seed: 1
+robots:
+  - {id: 1, x: 0, y: 0, theta: 0}
+  - {id: 2, x: 4, y: 1, theta: 1}
+  - {id: 3, x: -3, y: 2, theta: -2}
+components:
+  - {name: estimator, type: uwb_relative_estimator, robots: [1, 2], params: {peers: [3, 2, 1]}}
+)";
+  NodeHarness h(yaml);
+  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  const std::map<std::uint32_t, model::Twist> twist{{1, {0.2, 0.1}}, {2, {0.15, -0.05}}, {3, {0.1, 0.2}}};
+  const std::map<std::uint32_t, model::Pose2> start{{1, {0, 0, 0}}, {2, {4, 1, 1}}, {3, {-3, 2, -2}}};
+  const auto pose_at = [&](std::uint32_t robot, std::uint64_t step) {
+    return model::integrate_exact(start.at(robot), twist.at(robot), 0.02 * static_cast<double>(step));
+  };
+  h.feed([&](std::uint64_t step) {
+    if (step % 5 == 0) {
+      for (std::uint32_t robot : {1u, 2u, 3u}) {
+        idl::Odometry o;
+        o.robot_id(robot);
+        o.v(twist.at(robot).v);
+        o.omega(twist.at(robot).omega);
+        o.dt_s(step == 0 ? 0.0 : 0.1);
+        h.publish("sensor/odometry", o, step, step + 5);
+      }
+    }
+    for (const auto& [robot, peer] : {std::pair{1u, 2u}, std::pair{1u, 3u}, std::pair{2u, 1u}, std::pair{2u, 3u}}) {
+      const model::UwbArray a = model::square_array(0.5);
+      const Eigen::MatrixXd r = model::array_ranges(a, pose_at(robot, step), a, pose_at(peer, step));
+      idl::UwbRanges m;
+      m.robot_id(robot);
+      m.peer_id(peer);
+      m.rows(4);
+      m.cols(4);
+      std::vector<double> flat;
+      for (int k = 0; k < 4; ++k) {
+        for (int l = 0; l < 4; ++l) {
+          flat.push_back(r(k, l));
+        }
+      }
+      m.ranges(flat);
+      h.publish("sensor/uwb", m, step, step + 1);
+    }
+  });
+  std::vector<const std::vector<idl::RelativePoseEstimate>*> out;
+  for (const char* topic : kTopics) {
+    out.push_back(&h.record<idl::RelativePoseEstimate>(topic));
+  }
+  h.run({"estimator"});
+  for (const auto& [robot, peer] : {std::pair{1u, 3u}, std::pair{1u, 2u}, std::pair{2u, 3u}, std::pair{2u, 1u}}) {
+    const model::Pose2 truth = model::between(pose_at(robot, 150), pose_at(peer, 150));
+    for (std::size_t t = 0; t < kTopics.size(); ++t) {
+      const auto samples = robodds::testing::of_instance(*out[t], key(robot, peer));
+      ASSERT_EQ(samples.size(), 31u) << kTopics[t] << " " << robot << "->" << peer;
+      const auto& last = samples.back();
+      EXPECT_TRUE(last.valid()) << kTopics[t] << " " << robot << "->" << peer;
+      // Exact inputs: the solves, the window and dead reckoning are exact; the filters keep their noise.
+      const double tolerance = t == 0 || t == 3 ? 0.1 : 1e-3;
+      EXPECT_NEAR(last.x(), truth.x, tolerance) << kTopics[t] << " " << robot << "->" << peer;
+      EXPECT_NEAR(last.y(), truth.y, tolerance) << kTopics[t] << " " << robot << "->" << peer;
+    }
+  }
+}
+
 std::string start_error(const std::string& yaml) {
   NodeHarness h(yaml);
   robodds::component_registration::register_uwb_relative_estimator(h.registry());
@@ -225,6 +299,7 @@ TEST(UwbRelativeEstimatorNode, BadSetUpsAreStartUpErrorsNamingTheKey) {
   EXPECT_NE(start_error(scenario("", "")).find("has no peer"), std::string::npos);
   EXPECT_NE(start_error(scenario("window_epochs: 1")).find("window_epochs"), std::string::npos);
   EXPECT_NE(start_error(scenario("pf.num_particles: 0")).find("pf.num_particles"), std::string::npos);
+  EXPECT_NE(start_error(scenario("peers: [2, 2]")).find("robot 2 is listed twice"), std::string::npos);
   EXPECT_NE(start_error(scenario("nodes_m: [[0.3, 0], [-0.3, 0]]")).find("nodes_m"), std::string::npos);
   EXPECT_NE(start_error(scenario("nodes_m: [[0.3, 0], [-0.3, 0], [0.3, 0]]")).find("nodes_m"), std::string::npos);
   const std::string mismatch =
