@@ -27,6 +27,10 @@ struct HostOptions {
   std::int64_t realtime_epoch_ns = 0;       // real time: wall clock of step 0 (0 = now)
   std::size_t lockstep_window = 1;          // coordinator: ticks outstanding at once (1 = strict)
   bool single_process = false;              // this host runs the whole scenario (RunContext::single_process)
+  /// Lockstep, coordinator and components in this host (a co-located `robodds run`): ticks and
+  /// acknowledgements go between its two halves through an in-memory bus of its own, not DDS
+  /// (sim/clock and sim/step_done then stay inside the process). Same protocol, same Inputs.
+  bool lockstep_in_memory = false;
   std::function<void()> poll;               // called every loop iteration; may throw (child died)
   std::function<void(std::uint64_t step, std::uint64_t last_step)> progress;
   const std::atomic<bool>* stop = nullptr;  // set by a signal handler

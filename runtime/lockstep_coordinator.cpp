@@ -21,7 +21,8 @@ using host_detail::fmt_s;
 using host_detail::seconds_since;
 using host_detail::sim_stamp_ns;
 
-LockstepCoordinator::LockstepCoordinator(const RunContext& run, const HostOptions& options) : run_(run), options_(options) {
+LockstepCoordinator::LockstepCoordinator(const RunContext& run, const HostOptions& options, Bus& protocol_bus)
+    : run_(run), options_(options) {
   state_.mode = run.mode;
   const TopicInfo& clock = topic_info("sim/clock");
   const TopicInfo& done = topic_info("sim/step_done");
@@ -34,9 +35,9 @@ LockstepCoordinator::LockstepCoordinator(const RunContext& run, const HostOption
   }
   ack_input_ = std::make_unique<Input<idl::StepDone>>(done.name, "coordinator", &state_, run.notifier, ack_options);
   // A stale host of another run must not count: samples_of_run() passes this run's acks only.
-  ack_reader_ = run.bus->reader(done.name, done.type_name, profile, host_detail::samples_of_run(ack_input_.get(), options.run_id),
+  ack_reader_ = protocol_bus.reader(done.name, done.type_name, profile, host_detail::samples_of_run(ack_input_.get(), options.run_id),
                                 [](const std::string& e) { log::warn("coordinator", "sim/step_done: " + e); });
-  tick_output_ = std::make_unique<Output<idl::SimTick>>(run.bus->writer(clock.name, clock.type_name, profile), &state_);
+  tick_output_ = std::make_unique<Output<idl::SimTick>>(protocol_bus.writer(clock.name, clock.type_name, profile), &state_);
 }
 
 void LockstepCoordinator::begin(Clock::time_point start) { ack_progress_at_ = start; }

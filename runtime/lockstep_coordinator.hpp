@@ -15,9 +15,10 @@ namespace robodds {
 
 class LockstepCoordinator {
  public:
-  /// Subscribes to sim/step_done (acknowledgements of options.members) and advertises sim/clock.
-  /// `run` and `options` must outlive this object.
-  LockstepCoordinator(const RunContext& run, const HostOptions& options);
+  /// Subscribes to sim/step_done (acknowledgements of options.members) and advertises sim/clock
+  /// on `protocol_bus` (run.bus, or the host's in-memory bus). `run`, `options` and
+  /// `protocol_bus` must outlive this object.
+  LockstepCoordinator(const RunContext& run, const HostOptions& options, Bus& protocol_bus);
 
   /// Starts the timeouts (start_timeout_s for the first acknowledgement).
   void begin(host_detail::Clock::time_point start);

@@ -13,7 +13,8 @@ using host_detail::samples_of_run;
 using host_detail::seconds_since;
 using host_detail::sim_stamp_ns;
 
-LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& slots, HealthExchange* health)
+LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& slots, Bus& protocol_bus,
+                           HealthExchange* health)
     : run_(run), options_(options), slots_(slots), health_(health) {
   state_.mode = run.mode;
   const TopicInfo& clock = topic_info("sim/clock");
@@ -23,9 +24,9 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
   tick_options.ignore_step = true;
   tick_input_ = std::make_unique<Input<idl::SimTick>>(clock.name, options.member, &state_, run.notifier, tick_options);
   auto* raw = tick_input_.get();
-  tick_reader_ = run.bus->reader(clock.name, clock.type_name, profile, samples_of_run(raw, options.run_id),
+  tick_reader_ = protocol_bus.reader(clock.name, clock.type_name, profile, samples_of_run(raw, options.run_id),
                                  [this](const std::string& e) { log::warn(options_.member, "sim/clock: " + e); });
-  ack_writer_ = run.bus->writer(done.name, done.type_name, profile);
+  ack_writer_ = protocol_bus.writer(done.name, done.type_name, profile);
   ack_output_ = std::make_unique<Output<idl::StepDone>>(ack_writer_, &state_);
 }
 

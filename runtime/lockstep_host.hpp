@@ -20,10 +20,12 @@ class LockstepHost {
  public:
   using Slots = std::vector<std::unique_ptr<host_detail::ComponentSlot>>;
 
-  /// Subscribes to sim/clock and advertises sim/step_done. `run`, `options` and `slots` must
-  /// outlive this object; run.figures is filled before the components finish.
+  /// Subscribes to sim/clock and advertises sim/step_done on `protocol_bus` (run.bus, or the
+  /// host's in-memory bus: HostOptions::lockstep_in_memory). `run`, `options`, `slots` and
+  /// `protocol_bus` must outlive this object; run.figures is filled before the components finish.
   /// `health` (nullable): exchanges run/health at the final tick, before the components finish.
-  LockstepHost(RunContext& run, const HostOptions& options, Slots& slots, HealthExchange* health = nullptr);
+  LockstepHost(RunContext& run, const HostOptions& options, Slots& slots, Bus& protocol_bus,
+               HealthExchange* health = nullptr);
 
   /// Starts the timeouts (start_timeout_s for the first tick) and the run's wall clock.
   void begin(host_detail::Clock::time_point start);

@@ -36,7 +36,12 @@ void ReaderListener::on_data_available(dds::DataReader* reader) {
     if (!info.valid_data) {
       continue;
     }
-    const SampleMeta meta{peers_->writer_id(rtps::iHandle2GUID(info.publication_handle)), monotonic_now_ns()};
+    const rtps::GUID_t writer = rtps::iHandle2GUID(info.publication_handle);
+    if (last_writer_id_ == 0 || writer != last_writer_) {
+      last_writer_ = writer;
+      last_writer_id_ = peers_->writer_id(writer);
+    }
+    const SampleMeta meta{last_writer_id_, monotonic_now_ns()};
     for (const SampleCallback& callback : sample_callbacks_) {
       callback(buffer_, meta);
     }

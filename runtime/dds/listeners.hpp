@@ -6,6 +6,7 @@
 #include <fastdds/dds/subscriber/DataReaderListener.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include <cstdint>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -48,6 +49,11 @@ class ReaderListener : public dds::DataReaderListener {
   std::vector<SampleCallback> sample_callbacks_;
   std::vector<ReaderEventCallback> event_callbacks_;
   MatchState match_;
+  // The writer of the previous sample and its SampleMeta::writer_id (0: none yet): most samples
+  // come from the same writer as the one before, and PeerDirectory::writer_id() hashes and
+  // locks. Guarded by mutex_.
+  rtps::GUID_t last_writer_;
+  std::uint64_t last_writer_id_ = 0;
 };
 
 /// The listener of one DDS writer: tracks its matches and warns about an incompatible QoS.

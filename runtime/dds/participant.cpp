@@ -2,6 +2,8 @@
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 
+#include <atomic>
+
 #include "runtime/error.hpp"
 #include "runtime/log.hpp"
 #include "runtime/shutdown_watchdog.hpp"
@@ -9,6 +11,14 @@
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;
 using eprosima::fastrtps::types::ReturnCode_t;
+
+namespace {
+
+std::atomic<int> g_live_participants{0};
+
+}  // namespace
+
+int live_participants() { return g_live_participants.load(); }
 
 void ParticipantDeleter::operator()(dds::DomainParticipant* participant) const {
   if (participant == nullptr) {
@@ -23,7 +33,9 @@ void ParticipantDeleter::operator()(dds::DomainParticipant* participant) const {
   }
   if (dds::DomainParticipantFactory::get_instance()->delete_participant(participant) != ReturnCode_t::RETCODE_OK) {
     log::warn("dds", "could not delete participant " + name);
+    return;  // still alive: the factory deletes it at exit
   }
+  --g_live_participants;
 }
 
 ParticipantPtr create_participant(int domain_id, const dds::DomainParticipantQos& qos, dds::DomainParticipantListener* listener,
@@ -33,6 +45,7 @@ ParticipantPtr create_participant(int domain_id, const dds::DomainParticipantQos
     throw RunError("could not create a DDS participant on domain " + std::to_string(domain_id) + " with profile '" +
                    profile + "'");
   }
+  ++g_live_participants;
   return participant;
 }
 

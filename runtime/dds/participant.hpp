@@ -27,4 +27,7 @@ ParticipantPtr create_participant(int domain_id, const eprosima::fastdds::dds::D
                                   eprosima::fastdds::dds::DomainParticipantListener* listener,
                                   const eprosima::fastdds::dds::StatusMask& mask, const std::string& profile);
 
+/// How many participants create_participant() made that are not deleted yet.
+int live_participants();
+
 }  // namespace robodds

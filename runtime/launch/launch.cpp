@@ -77,6 +77,7 @@ RunStats run_colocated(const ComponentRegistry& registry, const Scenario& scenar
   options.coordinator = true;
   options.members = {"colocated"};
   options.single_process = true;
+  options.lockstep_in_memory = true;  // ticks and acks stay in the process (HostOptions)
   options.max_missed_steps = launch.max_missed_steps;
   apply(launch.lockstep, options);
   options.progress = launch.progress;

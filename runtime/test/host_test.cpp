@@ -1,6 +1,6 @@
 // The lockstep host loop through Host's public API (configure(), run()) on the in-memory bus:
-// tick delivery and acknowledgement, periods, delayed inputs, input timeouts, the lockstep
-// window and failing components. Components are test scripts (runtime/testing/node_harness.hpp).
+// tick delivery and acknowledgement (also through the host's own in-memory bus), periods,
+// delayed inputs, input timeouts, the lockstep window and failing components. Components are test scripts (runtime/testing/node_harness.hpp).
 #include "runtime/host.hpp"
 
 #include <gtest/gtest.h>
@@ -97,6 +97,42 @@ TEST(HostLoop, EveryTickIsDeliveredRunAndAcknowledged) {
     ASSERT_TRUE(seen->at(step).has_value()) << step;
     EXPECT_DOUBLE_EQ(*seen->at(step), 100.0 * static_cast<double>(step) + 1.0);
   }
+}
+
+// A co-located `robodds run` (HostOptions::lockstep_in_memory): the coordinator and the host
+// half exchange ticks and acknowledgements through the host's own in-memory bus, so nothing of the
+// protocol reaches the run's bus (DDS there), and the components see the same steps and samples.
+TEST(HostLoop, InMemoryLockstepKeepsTicksAndAcksOffTheBusWithTheSameResults) {
+  NodeHarness h(kScenario);
+  add_producer(h);
+  auto seen = std::make_shared<Seen>();
+  add_consumer(h, Subscription::instances({1, 2}), seen);
+  const auto& ticks = h.record<idl::SimTick>("sim/clock");
+  const auto& acks = h.record<idl::StepDone>("sim/step_done");
+  h.options().lockstep_in_memory = true;
+  const RunStats stats = h.run({"consumer", "producer"});
+
+  EXPECT_EQ(stats.steps, 11u);
+  EXPECT_TRUE(ticks.empty()) << ticks.size() << " ticks on the run's bus";
+  EXPECT_TRUE(acks.empty()) << acks.size() << " acknowledgements on the run's bus";
+  ASSERT_EQ(seen->size(), 11u);
+  for (std::uint64_t step = 0; step <= 10; ++step) {
+    ASSERT_TRUE(seen->at(step).has_value()) << step;
+    EXPECT_DOUBLE_EQ(*seen->at(step), 100.0 * static_cast<double>(step) + 1.0) << step;
+  }
+}
+
+TEST(HostLoop, InMemoryLockstepStillFailsTheRunWithTheComponentsName) {
+  NodeHarness h(kScenario);
+  add_producer(h);
+  h.add_script("consumer", nullptr, [](const StepInfo& info) {
+    if (info.step == 3) {
+      throw std::runtime_error("boom");
+    }
+  });
+  h.options().lockstep_in_memory = true;
+  const std::string error = h.run_error<RunError>({"producer", "consumer"});
+  EXPECT_NE(error.find("component 'consumer' failed at step 3: boom"), std::string::npos) << error;
 }
 
 TEST(HostLoop, AComponentWithAPeriodRunsOnlyOnDueSteps) {

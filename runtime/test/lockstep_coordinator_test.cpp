@@ -56,7 +56,7 @@ struct CoordinatorFixture : ::testing::Test {
 
 TEST_F(CoordinatorFixture, WindowBoundsTheOutstandingTicks) {
   options.lockstep_window = 2;
-  LockstepCoordinator coordinator(run, options);
+  LockstepCoordinator coordinator(run, options, *run.bus);
   coordinator.begin(std::chrono::steady_clock::now());
   EXPECT_TRUE(coordinator.poll());
   EXPECT_EQ(ticks, (std::vector<std::uint64_t>{0, 1}));
@@ -73,7 +73,7 @@ TEST_F(CoordinatorFixture, WindowBoundsTheOutstandingTicks) {
 TEST_F(CoordinatorFixture, StrictWindowRunsToTheFinalTick) {
   std::vector<std::uint64_t> progress;
   options.progress = [&progress](std::uint64_t step, std::uint64_t) { progress.push_back(step); };
-  LockstepCoordinator coordinator(run, options);
+  LockstepCoordinator coordinator(run, options, *run.bus);
   coordinator.begin(std::chrono::steady_clock::now());
   for (std::uint64_t step = 0; step <= 5; ++step) {
     EXPECT_FALSE(coordinator.done());
@@ -90,7 +90,7 @@ TEST_F(CoordinatorFixture, StrictWindowRunsToTheFinalTick) {
 }
 
 TEST_F(CoordinatorFixture, FailedGroupIsReported) {
-  LockstepCoordinator coordinator(run, options);
+  LockstepCoordinator coordinator(run, options, *run.bus);
   coordinator.begin(std::chrono::steady_clock::now());
   coordinator.poll();
   ack("b", 0, "component 'pf' failed at step 0: boom");
@@ -103,7 +103,7 @@ TEST_F(CoordinatorFixture, FailedGroupIsReported) {
 }
 
 TEST_F(CoordinatorFixture, AcknowledgementsOfOtherRunsDoNotCount) {
-  LockstepCoordinator coordinator(run, options);
+  LockstepCoordinator coordinator(run, options, *run.bus);
   coordinator.begin(std::chrono::steady_clock::now());
   coordinator.poll();
   ack("a", 0, "", 8);
@@ -114,7 +114,7 @@ TEST_F(CoordinatorFixture, AcknowledgementsOfOtherRunsDoNotCount) {
 
 TEST_F(CoordinatorFixture, MissingAcknowledgementTimesOutNamingTheGroup) {
   options.start_timeout_s = 0.05;
-  LockstepCoordinator coordinator(run, options);
+  LockstepCoordinator coordinator(run, options, *run.bus);
   coordinator.begin(std::chrono::steady_clock::now());
   coordinator.poll();
   ack("a", 0);

@@ -114,7 +114,7 @@ struct HostFixture : ::testing::Test {
 
 TEST_F(HostFixture, RunsDueComponentsAndAcknowledgesEveryTick) {
   add_slot(2);
-  LockstepHost host(run, options, slots);
+  LockstepHost host(run, options, slots, *run.bus);
   host.begin(std::chrono::steady_clock::now());
   for (std::uint64_t step = 0; step <= 5; ++step) {
     EXPECT_FALSE(host.done());
@@ -137,7 +137,7 @@ TEST_F(HostFixture, RunsDueComponentsAndAcknowledgesEveryTick) {
 
 TEST_F(HostFixture, TicksOfOtherRunsAreIgnored) {
   add_slot(1);
-  LockstepHost host(run, options, slots);
+  LockstepHost host(run, options, slots, *run.bus);
   host.begin(std::chrono::steady_clock::now());
   tick(0, 8);
   EXPECT_FALSE(host.step());
@@ -147,7 +147,7 @@ TEST_F(HostFixture, TicksOfOtherRunsAreIgnored) {
 
 TEST_F(HostFixture, ATickWithAnotherStepIsAnError) {
   add_slot(1);
-  LockstepHost host(run, options, slots);
+  LockstepHost host(run, options, slots, *run.bus);
   host.begin(std::chrono::steady_clock::now());
   tick(0, 9, 0.02);
   try {
@@ -162,7 +162,7 @@ TEST_F(HostFixture, ATickWithAnotherStepIsAnError) {
 TEST_F(HostFixture, NoTickTimesOut) {
   add_slot(1);
   options.start_timeout_s = 0.05;
-  LockstepHost host(run, options, slots);
+  LockstepHost host(run, options, slots, *run.bus);
   host.begin(std::chrono::steady_clock::now());
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   try {
@@ -177,7 +177,7 @@ TEST_F(HostFixture, MissingInputTimesOutNamingComponentStepAndTopic) {
   host_detail::ComponentSlot& slot = add_slot(1);
   slot.context->subscribe<idl::RobotState>("plant/state", Subscription::instances({1}));
   options.input_timeout_s = 0.05;
-  LockstepHost host(run, options, slots);
+  LockstepHost host(run, options, slots, *run.bus);
   host.begin(std::chrono::steady_clock::now());
   tick(0);
   EXPECT_TRUE(host.step());  // took the tick; the component waits
@@ -194,7 +194,7 @@ TEST_F(HostFixture, MissingInputTimesOutNamingComponentStepAndTopic) {
 
 TEST_F(HostFixture, FailureIsAcknowledgedWithItsReason) {
   add_slot(1);
-  LockstepHost host(run, options, slots);
+  LockstepHost host(run, options, slots, *run.bus);
   host.begin(std::chrono::steady_clock::now());
   tick(0);
   host.step();
@@ -214,7 +214,7 @@ TEST_F(HostFixture, FailureReportIsAcknowledgedBeforeReturning) {
   add_slot(1);
   CallLogBus logged(bus);
   run.bus = &logged;
-  LockstepHost host(run, options, slots);
+  LockstepHost host(run, options, slots, *run.bus);
   host.begin(std::chrono::steady_clock::now());
   tick(0);
   host.step();

@@ -33,5 +33,20 @@ TEST(ParticipantPtr, AThrowAfterCreationDeletesTheEntitiesAndTheParticipant) {
   EXPECT_EQ(dds::DomainParticipantFactory::get_instance()->lookup_participant(kDomain), nullptr);
 }
 
+// exit_now_if_dds_is_closed() ends the process early only when this count says that every
+// participant is deleted: it must follow creation and deletion exactly.
+TEST(ParticipantPtr, LiveParticipantsCountsCreationAndDeletion) {
+  const int before = live_participants();
+  {
+    ParticipantPtr participant =
+        create_participant(kDomain, dds::PARTICIPANT_QOS_DEFAULT, nullptr, dds::StatusMask::none(), "default");
+    EXPECT_EQ(live_participants(), before + 1);
+    ParticipantPtr second =
+        create_participant(kDomain, dds::PARTICIPANT_QOS_DEFAULT, nullptr, dds::StatusMask::none(), "default");
+    EXPECT_EQ(live_participants(), before + 2);
+  }
+  EXPECT_EQ(live_participants(), before);
+}
+
 }  // namespace
 }  // namespace robodds
