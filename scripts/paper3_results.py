@@ -6,13 +6,14 @@
 interval (Student t); prints markdown tables on stdout, every run's CSVs and summary.json stay
 under OUT, the per-run metrics in OUT/results.json.
 
-  scripts/paper3_results.py [--out DIR] [--seeds N] [--domains 0,1] [--parts LIST] [--check]   (needs a build)
+  scripts/paper3_results.py [--out DIR] [--seeds N] [--domains 0,1] [--parts LIST] [--check] [--reuse]   (needs a build)
 
 --parts: comma-separated subset of table1 (every side x window), sides (w 30 only, the three
 sides), windows (side 0.5: w 5 and 80), table2, nlos, ablation; default all. --check: exit 1
 naming every acceptance figure that is missed (among the parts run)."""
 import argparse
 import concurrent.futures
+import csv
 import json
 import math
 import os
@@ -62,10 +63,14 @@ def exp1a(name, out_dir, side=0.5, window=30, uwb=None, estimator=None):
     return variant("paper3_exp1a", name, out_dir, {"uwb": uwb_params, "estimator": est_params})
 
 
-def run(job, out_dir, domain):
-    """One `robodds run` (lockstep, co-located); returns its summary.json or None."""
+def run(job, out_dir, domain, reuse=False):
+    """One `robodds run` (lockstep, co-located); returns its summary.json or None. With `reuse`, a
+    run whose summary.json says completed is read, not run again."""
     label, scenario, seed = job
     out = os.path.join(out_dir, label)
+    summary = os.path.join(out, "summary.json")
+    if reuse and os.path.exists(summary) and json.load(open(summary)).get("status") == "completed":
+        return json.load(open(summary))
     cmd = [ROBODDS, "run", scenario, "--out", out, "--domain", str(domain), "--no-plots", "--seed", str(seed)]
     with open(out + ".log", "w") as f:
         code = subprocess.call(cmd, stdout=f, stderr=subprocess.STDOUT, timeout=900)
@@ -93,6 +98,7 @@ def main(argv):
     ap.add_argument("--domains", default="0,1")
     ap.add_argument("--parts", default="table1,table2,nlos,ablation")
     ap.add_argument("--check", action="store_true")
+    ap.add_argument("--reuse", action="store_true", help="read the runs already completed under OUT instead of running them again")
     args = ap.parse_args(argv[1:])
     os.makedirs(args.out, exist_ok=True)
     domains = [int(d) for d in args.domains.split(",")]
@@ -128,7 +134,7 @@ def main(argv):
         # One chain of jobs per domain: two runs at once never share a domain.
         def chain(slot):
             for i in range(slot, len(jobs), len(domains)):
-                results[jobs[i][0]] = run(jobs[i], args.out, domains[slot])
+                results[jobs[i][0]] = run(jobs[i], args.out, domains[slot], args.reuse)
         list(pool.map(chain, range(len(domains))))
     failures = ["run %s failed (log: %s.log)" % (label, os.path.join(args.out, label)) for label, s in results.items() if s is None]
     if failures:
@@ -137,8 +143,32 @@ def main(argv):
     json.dump({label: s["metrics"] for label, s in results.items()}, open(os.path.join(args.out, "results.json"), "w"),
               indent=1, sort_keys=True)
 
+    def all_solves_error(label):
+        """Mean position error (m) of every eq. (1) solve from t >= 20 s, valid or not (suspect
+        solves are published with their best fit; epochs without a solve are all zeros)."""
+        total, n = 0.0, 0
+        with open(os.path.join(args.out, label, "estimate_relative_pose_uwb.csv")) as f:
+            for row in csv.DictReader(f):
+                x, y, theta = float(row["x"]), float(row["y"]), float(row["theta"])
+                if float(row["t_s"]) < 20.0 or (x == 0.0 and y == 0.0 and theta == 0.0):
+                    continue
+                total += math.hypot(x - float(row["true_x"]), y - float(row["true_y"]))
+                n += 1
+        return total / n
+
+    all_solves = {}
+    for config in ("exp1a_s0.5_w30", "nlos_plain", "nlos_huber"):
+        if config in configs:
+            all_solves[config] = mean_ci([all_solves_error("%s_seed%d" % (config, s)) for s in seeds])
+
     def values(config, stage, key):
         return [results["%s_seed%d" % (config, s)]["metrics"]["stages"][stage][key] for s in seeds]
+
+    def coverage(config, stage):
+        """Share of the epochs after metrics_after_s with a valid estimate, over the seeds."""
+        valid = sum(values(config, stage, "epochs"))
+        invalid = sum(values(config, stage, "invalid_epochs"))
+        return valid / (valid + invalid) if valid + invalid else 0.0
 
     def stat(config, stage, key="position_error_m_mean"):
         return mean_ci(values(config, stage, key))[0]
@@ -183,11 +213,13 @@ def main(argv):
         print()
         print("### Non-line-of-sight ranges (p = 0.02, excess 0.2-1.5 m), side 0.5 m, w = 30")
         print()
-        print("| eq. (1) loss | UWB only | window | PF |")
-        print("|---|---|---|---|")
+        print("| eq. (1) loss | UWB only, every solve | UWB only, valid solves | valid | window | PF |")
+        print("|---|---|---|---:|---|---|")
         for title, config in (("clean ranges, loss none", "exp1a_s0.5_w30"), ("NLOS, loss none (the paper)", "nlos_plain"),
                               ("NLOS, Huber 0.15 m", "nlos_huber")):
-            print("| %s | %s | %s | %s |" % (title, cell(config, "uwb"), cell(config, "window"), cell(config, "pf")))
+            p, pc = all_solves[config]
+            print("| %s | %.3f ± %.3f m | %s | %.1f %% | %s | %s |" % (title, p, pc, cell(config, "uwb"), 100 * coverage(config, "uwb"),
+                                                                      cell(config, "window"), cell(config, "pf")))
     if "white_only" in configs:
         print()
         print("### Ablation: white-only vs structured range noise, side 0.5 m, w = 30")
@@ -206,11 +238,20 @@ def main(argv):
 
     def within(config, stage, key, target, tol, what):
         v = stat(config, stage, key)
-        need(abs(v - target) <= tol * target, "%s %s.%s = %.3f, required %.3f +- %d %%" % (what, stage, key, v, target, tol * 100))
+        side = "below" if v < target else "above"
+        need(abs(v - target) <= tol * target,
+             "%s %s.%s = %.3f is %s the band: required %.3f +- %d %%" % (what, stage, key, v, side, target, tol * 100))
+
 
     P, H = "position_error_m_mean", "heading_error_deg_mean"
+    # A stage scored on few epochs could pass any band: every clean run must keep (nearly) all.
+    for c in [c for c in configs if c.startswith("exp")]:
+        for stage in ("uwb", "window", "pf", "pf_baseline"):
+            need(coverage(c, stage) >= 0.95, "%s: %s valid in only %.1f %% of the epochs" % (c, stage, 100 * coverage(c, stage)))
     if "exp1a_s0.5_w30" in configs:
         c = "exp1a_s0.5_w30"
+        within(c, "odometry", P, 0.79, 0.30, "exp 1-a")
+        within(c, "odometry", H, 6.27, 0.30, "exp 1-a")
         within(c, "uwb", P, 0.39, 0.15, "exp 1-a")
         within(c, "uwb", H, 5.27, 0.15, "exp 1-a")
         within(c, "window", P, 0.33, 0.20, "exp 1-a")
@@ -244,9 +285,12 @@ def main(argv):
         need(w5 >= 0.98 * w30 and w30 >= 0.98 * w80, "window error w5 >= w30 >= w80 (within 2 %%) does not hold: %.3f, %.3f, %.3f"
              % (w5, w30, w80))
     if "nlos_plain" in configs:
-        clean, plain, huber = (stat(c, "uwb") for c in ("exp1a_s0.5_w30", "nlos_plain", "nlos_huber"))
-        need(huber <= 1.1 * clean, "NLOS: Huber %.3f > 1.1 x clean %.3f" % (huber, clean))
-        need(plain >= 1.2 * clean, "NLOS: plain %.3f < 1.2 x clean %.3f" % (plain, clean))
+        # Every solve, as the paper's plain least squares would publish it: our tracker flags the
+        # epochs NLOS ranges spoil (suspect, not valid), which hides most of the damage from the
+        # valid-only figure; the check is on all solves, the valid-only figures are in the table.
+        clean, plain, huber = (all_solves[c][0] for c in ("exp1a_s0.5_w30", "nlos_plain", "nlos_huber"))
+        need(huber <= 1.1 * clean, "NLOS: Huber %.3f > 1.1 x clean %.3f (every solve)" % (huber, clean))
+        need(plain >= 1.2 * clean, "NLOS: plain %.3f < 1.2 x clean %.3f (every solve)" % (plain, clean))
     if failures:
         print("\nMISSED:\n" + "\n".join(failures), file=sys.stderr)
         return 1 if args.check else 0

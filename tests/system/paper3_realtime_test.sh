@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Paper 3 beyond the paper: every robot's estimator in its own process, in REAL time (wall-clock
-# timers, latest-sample inputs), UWB at the full 50 Hz with 20 % of the frames lost; the errors of
-# each stage that fuses (window, pf) stay within 20 % of the same deployment's lockstep figures
-# (and valid estimates keep coming). Argument after the domain: duration (s).
+# timers, latest-sample inputs), UWB at the full 50 Hz with 30 % of the frames lost (the top of issue
+# 11's 10-30 %); the position and heading errors of every UWB stage (uwb, window, pf, pf_baseline)
+# stay within 20 % of the same deployment's lockstep figures, and valid estimates keep coming.
+# Argument after the domain: duration (s).
 source "$(dirname "$0")/../integration/lib.sh"
-python3 "$(dirname "$0")/paper3_per_robot.py" "$SRC/sim/scenarios/paper3_exp2.yaml" "$WORK/per_robot.yaml" "$4" 0.2 \
+python3 "$(dirname "$0")/paper3_per_robot.py" "$SRC/sim/scenarios/paper3_exp2.yaml" "$WORK/per_robot.yaml" "$4" 0.3 \
   || fail "could not write the per-robot scenario"
 timeout -k 5 300 "$ROBODDS" run "$WORK/per_robot.yaml" --out "$WORK/lockstep" --domain "$DOMAIN" --no-plots >"$WORK/lockstep.log" 2>&1 \
   || fail "lockstep run failed: $(tail -5 "$WORK/lockstep.log")"
@@ -20,11 +21,10 @@ for stage in ("uwb", "window", "pf", "pf_baseline"):
           f"real time {b['position_error_m_mean']:.3f} m / {b['heading_error_deg_mean']:.2f} deg ({b['epochs']} epochs)")
     if b["epochs"] < 0.5 * a["epochs"]:
         failed.append(f"{stage}: {b['epochs']} valid epochs in real time against {a['epochs']} in lockstep")
-    if stage in ("window", "pf"):
-        for key in ("position_error_m_mean", "heading_error_deg_mean"):
-            if b[key] > 1.2 * a[key]:
-                failed.append(f"{stage}.{key}: real time {b[key]:.3f} > 1.2 x lockstep {a[key]:.3f}")
+    for key in ("position_error_m_mean", "heading_error_deg_mean"):
+        if b[key] > 1.2 * a[key]:
+            failed.append(f"{stage}.{key}: real time {b[key]:.3f} > 1.2 x lockstep {a[key]:.3f}")
 if failed:
     sys.exit("FAIL: " + "; ".join(failed))
 PY
-echo "ok: paper 3 in real time, one process per robot, 20 % UWB frames lost: window and pf within 20 % of lockstep"
+echo "ok: paper 3 in real time, one process per robot, 30 % UWB frames lost: every UWB stage within 20 % of lockstep"
