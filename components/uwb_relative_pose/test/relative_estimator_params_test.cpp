@@ -5,17 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/validation_error.hpp"
+
 namespace robodds::uwb {
 namespace {
 
-std::string validation_error(const RelativeEstimatorParams& p) {
-  try {
-    p.validate();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  return "";
-}
+using test_support::validation_error;
 
 TEST(RelativeEstimatorParams, DefaultsAreIssue11sValues) {
   const RelativeEstimatorParams p;

@@ -56,6 +56,23 @@ model::Pose2 world(std::uint32_t robot) {
 
 std::uint64_t key(std::uint32_t robot, std::uint32_t peer) { return (std::uint64_t{robot} << 32) | peer; }
 
+/// The UwbRanges sample of `ranges` (K x L) from `robot` to `peer`, row major.
+idl::UwbRanges ranges_sample(std::uint32_t robot, std::uint32_t peer, const Eigen::MatrixXd& ranges) {
+  idl::UwbRanges m;
+  m.robot_id(robot);
+  m.peer_id(peer);
+  m.rows(static_cast<std::uint32_t>(ranges.rows()));
+  m.cols(static_cast<std::uint32_t>(ranges.cols()));
+  std::vector<double> flat;
+  for (Eigen::Index k = 0; k < ranges.rows(); ++k) {
+    for (Eigen::Index l = 0; l < ranges.cols(); ++l) {
+      flat.push_back(ranges(k, l));
+    }
+  }
+  m.ranges(flat);
+  return m;
+}
+
 /// Feeds odometry of standing robots every 5 steps (10 Hz) and exact ranges from robot 1 to its
 /// peers, and from robot 2 to robot 3 (the peers' link), every step (50 Hz) while `frames(step)`
 /// says so.
@@ -79,16 +96,7 @@ void feed(NodeHarness& h, std::function<bool(std::uint64_t)> frames, std::functi
       m.peer_id(peer);
       if (frames(step)) {
         const model::UwbArray a = model::square_array(0.5);
-        const Eigen::MatrixXd r = model::array_ranges(a, world(robot), a, world(peer));
-        m.rows(4);
-        m.cols(4);
-        std::vector<double> flat;
-        for (int k = 0; k < 4; ++k) {
-          for (int l = 0; l < 4; ++l) {
-            flat.push_back(r(k, l));
-          }
-        }
-        m.ranges(flat);
+        m = ranges_sample(robot, peer, model::array_ranges(a, world(robot), a, world(peer)));
         if (edit) {
           m = edit(m, step);
         }
@@ -251,20 +259,8 @@ components:
     }
     for (const auto& [robot, peer] : {std::pair{1u, 2u}, std::pair{1u, 3u}, std::pair{2u, 1u}, std::pair{2u, 3u}}) {
       const model::UwbArray a = model::square_array(0.5);
-      const Eigen::MatrixXd r = model::array_ranges(a, pose_at(robot, step), a, pose_at(peer, step));
-      idl::UwbRanges m;
-      m.robot_id(robot);
-      m.peer_id(peer);
-      m.rows(4);
-      m.cols(4);
-      std::vector<double> flat;
-      for (int k = 0; k < 4; ++k) {
-        for (int l = 0; l < 4; ++l) {
-          flat.push_back(r(k, l));
-        }
-      }
-      m.ranges(flat);
-      h.publish("sensor/uwb", m, step, step + 1);
+      h.publish("sensor/uwb", ranges_sample(robot, peer, model::array_ranges(a, pose_at(robot, step), a, pose_at(peer, step))), step,
+                step + 1);
     }
   });
   std::vector<const std::vector<idl::RelativePoseEstimate>*> out;
