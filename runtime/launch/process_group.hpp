@@ -16,7 +16,8 @@ class ProcessGroup {
   /// Starts `argv` as the process of group `name`; argv[0] is an executable path, or a name
   /// looked up in $PATH.
   void spawn(const std::string& name, const std::vector<std::string>& argv);
-  /// Throws RunError naming the group if a child has exited before being expected to.
+  /// Throws RunError naming the group if a child has failed (non-zero exit or a signal) while the
+  /// run goes on; a child that ended with code 0 finished its part and is only reaped.
   void check_alive();
   /// Reaps children that exited; throws RunError naming a group that failed (non-zero exit or
   /// signal). Returns how many are still running.
