@@ -21,7 +21,7 @@ OdometryReading measure_odometry(const model::Twist& true_twist, double dt_s,
   const double wheel_var = std_mps * std_mps;
   OdometryReading reading;
   reading.v = measured.v;
-  reading.omega = measured.omega;
+  reading.omega = measured.omega + params.turn_rate_bias_radps;
   reading.dt_s = dt_s;
   reading.var_v = 0.5 * wheel_var;
   reading.var_omega = 2.0 * wheel_var / (params.wheel_base_m * params.wheel_base_m);

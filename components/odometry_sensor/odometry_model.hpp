@@ -1,7 +1,7 @@
 #pragma once
 // Measurement model of wheel odometry: the true body twist is split into wheel rim speeds, each
 // wheel's speed gets its scale error (slip) and independent white Gaussian noise, and the
-// result is turned back into a body twist.
+// result is turned back into a body twist; a constant turn-rate bias (gyro-like) is added last.
 
 #include "common/model/twist.hpp"
 #include "common/random.hpp"
@@ -19,8 +19,8 @@ struct OdometryReading {
 };
 
 /// Samples one reading of `true_twist`. The claimed variances describe the white wheel noise
-/// only (v and omega errors from it are uncorrelated); the slip bias is deliberately not
-/// included, as a real odometry does not know its own calibration error. Always draws exactly
+/// only (v and omega errors from it are uncorrelated); the slip and turn-rate biases are deliberately
+/// not included, as a real odometry does not know its own calibration error. Always draws exactly
 /// two standard normals from `engine` (left wheel first, then right). `params` must have
 /// passed validate().
 OdometryReading measure_odometry(const model::Twist& true_twist, double dt_s,

@@ -20,6 +20,9 @@ struct OdometryParams {
   /// not cover.
   double left_slip = 0.0;
   double right_slip = 0.0;
+  /// A constant error added to the measured turn rate (like a gyro's bias), on top of what the
+  /// wheels give; like the slips, not covered by the reading's claimed variance.
+  double turn_rate_bias_radps = 0.0;
 
   /// Throws std::invalid_argument "key: reason (got value)" for the first bad field; the key is
   /// the field name so the runtime can point at the parameter file that set it.

@@ -13,6 +13,11 @@ PositionFix measure_position(const model::Pose2& truth, const PositionSensorPara
   PositionFix fix;
   fix.x = truth.x + std::sqrt(params.noise_var_x_m2) * unit_noise_x;
   fix.y = truth.y + std::sqrt(params.noise_var_y_m2) * unit_noise_y;
+  // The outlier draw comes after the noise and only when outliers are on, so a configuration
+  // without them keeps the stream (and every output) of the sensor without the feature.
+  if (params.outlier_probability > 0.0 && uniform01(engine) < params.outlier_probability) {
+    fix.x += params.outlier_offset_m;
+  }
   fix.var_x = params.noise_var_x_m2;
   fix.var_y = params.noise_var_y_m2;
   return fix;

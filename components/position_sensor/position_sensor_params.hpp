@@ -13,6 +13,11 @@ struct PositionSensorParams {
   /// Of independent zero-mean Gaussian noise on each world axis.
   double noise_var_x_m2 = 2.28;
   double noise_var_y_m2 = 2.28;
+  /// Outliers (a multipath-like fault): with this probability a fix is moved by
+  /// outlier_offset_m along world +x (a negative offset moves it along -x), on top of its noise.
+  /// 0 = none; the fix's claimed variance does not change.
+  double outlier_probability = 0.0;
+  double outlier_offset_m = 30.0;
 
   /// Throws std::invalid_argument "key: reason (got value)" for the first bad field; the key is
   /// the field name so the runtime can point at the parameter file that set it.

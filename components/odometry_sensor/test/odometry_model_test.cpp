@@ -183,5 +183,27 @@ TEST(OdometryModel, SlipBiasMatchesPredictionUnderNoise) {
   EXPECT_GT(predicted_v_bias, 0.0);
 }
 
+TEST(OdometryModel, TurnRateBiasShiftsOmegaOnlyWhateverTheMotion) {
+  OdometryParams params = noiseless();
+  params.turn_rate_bias_radps = 0.0175;  // 1 deg/s
+  RandomEngine engine(6);
+  for (const model::Twist truth : {model::Twist{0.0, 0.0}, model::Twist{1.0, 0.0}, model::Twist{0.4, -0.7}}) {
+    const OdometryReading reading = measure_odometry(truth, 0.02, params, engine);
+    EXPECT_NEAR(reading.v, truth.v, 1e-15);
+    EXPECT_NEAR(reading.omega, truth.omega + 0.0175, 1e-14);  // also at standstill, like a gyro
+    EXPECT_EQ(reading.var_omega, 0.0);                         // the bias is not claimed
+  }
+}
+
+TEST(OdometryModel, TurnRateBiasDrawsNothingExtra) {
+  OdometryParams biased;
+  biased.turn_rate_bias_radps = -0.1;
+  RandomEngine a(9);
+  RandomEngine b(9);
+  measure_odometry(model::Twist{}, 0.02, OdometryParams{}, a);
+  measure_odometry(model::Twist{}, 0.02, biased, b);
+  EXPECT_EQ(a, b);
+}
+
 }  // namespace
 }  // namespace robodds::odometry_sensor

@@ -28,6 +28,7 @@ TEST(OdometryParams, DefaultsAreValid) {
   EXPECT_EQ(params.wheel_speed_noise_std_mps, 0.02);
   EXPECT_EQ(params.left_slip, 0.0);
   EXPECT_EQ(params.right_slip, 0.0);
+  EXPECT_EQ(params.turn_rate_bias_radps, 0.0);
 }
 
 TEST(OdometryParams, AcceptsZeroNoiseAndSlipsInsideTheRange) {
@@ -88,6 +89,17 @@ TEST(OdometryParams, RejectsRightSlipOutsideOpenRange) {
   OdometryParams params;
   params.right_slip = kNan;
   EXPECT_EQ(validation_error(params), "right_slip: must be in (-0.5, 0.5) (got nan)");
+}
+
+TEST(OdometryParams, TurnRateBiasMayHaveEitherSignButMustBeFinite) {
+  OdometryParams params;
+  params.turn_rate_bias_radps = -0.02;
+  EXPECT_NO_THROW(params.validate());
+  for (double bad : {kNan, kInf, -kInf}) {
+    params.turn_rate_bias_radps = bad;
+    const std::string message = validation_error(params);
+    EXPECT_TRUE(starts_with(message, "turn_rate_bias_radps: must be finite (got ")) << message;
+  }
 }
 
 }  // namespace

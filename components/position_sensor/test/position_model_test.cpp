@@ -120,5 +120,46 @@ TEST(PositionModel, DrawsTwoNormalsPerFixWhateverTheVariance) {
   EXPECT_EQ(a, b);
 }
 
+TEST(PositionModel, OutliersHaveTheConfiguredRateAndOffsetAlongPlusX) {
+  PositionSensorParams params;
+  params.noise_var_x_m2 = 0.0;
+  params.noise_var_y_m2 = 0.0;
+  params.outlier_probability = 0.05;
+  params.outlier_offset_m = 30.0;
+  RandomEngine engine(derive_seed(3, "position_sensor/outliers"));
+  const model::Pose2 truth{4.0, -2.0, 0.5};
+  int outliers = 0;
+  for (int i = 0; i < kSamples; ++i) {
+    const PositionFix fix = measure_position(truth, params, engine);
+    ASSERT_EQ(fix.y, truth.y);
+    if (fix.x != truth.x) {
+      ASSERT_EQ(fix.x, truth.x + 30.0);
+      ++outliers;
+    }
+    ASSERT_EQ(fix.var_x, 0.0);  // an outlier does not announce itself
+  }
+  // Binomial: 5 standard errors.
+  const double p = params.outlier_probability;
+  EXPECT_NEAR(outliers / static_cast<double>(kSamples), p, 5.0 * std::sqrt(p * (1.0 - p) / kSamples));
+}
+
+TEST(PositionModel, WithoutOutliersTheStreamIsThatOfTheSensorWithoutTheFeature) {
+  // outlier_probability 0 draws no uniform: old scenarios keep their exact outputs.
+  PositionSensorParams off;
+  off.outlier_offset_m = 100.0;
+  RandomEngine a(9);
+  RandomEngine b(9);
+  measure_position(model::Pose2{}, off, a);
+  standard_normal(b);
+  standard_normal(b);
+  EXPECT_EQ(a, b);
+  PositionSensorParams on = off;
+  on.outlier_probability = 0.5;
+  measure_position(model::Pose2{}, on, a);
+  standard_normal(b);
+  standard_normal(b);
+  EXPECT_NE(a, b);  // ... and with outliers on, one uniform more
+}
+
 }  // namespace
 }  // namespace robodds::position_sensor

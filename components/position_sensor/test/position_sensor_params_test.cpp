@@ -26,6 +26,7 @@ TEST(PositionSensorParams, DefaultsAreValidAndMatchPaper) {
   EXPECT_EQ(params.rate_hz, 10.0);
   EXPECT_EQ(params.noise_var_x_m2, 2.28);
   EXPECT_EQ(params.noise_var_y_m2, 2.28);
+  EXPECT_EQ(params.outlier_probability, 0.0);  // no outliers unless asked for
 }
 
 TEST(PositionSensorParams, ZeroVarianceIsValid) {
@@ -69,6 +70,27 @@ TEST(PositionSensorParams, NanIsReportedAsNan) {
   PositionSensorParams params;
   params.noise_var_y_m2 = kNan;
   EXPECT_EQ(validation_error(params), "noise_var_y_m2: must be >= 0 and finite (got nan)");
+}
+
+TEST(PositionSensorParams, OutlierProbabilityIsInZeroToOneExcludingOne) {
+  PositionSensorParams params;
+  params.outlier_probability = 0.05;
+  params.outlier_offset_m = -100.0;
+  EXPECT_NO_THROW(params.validate());
+  for (double bad : {-0.01, 1.0, kNan}) {
+    params.outlier_probability = bad;
+    const std::string message = validation_error(params);
+    EXPECT_TRUE(starts_with(message, "outlier_probability: must be in [0, 1)")) << message;
+  }
+}
+
+TEST(PositionSensorParams, OutlierOffsetMustBeFinite) {
+  PositionSensorParams params;
+  for (double bad : {kNan, kInf}) {
+    params.outlier_offset_m = bad;
+    const std::string message = validation_error(params);
+    EXPECT_TRUE(starts_with(message, "outlier_offset_m: must be finite")) << message;
+  }
 }
 
 }  // namespace
