@@ -1,6 +1,8 @@
 #include "components/pf_estimator/particle_filter.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -21,14 +23,34 @@ void require_finite_input(const char* function, const char* name, double value) 
   }
 }
 
+/// Median of the first n (1..size) values; the upper median for even n. No allocation.
+template <std::size_t N>
+double median_of(std::array<double, N> values, std::size_t n) {
+  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(n / 2);
+  std::nth_element(values.begin(), middle, values.begin() + static_cast<std::ptrdiff_t>(n));
+  return *middle;
+}
+
 }  // namespace
 
 ParticleFilter::ParticleFilter(const PfParams& params, std::uint64_t seed)
-    : params_(params), engine_(seed), num_particles_(0), last_update_ess_(0.0) {
+    : params_(params),
+      engine_(seed),
+      num_particles_(0),
+      last_update_ess_(0.0),
+      gate_nis_(std::numeric_limits<double>::infinity()),
+      monitor_(1.0, 1.0, 0.0) {
   params_.validate();
+  if (params_.gate_probability > 0.0) {
+    gate_nis_ = chi_square_2dof_quantile(params_.gate_probability);
+  }
+  monitor_ = InconsistencyMonitor(params_.recovery_window_fixes, params_.recovery_rejected_share,
+                                  params_.recovery_nis);
   num_particles_ = params_.num_particles;
   particles_.resize(num_particles_);
   resample_buffer_.resize(num_particles_);
+  turn_slip_ = Eigen::ArrayXd::Zero(num_particles_);
+  turn_slip_buffer_.resize(num_particles_);
   ancestor_indices_.reserve(static_cast<std::size_t>(num_particles_));
   weights_.resize(num_particles_);
   log_weights_.resize(num_particles_);
@@ -65,8 +87,10 @@ void ParticleFilter::initialize_uniform() {
     particles_.x[i] = params_.init_area_min_x + width * uniform01(engine_);
     particles_.y[i] = params_.init_area_min_y + height * uniform01(engine_);
     particles_.theta[i] = draw_heading();
+    turn_slip_[i] = noise(params_.turn_slip_std_radpm);
   }
   reset_weights_to_uniform();
+  monitor_.reset();
   initialized_ = true;
 }
 
@@ -77,9 +101,26 @@ void ParticleFilter::initialize_around(double x_m, double y_m) {
     particles_.x[i] = x_m + params_.init_fix_std_m * standard_normal(engine_);
     particles_.y[i] = y_m + params_.init_fix_std_m * standard_normal(engine_);
     particles_.theta[i] = draw_heading();
+    turn_slip_[i] = noise(params_.turn_slip_std_radpm);
   }
   reset_weights_to_uniform();
+  monitor_.reset();
   initialized_ = true;
+}
+
+void ParticleFilter::recover(double z_x_m, double z_y_m) {
+  require_finite_input("recover", "z_x_m", z_x_m);
+  require_finite_input("recover", "z_y_m", z_y_m);
+  for (Eigen::Index i = 0; i < num_particles_; ++i) {
+    particles_.x[i] = z_x_m + params_.init_fix_std_m * standard_normal(engine_);
+    particles_.y[i] = z_y_m + params_.init_fix_std_m * standard_normal(engine_);
+    if (uniform01(engine_) < params_.recovery_uniform_heading_fraction) {
+      particles_.theta[i] = kPi - 2.0 * kPi * uniform01(engine_);
+    }
+  }
+  reset_weights_to_uniform();
+  monitor_.reset();
+  ++recovery_count_;
 }
 
 void ParticleFilter::predict(double v_mps, double omega_radps, double dt_s) {
@@ -95,9 +136,14 @@ void ParticleFilter::predict(double v_mps, double omega_radps, double dt_s) {
     return;
   }
   const bool diffuse_theta = params_.process_theta_std_rad > 0.0;
+  // Wheel-like odometry errs in proportion to the wheels' motion: almost no turn noise at
+  // standstill, where nothing observes the heading.
+  const double omega_std = params_.odom_omega_std_radps + params_.odom_omega_std_per_mps * std::abs(v_mps) +
+                           params_.odom_omega_std_fraction * std::abs(omega_radps);
+  const double slip_walk_std = params_.turn_slip_walk_std_radpm * std::sqrt(std::abs(v_mps) * dt_s);
   for (Eigen::Index i = 0; i < num_particles_; ++i) {
     const model::Twist noisy_odometry{v_mps + noise(params_.odom_v_std_mps),
-                                      omega_radps + noise(params_.odom_omega_std_radps)};
+                                      omega_radps - turn_slip_[i] * v_mps + noise(omega_std)};
     const model::Pose2 moved = model::integrate_exact(
         {particles_.x[i], particles_.y[i], particles_.theta[i]}, noisy_odometry, dt_s);
     particles_.x[i] = moved.x + noise(params_.process_pos_std_m);
@@ -106,6 +152,7 @@ void ParticleFilter::predict(double v_mps, double omega_radps, double dt_s) {
     particles_.theta[i] = diffuse_theta
                               ? wrap_angle(moved.theta + noise(params_.process_theta_std_rad))
                               : moved.theta;
+    turn_slip_[i] += noise(slip_walk_std);
   }
 }
 
@@ -117,6 +164,26 @@ void ParticleFilter::update(double z_x_m, double z_y_m) {
     // likelihood would count it twice.
     initialize_around(z_x_m, z_y_m);
     last_update_ess_ = static_cast<double>(num_particles_);
+    last_update_resampled_ = false;
+    return;
+  }
+  recent_x_[recent_count_ % kRecoveryFixes] = z_x_m;
+  recent_y_[recent_count_ % kRecoveryFixes] = z_y_m;
+  ++recent_count_;
+  last_update_nis_ = position_fix_nis(particles_, weights_, z_x_m, z_y_m, params_.measurement_std_m);
+  last_update_rejected_ = last_update_nis_ > gate_nis_;
+  const bool lost = monitor_.add(last_update_nis_, last_update_rejected_);
+  if (params_.recovery_nis > 0.0 && lost) {
+    // Fixes keep disagreeing with the cloud: it is lost. Start again around the last fixes.
+    const std::size_t n = std::min(recent_count_, kRecoveryFixes);
+    recover(median_of(recent_x_, n), median_of(recent_y_, n));
+    last_update_ess_ = static_cast<double>(num_particles_);
+    last_update_resampled_ = false;
+    return;
+  }
+  if (last_update_rejected_) {
+    ++rejected_count_;
+    last_update_ess_ = pf::effective_sample_size(weights_);
     last_update_resampled_ = false;
     return;
   }
@@ -134,11 +201,19 @@ void ParticleFilter::update(double z_x_m, double z_y_m) {
 void ParticleFilter::resample() {
   const bool regularize = params_.regularization_scale > 0.0;
   Eigen::Matrix3d jitter_sqrt = Eigen::Matrix3d::Zero();
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  double shrink = 1.0;
+  double slip_mean = 0.0;
+  double slip_jitter_std = 0.0;
   if (regularize) {
     // Spread of the weighted cloud *before* resampling: the density the copies are drawn from.
-    jitter_sqrt = kernel_square_root(
-        weighted_pose_estimate(particles_, weights_).covariance,
-        params_.regularization_scale * optimal_kernel_bandwidth(num_particles_));
+    const PoseEstimate cloud = weighted_pose_estimate(particles_, weights_);
+    const double bandwidth = params_.regularization_scale * optimal_kernel_bandwidth(num_particles_);
+    jitter_sqrt = kernel_square_root(cloud.covariance, bandwidth);
+    mean = cloud.mean;
+    shrink = kernel_shrinkage(bandwidth);
+    slip_mean = (weights_ * turn_slip_).sum();
+    slip_jitter_std = bandwidth * std::sqrt((weights_ * (turn_slip_ - slip_mean).square()).sum());
   }
   if (params_.resampling == ResamplingScheme::kResidual) {
     residual_resample_into(weights_, engine_, ancestor_indices_);
@@ -151,19 +226,24 @@ void ParticleFilter::resample() {
     resample_buffer_.x[j] = particles_.x[ancestor];
     resample_buffer_.y[j] = particles_.y[ancestor];
     resample_buffer_.theta[j] = particles_.theta[ancestor];
+    turn_slip_buffer_[j] = turn_slip_[ancestor];
   }
   // Swapping dynamic Eigen arrays exchanges their buffers: no copy, no allocation.
   particles_.x.swap(resample_buffer_.x);
   particles_.y.swap(resample_buffer_.y);
   particles_.theta.swap(resample_buffer_.theta);
+  turn_slip_.swap(turn_slip_buffer_);
   if (regularize) {
+    // Shrink towards the mean, then jitter: the cloud keeps its covariance (regularization.hpp).
     for (Eigen::Index j = 0; j < num_particles_; ++j) {
       const Eigen::Vector3d unit_noise(standard_normal(engine_), standard_normal(engine_),
                                        standard_normal(engine_));
       const Eigen::Vector3d jitter = jitter_sqrt * unit_noise;
-      particles_.x[j] += jitter.x();
-      particles_.y[j] += jitter.y();
-      particles_.theta[j] = wrap_angle(particles_.theta[j] + jitter.z());
+      particles_.x[j] = mean.x() + shrink * (particles_.x[j] - mean.x()) + jitter.x();
+      particles_.y[j] = mean.y() + shrink * (particles_.y[j] - mean.y()) + jitter.y();
+      particles_.theta[j] =
+          wrap_angle(mean.z() + shrink * wrap_angle(particles_.theta[j] - mean.z()) + jitter.z());
+      turn_slip_[j] = slip_mean + shrink * (turn_slip_[j] - slip_mean) + noise(slip_jitter_std);
     }
   }
   reset_weights_to_uniform();
@@ -202,6 +282,7 @@ void ParticleFilter::set_particles(const ParticleSet& particles, const Eigen::Ar
   particles_.theta = particles.theta.unaryExpr([](double t) { return wrap_angle(t); });
   weights_ = weights / weights.sum();
   log_weights_ = weights_.log();
+  turn_slip_.setZero();
   initialized_ = true;
 }
 

@@ -3,6 +3,11 @@
 // position state [p_x, p_y] to the pose [x, y, theta] so the motion model can be driven by
 // odometry and the heading is learned from the fixes while the robot moves.
 //
+// Robustness (issue 12): every particle also carries a turn slip k (rad/m, see PfParams), the
+// turn-rate noise grows with the wheels' motion (none at standstill), each fix is checked against
+// the cloud (chi-square gate, consistency.hpp) and rejected as an outlier if it fails, and when
+// fixes keep disagreeing the cloud is redrawn around the latest fixes (recovery).
+//
 // Frames and units: world frame, x/y in m, theta in rad counter-clockwise from world +x,
 // wrapped to (-pi, pi]. Speeds in m/s and rad/s, time steps in s.
 //
@@ -10,6 +15,7 @@
 // an output is wanted. Not thread-safe; one instance per robot. All randomness comes from one
 // RandomEngine seeded in the constructor, so the same seed and inputs give bit-identical output.
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -17,6 +23,7 @@
 #include <Eigen/Core>
 
 #include "common/random.hpp"
+#include "components/pf_estimator/consistency.hpp"
 #include "components/pf_estimator/particle_set.hpp"
 #include "components/pf_estimator/pf_params.hpp"
 #include "components/pf_estimator/pose_estimate.hpp"
@@ -45,13 +52,17 @@ class ParticleFilter {
 
   /// Propagates every particle over dt_s with the measured odometry (v_mps forward, omega_radps
   /// counter-clockwise): each particle draws its own v + N(0, odom_v_std_mps^2) and
-  /// omega + N(0, odom_omega_std_radps^2), moves on the exact constant-(v, omega) arc, then gets
-  /// the additive process diffusion. dt_s == 0 changes nothing; before initialisation the call is
+  /// omega - k_i v + N(0, sigma_omega^2) (sigma_omega: see PfParams), moves on the exact
+  /// constant-(v, omega) arc, then gets the additive process diffusion; k_i walks with the
+  /// distance travelled. dt_s == 0 changes nothing; before initialisation the call is
   /// ignored (odometry without a pose carries no position information).
   /// Throws std::invalid_argument (state untouched) on non-finite input or dt_s < 0.
   void predict(double v_mps, double omega_radps, double dt_s);
 
-  /// Weights the particles with the position fix (z_x_m, z_y_m) (eq. 5, log space), normalises,
+  /// Checks the fix against the cloud first (gate_probability): an inconsistent fix is rejected
+  /// and changes nothing but the inconsistency monitor; when that says the filter is lost
+  /// (PfParams::recovery_nis) the cloud is redrawn around the last fixes (recover()). Otherwise:
+  /// weights the particles with the position fix (z_x_m, z_y_m) (eq. 5, log space), normalises,
   /// computes N_eff (eq. 6) and resamples when N_eff < resample_threshold (then jitters the
   /// copies if regularization_scale > 0, see regularization.hpp). Degenerate weights are
   /// reset to uniform. In kFirstFix mode the first fix initialises the cloud around itself
@@ -66,6 +77,25 @@ class ParticleFilter {
   bool last_update_resampled() const { return last_update_resampled_; }
   /// Number of resampling steps since construction.
   std::size_t resample_count() const { return resample_count_; }
+  /// d^2 of the last fix against the cloud (consistency.hpp); 0 before the first weighted fix.
+  double last_update_nis() const { return last_update_nis_; }
+  /// True if the last update() rejected its fix as inconsistent (outlier or lost filter).
+  bool last_update_rejected() const { return last_update_rejected_; }
+  std::size_t rejected_count() const { return rejected_count_; }
+  /// Number of recoveries (cloud redrawn around a fix) since construction.
+  std::size_t recovery_count() const { return recovery_count_; }
+  const InconsistencyMonitor& monitor() const { return monitor_; }
+
+  /// Fixes whose component-wise median centres a recovery.
+  static constexpr std::size_t kRecoveryFixes = 5;
+
+  /// Redraws every particle around (z_x_m, z_y_m) (std init_fix_std_m);
+  /// recovery_uniform_heading_fraction of them get a uniform heading, the rest keep their own
+  /// heading and turn slip; weights uniform. Called by update() on persistent inconsistency.
+  void recover(double z_x_m, double z_y_m);
+
+  /// Turn slip k of every particle (rad/m).
+  const Eigen::ArrayXd& turn_slips() const { return turn_slip_; }
 
   /// Weighted mean and covariance (eq. 7, circular mean for theta).
   /// Throws std::logic_error before initialisation.
@@ -76,7 +106,8 @@ class ParticleFilter {
   const Eigen::ArrayXd& weights() const { return weights_; }
 
   /// Replaces the particle set (sizes must equal M, values finite; theta is wrapped) and the
-  /// weights (finite, >= 0, positive sum; normalised here). For tests and state restore.
+  /// weights (finite, >= 0, positive sum; normalised here); every turn slip becomes 0. For tests
+  /// and state restore.
   /// Throws std::invalid_argument, leaving the state untouched, on bad input.
   void set_particles(const ParticleSet& particles, const Eigen::ArrayXd& weights);
 
@@ -92,16 +123,29 @@ class ParticleFilter {
   bool initialized_ = false;
 
   ParticleSet particles_;
+  Eigen::ArrayXd turn_slip_;    // rad/m, k of each particle (kept out of ParticleSet: pose only)
   Eigen::ArrayXd weights_;      // normalised
   Eigen::ArrayXd log_weights_;  // log(weights_), kept so tiny weights keep their ratios
 
   // Reused by resample() so the filter does not allocate after construction.
   ParticleSet resample_buffer_;
+  Eigen::ArrayXd turn_slip_buffer_;
   std::vector<std::size_t> ancestor_indices_;
 
   double last_update_ess_;
   bool last_update_resampled_ = false;
   std::size_t resample_count_ = 0;
+
+  double gate_nis_;  // +inf without a gate
+  InconsistencyMonitor monitor_;
+  double last_update_nis_ = 0.0;
+  bool last_update_rejected_ = false;
+  std::size_t rejected_count_ = 0;
+  std::size_t recovery_count_ = 0;
+  // The last kRecoveryFixes fixes (ring buffer), for the median a recovery is centred on.
+  std::array<double, kRecoveryFixes> recent_x_{};
+  std::array<double, kRecoveryFixes> recent_y_{};
+  std::size_t recent_count_ = 0;
 };
 
 }  // namespace robodds::pf

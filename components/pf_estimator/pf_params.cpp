@@ -5,6 +5,7 @@
 
 #include "common/number_text.hpp"
 #include "common/param_checks.hpp"
+#include "components/pf_estimator/consistency.hpp"
 
 namespace robodds::pf {
 namespace {
@@ -67,13 +68,31 @@ const params::ParamTable<PfParams>& pf_param_table() {
           .add("odom_v_std_mps", &PfParams::odom_v_std_mps, "m/s", non_negative(),
                "noise added to the odometry speed per particle and prediction")
           .add("odom_omega_std_radps", &PfParams::odom_omega_std_radps, "rad/s", non_negative(),
-               "noise added to the odometry turn rate per particle and prediction")
+               "turn-rate noise per particle and prediction, constant part")
+          .add("odom_omega_std_per_mps", &PfParams::odom_omega_std_per_mps, "rad/m", non_negative(),
+               "turn-rate noise per particle and prediction, x |v| (wheel errors grow with speed)")
+          .add("odom_omega_std_fraction", &PfParams::odom_omega_std_fraction, "", non_negative(),
+               "turn-rate noise per particle and prediction, x |omega|")
           .add("process_pos_std_m", &PfParams::process_pos_std_m, "m", non_negative(),
                "extra x and y diffusion per prediction")
           .add("process_theta_std_rad", &PfParams::process_theta_std_rad, "rad", non_negative(),
-               "extra heading diffusion per prediction")
+               "extra heading diffusion per prediction (widens the heading at standstill too)")
+          .add("turn_slip_std_radpm", &PfParams::turn_slip_std_radpm, "rad/m", non_negative("0 = no turn-slip state"),
+               "initial spread of each particle's turn slip k: omega is corrected to omega - k v")
+          .add("turn_slip_walk_std_radpm", &PfParams::turn_slip_walk_std_radpm, "rad/m", non_negative(),
+               "random walk of k per sqrt(m) travelled")
           .add("regularization_scale", &PfParams::regularization_scale, "", non_negative("0 = plain resampling, as the paper"),
-               "x the optimal kernel bandwidth of the jitter after resampling")
+               "x the optimal kernel bandwidth of the covariance-keeping jitter after resampling")
+          .add("gate_probability", &PfParams::gate_probability, "", params::in_half_open_interval(0.0, 1.0),
+               "chi-square gate: a fix beyond this quantile of the 2-dof NIS is rejected; 0 = no gate")
+          .add("recovery_nis", &PfParams::recovery_nis, "", shown_as(non_negative("0 = never"), "0 or (2, gate quantile)"),
+               "lost when the moving mean d^2 of the accepted fixes exceeds this: redraw the cloud around the fixes")
+          .add("recovery_rejected_share", &PfParams::recovery_rejected_share, "", params::in_open_interval(0.0, 1.0),
+               "... or when the moving share of rejected fixes exceeds this")
+          .add("recovery_window_fixes", &PfParams::recovery_window_fixes, "fixes", shown_as(positive(), ">= 1"),
+               "length of that moving average")
+          .add("recovery_uniform_heading_fraction", &PfParams::recovery_uniform_heading_fraction, "",
+               shown_as(non_negative(), "[0, 1]"), "share of the redrawn particles with a uniform heading")
           .add_enum("init_mode", &PfParams::init_mode, init_mode_from_string, to_string, {"uniform_area", "first_fix"},
                     "uniform over the init area (the paper) or around the first position fix")
           .add("init_area_min_x", &PfParams::init_area_min_x, "m", finite(), "uniform_area: smallest x of the area, world frame")
@@ -97,6 +116,23 @@ void PfParams::validate() const {
   }
   if (init_mode != InitMode::kUniformArea && init_mode != InitMode::kFirstFix) {
     reject("init_mode", "must be uniform_area or first_fix", static_cast<int>(init_mode));
+  }
+  if (!(recovery_window_fixes >= 1.0)) {
+    reject("recovery_window_fixes", "must be >= 1", recovery_window_fixes);
+  }
+  if (!(recovery_uniform_heading_fraction <= 1.0)) {
+    reject("recovery_uniform_heading_fraction", "must be in [0, 1]", recovery_uniform_heading_fraction);
+  }
+  if (recovery_nis > 0.0) {
+    if (!(recovery_nis > InconsistencyMonitor::kConsistentMeanNis)) {
+      reject("recovery_nis", "must be 0 or > 2, the mean NIS of a consistent filter", recovery_nis);
+    }
+    if (gate_probability > 0.0 && !(recovery_nis < chi_square_2dof_quantile(gate_probability))) {
+      reject("recovery_nis",
+             "must be below the gate " + shortest_text(chi_square_2dof_quantile(gate_probability)) +
+                 " (accepted fixes never average above it)",
+             recovery_nis);
+    }
   }
   // The area and the fix spread are checked whatever the mode, so a config stays valid when
   // only init_mode is switched.

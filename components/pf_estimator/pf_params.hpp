@@ -47,17 +47,43 @@ struct PfParams {
   double measurement_std_m = 1.51;
 
   double odom_v_std_mps = 0.05;
-  double odom_omega_std_radps = 0.02;
+  /// Turn-rate noise per particle and prediction: odom_omega_std_radps + odom_omega_std_per_mps
+  /// |v| + odom_omega_std_fraction |omega|. Wheel odometry errs in proportion to how far the
+  /// wheels turn, so the noise is nearly 0 at standstill (where the heading is unobservable and
+  /// must not diffuse) and covers realistic wheel errors while driving.
+  double odom_omega_std_radps = 0.005;
+  double odom_omega_std_per_mps = 0.02;
+  double odom_omega_std_fraction = 0.02;
   /// Additive. Keeps the cloud from collapsing onto a few resampled copies when odometry is very
   /// precise or the robot stands.
   double process_pos_std_m = 0.02;
-  /// Additive. Small: the heading is kept diverse by the regularisation below, and a large value
-  /// blurs the learned heading.
-  double process_theta_std_rad = 0.0005;
+  /// Additive heading diffusion; 0 by default: it would widen the heading at standstill.
+  double process_theta_std_rad = 0.0;
+  /// Turn-slip state k (rad/m) of every particle: the odometry turn rate is corrected to
+  /// omega - k v, the error of a wheel that reads fast or slow (right wheel fast by s on track D:
+  /// k = s / D). Drawn N(0, turn_slip_std_radpm^2) at initialisation; a random walk of
+  /// turn_slip_walk_std_radpm per sqrt(m) travelled lets it follow a changing slip. 0 = no state.
+  double turn_slip_std_radpm = 0.05;
+  double turn_slip_walk_std_radpm = 0.0005;
   /// Regularised particle filter (regularization.hpp): after each resampling every copy is
-  /// jittered with N(0, (scale * h_opt)^2 * S), S the cloud covariance. Extension beyond the
-  /// paper, needed to learn an unknown heading.
+  /// shrunk towards the mean and jittered with N(0, (scale * h_opt)^2 * S), S the cloud
+  /// covariance, which keeps the covariance. Extension beyond the paper, needed to learn an
+  /// unknown heading.
   double regularization_scale = 0.5;
+
+  /// Chi-square gate: a fix whose normalised innovation squared (consistency.hpp) exceeds the
+  /// 2-dof quantile of this probability is not used (an outlier). 0 = every fix is used.
+  double gate_probability = 0.99;
+  /// Recovery (consistency.hpp): the filter is lost when, averaged over about
+  /// recovery_window_fixes fixes, more than recovery_rejected_share of the fixes are rejected or
+  /// the accepted ones have a mean d^2 above recovery_nis (consistent: 2). Then the cloud is
+  /// redrawn around the component-wise median of the last kRecoveryFixes fixes (robust to an
+  /// outlier among them); recovery_uniform_heading_fraction of the particles get a uniform
+  /// heading, the others keep theirs. recovery_nis 0 = never recover.
+  double recovery_nis = 5.0;
+  double recovery_rejected_share = 0.6;
+  double recovery_window_fixes = 10.0;
+  double recovery_uniform_heading_fraction = 0.5;
 
   InitMode init_mode = InitMode::kFirstFix;
   /// The defaults are the paper's field.
@@ -72,7 +98,8 @@ struct PfParams {
   double init_fix_std_m = 1.51;
 
   /// Throws std::invalid_argument naming the first offending key: the table's ranges, then
-  /// resample_threshold <= num_particles, known enum values and min < max of the init area.
+  /// resample_threshold <= num_particles, known enum values, min < max of the init area and a
+  /// recovery_nis 0 or between the consistent mean 2 and the gate.
   void validate() const;
 };
 

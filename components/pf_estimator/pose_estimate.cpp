@@ -40,4 +40,11 @@ PoseEstimate weighted_pose_estimate(const ParticleSet& particles,
   return estimate;
 }
 
+bool is_valid(const PoseEstimate& estimate, double max_position_std_m, double max_heading_std_rad) {
+  const Eigen::Matrix3d& c = estimate.covariance;
+  const bool position_ok = std::sqrt(c(0, 0) + c(1, 1)) < max_position_std_m;
+  const bool heading_ok = max_heading_std_rad <= 0.0 || std::sqrt(c(2, 2)) < max_heading_std_rad;
+  return position_ok && heading_ok;
+}
+
 }  // namespace robodds::pf

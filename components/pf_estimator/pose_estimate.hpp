@@ -21,4 +21,8 @@ struct PoseEstimate {
 PoseEstimate weighted_pose_estimate(const ParticleSet& particles,
                                     const Eigen::ArrayXd& normalized_weights);
 
+/// A usable estimate: sqrt(var x + var y) < max_position_std_m and, if max_heading_std_rad > 0,
+/// sqrt(var theta) < max_heading_std_rad (a position alone does not steer a robot: issue 12).
+bool is_valid(const PoseEstimate& estimate, double max_position_std_m, double max_heading_std_rad);
+
 }  // namespace robodds::pf

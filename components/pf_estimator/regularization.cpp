@@ -18,4 +18,8 @@ Eigen::Matrix3d kernel_square_root(const Eigen::Matrix3d& covariance, double ban
   return bandwidth * eigen.eigenvectors() * std_devs.asDiagonal();
 }
 
+double kernel_shrinkage(double bandwidth) {
+  return bandwidth >= 1.0 ? 0.0 : std::sqrt(1.0 - bandwidth * bandwidth);
+}
+
 }  // namespace robodds::pf

@@ -22,6 +22,7 @@ class PfEstimatorNode : public Component {
     const PfParams& params = node_params.filter;
     const double rate_hz = node_params.rate_hz;
     valid_max_std_m_ = node_params.valid_max_position_std_m;
+    valid_max_heading_std_rad_ = node_params.valid_max_heading_std_rad;
     p.validate(params);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     input_timeout_s_ = node_params.input_timeout_s;
@@ -99,7 +100,7 @@ class PfEstimatorNode : public Component {
       for (int i = 0; i < 9; ++i) {
         m.cov()[static_cast<std::size_t>(i)] = e.covariance(i / 3, i % 3);
       }
-      m.valid(std::sqrt(e.covariance(0, 0) + e.covariance(1, 1)) < valid_max_std_m_);
+      m.valid(is_valid(e, valid_max_std_m_, valid_max_heading_std_rad_));
     }
     return m;
   }
@@ -107,6 +108,7 @@ class PfEstimatorNode : public Component {
   std::map<std::uint32_t, std::unique_ptr<ParticleFilter>> filters_;
   std::map<std::uint32_t, idl::PoseEstimate> published_;  // last estimate per robot
   double valid_max_std_m_ = 3.0;
+  double valid_max_heading_std_rad_ = 0.2;
   double input_timeout_s_ = 0.5;
   bool realtime_ = false;
   Input<idl::Odometry>* odometry_ = nullptr;

@@ -11,7 +11,9 @@ const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table() {
                "estimate publication rate; must divide the simulation rate")
           .include(&PfEstimatorNodeParams::filter, pf_param_table())
           .add("valid_max_position_std_m", &PfEstimatorNodeParams::valid_max_position_std_m, "m", params::positive(),
-               "the estimate is valid once sqrt(trace of its xy covariance) is below this")
+               "the estimate is valid once sqrt(trace of its xy covariance) is below this ...")
+          .add("valid_max_heading_std_rad", &PfEstimatorNodeParams::valid_max_heading_std_rad, "rad",
+               params::non_negative("0 = heading not checked"), "... and the heading's standard deviation too")
           .add("input_timeout_s", &PfEstimatorNodeParams::input_timeout_s, "s", params::positive(),
                "real time only: valid = false while odometry or position was last received longer ago than this; > the period");
   return table;

@@ -14,6 +14,7 @@ struct PfEstimatorNodeParams {
   double rate_hz = 100.0;
   PfParams filter;
   double valid_max_position_std_m = 3.0;
+  double valid_max_heading_std_rad = 0.2;
   double input_timeout_s = 0.5;
 };
 

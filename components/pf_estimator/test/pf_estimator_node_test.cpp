@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "robodds/idl/robodds.h"
 #include "runtime/registry.hpp"
@@ -27,7 +28,7 @@ robots:
   - {id: 1}
   - {id: 2}
 components:
-  - {name: pf, type: pf_estimator, params: {num_particles: 500, resample_threshold: 250.0}}
+  - {name: pf, type: pf_estimator, params: {num_particles: 500, resample_threshold: 250.0, init_theta_known: true}}
 )";
 
 /// Where the fixes put each robot (m, world).
@@ -76,6 +77,43 @@ TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
   }
 }
 
+// A robot that has not moved yet has an unknown heading: the position alone is not a valid pose.
+TEST(PfEstimatorNode, UnknownHeadingIsNotValidUnlessTheHeadingCheckIsOff) {
+  for (const char* heading_check : {"0.2", "0"}) {
+    NodeHarness h(std::string(R"(name: pf_estimator_heading
+step_s: 0.01
+duration_s: 0.2
+seed: 5
+robots:
+  - {id: 1}
+components:
+  - {name: pf, type: pf_estimator, params: {num_particles: 500, resample_threshold: 250.0, valid_max_heading_std_rad: )") +
+                  heading_check + "}}\n");
+    robodds::component_registration::register_pf_estimator(h.registry());
+    h.feed([&h](std::uint64_t step) {
+      idl::Odometry odometry;  // standing still
+      odometry.robot_id(1);
+      odometry.dt_s(0.01);
+      h.publish("sensor/odometry", odometry, step, step + 1);
+      if (step % 10 == 0) {
+        idl::PositionMeasurement fix;
+        fix.robot_id(1);
+        fix.x(fix_x(1));
+        fix.y(fix_y(1));
+        fix.var_x(2.28);
+        fix.var_y(2.28);
+        h.publish("sensor/position", fix, step, step + 10);
+      }
+    });
+    const auto& estimates = h.record<idl::PoseEstimate>("estimate/pose");
+    h.run({"pf"});
+    ASSERT_FALSE(estimates.empty());
+    const idl::PoseEstimate& last = estimates.back();
+    EXPECT_GT(std::sqrt(last.cov()[8]), 1.0) << "uniform heading";
+    EXPECT_EQ(last.valid(), std::string(heading_check) == "0") << "valid_max_heading_std_rad " << heading_check;
+  }
+}
+
 // Real time: once its sensors stop (by this process's receive time) for longer than
 // input_timeout_s the estimator keeps publishing, but valid = false, so a controller stops.
 TEST(PfEstimatorNode, RealTimeEstimateTurnsInvalidWhenTheSensorsGoStale) {
@@ -86,7 +124,7 @@ seed: 5
 robots:
   - {id: 1}
 components:
-  - {name: pf, type: pf_estimator, params: {num_particles: 300, resample_threshold: 150.0, input_timeout_s: 0.2}}
+  - {name: pf, type: pf_estimator, params: {num_particles: 300, resample_threshold: 150.0, input_timeout_s: 0.2, init_theta_known: true}}
 )");
   robodds::component_registration::register_pf_estimator(h.registry());
   h.set_mode(TimeMode::kRealtime);

@@ -104,6 +104,28 @@ TEST(PfParams, RejectsNonFiniteValuesByKey) {
   expect_rejected_with_key("init_fix_std_m", [](PfParams& p) { p.init_fix_std_m = kNan; });
 }
 
+TEST(PfParams, RobustnessKeysAreCheckedByName) {
+  expect_rejected_with_key("odom_omega_std_per_mps", [](PfParams& p) { p.odom_omega_std_per_mps = -0.1; });
+  expect_rejected_with_key("odom_omega_std_fraction", [](PfParams& p) { p.odom_omega_std_fraction = kNan; });
+  expect_rejected_with_key("turn_slip_std_radpm", [](PfParams& p) { p.turn_slip_std_radpm = -1.0; });
+  expect_rejected_with_key("turn_slip_walk_std_radpm", [](PfParams& p) { p.turn_slip_walk_std_radpm = kInf; });
+  expect_rejected_with_key("gate_probability", [](PfParams& p) { p.gate_probability = 1.0; });
+  expect_rejected_with_key("gate_probability", [](PfParams& p) { p.gate_probability = -0.1; });
+  expect_rejected_with_key("recovery_rejected_share", [](PfParams& p) { p.recovery_rejected_share = 1.0; });
+  expect_rejected_with_key("recovery_window_fixes", [](PfParams& p) { p.recovery_window_fixes = 0.5; });
+  expect_rejected_with_key("recovery_uniform_heading_fraction",
+                           [](PfParams& p) { p.recovery_uniform_heading_fraction = 1.5; });
+  // The mean d^2 of a consistent filter is 2, and accepted fixes never average above the gate.
+  expect_rejected_with_key("recovery_nis", [](PfParams& p) { p.recovery_nis = 2.0; });
+  expect_rejected_with_key("recovery_nis", [](PfParams& p) { p.recovery_nis = 9.5; });
+  EXPECT_EQ(validation_error([](PfParams& p) { p.recovery_nis = 0.0; }), "");  // off
+  EXPECT_EQ(validation_error([](PfParams& p) {
+              p.gate_probability = 0.0;  // no gate: any threshold above 2
+              p.recovery_nis = 50.0;
+            }),
+            "");
+}
+
 TEST(PfParams, InitAreaMaxMustExceedMin) {
   expect_rejected_with_key("init_area_max_x", [](PfParams& p) {
     p.init_area_min_x = 5.0;

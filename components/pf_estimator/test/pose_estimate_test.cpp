@@ -58,5 +58,14 @@ TEST(WeightedPoseEstimate, CovarianceIsSymmetricWithHeadingCrossTerms) {
   EXPECT_NEAR(estimate.covariance(2, 2), 0.04, 1e-12);
 }
 
+TEST(IsValid, NeedsASmallPositionSpreadAndASmallHeadingSpread) {
+  PoseEstimate e;
+  e.covariance.diagonal() << 1.0, 1.0, 0.01;  // position std sqrt(2), heading std 0.1 rad
+  EXPECT_TRUE(is_valid(e, 3.0, 0.2));
+  EXPECT_FALSE(is_valid(e, 1.0, 0.2));   // position too uncertain
+  EXPECT_FALSE(is_valid(e, 3.0, 0.05));  // heading too uncertain
+  EXPECT_TRUE(is_valid(e, 3.0, 0.0));    // heading not checked
+}
+
 }  // namespace
 }  // namespace robodds::pf

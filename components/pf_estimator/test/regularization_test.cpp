@@ -37,5 +37,14 @@ TEST(KernelSquareRoot, DegenerateCovarianceGivesNoJitterAlongTheFlatDirections) 
   EXPECT_TRUE(kernel_square_root(covariance, 1.0).allFinite());
 }
 
+TEST(KernelShrinkage, ShrinkagePlusJitterKeepsTheVariance) {
+  for (double h : {0.0, 0.18, 0.5, 0.9}) {
+    const double a = kernel_shrinkage(h);
+    EXPECT_NEAR(a * a + h * h, 1.0, 1e-15) << h;
+  }
+  EXPECT_EQ(kernel_shrinkage(1.0), 0.0);
+  EXPECT_EQ(kernel_shrinkage(2.0), 0.0);
+}
+
 }  // namespace
 }  // namespace robodds::pf
