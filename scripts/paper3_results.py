@@ -80,6 +80,19 @@ def run(job, out_dir, domain, reuse=False):
     return json.load(open(summary))
 
 
+def run_all(jobs, out_dir, domains, reuse=False):
+    """Runs every (label, scenario, seed) job, len(domains) at a time; returns {label: summary or None}.
+    Also used by scripts/paper1_robustness.py."""
+    results = {}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=len(domains)) as pool:
+        # One chain of jobs per domain: two runs at once never share a domain.
+        def chain(slot):
+            for i in range(slot, len(jobs), len(domains)):
+                results[jobs[i][0]] = run(jobs[i], out_dir, domains[slot], reuse)
+        list(pool.map(chain, range(len(domains))))
+    return results
+
+
 def mean_ci(values):
     """(mean, half-width of the 95 % confidence interval of the mean)."""
     n = len(values)
@@ -129,13 +142,7 @@ def main(argv):
     # Longest runs first so that the two slots end together.
     jobs = sorted([(label + "_seed%d" % s, path, s) for label, path in configs.items() for s in seeds],
                   key=lambda j: (not j[0].startswith("exp2"), j[0]))
-    results = {}
-    with concurrent.futures.ThreadPoolExecutor(max_workers=len(domains)) as pool:
-        # One chain of jobs per domain: two runs at once never share a domain.
-        def chain(slot):
-            for i in range(slot, len(jobs), len(domains)):
-                results[jobs[i][0]] = run(jobs[i], args.out, domains[slot], args.reuse)
-        list(pool.map(chain, range(len(domains))))
+    results = run_all(jobs, args.out, domains, args.reuse)
     failures = ["run %s failed (log: %s.log)" % (label, os.path.join(args.out, label)) for label, s in results.items() if s is None]
     if failures:
         print("\n".join(failures), file=sys.stderr)
