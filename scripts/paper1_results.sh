@@ -21,7 +21,7 @@ for eps in 0.1 0.01 0.001; do
     "$ROOT/sim/scenarios/paper1_ideal.yaml" >"$OUT/ideal_$eps.yaml"
   "$ROBODDS" run "$OUT/ideal_$eps.yaml" --duration 200 --out "$OUT/ideal_$eps" >"$OUT/ideal_$eps.log" 2>&1
   s="$OUT/ideal_$eps/summary.json"
-  echo "| $eps | $(metric "$s" waypoints_reached)/18 | $(metric "$s" time_to_final_s) | $(metric "$s" "'%.6g / %.6g' % (min(switch_distance_true_m), max(switch_distance_true_m))") | ${PAPER[$eps]} | $(metric "$s" "'%.1f' % max_abs_omega") |"
+  echo "| $eps | $(metric "$s" waypoints_reached)/18 | $(metric "$s" time_to_final_s) | $(metric "$s" "'%.6g / %.6g' % (min(switch_distance_true_m), max(switch_distance_true_m))") | ${PAPER[$eps]} | $(metric "$s" "'%.1f' % max_abs_omega_commanded_radps") |"
 done
 echo
 echo "### Particle filter in the loop (sim/scenarios/paper1_waypoints.yaml), epsilon 0.1 m, by seed"

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/angle.hpp"
+#include "common/model/actuator.hpp"
 #include "common/model/twist.hpp"
 
 namespace robodds::waypoint {
@@ -38,7 +39,9 @@ Command waypoint_command(const PolarError& error, const ControllerParams& params
   const Command raw = control_law(error, select_gains(params, error.alpha_rad));
   const model::Twist limited = model::saturate(model::Twist{raw.v, raw.omega},
                                                model::TwistLimits{params.max_speed_mps, params.max_turn_rate_radps});
-  return Command{limited.v, limited.omega};
+  const model::Twist within_wheels =
+      model::scale_to_wheel_limit(limited, params.wheel_base_m, params.actuator.max_wheel_speed_mps);
+  return Command{within_wheels.v, within_wheels.omega};
 }
 
 }  // namespace robodds::waypoint

@@ -26,7 +26,9 @@ const GainSet& select_gains(const ControllerParams& params, double alpha_rad);
 Command control_law(const PolarError& error, const GainSet& gains);
 
 /// The controller output: eq. (10) with the gain set chosen by |alpha|, then |v| and |omega|
-/// clamped independently to the params' optional limits (0 = unlimited).
+/// clamped independently to the params' optional limits (0 = unlimited), then v and omega scaled
+/// by one factor so that neither wheel exceeds max_wheel_speed_mps (the curvature is kept).
+/// The acceleration limits need the previous command: WaypointTracker applies them.
 Command waypoint_command(const PolarError& error, const ControllerParams& params);
 
 }  // namespace robodds::waypoint

@@ -26,7 +26,7 @@ class WaypointControllerNode : public Component {
     ctx.require_longer_than_period("estimate_timeout_s", estimate_timeout_s_);
     realtime_ = ctx.mode() == TimeMode::kRealtime;
     for (const RobotSpec& robot : ctx.robots()) {
-      trackers_.emplace(robot.id, WaypointTracker(params_));
+      trackers_.emplace(robot.id, WaypointTracker(params_, 1.0 / rate_hz));
     }
     const auto keys = ctx.robot_keys();
     estimates_ = &ctx.subscribe<idl::PoseEstimate>("estimate/pose", Subscription::instances(keys));
@@ -69,6 +69,8 @@ class WaypointControllerNode : public Component {
         status.switched(out.status.reached_this_step);
         status.switch_distance(out.status.reached_this_step ? out.status.reached_distance_m : 0.0);
         status.state(out.status.done ? idl::DONE : idl::TRACKING);
+      } else {
+        tracker.command_stopped();  // the zero command below: the plant brakes within its own limits
       }
       cmd_out_->publish(cmd);
       status_out_->publish(status);

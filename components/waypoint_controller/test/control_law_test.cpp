@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "common/angle.hpp"
@@ -106,6 +108,22 @@ TEST(WaypointControlLaw, LimitsClampSpeedAndTurnRateIndependently) {
   const Command small = waypoint_command(error_of(0.2, 0.01, 0.0), params);
   EXPECT_NEAR(small.v, 0.2, kTol);
   EXPECT_NEAR(small.omega, 0.2, kTol);
+}
+
+// Issue 12: the faster wheel at its limit, v and omega scaled by one factor (same curvature).
+TEST(WaypointControlLaw, WheelLimitScalesSpeedAndTurnRateTogether) {
+  ControllerParams params;
+  params.wheel_base_m = 0.3;
+  params.actuator.max_wheel_speed_mps = 1.5;
+  const PolarError error = error_of(18.0, 1.5, 1.0);
+  const Command raw = control_law(error, params.forward_gains);
+  const Command command = waypoint_command(error, params);
+  const double fastest = std::max(std::abs(command.v - 0.15 * command.omega), std::abs(command.v + 0.15 * command.omega));
+  EXPECT_NEAR(fastest, 1.5, kTol);
+  EXPECT_NEAR(command.omega / command.v, raw.omega / raw.v, kTol) << "the curvature of eq. (10) is kept";
+  const Command slow = waypoint_command(error_of(0.5, 0.01, 0.0), params);
+  EXPECT_NEAR(slow.v, 0.5, kTol) << "within the wheel limit: unchanged";
+  EXPECT_NEAR(slow.omega, 0.2, kTol);
 }
 
 TEST(WaypointControlLaw, ZeroLimitsMeanUnlimited) {
