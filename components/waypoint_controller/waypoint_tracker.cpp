@@ -54,6 +54,21 @@ void WaypointTracker::set_mission(std::vector<Eigen::Vector2d> waypoints_m) {
   reach_distances_m_.reserve(mission_.size());  // keeps step() allocation-free
 }
 
+Command WaypointTracker::ramp(const Command& wanted) {
+  const model::Twist reachable = model::limit_acceleration(model::Twist{wanted.v, wanted.omega},
+                                                           model::Twist{last_command_.v, last_command_.omega}, period_s_,
+                                                           params_.actuator);
+  last_command_ = period_s_ > 0.0 ? Command{reachable.v, reachable.omega} : wanted;
+  return last_command_;
+}
+
+Command WaypointTracker::hold(const Command& wanted) {
+  const model::Twist limited = model::scale_to_wheel_limit(
+      model::saturate(model::Twist{wanted.v, wanted.omega}, model::TwistLimits{params_.max_speed_mps, params_.max_turn_rate_radps}),
+      params_.wheel_base_m, params_.actuator.max_wheel_speed_mps);
+  return ramp(Command{limited.v, limited.omega});
+}
+
 TrackerOutput WaypointTracker::step(double x_m, double y_m, double theta_rad) {
   return step_impl(x_m, y_m, theta_rad, nullptr);
 }
@@ -99,12 +114,7 @@ TrackerOutput WaypointTracker::step_impl(double x_m, double y_m, double theta_ra
   }
 
   const PolarError error = polar_error(position, theta_rad, mission_[target_index_]);
-  const Command wanted = done_ && params_.stop_when_done ? Command{} : waypoint_command(error, params_);
-  const model::Twist reachable = model::limit_acceleration(model::Twist{wanted.v, wanted.omega},
-                                                           model::Twist{last_command_.v, last_command_.omega}, period_s_,
-                                                           params_.actuator);
-  output.command = period_s_ > 0.0 ? Command{reachable.v, reachable.omega} : wanted;
-  last_command_ = output.command;
+  output.command = ramp(done_ && params_.stop_when_done ? Command{} : waypoint_command(error, params_));
 
   status.target_index = target_index_;
   status.reached_count = reach_distances_m_.size();

@@ -68,9 +68,12 @@ class WaypointTracker {
   /// that rule for this step; eq. (19) applies as usual.
   TrackerOutput step(double x_m, double y_m, double theta_rad, const Eigen::Matrix2d& position_covariance_m2);
 
-  /// The caller sent a stop instead of step()'s command (no valid estimate, ...): the
-  /// acceleration limits count from a standstill command again.
+  /// The caller sent a stop instead of step()'s command (no estimate, ...): the acceleration
+  /// limits count from a standstill command again.
   void command_stopped() { last_command_ = Command{}; }
+  /// A command of the caller's instead of step()'s (e.g. creeping ahead until the estimate is
+  /// valid), brought within the wheel-speed and acceleration limits like step()'s; no switching.
+  Command hold(const Command& wanted);
 
   bool has_mission() const { return !mission_.empty(); }
   const std::vector<Eigen::Vector2d>& mission() const { return mission_; }
@@ -83,6 +86,8 @@ class WaypointTracker {
 
  private:
   TrackerOutput step_impl(double x_m, double y_m, double theta_rad, const Eigen::Matrix2d* position_covariance_m2);
+  /// `wanted` changed from the previous command within the acceleration limits; remembered.
+  Command ramp(const Command& wanted);
   bool inside_confidence_ellipse(const Eigen::Vector2d& offset_m, const Eigen::Matrix2d* covariance_m2) const;
 
   ControllerParams params_;

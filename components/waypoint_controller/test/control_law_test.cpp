@@ -126,6 +126,27 @@ TEST(WaypointControlLaw, WheelLimitScalesSpeedAndTurnRateTogether) {
   EXPECT_NEAR(slow.omega, 0.2, kTol);
 }
 
+// Issue 12: |v| <= sqrt(2 a d) and |omega| <= sqrt(2 a_omega |omega / ka|): the robot can brake
+// before the error the law drives to zero is gone; the sign and the zeros of the law are kept.
+TEST(WaypointControlLaw, BrakeableBoundsTheLawWhereTheRobotCouldNotStopInTime) {
+  const GainSet gains{1.0, 20.0, -2.5};
+  const model::ActuatorLimits limits{0.0, 1.0, 5.0};
+  const Command far = brakeable(Command{18.0, -60.0}, gains, limits);
+  EXPECT_NEAR(far.v, 6.0, kTol) << "sqrt(2 * 1 * 18)";
+  EXPECT_NEAR(far.omega, -std::sqrt(2.0 * 5.0 * 3.0), kTol) << "heading error 60 / 20 = 3 rad";
+  const Command near = brakeable(Command{1.5, 0.5}, gains, limits);
+  EXPECT_EQ(near.v, 1.5) << "1.5 <= sqrt(3): brakeable";
+  EXPECT_EQ(near.omega, 0.5) << "0.5 <= sqrt(0.25)=0.5";
+  const Command zero = brakeable(Command{0.0, 0.0}, gains, limits);
+  EXPECT_EQ(zero.v, 0.0);
+  EXPECT_EQ(zero.omega, 0.0);
+  const Command backwards = brakeable(Command{-8.0, 40.0}, GainSet{-1.0, 20.0, -2.5}, limits);
+  EXPECT_NEAR(backwards.v, -4.0, kTol) << "backing up: sqrt(2 * 8), sign kept";
+  const Command unlimited = brakeable(Command{18.0, -60.0}, gains, model::ActuatorLimits{});
+  EXPECT_EQ(unlimited.v, 18.0);
+  EXPECT_EQ(unlimited.omega, -60.0);
+}
+
 TEST(WaypointControlLaw, ZeroLimitsMeanUnlimited) {
   const Command command = waypoint_command(error_of(18.0, 1.5, 1.0), ControllerParams{});
   EXPECT_NEAR(command.v, 18.0, kTol);

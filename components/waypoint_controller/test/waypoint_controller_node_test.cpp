@@ -113,6 +113,38 @@ components:
   }
 }
 
+// While the estimate is not valid the robot may creep straight ahead (so that the position fixes
+// reveal its heading), ramped like every command; once valid it tracks.
+TEST(WaypointControllerNode, CreepsAheadWhileTheEstimateIsNotValid) {
+  NodeHarness h(R"(name: waypoint_controller_creep
+step_s: 0.01
+duration_s: 0.1
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: controller, type: waypoint_controller,
+     params: {invalid_estimate_speed_mps: 0.3, max_accel_mps2: 10.0}}
+)");
+  add_controller(h);
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{0.0, 10.0}}), 0, kNeverAgain);
+    }
+    h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, step >= 8), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 11u);
+  EXPECT_NEAR(commands[0].v(), 0.1, 1e-12) << "10 m/s^2 for 0.01 s";
+  EXPECT_NEAR(commands[2].v(), 0.3, 1e-12) << "then the creep speed";
+  EXPECT_DOUBLE_EQ(commands[2].omega(), 0.0) << "straight ahead";
+  EXPECT_EQ(status[2].state(), idl::ESTIMATE_INVALID);
+  EXPECT_EQ(status[8].state(), idl::TRACKING);
+  EXPECT_GT(std::abs(commands[8].omega()), 0.0) << "valid: it turns towards the way-point (to its left)";
+}
+
 TEST(WaypointControllerNode, DrivesToTheWaypointAndSwitchesWithinEpsilon) {
   NodeHarness h(kScenario);
   add_controller(h);
