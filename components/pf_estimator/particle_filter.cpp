@@ -115,7 +115,10 @@ void ParticleFilter::recover(double z_x_m, double z_y_m) {
     particles_.x[i] = z_x_m + params_.init_fix_std_m * standard_normal(engine_);
     particles_.y[i] = z_y_m + params_.init_fix_std_m * standard_normal(engine_);
     if (uniform01(engine_) < params_.recovery_uniform_heading_fraction) {
+      // A fresh hypothesis: heading and turn slip both. A lost filter may have bent its slips to
+      // explain the jump; kept, they would turn the new heading away again.
       particles_.theta[i] = kPi - 2.0 * kPi * uniform01(engine_);
+      turn_slip_[i] = noise(params_.turn_slip_std_radpm);
     }
   }
   reset_weights_to_uniform();

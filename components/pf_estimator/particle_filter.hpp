@@ -90,8 +90,8 @@ class ParticleFilter {
   static constexpr std::size_t kRecoveryFixes = 5;
 
   /// Redraws every particle around (z_x_m, z_y_m) (std init_fix_std_m);
-  /// recovery_uniform_heading_fraction of them get a uniform heading, the rest keep their own
-  /// heading and turn slip; weights uniform. Called by update() on persistent inconsistency.
+  /// recovery_uniform_heading_fraction of them get a uniform heading and a fresh turn slip
+  /// (N(0, turn_slip_std_radpm^2)), the rest keep their own heading and turn slip; weights uniform. Called by update() on persistent inconsistency.
   void recover(double z_x_m, double z_y_m);
 
   /// Turn slip k of every particle (rad/m).

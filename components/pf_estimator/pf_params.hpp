@@ -79,7 +79,7 @@ struct PfParams {
   /// the accepted ones have a mean d^2 above recovery_nis (consistent: 2). Then the cloud is
   /// redrawn around the component-wise median of the last kRecoveryFixes fixes (robust to an
   /// outlier among them); recovery_uniform_heading_fraction of the particles get a uniform
-  /// heading, the others keep theirs. recovery_nis 0 = never recover.
+  /// heading and a fresh turn slip, the others keep theirs. recovery_nis 0 = never recover.
   double recovery_nis = 5.0;
   double recovery_rejected_share = 0.6;
   double recovery_window_fixes = 10.0;
