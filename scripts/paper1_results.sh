@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Reproduces the figures of docs/results/paper1.md with `robodds sweep`: the epsilon sweep with the
-# true pose (paper Table 1) and the particle filter in the loop over seeds (two sweeps). Prints
+# true pose (paper Table 1), the particle filter in the loop over seeds on the paper's ideal robot
+# (two sweeps), and the robot with issue 12's actuator limits (paper1_waypoints as shipped, four
+# unseen missions). Prints
 # markdown tables on stdout; every run's CSVs and summary.json stay under OUT/<sweep>/runs/<k>, each
 # sweep's runs.csv / summary.csv / summary.md next to them (default OUT: out/paper1_results).
 #   scripts/paper1_results.sh [OUT]        (needs a build: scripts/build.sh)
@@ -12,7 +14,16 @@ OUT="${1:-$ROOT/out/paper1_results}"
 SEEDS="${SEEDS:-1-10}"
 JOBS="${JOBS:-$(nproc)}"
 mkdir -p "$OUT"
-rm -rf "$OUT/ideal" "$OUT/pf" "$OUT/kappa"  # a sweep refuses a folder that holds another sweep
+rm -rf "$OUT"/{ideal,pf,kappa,limited,missions_*}  # a sweep refuses a folder that holds another sweep
+
+# The particle-filter tables are on the paper's ideal robot: paper1_waypoints with the actuator
+# limits of issue 12 taken off the plant and the controller ("Actuator limits" is on the scenario
+# as shipped).
+IDEAL="$OUT/paper1_waypoints_ideal.yaml"
+sed -e 's/  - {name: plant, type: plant, params: {[^}]*}}/  - {name: plant, type: plant}/' \
+  -e 's/  - {name: controller, type: waypoint_controller, params: {[^}]*}}/  - {name: controller, type: waypoint_controller}/' \
+  -e 's/^duration_s: .*/duration_s: 150.0/' "$ROOT/sim/scenarios/paper1_waypoints.yaml" >"$IDEAL"
+grep -q "{name: plant, type: plant}" "$IDEAL" || { echo "paper1_results.sh: could not take the limits off" >&2; exit 1; }
 
 # sweep NAME ARGS...: `robodds sweep ARGS --out OUT/NAME`; a failed run is in its runs.csv (and the table).
 sweep() {
@@ -22,13 +33,17 @@ sweep() {
     || echo "note: some runs of the $name sweep failed (see $OUT/$name/runs.csv)" >&2
 }
 sweep ideal "$ROOT/sim/scenarios/paper1_ideal.yaml" --seeds 1 --set controller.epsilon_m=0.1,0.01,0.001 --duration 200
-sweep pf "$ROOT/sim/scenarios/paper1_waypoints.yaml" --seeds "$SEEDS"
-sweep kappa "$ROOT/sim/scenarios/paper1_waypoints.yaml" --seeds "$SEEDS" --set controller.epsilon_m=0.01 \
-  --set controller.confidence_switch_sigmas=0,0.5 --duration 300
+sweep pf "$IDEAL" --seeds "$SEEDS"
+sweep kappa "$IDEAL" --seeds "$SEEDS" --set controller.epsilon_m=0.01 --set controller.confidence_switch_sigmas=0,0.5 --duration 300
+sweep limited "$ROOT/sim/scenarios/paper1_waypoints.yaml" --seeds "$SEEDS"
+MISSIONS="paper1_random_heading_pi paper1_close_uturn paper1_waypoint_at_start paper1_long_leg"
+for name in $MISSIONS; do
+  sweep "missions_$name" "$ROOT/sim/scenarios/$name.yaml" --seeds "$(sed -n 's/^seed: *\([0-9]*\).*/\1/p' "$ROOT/sim/scenarios/$name.yaml")"
+done
 
-/usr/bin/python3 - "$OUT" <<'PY'
+/usr/bin/python3 - "$OUT" $MISSIONS <<'PY'
 import csv, json, sys
-out = sys.argv[1]
+out, missions = sys.argv[1], sys.argv[2:]
 
 def runs(sweep):
     """(row of runs.csv, that run's metrics or None if it failed) per run, in plan order."""
@@ -46,9 +61,9 @@ for row, m in runs("ideal"):
         print("| %s | run failed: %s | | | %s | |" % (eps, row["error"], paper[eps]))
         continue
     print("| %s | %d/18 | %g | %.6g / %.6g | %s | %.1f |" % (eps, m["waypoints_reached"], m["time_to_final_s"],
-          min(m["switch_distance_true_m"]), max(m["switch_distance_true_m"]), paper[eps], m["max_abs_omega"]))
+          min(m["switch_distance_true_m"]), max(m["switch_distance_true_m"]), paper[eps], m["max_abs_omega_commanded_radps"]))
 
-print("\n### Particle filter in the loop (sim/scenarios/paper1_waypoints.yaml), epsilon 0.1 m, by seed\n")
+print("\n### Particle filter in the loop (sim/scenarios/paper1_waypoints.yaml on the ideal robot), epsilon 0.1 m, by seed\n")
 print("| seed | reached | time to final (s) | PF RMSE (m) | fix RMSE (m) | ratio | heading RMSE (deg) | true switch distance mean / max (m) | final true error (m) |")
 print("|---:|---:|---:|---:|---:|---:|---:|---|---:|")
 for row, m in runs("pf"):
@@ -79,7 +94,25 @@ for row, m in sorted(runs("kappa"), key=lambda rm: (int(rm[0]["seed"]), rm[0]["c
     print("| %s | %s | %d/18 | %s | %.3f / %.3f | %.3f |" % (row["seed"], kappa, m["waypoints_reached"],
           m["time_to_final_s"] if m["time_to_final_s"] >= 0 else "not reached", sum(d) / max(1, len(d)),
           max(d or [float("nan")]), max(e or [float("nan")])))
+
+print("\n### Actuator limits (issue 12): sim/scenarios/paper1_waypoints.yaml as shipped and four unseen missions\n")
+print("| run | reached | time to final (s) | PF RMSE (m) | true switch distance mean / max (m) | applied max abs v (m/s) / omega (rad/s) | max wheel (m/s) | max abs dv/dt (m/s^2) / domega/dt (rad/s^2) |")
+print("|---|---:|---:|---:|---|---|---:|---|")
+def limited_row(label, row, m):
+    if m is None:
+        print("| %s | run failed: %s |" % (label, row["error"]))
+        return
+    d = m["switch_distance_true_m"]
+    print("| %s | %d/%d | %g | %.3f | %.3f / %.3f | %.4g / %.4g | %.4g | %.4g / %.4g |" % (label, m["waypoints_reached"],
+          m["waypoints_total"], m["time_to_final_s"], m["pf_rmse_m"], sum(d) / max(1, len(d)), max(d or [float("nan")]),
+          m["max_abs_v_applied_mps"], m["max_abs_omega_applied_radps"], m["max_abs_wheel_speed_applied_mps"],
+          m["max_abs_accel_applied_mps2"], m["max_abs_angular_accel_applied_radps2"]))
+for row, m in runs("limited"):
+    limited_row("paper1_waypoints seed " + row["seed"], row, m)
+for name in missions:
+    for row, m in runs("missions_" + name):
+        limited_row(name, row, m)
 PY
 "$ROBODDS" run "$ROOT/sim/scenarios/paper1_waypoints.yaml" --out "$OUT/pf_default" >"$OUT/pf_default.log" 2>&1
 echo
-echo "Plots of the default-seed run: $OUT/pf_default/*.png"
+echo "Plots of the default-seed run (limited robot): $OUT/pf_default/*.png"

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "common/angle.hpp"
+#include "common/model/actuator.hpp"
 #include "common/model/twist.hpp"
 
 namespace robodds::waypoint {
@@ -34,11 +35,29 @@ Command control_law(const PolarError& error, const GainSet& gains) {
   return command;
 }
 
+Command brakeable(const Command& command, const GainSet& gains, const model::ActuatorLimits& limits) {
+  const auto bound = [](double value, double gain, double max_accel) {
+    if (!(max_accel > 0.0) || gain == 0.0) {
+      return value;
+    }
+    // The error the law drives to zero is value / gain; stopping from `value` within it at
+    // max_accel needs |value| <= sqrt(2 max_accel |value / gain|).
+    const double magnitude = std::abs(value);
+    const double reachable = std::sqrt(2.0 * max_accel * magnitude / std::abs(gain));
+    return magnitude <= reachable ? value : std::copysign(reachable, value);
+  };
+  return Command{bound(command.v, gains.kd, limits.max_accel_mps2),
+                 bound(command.omega, gains.ka, limits.max_angular_accel_radps2)};
+}
+
 Command waypoint_command(const PolarError& error, const ControllerParams& params) {
-  const Command raw = control_law(error, select_gains(params, error.alpha_rad));
+  const GainSet& gains = select_gains(params, error.alpha_rad);
+  const Command raw = brakeable(control_law(error, gains), gains, params.actuator);
   const model::Twist limited = model::saturate(model::Twist{raw.v, raw.omega},
                                                model::TwistLimits{params.max_speed_mps, params.max_turn_rate_radps});
-  return Command{limited.v, limited.omega};
+  const model::Twist within_wheels =
+      model::scale_to_wheel_limit(limited, params.wheel_base_m, params.actuator.max_wheel_speed_mps);
+  return Command{within_wheels.v, within_wheels.omega};
 }
 
 }  // namespace robodds::waypoint

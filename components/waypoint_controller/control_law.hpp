@@ -2,6 +2,7 @@
 // The way-point tracking control law of paper 1, eq. (10), with the gain-set choice of
 // section 4 (forward gains while |alpha| <= pi/2, backward gains beyond) and optional limits.
 
+#include "common/model/actuator.hpp"
 #include "components/waypoint_controller/controller_params.hpp"
 #include "components/waypoint_controller/polar.hpp"
 
@@ -25,8 +26,18 @@ const GainSet& select_gains(const ControllerParams& params, double alpha_rad);
 /// Eq. (10) alone, no limits: v = kd·d, omega = ka·alpha + sgn*(alpha)·ksigma·sigma.
 Command control_law(const PolarError& error, const GainSet& gains);
 
+/// Issue 12: what eq. (10) asks for, slowed where the robot could not stop in time. The law
+/// drives the error e = v / kd (the distance d) and e = omega / ka (alpha minus its equilibrium
+/// sgn*·ksigma·sigma / -ka) to zero; at a limited acceleration a a speed u can be braked to 0
+/// within e only if |u| <= sqrt(2 a |e|), so |v| and |omega| are bounded by that (sign and zeros
+/// of the law kept). A limit <= 0: unchanged. Without it the heading loop (ka = 20 1/s) overshoots
+/// on a robot with 5 rad/s^2 and, on a noisy estimate, circles the way-point.
+Command brakeable(const Command& command, const GainSet& gains, const model::ActuatorLimits& limits);
+
 /// The controller output: eq. (10) with the gain set chosen by |alpha|, then |v| and |omega|
-/// clamped independently to the params' optional limits (0 = unlimited).
+/// clamped independently to the params' optional limits (0 = unlimited), then v and omega scaled
+/// by one factor so that neither wheel exceeds max_wheel_speed_mps (the curvature is kept).
+/// The acceleration limits need the previous command: WaypointTracker applies them.
 Command waypoint_command(const PolarError& error, const ControllerParams& params);
 
 }  // namespace robodds::waypoint

@@ -7,6 +7,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "common/model/actuator.hpp"
 #include "common/number_text.hpp"
 #include "components/waypoint_controller/polar.hpp"
 
@@ -35,7 +36,14 @@ void require_finite_pose(double x_m, double y_m, double theta_rad) {
 
 }  // namespace
 
-WaypointTracker::WaypointTracker(const ControllerParams& params) : params_(params) { params_.validate(); }
+WaypointTracker::WaypointTracker(const ControllerParams& params, double period_s) : params_(params), period_s_(period_s) {
+  params_.validate();
+  const bool accel_limited = params_.actuator.max_accel_mps2 > 0.0 || params_.actuator.max_angular_accel_radps2 > 0.0;
+  if (accel_limited && !(period_s_ > 0.0 && std::isfinite(period_s_))) {
+    throw std::invalid_argument("period_s: must be > 0 and finite with max_accel_mps2 or max_angular_accel_radps2 set (got " +
+                                shortest_text(period_s_) + ")");
+  }
+}
 
 void WaypointTracker::set_mission(std::vector<Eigen::Vector2d> waypoints_m) {
   require_valid_mission(waypoints_m);
@@ -44,6 +52,21 @@ void WaypointTracker::set_mission(std::vector<Eigen::Vector2d> waypoints_m) {
   done_ = false;
   reach_distances_m_.clear();
   reach_distances_m_.reserve(mission_.size());  // keeps step() allocation-free
+}
+
+Command WaypointTracker::ramp(const Command& wanted) {
+  const model::Twist reachable = model::limit_acceleration(model::Twist{wanted.v, wanted.omega},
+                                                           model::Twist{last_command_.v, last_command_.omega}, period_s_,
+                                                           params_.actuator);
+  last_command_ = period_s_ > 0.0 ? Command{reachable.v, reachable.omega} : wanted;
+  return last_command_;
+}
+
+Command WaypointTracker::hold(const Command& wanted) {
+  const model::Twist limited = model::scale_to_wheel_limit(
+      model::saturate(model::Twist{wanted.v, wanted.omega}, model::TwistLimits{params_.max_speed_mps, params_.max_turn_rate_radps}),
+      params_.wheel_base_m, params_.actuator.max_wheel_speed_mps);
+  return ramp(Command{limited.v, limited.omega});
 }
 
 TrackerOutput WaypointTracker::step(double x_m, double y_m, double theta_rad) {
@@ -91,7 +114,7 @@ TrackerOutput WaypointTracker::step_impl(double x_m, double y_m, double theta_ra
   }
 
   const PolarError error = polar_error(position, theta_rad, mission_[target_index_]);
-  output.command = done_ && params_.stop_when_done ? Command{} : waypoint_command(error, params_);
+  output.command = ramp(done_ && params_.stop_when_done ? Command{} : waypoint_command(error, params_));
 
   status.target_index = target_index_;
   status.reached_count = reach_distances_m_.size();

@@ -46,10 +46,12 @@ struct TrackerOutput {
 /// the index stays (chi = n) and the control law stays active on it, as in the paper (the robot
 /// converges onto it and keeps correcting its heading, v = kd·d -> 0); `done` latches when it
 /// is first within epsilon. With ControllerParams::stop_when_done the command is zero from then on.
+/// Every command, the stop included, changes from the previous one within the acceleration limits.
 class WaypointTracker {
  public:
-  /// Validates params (std::invalid_argument, see ControllerParams::validate).
-  explicit WaypointTracker(const ControllerParams& params = ControllerParams{});
+  /// Validates params (std::invalid_argument, see ControllerParams::validate). `period_s`: the
+  /// time between two step() calls (s), which the acceleration limits need (> 0 when one is set).
+  explicit WaypointTracker(const ControllerParams& params = ControllerParams{}, double period_s = 0.0);
 
   /// Replaces the mission (world frame, m) and restarts at its first way-point. Throws
   /// std::invalid_argument, leaving the tracker unchanged, if the list is empty or a
@@ -66,6 +68,13 @@ class WaypointTracker {
   /// that rule for this step; eq. (19) applies as usual.
   TrackerOutput step(double x_m, double y_m, double theta_rad, const Eigen::Matrix2d& position_covariance_m2);
 
+  /// The caller sent a stop instead of step()'s command (no estimate, ...): the acceleration
+  /// limits count from a standstill command again.
+  void command_stopped() { last_command_ = Command{}; }
+  /// A command of the caller's instead of step()'s (e.g. creeping ahead until the estimate is
+  /// valid), brought within the wheel-speed and acceleration limits like step()'s; no switching.
+  Command hold(const Command& wanted);
+
   bool has_mission() const { return !mission_.empty(); }
   const std::vector<Eigen::Vector2d>& mission() const { return mission_; }
   std::size_t target_index() const { return target_index_; }
@@ -77,9 +86,13 @@ class WaypointTracker {
 
  private:
   TrackerOutput step_impl(double x_m, double y_m, double theta_rad, const Eigen::Matrix2d* position_covariance_m2);
+  /// `wanted` changed from the previous command within the acceleration limits; remembered.
+  Command ramp(const Command& wanted);
   bool inside_confidence_ellipse(const Eigen::Vector2d& offset_m, const Eigen::Matrix2d* covariance_m2) const;
 
   ControllerParams params_;
+  double period_s_ = 0.0;
+  Command last_command_;  // what the previous step() returned (the acceleration limits' start)
   std::vector<Eigen::Vector2d> mission_;
   std::size_t target_index_ = 0;
   bool done_ = false;

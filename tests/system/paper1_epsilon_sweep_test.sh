@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Paper 1, Table 1: the controller fed the true pose, epsilon in {0.1, 0.01, 0.001} m. Every
-# way-point is reached, every switch happens within epsilon (true distance), the switch
-# distance is close to epsilon as in the paper (0.0996 / 0.00984 / 0.000989: the step is small,
-# so the robot crosses the epsilon circle less than a step's travel inside it), and a smaller
-# epsilon takes longer.
+# way-point is reached, every switch happens within the time-step bound ((1 - kd·dt)·epsilon,
+# epsilon] (true distance; v = kd·d held over a step of dt shrinks d by at most that factor, so the
+# first step within epsilon lands there; kd = 1, the paper's forward gain, dt = the scenario's
+# step), and a smaller epsilon takes longer. The paper's 0.00984 and 0.000989 lie below that
+# range for dt = 0.01 s (see components/waypoint_controller/README.md).
 source "$(dirname "$0")/../integration/lib.sh"
 previous_time=0
 for eps in 0.1 0.01 0.001; do
@@ -24,7 +25,9 @@ check(m["waypoints_reached"] == 18 and m["waypoints_total"] == 18, f"reached {m[
 true_d = m["switch_distance_true_m"]
 check(len(true_d) == 18, f"{len(true_d)} switch distances")
 check(max(true_d) <= eps, f"a switch happened beyond epsilon: max {max(true_d)}")
-check(max(true_d) >= 0.9 * eps, f"switch distances far below epsilon (max {max(true_d)}), unlike the paper")
+kd = 1.0  # the paper's forward gain, the controller's default
+lower = (1.0 - kd * json.load(open(sys.argv[1]))["step_s"]) * eps
+check(min(true_d) > lower, f"a switch below the time-step bound {lower}: min {min(true_d)} (switched late?)")
 check(m["switch_distance_estimate_m"] == true_d, "estimate and true switch distances differ with the true pose")
 check(m["final_error_true_m"] <= eps, f"final error {m['final_error_true_m']}")
 check(60.0 < m["time_to_final_s"] < 200.0, f"time to final {m['time_to_final_s']} s")

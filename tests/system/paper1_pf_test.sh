@@ -33,7 +33,7 @@ echo "ok: figures written"
 
 # Epsilon far below the estimator's error: the paper's rule alone stalls, the confidence-aware
 # switch (kappa = 0.5) completes the mission with true switch distances like epsilon = 0.1 m.
-sed "s/{name: controller, type: waypoint_controller}/{name: controller, type: waypoint_controller, params: {epsilon_m: 0.01, confidence_switch_sigmas: 0.5}}/" \
+sed "s/{name: controller, type: waypoint_controller, params: {/&epsilon_m: 0.01, confidence_switch_sigmas: 0.5, /" \
   "$SRC/sim/scenarios/paper1_waypoints.yaml" >"$WORK/kappa.yaml"
 grep -q "confidence_switch_sigmas: 0.5" "$WORK/kappa.yaml" || fail "scenario rewrite did not apply"
 timeout -k 5 300 "$ROBODDS" run "$WORK/kappa.yaml" --out "$WORK/kappa" --domain "$DOMAIN" --no-plots \

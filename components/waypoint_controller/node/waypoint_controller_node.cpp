@@ -20,13 +20,14 @@ class WaypointControllerNode : public Component {
     const double rate_hz = node_params.rate_hz;
     params_ = node_params.controller;
     require_valid_ = node_params.require_valid_estimate;
+    invalid_estimate_speed_mps_ = node_params.invalid_estimate_speed_mps;
     estimate_timeout_s_ = node_params.estimate_timeout_s;
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     ctx.require_longer_than_period("estimate_timeout_s", estimate_timeout_s_);
     realtime_ = ctx.mode() == TimeMode::kRealtime;
     for (const RobotSpec& robot : ctx.robots()) {
-      trackers_.emplace(robot.id, WaypointTracker(params_));
+      trackers_.emplace(robot.id, WaypointTracker(params_, 1.0 / rate_hz));
     }
     const auto keys = ctx.robot_keys();
     estimates_ = &ctx.subscribe<idl::PoseEstimate>("estimate/pose", Subscription::instances(keys));
@@ -69,6 +70,12 @@ class WaypointControllerNode : public Component {
         status.switched(out.status.reached_this_step);
         status.switch_distance(out.status.reached_this_step ? out.status.reached_distance_m : 0.0);
         status.state(out.status.done ? idl::DONE : idl::TRACKING);
+      } else if (status.state() == idl::ESTIMATE_INVALID && invalid_estimate_speed_mps_ > 0.0) {
+        const Command creep = tracker.hold(Command{invalid_estimate_speed_mps_, 0.0});  // until the estimate is valid
+        cmd.v(creep.v);
+        cmd.omega(creep.omega);
+      } else {
+        tracker.command_stopped();  // the zero command below: the plant brakes within its own limits
       }
       cmd_out_->publish(cmd);
       status_out_->publish(status);
@@ -95,6 +102,7 @@ class WaypointControllerNode : public Component {
 
   ControllerParams params_;
   bool require_valid_ = true;
+  double invalid_estimate_speed_mps_ = 0.0;
   double estimate_timeout_s_ = 0.5;
   bool realtime_ = false;
   std::map<std::uint32_t, WaypointTracker> trackers_;

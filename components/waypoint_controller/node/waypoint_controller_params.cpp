@@ -14,6 +14,10 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
           .include(&WaypointControllerNodeParams::controller, controller_param_table())
           .add("require_valid_estimate", &WaypointControllerNodeParams::require_valid_estimate, "", params::any<bool>(),
                "command zero while the pose estimate says it is not valid yet")
+          .add("invalid_estimate_speed_mps", &WaypointControllerNodeParams::invalid_estimate_speed_mps, "m/s",
+               params::non_negative("0 = stand still"),
+               "with require_valid_estimate: drive straight ahead at this speed while the estimate is not valid "
+               "(motion makes the heading observable from position fixes), within the acceleration limits")
           .add("estimate_timeout_s", &WaypointControllerNodeParams::estimate_timeout_s, "s", params::positive(),
                "real time only: an estimate received longer ago than this stops the robot (state ESTIMATE_STALE); > the control period");
   return table;

@@ -18,6 +18,7 @@ struct WaypointControllerNodeParams {
   double rate_hz = 100.0;
   ControllerParams controller;
   bool require_valid_estimate = true;
+  double invalid_estimate_speed_mps = 0.0;
   double estimate_timeout_s = 0.5;
 };
 

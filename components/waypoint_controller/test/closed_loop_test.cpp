@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "common/model/actuator.hpp"
 #include "common/model/diff_drive_kinematics.hpp"
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 
@@ -30,20 +31,37 @@ std::vector<Eigen::Vector2d> paper_mission() {
           {70, 90}, {55, 80}, {40, 90}, {25, 85}, {15, 70}, {25, 55}, {40, 50}, {30, 35}, {20, 20}};
 }
 
+/// The robot the loop drives: the ideal unicycle by default, or one with actuator limits
+/// (each wheel clamped on its own, then the acceleration limits, as sim/plant does).
+struct Robot {
+  double wheel_base_m = 0.3;
+  model::ActuatorLimits limits;
+};
+
 struct RunResult {
   bool done = false;
   double time_to_final_s = std::numeric_limits<double>::quiet_NaN();
   std::vector<double> reach_distances_m;
   double max_abs_v = 0.0;
   double max_abs_omega = 0.0;
+  // What the robot applied (equal to the commands for the ideal robot).
+  double max_applied_wheel_mps = 0.0;
+  double max_applied_accel_mps2 = 0.0;
+  double max_applied_angular_accel_radps2 = 0.0;
+  // The commands' own changes per step, over dt.
+  double max_command_accel_mps2 = 0.0;
+  double max_command_angular_accel_radps2 = 0.0;
+  double max_command_wheel_mps = 0.0;
   bool converged = false;       // came within kConvergedDistanceM of the last way-point
   TrackerStatus final_status;   // at that moment (or at the end of the run)
 };
 
-RunResult run_paper_mission(const ControllerParams& params, double max_time_s) {
-  WaypointTracker tracker(params);
+RunResult run_paper_mission(const ControllerParams& params, double max_time_s, const Robot& robot = Robot{}) {
+  WaypointTracker tracker(params, kDt);
   tracker.set_mission(paper_mission());
   model::Pose2 pose{50.0, 10.0, 0.0};
+  model::Twist applied{};
+  Command previous_command{};
   RunResult result;
   const long max_steps = std::lround(max_time_s / kDt);
   long done_step = -1;
@@ -52,6 +70,12 @@ RunResult run_paper_mission(const ControllerParams& params, double max_time_s) {
     result.final_status = output.status;
     result.max_abs_v = std::max(result.max_abs_v, std::abs(output.command.v));
     result.max_abs_omega = std::max(result.max_abs_omega, std::abs(output.command.omega));
+    const model::WheelSpeeds cw = model::wheel_speeds_from_twist({output.command.v, output.command.omega}, robot.wheel_base_m);
+    result.max_command_wheel_mps = std::max({result.max_command_wheel_mps, std::abs(cw.left), std::abs(cw.right)});
+    result.max_command_accel_mps2 = std::max(result.max_command_accel_mps2, std::abs(output.command.v - previous_command.v) / kDt);
+    result.max_command_angular_accel_radps2 =
+        std::max(result.max_command_angular_accel_radps2, std::abs(output.command.omega - previous_command.omega) / kDt);
+    previous_command = output.command;
     if (output.status.done && done_step < 0) {
       done_step = k;
     }
@@ -62,7 +86,16 @@ RunResult run_paper_mission(const ControllerParams& params, double max_time_s) {
     if (done_step >= 0 && (k - done_step) * kDt >= kMaxSettleAfterDoneS) {
       break;
     }
-    pose = model::integrate_exact(pose, model::Twist{output.command.v, output.command.omega}, kDt);
+    const model::Twist target = model::clamp_wheel_speeds(model::Twist{output.command.v, output.command.omega},
+                                                          robot.wheel_base_m, robot.limits.max_wheel_speed_mps);
+    const model::Twist next = model::limit_acceleration(target, applied, kDt, robot.limits);
+    const model::WheelSpeeds w = model::wheel_speeds_from_twist(next, robot.wheel_base_m);
+    result.max_applied_wheel_mps = std::max({result.max_applied_wheel_mps, std::abs(w.left), std::abs(w.right)});
+    result.max_applied_accel_mps2 = std::max(result.max_applied_accel_mps2, std::abs(next.v - applied.v) / kDt);
+    result.max_applied_angular_accel_radps2 =
+        std::max(result.max_applied_angular_accel_radps2, std::abs(next.omega - applied.omega) / kDt);
+    applied = next;
+    pose = model::integrate_exact(pose, applied, kDt);
   }
   result.done = done_step >= 0;
   result.time_to_final_s = done_step * kDt;
@@ -99,9 +132,14 @@ TEST_P(WaypointClosedLoop, ReachesAllWaypointsWithinEpsilonLikeTableOne) {
   ASSERT_TRUE(run.done);
   ASSERT_EQ(run.reach_distances_m.size(), 18u);
   print_figures("unlimited", c.epsilon_m, run);
+  // The time-step bound: the command v = kd·d is held over a step, so going straight at the
+  // way-point d shrinks by the factor (1 - kd·dt) per step (by less when alpha != 0): the first
+  // step within epsilon is at a distance in ((1 - kd·dt)·epsilon, epsilon]. A tracker that
+  // switches a step late, or measures after moving, lands below it.
+  const double lower = (1.0 - params.forward_gains.kd * kDt) * c.epsilon_m;
   for (const double distance : run.reach_distances_m) {
     EXPECT_LE(distance, c.epsilon_m);
-    EXPECT_GT(distance, 0.9 * c.epsilon_m);  // Table 1: 0.0996 / 0.00984 / 0.000989
+    EXPECT_GT(distance, lower);
   }
   EXPECT_GT(run.time_to_final_s, c.min_time_s);
   EXPECT_LT(run.time_to_final_s, c.max_time_s);
@@ -137,6 +175,53 @@ TEST(WaypointClosedLoopLimited, StillReachesAllWaypointsWithUnitLimits) {
   ASSERT_TRUE(run.converged);
   EXPECT_LT(std::abs(run.final_status.alpha_rad), 0.03);
   EXPECT_LT(std::abs(run.final_status.sigma_rad), 0.2);
+}
+
+// Issue 12: a robot with a 0.3 m track, wheels at most 1.5 m/s, 1 m/s^2 and 5 rad/s^2.
+model::ActuatorLimits realistic_limits() { return model::ActuatorLimits{1.5, 1.0, 5.0}; }
+
+void print_limited(const char* label, const RunResult& run) {
+  std::printf("[limits] %s reached=%zu/18 time_to_final=%.2f s max wheel applied=%.4g commanded=%.4g m/s; "
+              "max |dv/dt| applied=%.4g commanded=%.4g m/s^2; max |domega/dt| applied=%.4g commanded=%.4g rad/s^2\n",
+              label, run.reach_distances_m.size(), run.time_to_final_s, run.max_applied_wheel_mps,
+              run.max_command_wheel_mps, run.max_applied_accel_mps2, run.max_command_accel_mps2,
+              run.max_applied_angular_accel_radps2, run.max_command_angular_accel_radps2);
+}
+
+// The controller knows the limits: it scales v and omega together (same curvature) and ramps its
+// commands, so the robot follows them exactly and still reaches every way-point.
+TEST(WaypointClosedLoopActuator, ReachesAllWaypointsWhenTheControllerKnowsTheLimits) {
+  ControllerParams params;
+  params.wheel_base_m = 0.3;
+  params.actuator = realistic_limits();
+  const Robot robot{0.3, realistic_limits()};
+  const RunResult run = run_paper_mission(params, 600.0, robot);
+  print_limited("controller aware", run);
+  ASSERT_TRUE(run.done);
+  EXPECT_EQ(run.reach_distances_m.size(), 18u);
+  for (const double distance : run.reach_distances_m) {
+    EXPECT_LE(distance, params.epsilon_m);
+  }
+  constexpr double kTolerance = 1e-9;
+  EXPECT_LE(run.max_command_wheel_mps, 1.5 + kTolerance) << "the commands are within the wheel limit";
+  EXPECT_LE(run.max_command_accel_mps2, 1.0 + kTolerance);
+  EXPECT_LE(run.max_command_angular_accel_radps2, 5.0 + kTolerance);
+  EXPECT_LE(run.max_applied_wheel_mps, 1.5 + kTolerance);
+  EXPECT_LE(run.max_applied_accel_mps2, 1.0 + kTolerance);
+  EXPECT_LE(run.max_applied_angular_accel_radps2, 5.0 + kTolerance);
+  EXPECT_GT(run.time_to_final_s, 200.0) << "a robot at 1.5 m/s is much slower than the unlimited ~93.5 s";
+}
+
+// The same robot driven by a controller that ignores the limits (issue 12: "the robot shuttles
+// back and forth and reaches 0 of 18"): the wheel clamp bends the commanded arcs.
+TEST(WaypointClosedLoopActuator, AnUnawareControllerFailsOnTheSameRobot) {
+  ControllerParams params;  // no actuator limits
+  const Robot robot{0.3, realistic_limits()};
+  const RunResult run = run_paper_mission(params, 600.0, robot);
+  print_limited("controller unaware", run);
+  EXPECT_LT(run.reach_distances_m.size(), 18u);
+  EXPECT_GT(run.max_command_wheel_mps, 1.5) << "it commands what the wheels cannot do";
+  EXPECT_LE(run.max_applied_wheel_mps, 1.5 + 1e-9) << "and the robot does not do it";
 }
 
 }  // namespace

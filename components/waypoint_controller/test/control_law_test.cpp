@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "common/angle.hpp"
@@ -106,6 +108,43 @@ TEST(WaypointControlLaw, LimitsClampSpeedAndTurnRateIndependently) {
   const Command small = waypoint_command(error_of(0.2, 0.01, 0.0), params);
   EXPECT_NEAR(small.v, 0.2, kTol);
   EXPECT_NEAR(small.omega, 0.2, kTol);
+}
+
+// Issue 12: the faster wheel at its limit, v and omega scaled by one factor (same curvature).
+TEST(WaypointControlLaw, WheelLimitScalesSpeedAndTurnRateTogether) {
+  ControllerParams params;
+  params.wheel_base_m = 0.3;
+  params.actuator.max_wheel_speed_mps = 1.5;
+  const PolarError error = error_of(18.0, 1.5, 1.0);
+  const Command raw = control_law(error, params.forward_gains);
+  const Command command = waypoint_command(error, params);
+  const double fastest = std::max(std::abs(command.v - 0.15 * command.omega), std::abs(command.v + 0.15 * command.omega));
+  EXPECT_NEAR(fastest, 1.5, kTol);
+  EXPECT_NEAR(command.omega / command.v, raw.omega / raw.v, kTol) << "the curvature of eq. (10) is kept";
+  const Command slow = waypoint_command(error_of(0.5, 0.01, 0.0), params);
+  EXPECT_NEAR(slow.v, 0.5, kTol) << "within the wheel limit: unchanged";
+  EXPECT_NEAR(slow.omega, 0.2, kTol);
+}
+
+// Issue 12: |v| <= sqrt(2 a d) and |omega| <= sqrt(2 a_omega |omega / ka|): the robot can brake
+// before the error the law drives to zero is gone; the sign and the zeros of the law are kept.
+TEST(WaypointControlLaw, BrakeableBoundsTheLawWhereTheRobotCouldNotStopInTime) {
+  const GainSet gains{1.0, 20.0, -2.5};
+  const model::ActuatorLimits limits{0.0, 1.0, 5.0};
+  const Command far = brakeable(Command{18.0, -60.0}, gains, limits);
+  EXPECT_NEAR(far.v, 6.0, kTol) << "sqrt(2 * 1 * 18)";
+  EXPECT_NEAR(far.omega, -std::sqrt(2.0 * 5.0 * 3.0), kTol) << "heading error 60 / 20 = 3 rad";
+  const Command near = brakeable(Command{1.5, 0.5}, gains, limits);
+  EXPECT_EQ(near.v, 1.5) << "1.5 <= sqrt(3): brakeable";
+  EXPECT_EQ(near.omega, 0.5) << "0.5 <= sqrt(0.25)=0.5";
+  const Command zero = brakeable(Command{0.0, 0.0}, gains, limits);
+  EXPECT_EQ(zero.v, 0.0);
+  EXPECT_EQ(zero.omega, 0.0);
+  const Command backwards = brakeable(Command{-8.0, 40.0}, GainSet{-1.0, 20.0, -2.5}, limits);
+  EXPECT_NEAR(backwards.v, -4.0, kTol) << "backing up: sqrt(2 * 8), sign kept";
+  const Command unlimited = brakeable(Command{18.0, -60.0}, gains, model::ActuatorLimits{});
+  EXPECT_EQ(unlimited.v, 18.0);
+  EXPECT_EQ(unlimited.omega, -60.0);
 }
 
 TEST(WaypointControlLaw, ZeroLimitsMeanUnlimited) {

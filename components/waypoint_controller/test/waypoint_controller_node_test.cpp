@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <vector>
 
 #include "robodds/idl/robodds.h"
@@ -79,6 +80,69 @@ TEST(WaypointControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
     EXPECT_EQ(status[i].waypoints_total(), 0u) << "no tracking step was taken";
     EXPECT_DOUBLE_EQ(status[i].epsilon(), 0.1);
   }
+}
+
+// Issue 12: the limits in the controller's parameters, the control period from its rate
+// (50 Hz: 0.02 s): the command ramps at 1 m/s^2 and the wheel limit scales v and omega together.
+TEST(WaypointControllerNode, RampsAndScalesItsCommandsToTheActuatorLimits) {
+  NodeHarness h(R"(name: waypoint_controller_limits
+step_s: 0.01
+duration_s: 0.1
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: controller, type: waypoint_controller,
+     params: {rate_hz: 50, wheel_base_m: 0.3, max_wheel_speed_mps: 1.5, max_accel_mps2: 1.0, max_angular_accel_radps2: 5.0}}
+)");
+  add_controller(h);
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
+    }
+    h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, step >= 4), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 6u) << "steps 0, 2, ..., 10 at 50 Hz";
+  EXPECT_DOUBLE_EQ(commands[1].v(), 0.0) << "step 2: the estimate is not valid yet";
+  EXPECT_NEAR(commands[2].v(), 0.02, 1e-12) << "step 4: 1 m/s^2 for one period of 0.02 s";
+  EXPECT_NEAR(commands[5].v(), 0.08, 1e-12);
+  for (const idl::VelocityCommand& c : commands) {
+    EXPECT_LE(std::abs(c.v()) + 0.15 * std::abs(c.omega()), 1.5 + 1e-12);
+  }
+}
+
+// While the estimate is not valid the robot may creep straight ahead (so that the position fixes
+// reveal its heading), ramped like every command; once valid it tracks.
+TEST(WaypointControllerNode, CreepsAheadWhileTheEstimateIsNotValid) {
+  NodeHarness h(R"(name: waypoint_controller_creep
+step_s: 0.01
+duration_s: 0.1
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: controller, type: waypoint_controller,
+     params: {invalid_estimate_speed_mps: 0.3, max_accel_mps2: 10.0}}
+)");
+  add_controller(h);
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{0.0, 10.0}}), 0, kNeverAgain);
+    }
+    h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, step >= 8), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 11u);
+  EXPECT_NEAR(commands[0].v(), 0.1, 1e-12) << "10 m/s^2 for 0.01 s";
+  EXPECT_NEAR(commands[2].v(), 0.3, 1e-12) << "then the creep speed";
+  EXPECT_DOUBLE_EQ(commands[2].omega(), 0.0) << "straight ahead";
+  EXPECT_EQ(status[2].state(), idl::ESTIMATE_INVALID);
+  EXPECT_EQ(status[8].state(), idl::TRACKING);
+  EXPECT_GT(std::abs(commands[8].omega()), 0.0) << "valid: it turns towards the way-point (to its left)";
 }
 
 TEST(WaypointControllerNode, DrivesToTheWaypointAndSwitchesWithinEpsilon) {

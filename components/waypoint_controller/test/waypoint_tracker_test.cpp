@@ -179,6 +179,44 @@ TEST(WaypointTracker, AppliesTheConfiguredLimits) {
   EXPECT_LE(std::abs(output.command.omega), 1.0);
 }
 
+// Issue 12: with acceleration limits each command differs from the previous one by at most
+// max_accel * period (v) and max_angular_accel * period (omega), the stop included.
+TEST(WaypointTracker, RampsItsCommandsAtTheAccelerationLimits) {
+  ControllerParams params = paper_params();
+  params.actuator.max_accel_mps2 = 1.0;
+  params.actuator.max_angular_accel_radps2 = 5.0;
+  params.stop_when_done = true;
+  WaypointTracker tracker(params, 0.1);
+  tracker.set_mission({Eigen::Vector2d(10.0, 0.0)});
+  Command previous{};
+  for (int k = 0; k < 5; ++k) {
+    const TrackerOutput out = tracker.step(0.0, 0.0, 0.0);
+    EXPECT_NEAR(out.command.v, 0.1 * (k + 1), kTol) << "step " << k << ": +1 m/s^2 * 0.1 s per step";
+    EXPECT_LE(std::abs(out.command.omega - previous.omega), 0.5 + kTol);
+    previous = out.command;
+  }
+  // On the way-point: done, the stop ramps down too.
+  const TrackerOutput stop = tracker.step(10.0, 0.0, kPi / 2);
+  ASSERT_TRUE(stop.status.done);
+  EXPECT_NEAR(stop.command.v, 0.4, kTol);
+  // The node sent a stop of its own (no valid estimate): the ramp restarts from zero.
+  tracker.command_stopped();
+  EXPECT_NEAR(tracker.step(10.0, 0.0, kPi / 2).command.v, 0.0, kTol);
+}
+
+TEST(WaypointTracker, AccelerationLimitsNeedAControlPeriod) {
+  ControllerParams params;
+  params.actuator.max_accel_mps2 = 1.0;
+  try {
+    WaypointTracker tracker(params);
+    FAIL() << "no period accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("period_s: must be > 0", 0), 0u) << e.what();
+  }
+  EXPECT_NO_THROW(WaypointTracker(params, 0.01));
+  EXPECT_NO_THROW(WaypointTracker(ControllerParams{})) << "without acceleration limits no period is needed";
+}
+
 WaypointTracker confident_tracker(double kappa) {
   ControllerParams params;
   params.confidence_switch_sigmas = kappa;

@@ -14,6 +14,7 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
+#include "runtime/params.hpp"
 #include "runtime/registry.hpp"
 #include "components/range_rate_observer/node/scenario_observer_bound.hpp"
 #include "components/range_rate_observer/observer_params.hpp"
@@ -23,8 +24,10 @@
 #include "sim/evaluator/node/health_summary.hpp"
 #include "sim/evaluator/node/relative_recorder.hpp"
 #include "sim/evaluator/node/timing_summary.hpp"
+#include "sim/evaluator/motion_extremes.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
+#include "sim/plant/plant_params.hpp"
 
 namespace robodds::evaluator {
 namespace {
@@ -75,6 +78,7 @@ class EvaluatorNode : public Component {
     }
     const auto from_step = static_cast<std::uint64_t>(std::llround(params.metrics_after_s / ctx.step_s()));
     metrics_ = std::make_unique<Metrics>(from_step, consumers);
+    metrics_->set_motion(ctx.step_s(), plant_wheel_base_m(ctx.scenario()));
     if (!stages.empty()) {
       metrics_->enable_relative(params.metrics_after_s);
       for (const std::string& stage : stages) {
@@ -286,14 +290,20 @@ class EvaluatorNode : public Component {
         }
         write_waypoint_metrics(json, *r);
       }
+      if (r != nullptr) {
+        write_motion_metrics(json, *r);
+      }
       json.end_object();
     }
     json.end_object();
     if (keys_.size() == 1) {
-      // One robot (the paper's setting): its way-point figures at the top level too.
+      // One robot (the paper's setting): its way-point and motion figures at the top level too.
       const RobotMetrics* r = metrics_->find(static_cast<std::uint32_t>(keys_[0]));
       if (r != nullptr && r->waypoints.has_status()) {
         write_waypoint_metrics(json, *r);
+      }
+      if (r != nullptr) {
+        write_motion_metrics(json, *r);
       }
     }
     if (!fix_rmse.empty()) {
@@ -426,10 +436,40 @@ class EvaluatorNode : public Component {
     json.value("switch_distance_true_m", m.switch_distance_true_m);
     json.value("final_error_true_m", m.final_error_true_m);
     json.value("epsilon", m.epsilon_m);
-    if (r.has_command) {
-      json.value("max_abs_omega", r.max_abs_omega);
-      json.value("max_abs_v", r.max_abs_v);
+  }
+
+  /// Issue 12: the extremes of what the plant applied (plant/state) and, apart, of what the
+  /// controller commanded (plant/cmd), over the whole run; and when estimate/pose first said
+  /// valid (-1: never). Each only when its topic is recorded.
+  void write_motion_metrics(JsonWriter& json, const RobotMetrics& r) const {
+    const auto extremes = [&json](const MotionExtremesTracker& t, const std::string& which) {
+      if (!t.seen()) {
+        return;
+      }
+      const MotionExtremes& e = t.extremes();
+      json.value("max_abs_v_" + which + "_mps", e.max_abs_v_mps);
+      json.value("max_abs_omega_" + which + "_radps", e.max_abs_omega_radps);
+      json.value("max_abs_wheel_speed_" + which + "_mps", e.max_abs_wheel_speed_mps);
+      json.value("max_abs_accel_" + which + "_mps2", e.max_abs_accel_mps2);
+      json.value("max_abs_angular_accel_" + which + "_radps2", e.max_abs_angular_accel_radps2);
+    };
+    extremes(r.applied, "applied");
+    extremes(r.commanded, "commanded");
+    if (r.position.seen()) {
+      json.value("time_to_valid_s", r.first_valid_step ? static_cast<double>(*r.first_valid_step) * context_->step_s() : -1.0);
     }
+  }
+
+  /// The wheel base of the scenario's plant (its wheel_base_m override, else the plant's
+  /// default), for the wheel speeds of plant/state and plant/cmd.
+  static double plant_wheel_base_m(const Scenario& scenario) {
+    for (const ComponentSpec& spec : scenario.components) {
+      if (spec.type == "plant") {
+        ParamReader overrides(spec.name, spec.overrides);
+        return overrides.has("wheel_base_m") ? overrides.get_double("wheel_base_m") : plant::PlantParams{}.wheel_base_m;
+      }
+    }
+    return plant::PlantParams{}.wheel_base_m;
   }
 
   std::vector<std::uint64_t> keys_;

@@ -9,12 +9,15 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
+#include "common/model/diff_drive_kinematics.hpp"
 #include "robodds/idl/robodds.h"
 #include "sim/evaluator/circumnavigation_metrics.hpp"
 #include "sim/evaluator/handover.hpp"
+#include "sim/evaluator/motion_extremes.hpp"
 #include "sim/evaluator/relative_pose_metrics.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
@@ -24,18 +27,19 @@ namespace robodds::evaluator {
 /// What the metrics need of one robot, updated sample by sample: running figures and the few
 /// samples still waiting for their match, never the whole history.
 struct RobotMetrics {
-  RobotMetrics(std::uint64_t from_step, double gaps_after_s)
+  RobotMetrics(std::uint64_t from_step, double gaps_after_s, double step_s, double wheel_base_m)
       : fixes(position_distance, from_step), position(position_distance, from_step),
-        heading(heading_difference, from_step), estimate_gaps(gaps_after_s) {}
+        heading(heading_difference, from_step), applied(step_s, wheel_base_m), commanded(step_s, wheel_base_m),
+        estimate_gaps(gaps_after_s) {}
   TrackSummary truth;
   TruthWindow recent_truth;
   MatchedError fixes;     // sensor/position against truth
   MatchedError position;  // estimate/pose against truth
   MatchedError heading;
   WaypointTracker waypoints;
-  bool has_command = false;
-  double max_abs_omega = 0.0;
-  double max_abs_v = 0.0;
+  MotionExtremesTracker applied;    // plant/state: what the robot did
+  MotionExtremesTracker commanded;  // plant/cmd: what the controller asked for
+  std::optional<std::uint64_t> first_valid_step;  // of estimate/pose
   GapTracker estimate_gaps;  // estimate/pose stamps (s): a hot standby's hand-over time
 };
 
@@ -114,6 +118,7 @@ class Metrics {
   void observe(const idl::RobotState& m) {
     const PoseSample s{m.header().step(), m.x(), m.y(), m.theta()};
     RobotMetrics& r = robot(m.robot_id());
+    r.applied.add({m.header().step(), m.v(), m.omega()});
     r.truth.add(s);
     r.recent_truth.add(s);
     if (relative_ != nullptr) {
@@ -135,12 +140,15 @@ class Metrics {
     robot(m.robot_id()).position.add(s);
     robot(m.robot_id()).heading.add(s);
     robot(m.robot_id()).estimate_gaps.observe(static_cast<double>(m.header().stamp_ns()) * 1e-9);
+    if (m.valid() && !robot(m.robot_id()).first_valid_step) {
+      robot(m.robot_id()).first_valid_step = m.header().step();
+    }
   }
   void observe(const idl::VelocityCommand& m) {
-    RobotMetrics& r = robot(m.robot_id());
-    r.has_command = true;
-    r.max_abs_omega = std::max(r.max_abs_omega, std::abs(m.omega()));
-    r.max_abs_v = std::max(r.max_abs_v, std::abs(m.v()));
+    const model::Twist twist = m.mode() == idl::WHEEL_SPEEDS
+                                   ? model::twist_from_wheel_speeds(m.v_left(), m.v_right(), wheel_base_m_)
+                                   : model::Twist{m.v(), m.omega()};
+    robot(m.robot_id()).commanded.add({m.header().step(), twist.v, twist.omega});
   }
   void observe(const idl::ControllerStatus& m) {
     robot(m.robot_id()).waypoints.add_status({m.header().step(), m.waypoints_reached(), m.waypoints_total(), m.done(),
@@ -187,6 +195,12 @@ class Metrics {
 
   /// Gaps between estimate/pose samples count from this stamp (s) on; set before the first sample.
   void set_gaps_after_s(double after_s) { gaps_after_s_ = after_s; }
+  /// The simulation step (s) and the plant's wheel base (m), for the wheel speeds and
+  /// accelerations of plant/state and plant/cmd; set before the first sample.
+  void set_motion(double step_s, double wheel_base_m) {
+    step_s_ = step_s;
+    wheel_base_m_ = wheel_base_m;
+  }
 
   const RobotMetrics* find(std::uint32_t id) const {
     auto it = robots_.find(id);
@@ -194,10 +208,14 @@ class Metrics {
   }
 
  private:
-  RobotMetrics& robot(std::uint32_t id) { return robots_.try_emplace(id, from_step_, gaps_after_s_).first->second; }
+  RobotMetrics& robot(std::uint32_t id) {
+    return robots_.try_emplace(id, from_step_, gaps_after_s_, step_s_, wheel_base_m_).first->second;
+  }
 
   std::uint64_t from_step_;
   double gaps_after_s_ = 0.0;
+  double step_s_ = 0.01;
+  double wheel_base_m_ = 0.5;
   TruthConsumers consumers_;
   std::map<std::uint32_t, RobotMetrics> robots_;
   std::unique_ptr<CircumnavigationMetrics> circumnavigation_;

@@ -115,6 +115,59 @@ TEST(EvaluatorNode, AFailedRunKeepsTheRowsSoFarAndSaysWhyInTheSummary) {
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("1": \{\s*"path_length_m": 5,)"))) << "metrics of the data so far: " << summary;
 }
 
+/// The number after "<key>": in summary.json (the first occurrence); NaN if absent.
+double summary_value(const std::string& summary, const std::string& key) {
+  std::smatch m;
+  const std::regex pattern("\"" + key + "\": ?(-?[0-9.eE+-]+)");
+  return std::regex_search(summary, m, pattern) ? std::stod(m[1].str()) : std::numeric_limits<double>::quiet_NaN();
+}
+
+// Issue 12: the extremes of what the plant applied (plant/state) and of what the controller
+// commanded (plant/cmd) apart, wheel speeds with the plant's wheel_base_m (0.3 m here), and the
+// time of the first valid estimate.
+TEST(EvaluatorNode, AppliedAndCommandedExtremesApartAndTheTimeToValid) {
+  NodeHarness h(R"(name: evaluator_motion
+step_s: 0.01
+duration_s: 0.1
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: plant, type: plant, params: {wheel_base_m: 0.3}}
+  - {name: evaluator, type: evaluator, params: {topics: [plant/state, plant/cmd, estimate/pose], metrics_after_s: 0.0}}
+)");
+  add_evaluator(h);
+  h.feed([&h](std::uint64_t step) {
+    idl::VelocityCommand cmd;
+    cmd.robot_id(1);
+    cmd.mode(idl::VELOCITY);
+    cmd.v(step == 5 ? 18.0 : 1.0);  // one 18 m/s command the plant never applies
+    cmd.omega(step == 5 ? -60.0 : 0.0);
+    h.publish("plant/cmd", cmd, step, step + 1);
+    idl::RobotState s;
+    s.robot_id(1);
+    s.v(0.01 * static_cast<double>(step));  // 1 m/s^2
+    s.omega(step == 6 ? 0.5 : 0.0);         // 50 rad/s^2 up and down
+    h.publish("plant/state", s, step, step + 1);
+    idl::PoseEstimate e;
+    e.robot_id(1);
+    e.valid(step >= 4);
+    h.publish("estimate/pose", e, step, step + 1);
+  });
+  h.run({"evaluator"});
+  const std::string summary = text_of(h.output_dir() + "/summary.json");
+  EXPECT_NEAR(summary_value(summary, "max_abs_v_applied_mps"), 0.1, 1e-12) << summary;
+  EXPECT_NEAR(summary_value(summary, "max_abs_omega_applied_radps"), 0.5, 1e-12);
+  EXPECT_NEAR(summary_value(summary, "max_abs_wheel_speed_applied_mps"), 0.06 + 0.15 * 0.5, 1e-12) << "step 6, D = 0.3 m";
+  EXPECT_NEAR(summary_value(summary, "max_abs_accel_applied_mps2"), 1.0, 1e-9);
+  EXPECT_NEAR(summary_value(summary, "max_abs_angular_accel_applied_radps2"), 50.0, 1e-9);
+  EXPECT_NEAR(summary_value(summary, "max_abs_v_commanded_mps"), 18.0, 1e-12);
+  EXPECT_NEAR(summary_value(summary, "max_abs_omega_commanded_radps"), 60.0, 1e-12);
+  EXPECT_NEAR(summary_value(summary, "max_abs_wheel_speed_commanded_mps"), 18.0 + 0.15 * 60.0, 1e-12);
+  EXPECT_NEAR(summary_value(summary, "max_abs_accel_commanded_mps2"), 1700.0, 1e-6);
+  EXPECT_NEAR(summary_value(summary, "time_to_valid_s"), 0.04, 1e-12);
+}
+
 // A scenario with a hot standby (standby_for): summary.json "standby" holds each robot's longest
 // gap between estimate/pose samples (the hand-over time); without one there is no such section.
 const char* kStandbyScenario = R"(name: evaluator_standby

@@ -6,7 +6,9 @@
 #include <map>
 #include <optional>
 
+#include "common/model/actuator.hpp"
 #include "common/model/diff_drive_kinematics.hpp"
+#include "sim/plant/disturbance.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
@@ -27,7 +29,7 @@ class PlantNode : public Component {
     ctx.set_rate_hz(rate_hz, "rate_hz");
     ctx.require_longer_than_period("command_timeout_s", params_.command_timeout_s);
     for (const RobotSpec& robot : ctx.robots()) {
-      robots_[robot.id] = Robot{model::Pose2{robot.x, robot.y, robot.theta}, model::Twist{}};
+      robots_[robot.id] = Robot{model::Pose2{robot.x, robot.y, robot.theta}, model::Twist{}, false};
     }
     // delayed(1) closes the loop: integrate the command of the previous step.
     commands_ = &ctx.subscribe<idl::VelocityCommand>("plant/cmd", Subscription::instances(ctx.robot_keys()).delayed(1));
@@ -37,11 +39,25 @@ class PlantNode : public Component {
 
   void on_step(const StepInfo& info) override {
     for (auto& [id, robot] : robots_) {
-      const model::Twist twist = command_for(id, info.stamp_ns);
-      if (info.dt_s > 0.0) {
+      // What the wheels can do (|v|, |omega| and wheel-speed limits), then how fast they get there.
+      const Target target = command_for(id, info.stamp_ns);
+      const bool moves = info.dt_s > 0.0;  // not on the first step
+      // A command is reached within the acceleration limits; a safe stop (no command yet, a stale
+      // or non-finite one) is immediate, as a motor driver's watchdog stops the wheels.
+      const model::Twist twist = moves && target.step
+                                     ? model::limit_acceleration(target.twist, robot.applied, info.dt_s, params_.actuator)
+                                     : model::Twist{};
+      if (moves && target.step && (twist.v != target.twist.v || twist.omega != target.twist.omega)) {
+        count_once(counted_acceleration_, id, *target.step, "acceleration_limited");
+      }
+      if (moves) {
         robot.pose = model::integrate_exact(robot.pose, twist, info.dt_s);
       }
-      robot.applied = info.dt_s > 0.0 ? twist : model::Twist{};
+      if (params_.disturbance.due(info.time_s, robot.disturbed)) {
+        robot.pose = apply_disturbance(robot.pose, params_.disturbance);  // kidnapped: no motion, v and omega unchanged
+        robot.disturbed = true;
+      }
+      robot.applied = twist;
       idl::RobotState state;
       state.robot_id(id);
       state.x(robot.pose.x);
@@ -57,6 +73,7 @@ class PlantNode : public Component {
   struct Robot {
     model::Pose2 pose;
     model::Twist applied;
+    bool disturbed = false;  // the pose jump (PlantParams::disturbance) was applied
   };
 
   /// How long `cmd` was held up on its way, beyond the fastest command of this robot so far.
@@ -75,17 +92,33 @@ class PlantNode : public Component {
     return static_cast<double>(delay_ns - it->second) * 1e-9;
   }
 
-  model::Twist command_for(std::uint32_t id, std::int64_t now_wall_ns) {
+  /// The twist the plant steers towards: the command within the limits, or a stop.
+  struct Target {
+    model::Twist twist;
+    std::optional<std::uint64_t> step;  // the step of the command it comes from (none: a stop)
+  };
+
+  /// Counts `reason` once per command (by its step), not per step it is applied.
+  void count_once(std::map<std::uint32_t, std::uint64_t>& counted, std::uint32_t id, std::uint64_t step,
+                  const char* reason) {
+    const auto [it, first] = counted.try_emplace(id, step);
+    if (first || it->second != step) {
+      it->second = step;
+      commands_->count_adjusted(reason);
+    }
+  }
+
+  Target command_for(std::uint32_t id, std::int64_t now_wall_ns) {
     const idl::VelocityCommand* cmd = commands_->latest(id);
     if (cmd == nullptr) {
-      return model::Twist{};  // no command yet: stand still
+      return {};  // no command yet: stand still
     }
     if (mode_ == TimeMode::kRealtime) {
       // Age by this process's receive time (monotonic), never by the sender's stamp: a stamp in
       // the future would otherwise keep a command alive forever.
       const std::optional<double> age_s = commands_->age_s(id);
       if (!age_s || *age_s + held_up_s(id, *cmd, now_wall_ns, *age_s) > params_.command_timeout_s) {
-        return model::Twist{};  // stale command: safe stop
+        return {};  // stale command: safe stop
       }
     }
     // The input has refused commands beyond the gross bounds (runtime/sample_checks.hpp) and
@@ -94,21 +127,18 @@ class PlantNode : public Component {
                                        ? model::twist_from_wheel_speeds(cmd->v_left(), cmd->v_right(), params_.wheel_base_m)
                                        : model::Twist{cmd->v(), cmd->omega()};
     if (!std::isfinite(requested.v) || !std::isfinite(requested.omega)) {
-      return model::Twist{};  // never integrate a non-finite command
+      return {};  // never integrate a non-finite command
     }
-    const model::Twist applied = model::saturate(requested, params_.limits);
+    const model::Twist applied = model::clamp_wheel_speeds(model::saturate(requested, params_.limits), params_.wheel_base_m,
+                                                           params_.actuator.max_wheel_speed_mps);
     if (applied.v != requested.v || applied.omega != requested.omega) {
-      // Once per command, not per step it is applied.
-      const auto [it, first] = counted_saturation_.try_emplace(id, cmd->header().step());
-      if (first || it->second != cmd->header().step()) {
-        it->second = cmd->header().step();
-        commands_->count_adjusted("saturated");
-      }
+      count_once(counted_saturation_, id, cmd->header().step(), "saturated");
     }
-    return applied;
+    return Target{applied, cmd->header().step()};
   }
 
   std::map<std::uint32_t, std::uint64_t> counted_saturation_;  // robot -> step of the last command counted
+  std::map<std::uint32_t, std::uint64_t> counted_acceleration_;  // the same for "acceleration_limited"
   std::map<std::uint32_t, std::int64_t> fastest_delay_ns_;  // robot -> smallest receive wall time - stamp (real time)
 
   PlantParams params_;

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -165,6 +166,74 @@ components:
   EXPECT_DOUBLE_EQ(states[3].omega(), 0.5);
 }
 
+// Actuator model: wheel base 0.3 m, wheels at most 1.5 m/s each (clamped one by one), 1 m/s^2,
+// 5 rad/s^2. A command of (18 m/s, 60 rad/s) is wheels (9, 27): clamped to (1.5, 1.5), i.e. a
+// straight line at 1.5 m/s, reached at 1 m/s^2.
+TEST(PlantNode, WheelSpeedsAreClampedAndTheTwistRampsAtTheAccelerationLimits) {
+  NodeHarness h(R"(name: plant_actuator
+step_s: 0.01
+duration_s: 2.0
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: plant, type: plant, params: {wheel_base_m: 0.3, max_wheel_speed_mps: 1.5, max_accel_mps2: 1.0,
+                                        max_angular_accel_radps2: 5.0}}
+)");
+  add_plant(h);
+  h.feed([&h](std::uint64_t step) {
+    h.publish("plant/cmd", step < 100 ? velocity(1, 18.0, 60.0) : velocity(1, 0.0, -60.0), step, step + 1);
+  });
+  const auto& states = h.record<idl::RobotState>("plant/state");
+  h.run({"plant"});
+  ASSERT_EQ(states.size(), 201u);
+  for (std::size_t k = 1; k < states.size(); ++k) {
+    const double v = states[k].v();
+    const double omega = states[k].omega();
+    EXPECT_LE(std::abs(v - 0.15 * omega), 1.5 + 1e-12) << "left wheel, step " << k;
+    EXPECT_LE(std::abs(v + 0.15 * omega), 1.5 + 1e-12) << "right wheel, step " << k;
+    EXPECT_LE(std::abs(v - states[k - 1].v()), 0.01 + 1e-12) << "step " << k;
+    EXPECT_LE(std::abs(omega - states[k - 1].omega()), 0.05 + 1e-12) << "step " << k;
+  }
+  EXPECT_NEAR(states[50].v(), 0.5, 1e-12) << "step 50: 50 steps of 0.01 m/s (step 1 applies the command of step 0)";
+  EXPECT_DOUBLE_EQ(states[50].omega(), 0.0) << "both wheels clamped to 1.5: straight";
+  // From step 101 on: (0, -60) is wheels (9, -9), clamped to (1.5, -1.5): omega = -10 rad/s,
+  // v = 0; the change is scaled as one: omega ramps at 5 rad/s^2 and v falls by the same fraction.
+  EXPECT_NEAR(states[100].v(), 1.0, 1e-12);
+  EXPECT_NEAR(states[110].omega(), -0.5, 1e-9);
+  EXPECT_LT(states[110].v(), states[100].v());
+  EXPECT_GT(states[110].v(), 0.0) << "v falls no faster than 1 m/s^2";
+  EXPECT_NEAR(states[110].v(), 0.95, 1e-9) << "on the segment from (1, 0) to (0, -10)";
+}
+
+// Kidnapped robot: at t = 0.03 s (step 3) the true pose jumps once by (10, -2) m and pi/2 rad,
+// on top of the motion; the applied twist is unchanged.
+TEST(PlantNode, TheDisturbanceMovesThePoseOnceAtItsTime) {
+  NodeHarness h(R"(name: plant_disturbance
+step_s: 0.01
+duration_s: 0.05
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: plant, type: plant, params: {disturbance_at_s: 0.03, disturbance_dx_m: 10.0, disturbance_dy_m: -2.0,
+                                        disturbance_dtheta_rad: 1.5707963267948966}}
+)");
+  add_plant(h);
+  h.feed([&h](std::uint64_t step) { h.publish("plant/cmd", velocity(1, 1.0, 0.0), step, step + 1); });
+  const auto& states = h.record<idl::RobotState>("plant/state");
+  h.run({"plant"});
+  ASSERT_EQ(states.size(), 6u);
+  EXPECT_NEAR(states[2].x(), 0.02, 1e-12) << "before the jump: driven along +x";
+  EXPECT_DOUBLE_EQ(states[2].theta(), 0.0);
+  EXPECT_NEAR(states[3].x(), 10.03, 1e-12) << "step 3: moved 0.01 m, then jumped 10 m";
+  EXPECT_NEAR(states[3].y(), -2.0, 1e-12);
+  EXPECT_NEAR(states[3].theta(), 1.5707963267948966, 1e-12);
+  EXPECT_DOUBLE_EQ(states[3].v(), 1.0) << "the jump is no motion: the applied twist is the command's";
+  EXPECT_NEAR(states[5].x(), 10.03, 1e-12) << "once only: afterwards the robot drives on along its new heading (+y)";
+  EXPECT_NEAR(states[5].y(), -1.98, 1e-12);
+}
+
 // Real time, scenario of 0.6 s with a 0.2 s command timeout.
 const char* kRealTimeScenario = R"(name: plant_realtime
 step_s: 0.01
@@ -232,6 +301,41 @@ TEST(PlantNode, RealTimeCommandAgeIsJudgedByReceiveTimeNotTheSendersClock) {
     EXPECT_GT(driven, 0) << "robot " << robot << " was never driven by its fresh commands";
     EXPECT_GT(stopped, 0) << "robot " << robot;
   }
+}
+
+// With acceleration limits a stale command still stops the robot at once (a motor driver's
+// watchdog), not at max_accel_mps2: the limits shape commands, not the safe stop.
+TEST(PlantNode, RealTimeStaleCommandStopsAtOnceDespiteAccelerationLimits) {
+  NodeHarness h(R"(name: plant_realtime_limits
+step_s: 0.01
+duration_s: 0.6
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: plant, type: plant, params: {command_timeout_s: 0.2, max_accel_mps2: 0.5, max_angular_accel_radps2: 0.5}}
+)");
+  add_plant(h);
+  h.set_mode(TimeMode::kRealtime);
+  h.feed([&h](std::uint64_t step) {
+    if (step <= kLastCommand) {
+      h.publish("plant/cmd", velocity(1, 1.0, 0.0), step, step + 1);
+    }
+  });
+  const auto& states = h.record<idl::RobotState>("plant/state");
+  h.run({"plant"});
+  double fastest = 0.0;
+  int stopped = 0;
+  for (const idl::RobotState& s : states) {
+    fastest = std::max(fastest, s.v());
+    if (s.header().step() >= kStoppedFrom) {
+      ++stopped;
+      EXPECT_DOUBLE_EQ(s.v(), 0.0) << "step " << s.header().step();
+    }
+  }
+  EXPECT_GT(fastest, 0.02) << "the robot ramped up on its fresh commands";
+  EXPECT_LT(fastest, 0.5) << "at most 0.5 m/s^2 for the 0.2 s of commands";
+  EXPECT_GT(stopped, 0);
 }
 
 // A command held up on its way (queued in the sender's kernel while a cable was cut, delivered

@@ -33,6 +33,28 @@ TEST(PlantParams, EachBadValueNamesItsKey) {
   p = PlantParams{};
   p.command_timeout_s = 0.0;
   EXPECT_EQ(validation_error(p).rfind("command_timeout_s:", 0), 0u);
+  p = PlantParams{};
+  p.actuator.max_wheel_speed_mps = -1.5;
+  EXPECT_EQ(validation_error(p), "max_wheel_speed_mps: must be >= 0 and finite (0 = unlimited) (got -1.5)");
+  p = PlantParams{};
+  p.actuator.max_accel_mps2 = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(validation_error(p).rfind("max_accel_mps2:", 0), 0u);
+  p = PlantParams{};
+  p.actuator.max_angular_accel_radps2 = -5.0;
+  EXPECT_EQ(validation_error(p).rfind("max_angular_accel_radps2:", 0), 0u);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  p = PlantParams{};
+  p.disturbance.at_s = nan;
+  EXPECT_EQ(validation_error(p).rfind("disturbance_at_s:", 0), 0u);
+  p = PlantParams{};
+  p.disturbance.dx_m = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(validation_error(p).rfind("disturbance_dx_m:", 0), 0u);
+  p = PlantParams{};
+  p.disturbance.dy_m = nan;
+  EXPECT_EQ(validation_error(p).rfind("disturbance_dy_m:", 0), 0u);
+  p = PlantParams{};
+  p.disturbance.dtheta_rad = nan;
+  EXPECT_EQ(validation_error(p).rfind("disturbance_dtheta_rad:", 0), 0u);
 }
 
 }  // namespace
