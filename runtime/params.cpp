@@ -67,6 +67,23 @@ FlatParams load_param_file(const std::string& path) {
   return out;
 }
 
+FlatParams parse_param_assignments(const std::vector<std::string>& assignments) {
+  FlatParams out;
+  for (const std::string& assignment : assignments) {
+    const std::size_t equals = assignment.find('=');
+    const std::string key = assignment.substr(0, equals);
+    const std::size_t dot = key.find('.');
+    if (equals == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 == key.size() ||
+        equals + 1 == assignment.size()) {
+      throw ConfigError("--set '" + assignment + "': expected component.parameter=value (e.g. controller.epsilon_m=0.1)");
+    }
+    if (!out.emplace(key, ParamEntry{assignment.substr(equals + 1), "--set"}).second) {
+      throw ConfigError("--set '" + assignment + "': " + key + " is set twice");
+    }
+  }
+  return out;
+}
+
 FlatParams merge_params(const FlatParams& defaults, const FlatParams& overrides) {
   FlatParams merged = defaults;
   for (const auto& [key, entry] : overrides) {

@@ -27,6 +27,12 @@ using FlatParams = std::map<std::string, ParamEntry>;
 /// Reads a YAML file's top-level map into FlatParams (throws ConfigError naming the file).
 FlatParams load_param_file(const std::string& path);
 
+/// The command line's `--set component.parameter=value` assignments as FlatParams whose file is
+/// "--set" (so later errors say "--set: controller.epsilon_m: ..."). The value is YAML text, e.g.
+/// `0.1` or `[1, 2]`. ConfigError naming the assignment if it has no '=', no '.' in the key or an
+/// empty part, or sets one key twice.
+FlatParams parse_param_assignments(const std::vector<std::string>& assignments);
+
 /// Applies overrides; an override of a key the defaults do not have is a ConfigError naming
 /// the override's file, the key and the known keys.
 FlatParams merge_params(const FlatParams& defaults, const FlatParams& overrides);

@@ -9,31 +9,10 @@
 
 #include "common/angle.hpp"
 #include "common/param_checks.hpp"
+#include "components/uwb_relative_pose/window_edge.hpp"
 
 namespace robodds::uwb {
 namespace {
-
-/// Residual of one edge "pose b seen from pose a is `measured`", each row divided by its std:
-/// between(a, b) - measured, the heading difference wrapped.
-struct EdgeResidual {
-  model::Pose2 measured;
-  double xy_std_m;
-  double theta_std_rad;
-
-  template <class T>
-  bool operator()(const T* const a, const T* const b, T* residual) const {
-    using std::atan2;
-    using std::cos;
-    using std::sin;
-    T a_b[3];
-    model::between_unwrapped(a, b, a_b);
-    const T dtheta = a_b[2] - T(measured.theta);
-    residual[0] = (a_b[0] - T(measured.x)) / T(xy_std_m);
-    residual[1] = (a_b[1] - T(measured.y)) / T(xy_std_m);
-    residual[2] = atan2(sin(dtheta), cos(dtheta)) / T(theta_std_rad);  // wrapped; wrap_angle takes no Jets
-    return true;
-  }
-};
 
 bool finite(const model::Pose2& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta); }
 
@@ -129,8 +108,7 @@ bool SlidingWindowGraph::optimize() {
   }
   ceres::Problem problem;
   const auto add_edge = [&](double* a, double* b, const model::Pose2& measured, double xy_std, double theta_std) {
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<EdgeResidual, 3, 3, 3>(new EdgeResidual{measured, xy_std, theta_std}), nullptr, a, b);
+    problem.AddResidualBlock(new WindowEdgeResidual(measured, xy_std, theta_std), nullptr, a, b);
   };
   for (std::size_t e = 0; e < epochs_.size(); ++e) {
     for (std::size_t i = 0; i < num_robots_ && e > 0; ++i) {

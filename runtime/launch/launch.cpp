@@ -99,6 +99,7 @@ std::vector<std::string> child_argv(const Scenario& scenario, const LaunchOption
   args.epoch_ns = launch.realtime ? epoch_ns : 0;
   args.seed = scenario.seed;
   args.duration_s = scenario.duration_s;
+  args.sets = launch.sets;
   args.log_level = launch.log_level;
   args.max_missed_steps = launch.max_missed_steps;
   args.dds.domain = launch.dds.domain_id;
@@ -247,8 +248,9 @@ namespace {
 /// one component without a scenario file.
 Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) {
   if (!args.type.empty()) {
-    if (!args.scenario.empty() || !args.group.empty() || !args.components.empty()) {
-      throw ConfigError("robodds host: --type runs one component without a scenario; it does not go with --scenario, --group or --components");
+    if (!args.scenario.empty() || !args.group.empty() || !args.components.empty() || !args.sets.empty()) {
+      throw ConfigError("robodds host: --type runs one component without a scenario; it does not go with --scenario, --group, "
+                        "--components or --set (its own keys go in --params)");
     }
     registry.get(args.type);  // an unknown type names the known ones
     return standalone_scenario(args);
@@ -264,6 +266,7 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
   if (!args.params.empty()) {
     apply_param_overrides(scenario, load_param_file(args.params), args.params);
   }
+  apply_param_overrides(scenario, parse_param_assignments(args.sets), "--set");
   return scenario;
 }
 

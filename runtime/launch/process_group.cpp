@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <csignal>
+#include <fcntl.h>
 #include <cstring>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -23,16 +24,30 @@ std::chrono::steady_clock::time_point deadline_after(double seconds) {
 
 ProcessGroup::~ProcessGroup() { terminate_all(2.0); }
 
-void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>& argv) {
+void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file) {
+  int log_fd = -1;
+  if (!log_file.empty()) {
+    log_fd = open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (log_fd < 0) {
+      throw RunError("cannot open the log " + log_file + " of '" + name + "': " + std::strerror(errno));
+    }
+  }
   const pid_t parent = getpid();
   const pid_t pid = fork();
   if (pid < 0) {
-    throw RunError("cannot start the process of group '" + name + "': " + std::strerror(errno));
+    const int error = errno;
+    if (log_fd >= 0) {
+      close(log_fd);
+    }
+    throw RunError("cannot start the process of group '" + name + "': " + std::strerror(error));
   }
   if (pid == 0) {
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) {
       _exit(1);  // the runner died between fork and prctl
+    }
+    if (log_fd >= 0 && (dup2(log_fd, STDOUT_FILENO) < 0 || dup2(log_fd, STDERR_FILENO) < 0)) {
+      _exit(126);
     }
     std::vector<char*> args;
     for (const std::string& a : argv) {
@@ -42,6 +57,9 @@ void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>
     execvp(args[0], args.data());
     std::fprintf(stderr, "[error] cannot execute %s: %s\n", args[0], std::strerror(errno));
     _exit(127);
+  }
+  if (log_fd >= 0) {
+    close(log_fd);
   }
   children_.push_back(Child{name, pid, false, 0});
 }

@@ -14,8 +14,9 @@ class ProcessGroup {
  public:
   ~ProcessGroup();
   /// Starts `argv` as the process of group `name`; argv[0] is an executable path, or a name
-  /// looked up in $PATH.
-  void spawn(const std::string& name, const std::vector<std::string>& argv);
+  /// looked up in $PATH. A non-empty `log_file` takes the child's stdout and stderr (created or
+  /// truncated; RunError naming it if it cannot be opened).
+  void spawn(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file = "");
   /// Throws RunError naming the group if a child has failed (non-zero exit or a signal) while the
   /// run goes on; a child that ended with code 0 finished its part and is only reaped.
   void check_alive();

@@ -56,6 +56,27 @@ TEST(Params, NonFiniteIsRejected) {
   EXPECT_NE(error_of([&] { r.get_double("a"); }).find("must be finite"), std::string::npos);
 }
 
+TEST(Params, SetAssignmentsBecomeOverridesFromSet) {
+  const FlatParams p = parse_param_assignments({"controller.epsilon_m=0.01", "evaluator.topics=[a, b]", "c.k=x=y"});
+  ASSERT_EQ(p.size(), 3u);
+  EXPECT_EQ(p.at("controller.epsilon_m").yaml, "0.01");
+  EXPECT_EQ(p.at("controller.epsilon_m").file, "--set");
+  EXPECT_EQ(p.at("evaluator.topics").yaml, "[a, b]");
+  EXPECT_EQ(p.at("c.k").yaml, "x=y");  // the first '=' splits
+}
+
+TEST(Params, MalformedSetAssignmentNamesIt) {
+  for (const char* bad : {"epsilon=0.1", "controller.epsilon_m", ".k=1", "c.=1", "c.k="}) {
+    try {
+      parse_param_assignments({bad});
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const ConfigError& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("--set '") + bad + "'"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_THROW(parse_param_assignments({"c.k=1", "c.k=2"}), ConfigError);
+}
+
 TEST(Params, UnknownOverrideNamesOverrideFile) {
   FlatParams defaults{{"a", {"1", "defaults.yaml"}}};
   FlatParams overrides{{"typo", {"2", "scenario.yaml"}}};

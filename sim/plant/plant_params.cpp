@@ -16,7 +16,8 @@ const params::ParamTable<PlantParams>& plant_model_param_table() {
                params::non_negative("0 = unlimited"),
                "each wheel's |rim speed| is clamped on its own, as a motor driver does (bends the path; the paper: 0)")
           .add("max_accel_mps2", &PlantParams::actuator, &model::ActuatorLimits::max_accel_mps2, "m/s^2",
-               params::non_negative("0 = unlimited"), "|dv/dt| of the applied twist (the paper: 0)")
+               params::non_negative("0 = unlimited"),
+               "|dv/dt| of the applied twist; a safe stop (no or a stale command) is immediate (the paper: 0)")
           .add("max_angular_accel_radps2", &PlantParams::actuator, &model::ActuatorLimits::max_angular_accel_radps2,
                "rad/s^2", params::non_negative("0 = unlimited"),
                "|domega/dt| of the applied twist; the change of (v, omega) is scaled as one (the paper: 0)")

@@ -2,8 +2,9 @@
 # Finding 1 of issue 9: in real time, with each group of paper1_waypoints in its own
 # `robodds host --realtime` process, kill -9 the estimation host mid-run. The controller must
 # command v = 0 within its estimate_timeout_s (0.5 s) of the last estimate it received, say why in
-# control/status (state ESTIMATE_STALE), and the plant must stop; before the fix it kept
-# commanding the frozen estimate's v for as long as the estimator was gone.
+# control/status (state ESTIMATE_STALE), and the plant must stop (braking at the scenario plant's
+# max_accel_mps2, issue 12); before the fix it kept commanding the frozen estimate's v for as long
+# as the estimator was gone.
 source "$(dirname "$0")/lib.sh"
 SCENARIO="$SRC/sim/scenarios/paper1_waypoints.yaml"
 DURATION=14      # s of real time
@@ -29,9 +30,11 @@ for group in sim sensors control evaluation; do
   timeout -k 5 40 tail --pid="$pid" -f /dev/null || fail "host $group did not finish: $(tail -5 "$WORK/$group.log")"
   wait "$pid" || fail "host $group failed: $(tail -5 "$WORK/$group.log")"
 done
-python3 - "$WORK/out" "$kill_ns" "$LIMIT" "$MARGIN" <<'PY' || fail "freshness check failed"
-import csv, sys
+python3 - "$WORK/out" "$kill_ns" "$LIMIT" "$MARGIN" "$SCENARIO" <<'PY' || fail "freshness check failed"
+import csv, re, sys
 out, kill_s, limit, margin = sys.argv[1], int(sys.argv[2]) * 1e-9, float(sys.argv[3]), float(sys.argv[4])
+plant = next((line for line in open(sys.argv[5]) if "{name: plant, type: plant" in line), "")
+accel = re.search(r"max_accel_mps2: ([0-9.eE+-]+)", plant)
 def rows(name):
     with open(f"{out}/{name}") as f:
         return list(csv.DictReader(f))
@@ -46,7 +49,11 @@ if not moving:
 bound = kill_s + limit + margin
 late_status = [s for s in status if float(s["t_s"]) >= bound]
 late_cmds = [c for c in cmds if float(c["t_s"]) >= bound]
-late_states = [p for p in states if float(p["t_s"]) >= bound + 0.02]  # the plant applies the previous step's command
+# The plant applies the previous step's command, and with an acceleration limit brakes from the
+# speed it had when the controller's zero commands began.
+speed = max((abs(float(p["v"])) for p in states if kill_s <= float(p["t_s"]) <= bound), default=0.0)
+braking_s = speed / float(accel.group(1)) if accel and float(accel.group(1)) > 0.0 else 0.0
+late_states = [p for p in states if float(p["t_s"]) >= bound + 0.02 + braking_s]
 if len(late_status) < 100 or len(late_cmds) < 100 or len(late_states) < 100:
     sys.exit(f"FAIL: too few samples after the kill to judge: {len(late_status)} status, {len(late_cmds)} commands, {len(late_states)} states")
 bad = [c for c in late_cmds if float(c["v"]) != 0.0 or float(c["omega"]) != 0.0]
@@ -60,6 +67,7 @@ moving = [p for p in late_states if float(p["v"]) != 0.0]
 if moving:
     sys.exit(f"FAIL: the plant still moves {float(moving[0]['t_s']) - kill_s:.3f} s after the kill: v = {moving[0]['v']}")
 first_stop = min(float(c["t_s"]) for c in cmds if float(c["t_s"]) >= kill_s and float(c["v"]) == 0.0) - kill_s
-print(f"ok: first zero command {first_stop:.3f} s after the kill; every command and state from {limit + margin} s on is zero, "
+print(f"ok: first zero command {first_stop:.3f} s after the kill; every command from {limit + margin} s on and every state from "
+      f"{limit + margin + 0.02 + braking_s:.3f} s on (braking {braking_s:.3f} s) is zero, "
       f"status ESTIMATE_STALE ({len(late_cmds)} commands checked)")
 PY

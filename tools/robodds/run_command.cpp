@@ -37,6 +37,7 @@ class RunCommand : public Command {
         ->check(CLI::IsMember({"colocated", "processes"}));
     cmd_->add_option("--out", out_dir_, "output directory (default out/<scenario name>)");
     add_seed_option(cmd_, seed_, "override the scenario seed");
+    cmd_->add_option("--set", sets_, "component.parameter=value over the scenario's (repeatable), e.g. controller.epsilon_m=0.01");
     cmd_->add_flag("--realtime", realtime_, "wall-clock timers instead of lockstep");
     add_duration_option(cmd_, duration_s_, "override the scenario duration (s)");
     add_max_missed_steps_option(cmd_, max_missed_steps_);
@@ -50,8 +51,10 @@ class RunCommand : public Command {
   int run() override {
     Scenario scenario = load_scenario(scenario_file_);
     apply_run_overrides(scenario, duration_s_, seed_);
+    apply_param_overrides(scenario, parse_param_assignments(sets_), "--set");
     LaunchOptions launch;
     launch.scenario_file = scenario_file_;
+    launch.sets = sets_;
     launch.deploy = deploy_ == "processes" ? Deploy::kProcesses : Deploy::kColocated;
     launch.realtime = realtime_;
     launch.out_dir = out_dir_.empty() ? "out/" + scenario.name : out_dir_;
@@ -84,6 +87,7 @@ class RunCommand : public Command {
   std::string deploy_ = "colocated";
   std::string out_dir_;
   std::optional<std::uint64_t> seed_;
+  std::vector<std::string> sets_;
   bool realtime_ = false;
   std::optional<double> duration_s_;
   std::optional<std::uint64_t> max_missed_steps_;

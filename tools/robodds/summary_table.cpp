@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
 #include <fstream>
 
 namespace robodds {
@@ -25,33 +26,58 @@ std::string json_text(const YAML::Node& node) {
   return text + "]";
 }
 
-void append_rows(std::string& out, const YAML::Node& map, const std::string& prefix) {
+void append_leaves(std::vector<SummaryLeaf>& out, const YAML::Node& map, const std::string& prefix) {
   for (const auto& entry : map) {
     const std::string key = prefix + entry.first.Scalar();
     if (entry.second.IsMap() && entry.second.size() > 0) {
-      append_rows(out, entry.second, key + ".");
+      append_leaves(out, entry.second, key + ".");
       continue;
     }
-    out += "  " + key + std::string(key.size() < 48 ? 48 - key.size() : 0, ' ') + " " + json_text(entry.second) + "\n";
+    SummaryLeaf leaf{key, json_text(entry.second), std::nullopt};
+    if (entry.second.IsScalar() && entry.second.Tag() != "!") {  // "!": a quoted scalar (a string)
+      double value = 0.0;
+      if (YAML::convert<double>::decode(entry.second, value) && std::isfinite(value)) {
+        leaf.number = value;
+      }
+    }
+    out.push_back(std::move(leaf));
   }
 }
 
 }  // namespace
+
+std::vector<SummaryLeaf> summary_leaves(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);  // JSON is YAML: the parser the project already has
+  } catch (const YAML::BadFile&) {
+    throw std::runtime_error(path + " cannot be read");
+  } catch (const YAML::Exception& e) {
+    throw std::runtime_error(path + " is not valid JSON: " + e.what());
+  }
+  if (!root.IsMap()) {
+    throw std::runtime_error(path + " is not a JSON object");
+  }
+  std::vector<SummaryLeaf> out;
+  append_leaves(out, root, "");
+  return out;
+}
 
 std::string summary_table(const std::string& out_dir) {
   const std::string path = out_dir + "/summary.json";
   if (!std::ifstream(path)) {
     return "(no summary.json in " + out_dir + ": the scenario has no evaluator)\n";
   }
-  YAML::Node root;
+  std::vector<SummaryLeaf> leaves;
   try {
-    root = YAML::LoadFile(path);  // JSON is YAML: the parser the project already has
-  } catch (const YAML::Exception& e) {
-    return "(" + path + " is not valid JSON: " + e.what() + ")\n";
+    leaves = summary_leaves(path);
+  } catch (const std::runtime_error& e) {
+    return std::string("(") + e.what() + ")\n";
   }
   std::string out = "\nsummary (" + path + ")\n";
-  if (root.IsMap()) {
-    append_rows(out, root, "");
+  for (const SummaryLeaf& leaf : leaves) {
+    const std::string& key = leaf.path;
+    out += "  " + key + std::string(key.size() < 48 ? 48 - key.size() : 0, ' ') + " " + leaf.json + "\n";
   }
   return out;
 }

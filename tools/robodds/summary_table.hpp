@@ -1,9 +1,26 @@
 #pragma once
-// summary.json as the aligned "key  value" table `robodds run` prints at the end.
+// summary.json read back: flattened to dotted paths, and as the aligned "key  value" table
+// `robodds run` prints at the end.
 
+#include <optional>
+#include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace robodds {
+
+/// One leaf of summary.json: its dotted path (e.g. "metrics.robots.1.pf_rmse_m"), its JSON text
+/// (strings in quotes, numbers bare, null for a non-finite figure, lists as [..]) and, for a
+/// finite number, its value.
+struct SummaryLeaf {
+  std::string path;
+  std::string json;
+  std::optional<double> number;
+};
+
+/// The leaves of the JSON file `path`, in file order. Throws std::runtime_error naming the file
+/// if it cannot be read or is not a JSON object.
+std::vector<SummaryLeaf> summary_leaves(const std::string& path);
 
 /// The table of `out_dir`/summary.json: a title line, then one line per number or string with
 /// its dotted path (e.g. "metrics.robots.1.pf_rmse_m"). A missing file gives a one-line note

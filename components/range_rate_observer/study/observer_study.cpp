@@ -162,9 +162,9 @@ std::vector<StudyRow> run_study(const StudyOptions& options) {
           row.sigma_m = sigma_m;
           row.observer = observer;
           row.seeds = options.seeds;
-          row.lag_mps = mean_ci95(lag);
-          row.noise_mps = mean_ci95(noise);
-          row.total_mps = mean_ci95(total);
+          row.lag_mps = stats::summarize(lag);
+          row.noise_mps = stats::summarize(noise);
+          row.total_mps = stats::summarize(total);
           row.total_bias_mps = bias / static_cast<double>(options.seeds);
           row.restarts_per_run = restarts / static_cast<double>(options.seeds);
           rows.push_back(row);

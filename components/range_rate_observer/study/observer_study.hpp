@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "components/range_rate_observer/observer_params.hpp"
-#include "components/range_rate_observer/study/study_stats.hpp"
+#include "common/sample_stats.hpp"
 
 namespace robodds::range_rate::study {
 
@@ -98,9 +98,9 @@ struct StudyRow {
   double sigma_m = 0.0;
   ObserverConfig observer;
   std::size_t seeds = 0;
-  MeanCi lag_mps;    // noise-free signal (the orbit's phase is drawn per seed)
-  MeanCi noise_mps;  // constant range, noise sigma
-  MeanCi total_mps;  // signal, noise sigma
+  stats::SampleSummary lag_mps;    // noise-free signal (the orbit's phase is drawn per seed)
+  stats::SampleSummary noise_mps;  // constant range, noise sigma
+  stats::SampleSummary total_mps;  // signal, noise sigma
   /// Signed mean rate error of the TOTAL runs, mean over seeds: a bias (lag) under noise; ~0 on
   /// the orbit, whose acceleration changes sign.
   double total_bias_mps = 0.0;

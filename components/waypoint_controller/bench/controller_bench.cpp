@@ -1,4 +1,5 @@
-// Cost of one WaypointTracker::step (polar error, gain choice, eq. 10, limits, eq. 19 check).
+// Cost of one WaypointTracker::step (polar error, gain choice, eq. 10, limits, eq. 19 check), without
+// and with the actuator limits.
 
 #include <benchmark/benchmark.h>
 
@@ -33,6 +34,25 @@ void BM_TrackerStep(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_TrackerStep);
+
+// With paper1_waypoints' actuator limits (issue 12): braking bound, wheel scaling, ramp.
+void BM_TrackerStepActuatorLimits(benchmark::State& state) {
+  ControllerParams params;
+  params.wheel_base_m = 0.3;
+  params.actuator = robodds::model::ActuatorLimits{1.5, 1.0, 5.0};
+  WaypointTracker tracker(params, 0.01);
+  tracker.set_mission(paper_mission());
+  double x = 50.0;
+  double y = 10.0;
+  double theta = 0.0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(x);
+    benchmark::DoNotOptimize(y);
+    benchmark::DoNotOptimize(theta);
+    benchmark::DoNotOptimize(tracker.step(x, y, theta));
+  }
+}
+BENCHMARK(BM_TrackerStepActuatorLimits);
 
 }  // namespace
 

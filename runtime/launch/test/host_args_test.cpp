@@ -29,6 +29,7 @@ HostArgs every_field_set() {
   a.group = "estimator";
   a.components = {"plant", "position_sensor"};
   a.params = "/tmp/over rides.yaml";  // a space: one argv element, no quoting
+  a.sets = {"controller.epsilon_m=0.01", "evaluator.topics=[a, b]"};
   a.member = "m1";
   a.coordinate = true;
   a.members = {"sim", "estimator"};

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
+#include <iterator>
 #include <csignal>
 #include <fstream>
 #include <functional>
@@ -23,6 +25,27 @@ std::string error_of(const std::function<void()>& f) {
     return e.what();
   }
   return "";
+}
+
+TEST(ProcessGroup, LogFileTakesStdoutAndStderr) {
+  const std::string log = "/tmp/robodds_process_group_log_" + std::to_string(getpid()) + ".txt";
+  ProcessGroup group;
+  group.spawn("logger", {"/bin/sh", "-c", "echo to-stdout; echo to-stderr >&2"}, log);
+  group.wait_all(10.0);
+  std::ifstream in(log);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::remove(log.c_str());
+  EXPECT_EQ(text, "to-stdout\nto-stderr\n");
+}
+
+TEST(ProcessGroup, UnwritableLogFileIsNamed) {
+  ProcessGroup group;
+  try {
+    group.spawn("logger", {"/bin/true"}, "/nonexistent-dir/x.log");
+    ADD_FAILURE() << "spawned without its log";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot open the log /nonexistent-dir/x.log of 'logger'"), std::string::npos) << e.what();
+  }
 }
 
 TEST(RunToExit, ReturnsTheExitCode) {

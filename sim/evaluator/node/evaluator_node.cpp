@@ -14,6 +14,7 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
+#include "runtime/params.hpp"
 #include "runtime/registry.hpp"
 #include "components/range_rate_observer/node/scenario_observer_bound.hpp"
 #include "components/range_rate_observer/observer_params.hpp"
@@ -24,10 +25,9 @@
 #include "sim/evaluator/node/relative_recorder.hpp"
 #include "sim/evaluator/node/timing_summary.hpp"
 #include "sim/evaluator/motion_extremes.hpp"
-#include "sim/plant/plant_params.hpp"
-#include "runtime/params.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
+#include "sim/plant/plant_params.hpp"
 
 namespace robodds::evaluator {
 namespace {

@@ -42,8 +42,11 @@ class PlantNode : public Component {
       // What the wheels can do (|v|, |omega| and wheel-speed limits), then how fast they get there.
       const Target target = command_for(id, info.stamp_ns);
       const bool moves = info.dt_s > 0.0;  // not on the first step
-      const model::Twist twist =
-          moves ? model::limit_acceleration(target.twist, robot.applied, info.dt_s, params_.actuator) : model::Twist{};
+      // A command is reached within the acceleration limits; a safe stop (no command yet, a stale
+      // or non-finite one) is immediate, as a motor driver's watchdog stops the wheels.
+      const model::Twist twist = moves && target.step
+                                     ? model::limit_acceleration(target.twist, robot.applied, info.dt_s, params_.actuator)
+                                     : model::Twist{};
       if (moves && target.step && (twist.v != target.twist.v || twist.omega != target.twist.omega)) {
         count_once(counted_acceleration_, id, *target.step, "acceleration_limited");
       }

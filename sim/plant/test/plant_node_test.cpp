@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -300,6 +301,41 @@ TEST(PlantNode, RealTimeCommandAgeIsJudgedByReceiveTimeNotTheSendersClock) {
     EXPECT_GT(driven, 0) << "robot " << robot << " was never driven by its fresh commands";
     EXPECT_GT(stopped, 0) << "robot " << robot;
   }
+}
+
+// With acceleration limits a stale command still stops the robot at once (a motor driver's
+// watchdog), not at max_accel_mps2: the limits shape commands, not the safe stop.
+TEST(PlantNode, RealTimeStaleCommandStopsAtOnceDespiteAccelerationLimits) {
+  NodeHarness h(R"(name: plant_realtime_limits
+step_s: 0.01
+duration_s: 0.6
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: plant, type: plant, params: {command_timeout_s: 0.2, max_accel_mps2: 0.5, max_angular_accel_radps2: 0.5}}
+)");
+  add_plant(h);
+  h.set_mode(TimeMode::kRealtime);
+  h.feed([&h](std::uint64_t step) {
+    if (step <= kLastCommand) {
+      h.publish("plant/cmd", velocity(1, 1.0, 0.0), step, step + 1);
+    }
+  });
+  const auto& states = h.record<idl::RobotState>("plant/state");
+  h.run({"plant"});
+  double fastest = 0.0;
+  int stopped = 0;
+  for (const idl::RobotState& s : states) {
+    fastest = std::max(fastest, s.v());
+    if (s.header().step() >= kStoppedFrom) {
+      ++stopped;
+      EXPECT_DOUBLE_EQ(s.v(), 0.0) << "step " << s.header().step();
+    }
+  }
+  EXPECT_GT(fastest, 0.02) << "the robot ramped up on its fresh commands";
+  EXPECT_LT(fastest, 0.5) << "at most 0.5 m/s^2 for the 0.2 s of commands";
+  EXPECT_GT(stopped, 0);
 }
 
 // A command held up on its way (queued in the sender's kernel while a cable was cut, delivered

@@ -1,10 +1,11 @@
-#include "components/range_rate_observer/study/study_stats.hpp"
+#include "common/sample_stats.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 
-namespace robodds::range_rate::study {
+namespace robodds::stats {
 
 double student_t_975(std::size_t dof) {
   static constexpr std::array<double, 30> kTable = {
@@ -26,17 +27,21 @@ double student_t_975(std::size_t dof) {
          (3.0 * z7 + 19.0 * z5 + 17.0 * z3 - 15.0 * z) / (384.0 * n * n * n);
 }
 
-MeanCi mean_ci95(const std::vector<double>& values) {
+SampleSummary summarize(const std::vector<double>& values) {
   if (values.empty()) {
-    throw std::invalid_argument("mean_ci95: no values");
+    throw std::invalid_argument("summarize: no values");
   }
   const double n = static_cast<double>(values.size());
   double sum = 0.0;
   for (double v : values) {
     sum += v;
   }
-  MeanCi result;
+  SampleSummary result;
+  result.count = values.size();
   result.mean = sum / n;
+  const auto [min, max] = std::minmax_element(values.begin(), values.end());
+  result.min = *min;
+  result.max = *max;
   if (values.size() < 2) {
     return result;
   }
@@ -44,9 +49,9 @@ MeanCi mean_ci95(const std::vector<double>& values) {
   for (double v : values) {
     sum_sq += (v - result.mean) * (v - result.mean);
   }
-  const double stddev = std::sqrt(sum_sq / (n - 1.0));
-  result.ci95 = student_t_975(values.size() - 1) * stddev / std::sqrt(n);
+  result.stddev = std::sqrt(sum_sq / (n - 1.0));
+  result.ci95 = student_t_975(values.size() - 1) * result.stddev / std::sqrt(n);
   return result;
 }
 
-}  // namespace robodds::range_rate::study
+}  // namespace robodds::stats

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# `robodds sweep` (issue 13, item 4) on real `robodds run` processes, two workers on domains
+# DOMAIN and DOMAIN + 1:
+# 1. plant_smoke over 3 seeds x a 2-value grid: 6 runs; every run's CSVs are byte-identical to a
+#    lone `robodds run` with the same seed and --set (no cross-talk between the workers, the grid
+#    really applied); runs.csv has a row per run, summary.csv a row per combination and metric,
+#    and its mean is the mean of the runs' summary.json values.
+# 2. A combination whose value fails at run time (plant.command_timeout_s=-1) is recorded as
+#    failed with the run's error and the sweep goes on; the sweep exits 1.
+# 3. --plan, then --run-index per run in separate invocations, then --aggregate: the same tables.
+# 4. Bad input: errors before anything runs.
+source "$(dirname "$0")/lib.sh"
+S="$SRC/sim/scenarios/plant_smoke.yaml"
+SWEEP=(timeout -k 5 300 "$ROBODDS" sweep "$S" --seeds 1-3 --set position_sensor.noise_var_x_m2=0.5,4 --duration 3 --jobs 2 --domain "$DOMAIN")
+"${SWEEP[@]}" --out "$WORK/a" >"$WORK/a.log" 2>&1 || fail "sweep failed: $(tail -5 "$WORK/a.log")"
+grep -q "sweep: 6/6 runs done, 0 failed" "$WORK/a.log" || fail "no progress line for the last run: $(cat "$WORK/a.log")"
+[[ $(wc -l <"$WORK/a/runs.csv") -eq 7 ]] || fail "runs.csv: expected 6 runs: $(cat "$WORK/a/runs.csv")"
+# Run 4 is the second combination (noise 4) with seed 2.
+timeout -k 5 60 "$ROBODDS" run "$S" --seed 2 --set position_sensor.noise_var_x_m2=4 --duration 3 --domain "$DOMAIN" \
+  --out "$WORK/lone" --no-plots >"$WORK/lone.log" 2>&1 || fail "lone run failed: $(tail -3 "$WORK/lone.log")"
+same_outputs "$WORK/lone" "$WORK/a/runs/0004"
+cmp -s "$WORK/a/runs/0001/sensor_position.csv" "$WORK/a/runs/0004/sensor_position.csv" && fail "the grid value was not applied (runs 1 and 4 equal)"
+python3 - "$WORK/a" <<'PY' || fail "summary.csv does not match the runs"
+import csv, json, statistics, sys
+d = sys.argv[1]
+rows = list(csv.DictReader(open(d + "/summary.csv")))
+combos = {r["position_sensor.noise_var_x_m2"] for r in rows}
+assert combos == {"0.5", "4"}, combos
+runs = list(csv.DictReader(open(d + "/runs.csv")))
+assert all(r["status"] == "ok" for r in runs), runs
+metric = "robots.1.measurement_rmse_m"  # depends on the seed and on the grid's noise
+means = {}
+for value in ("0.5", "4"):
+    row = next(r for r in rows if r["metric"] == metric and r["position_sensor.noise_var_x_m2"] == value)
+    vals = []
+    for r in runs:
+        if r["position_sensor.noise_var_x_m2"] == value:
+            m = json.load(open("%s/runs/%04d/summary.json" % (d, int(r["run"]))))["metrics"]
+            for part in metric.split("."):
+                m = m[part]
+            vals.append(m)
+    assert int(row["n"]) == 3 and abs(float(row["mean"]) - statistics.mean(vals)) < 1e-9, (row, vals)
+    assert abs(float(row["std"]) - statistics.stdev(vals)) < 1e-9, (row, vals)
+    means[value] = statistics.mean(vals)
+assert means["4"] > 1.5 * means["0.5"], means  # the grid value reached the sensor
+print("ok: summary.csv", metric, "matches the runs' summary.json")
+PY
+
+# 2. A failing combination.
+rc=0
+timeout -k 5 300 "$ROBODDS" sweep "$S" --seeds 1-2 --set plant.command_timeout_s=0.5,-1 --duration 2 --jobs 2 --domain "$DOMAIN" \
+  --out "$WORK/f" >"$WORK/f.log" 2>&1 || rc=$?
+[[ $rc -eq 1 ]] || fail "a sweep with failed runs exited $rc: $(tail -5 "$WORK/f.log")"
+[[ $(grep -c ",ok," "$WORK/f/runs.csv") -eq 2 && $(grep -c ",failed," "$WORK/f/runs.csv") -eq 2 ]] || fail "runs.csv: $(cat "$WORK/f/runs.csv")"
+grep -q "failed,2,.*command_timeout_s: must be > 0" "$WORK/f/runs.csv" || fail "the failure reason is not recorded: $(cat "$WORK/f/runs.csv")"
+grep -q "0 runs ok, 2 failed" "$WORK/f/summary.md" || fail "summary.md: $(cat "$WORK/f/summary.md")"
+echo "ok: failed runs recorded, the sweep went on"
+
+# 3. Plan, run each index on its own (as a batch array task would), aggregate.
+timeout -k 5 60 "$ROBODDS" sweep "$S" --seeds 1-3 --set position_sensor.noise_var_x_m2=0.5,4 --duration 3 --domain "$DOMAIN" \
+  --out "$WORK/p" --plan >"$WORK/p.log" 2>&1 || fail "--plan failed: $(cat "$WORK/p.log")"
+[[ $(grep -vc "^#" "$WORK/p/plan.txt") -eq 6 && ! -d "$WORK/p/runs" ]] || fail "--plan: $(ls "$WORK/p"; cat "$WORK/p/plan.txt")"
+for k in 5 0 3 1 4 2; do
+  timeout -k 5 60 "$ROBODDS" sweep --run-index "$k" --out "$WORK/p" --domain "$((DOMAIN + 1))" >>"$WORK/p.log" 2>&1 \
+    || fail "--run-index $k failed: $(tail -3 "$WORK/p.log")"
+done
+timeout -k 5 60 "$ROBODDS" sweep --aggregate --out "$WORK/p" >>"$WORK/p.log" 2>&1 || fail "--aggregate failed: $(tail -3 "$WORK/p.log")"
+cmp "$WORK/a/summary.csv" "$WORK/p/summary.csv" || fail "--aggregate of the separate runs differs from the sweep's summary.csv"
+echo "ok: --plan, --run-index and --aggregate give the sweep's table"
+
+# 4. Bad input: an error naming what is wrong, nothing run.
+expect_error 2 "--seeds '5-3': the range '5-3' is empty" -- "$ROBODDS" sweep "$S" --seeds 5-3 --out "$WORK/b1"
+expect_error 2 "--seeds 'x': 'x' is not a seed" -- "$ROBODDS" sweep "$S" --seeds x --out "$WORK/b2"
+expect_error 2 "--jobs must be at least 1" -- "$ROBODDS" sweep "$S" --seeds 1 --jobs 0 --out "$WORK/b3"
+expect_error 2 "--set plant.nope: component 'plant' \(plant\) of .*plant_smoke.yaml: --set: nope: unknown parameter \(known: " -- \
+  "$ROBODDS" sweep "$S" --seeds 1 --set plant.nope=1,2 --out "$WORK/b4"
+expect_error 2 "--set 'plant.rate_hz': expected component.parameter=value" -- "$ROBODDS" sweep "$S" --seeds 1 --set plant.rate_hz --out "$WORK/b5"
+expect_error 2 "--out $WORK/a holds another sweep \(sweep.json\)" -- "$ROBODDS" sweep "$S" --seeds 1 --out "$WORK/a"
+for d in b1 b2 b3 b4 b5; do
+  [[ ! -e "$WORK/$d/runs" ]] || fail "$d: a run started despite the error"
+done

@@ -1,0 +1,276 @@
+// `robodds sweep SCENARIO --seeds 1-100 [--set k=v1,v2 ...] --out DIR`: a Monte Carlo sweep of
+// lockstep co-located runs on worker processes, then one table of every summary.json metric.
+// Also `--plan` (write the run list only), `--run-index K` (one run of a planned sweep, for a
+// batch engine's array task) and `--aggregate` (the tables from the runs' folders).
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "common/number_text.hpp"
+#include "runtime/error.hpp"
+#include "runtime/launch/host_args.hpp"
+#include "runtime/launch/launch.hpp"
+#include "runtime/launch/output_dir.hpp"
+#include "runtime/share_dir.hpp"
+#include "tools/robodds/command.hpp"
+#include "tools/robodds/sweep_runner.hpp"
+
+namespace robodds {
+namespace {
+
+using namespace sweep;
+
+constexpr int kMaxDomain = 232;
+
+std::string minutes_seconds(double s) {
+  char text[32];
+  const long total = static_cast<long>(s + 0.5);
+  std::snprintf(text, sizeof text, "%ld:%02ld", total / 60, total % 60);
+  return text;
+}
+
+void print_progress(const Progress& p) {
+  const double per_run = p.done > 0 ? p.elapsed_s / static_cast<double>(p.done) : 0.0;
+  std::fprintf(stderr, "sweep: %zu/%zu runs done, %zu failed, %s elapsed, ETA %s\n", p.done, p.total, p.failed,
+               minutes_seconds(p.elapsed_s).c_str(), minutes_seconds(per_run * static_cast<double>(p.total - p.done)).c_str());
+}
+
+void write_file(const std::string& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) {
+    throw RunError("cannot write " + path);
+  }
+}
+
+class SweepCommand : public Command {
+ public:
+  SweepCommand(CLI::App& app, const CommandEnv& env) : env_(env) {
+    cmd_ = app.add_subcommand("sweep", "Monte Carlo sweep: a scenario over seeds and a parameter grid on worker processes");
+    cmd_->add_option("scenario", scenario_file_, "scenario YAML file (not with --run-index or --aggregate)");
+    cmd_->add_option("--seeds", seeds_, "seeds, e.g. 1-100 or 1,5,7-9");
+    cmd_->add_option("--set", grid_,
+                     "component.parameter=value[,value...]: a grid axis (repeatable; one row per combination), e.g. "
+                     "controller.epsilon_m=0.1,0.01");
+    jobs_ = std::max(1U, std::thread::hardware_concurrency());
+    cmd_->add_option("--jobs", jobs_, "worker processes (default: the number of cores)");
+    cmd_->add_option("--out", out_dir_, "the sweep's folder: sweep.json, runs/<k>/, runs.csv, summary.csv, summary.md")->required();
+    cmd_->add_option("--domain", first_domain_,
+                     "DDS domain of worker 1; worker j uses domain + j - 1 (default: $ROBODDS_DOMAIN_ID or 0)")
+        ->check(CLI::Range(0, kMaxDomain));
+    add_duration_option(cmd_, duration_s_, "override the scenario duration (s) of every run");
+    cmd_->add_option("--run-timeout", run_timeout_s_, "s, a run still going after this is killed and recorded as failed")
+        ->check(CLI::PositiveNumber);
+    cmd_->add_flag("--plan", plan_only_, "write sweep.json and plan.txt (the run list) and stop");
+    cmd_->add_option("--run-index", run_index_, "run only run K of the sweep already planned in --out (a batch array task)");
+    cmd_->add_flag("--aggregate", aggregate_, "only (re)write the tables from the runs in --out");
+  }
+
+  bool parsed() const override { return cmd_->parsed(); }
+
+  int run() override {
+    if (aggregate_ || run_index_) {
+      if (!scenario_file_.empty() || !seeds_.empty() || !grid_.empty() || duration_s_ || plan_only_ || (aggregate_ && run_index_)) {
+        throw ConfigError("robodds sweep: --aggregate and --run-index work on the sweep planned in --out; they take no "
+                          "scenario, --seeds, --set, --duration or --plan (and not each other)");
+      }
+      const SweepSpec spec = read_planned_spec();
+      return aggregate_ ? write_tables(spec, collect_existing(spec)) : run_one(spec, *run_index_);
+    }
+    const SweepSpec spec = checked_spec();
+    std::filesystem::create_directories(out_dir_);
+    write_file(out_dir_ + "/sweep.json", spec_json(spec));
+    const std::vector<PlannedRun> runs = planned_runs(spec);
+    if (plan_only_) {
+      write_plan_text(spec, runs);
+      std::printf("planned %zu runs in %s (sweep.json, plan.txt); run one with: robodds sweep --run-index K --out %s\n",
+                  runs.size(), out_dir_.c_str(), out_dir_.c_str());
+      return 0;
+    }
+    std::fprintf(stderr, "sweep: %zu runs (%zu combinations x %zu seeds) on %u workers, domains %d-%d\n", runs.size(),
+                 combination_count(axes_of(spec)), parse_seeds(spec.seeds).size(), jobs_, domain(),
+                 domain() + static_cast<int>(jobs_) - 1);
+    return write_tables(spec, run_all(runs, runner_options(spec), print_progress));
+  }
+
+ private:
+  static std::vector<GridAxis> axes_of(const SweepSpec& spec) {
+    std::vector<GridAxis> axes;
+    for (const std::string& g : spec.grid) {
+      axes.push_back(parse_grid_axis(g));
+    }
+    return axes;
+  }
+
+  static std::vector<PlannedRun> planned_runs(const SweepSpec& spec) { return plan_runs(parse_seeds(spec.seeds), axes_of(spec)); }
+
+  int domain() const {
+    if (!resolved_domain_) {
+      resolved_domain_ = first_domain_ >= 0 ? first_domain_ : resolve_dds(DdsArgs{}, "robodds-sweep").domain_id;
+    }
+    return *resolved_domain_;
+  }
+
+  /// The sweep of the command line, every part checked before anything runs.
+  SweepSpec checked_spec() const {
+    if (scenario_file_.empty()) {
+      throw ConfigError("robodds sweep: a scenario file is required");
+    }
+    if (seeds_.empty()) {
+      throw ConfigError("robodds sweep: --seeds is required (e.g. --seeds 1-10)");
+    }
+    if (jobs_ == 0) {
+      throw ConfigError("robodds sweep: --jobs must be at least 1");
+    }
+    if (domain() + static_cast<int>(jobs_) - 1 > kMaxDomain) {
+      throw ConfigError("robodds sweep: --jobs " + std::to_string(jobs_) + " from domain " + std::to_string(domain()) +
+                        " needs domains up to " + std::to_string(domain() + static_cast<int>(jobs_) - 1) + " (max " +
+                        std::to_string(kMaxDomain) + ")");
+    }
+    if (std::filesystem::exists(out_dir_ + "/sweep.json")) {
+      throw ConfigError("robodds sweep: --out " + out_dir_ + " holds another sweep (sweep.json); choose another folder or remove it");
+    }
+    SweepSpec spec;
+    spec.scenario_file = std::filesystem::absolute(scenario_file_).string();
+    spec.seeds = seeds_;
+    spec.grid = grid_;
+    if (duration_s_) {
+      spec.run_args = {"--duration", shortest_text(*duration_s_)};
+    }
+    std::vector<PlannedRun> runs;
+    try {
+      runs = planned_runs(spec);
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(std::string("robodds sweep: ") + e.what());
+    }
+    // Every combination's --set keys against the scenario's components and their parameter tables.
+    Scenario scenario = load_scenario(spec.scenario_file);
+    apply_run_overrides(scenario, duration_s_, std::nullopt);
+    const std::vector<GridAxis> axes = axes_of(spec);
+    for (std::size_t c = 0; c < combination_count(axes); ++c) {
+      Scenario variant = scenario;
+      try {
+        apply_param_overrides(variant, parse_param_assignments(combination_sets(axes, c)), "--set");
+      } catch (const ConfigError& e) {
+        throw ConfigError(std::string("robodds sweep: ") + e.what());
+      }
+      for (const GridAxis& axis : axes) {
+        const ComponentSpec& component = variant.component(axis.key.substr(0, axis.key.find('.')));
+        try {
+          scenario_component_params(env_.registry.get(component.type), component);
+        } catch (const ConfigError& e) {  // "--set: key: unknown parameter (known: ...)"
+          throw ConfigError("robodds sweep: --set " + axis.key + ": component '" + component.name + "' (" + component.type +
+                            ") of " + scenario_file_ + ": " + e.what());
+        }
+      }
+    }
+    return spec;
+  }
+
+  SweepSpec read_planned_spec() const {
+    try {
+      return read_spec(out_dir_ + "/sweep.json");
+    } catch (const std::runtime_error& e) {
+      throw ConfigError(std::string("robodds sweep: ") + e.what());
+    }
+  }
+
+  RunnerOptions runner_options(const SweepSpec& spec) const {
+    RunnerOptions o;
+    o.robodds = this_executable();
+    o.scenario_file = spec.scenario_file;
+    o.out_dir = out_dir_;
+    o.jobs = jobs_;
+    o.first_domain = domain();
+    o.run_timeout_s = run_timeout_s_;
+    o.run_args = spec.run_args;
+    o.stop = &env_.stop;
+    return o;
+  }
+
+  void write_plan_text(const SweepSpec& spec, const std::vector<PlannedRun>& runs) const {
+    std::string text = "# run seed command (robodds sweep --run-index K --out " + out_dir_ + " runs one of them)\n";
+    const RunnerOptions o = runner_options(spec);
+    for (const PlannedRun& r : runs) {
+      text += std::to_string(r.index) + " " + std::to_string(r.seed);
+      for (const std::string& arg : run_argv(o, r, o.first_domain)) {
+        text += " " + arg;
+      }
+      text += "\n";
+    }
+    write_file(out_dir_ + "/plan.txt", text);
+  }
+
+  /// One planned run in this process's slot (a batch array task): its outcome goes to its folder.
+  int run_one(const SweepSpec& spec, std::size_t index) const {
+    const std::vector<PlannedRun> runs = planned_runs(spec);
+    if (index >= runs.size()) {
+      throw ConfigError("robodds sweep: --run-index " + std::to_string(index) + ": the sweep in " + out_dir_ + " has runs 0-" +
+                        std::to_string(runs.size() - 1));
+    }
+    RunnerOptions o = runner_options(spec);
+    o.jobs = 1;
+    const std::vector<RunOutcome> outcome = run_all({runs[index]}, o, [](const Progress&) {});
+    std::printf("run %zu (seed %llu): %s\n", index, static_cast<unsigned long long>(runs[index].seed),
+                outcome.front().ok ? "ok" : outcome.front().error.c_str());
+    return outcome.front().ok ? 0 : 1;
+  }
+
+  /// The outcome of every planned run from its folder (a run without summary.json failed or never ran).
+  std::vector<RunOutcome> collect_existing(const SweepSpec& spec) const {
+    std::vector<RunOutcome> outcomes;
+    for (const PlannedRun& r : planned_runs(spec)) {
+      const std::string dir = run_dir(out_dir_, r.index);
+      const bool has_summary = std::filesystem::exists(dir + "/summary.json");
+      outcomes.push_back(collect_outcome(r, has_summary ? 0 : -1, 0.0, dir));
+      if (!has_summary) {
+        outcomes.back().error = std::filesystem::exists(dir) ? "no summary.json in " + dir : "not run (" + dir + " missing)";
+      }
+    }
+    return outcomes;
+  }
+
+  int write_tables(const SweepSpec& spec, const std::vector<RunOutcome>& outcomes) const {
+    const std::vector<GridAxis> axes = axes_of(spec);
+    const std::vector<MetricStats> rows = aggregate(outcomes);
+    write_file(out_dir_ + "/runs.csv", runs_csv(axes, outcomes));
+    write_file(out_dir_ + "/summary.csv", summary_csv(axes, rows));
+    const std::string markdown = summary_markdown(axes, outcomes, rows);
+    write_file(out_dir_ + "/summary.md", markdown);
+    std::fputs(markdown.c_str(), stdout);
+    std::size_t failed = 0;
+    for (const RunOutcome& o : outcomes) {
+      if (!o.ok) {
+        ++failed;
+        std::fprintf(stderr, "sweep: run %zu (seed %llu) failed: %s\n", o.run.index, static_cast<unsigned long long>(o.run.seed),
+                     o.error.c_str());
+      }
+    }
+    std::printf("tables: %s/summary.md, summary.csv, runs.csv (%zu runs, %zu failed)\n", out_dir_.c_str(), outcomes.size(), failed);
+    return failed == 0 ? 0 : 1;
+  }
+
+  const CommandEnv& env_;
+  CLI::App* cmd_ = nullptr;
+  std::string scenario_file_;
+  std::string seeds_;
+  std::vector<std::string> grid_;
+  unsigned jobs_ = 1;
+  std::string out_dir_;
+  int first_domain_ = -1;
+  mutable std::optional<int> resolved_domain_;
+  std::optional<double> duration_s_;
+  double run_timeout_s_ = 3600.0;
+  bool plan_only_ = false;
+  std::optional<std::size_t> run_index_;
+  bool aggregate_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Command> add_sweep_command(CLI::App& app, const CommandEnv& env) { return std::make_unique<SweepCommand>(app, env); }
+
+}  // namespace robodds

@@ -1,0 +1,145 @@
+#include "tools/robodds/sweep_runner.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <thread>
+
+#include "common/number_text.hpp"
+#include "runtime/error.hpp"
+#include "runtime/launch/output_dir.hpp"
+#include "runtime/launch/process_group.hpp"
+
+namespace robodds::sweep {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_between(Clock::time_point from, Clock::time_point to) { return std::chrono::duration<double>(to - from).count(); }
+
+/// The last line of `log` that says "error:" (robodds' one error line), else its last line.
+std::string last_error_line(const std::string& log) {
+  std::ifstream in(log);
+  std::string line;
+  std::string last;
+  std::string error;
+  while (std::getline(in, line)) {
+    if (!line.empty()) {
+      last = line;
+    }
+    if (line.find("error:") != std::string::npos) {
+      error = line;
+    }
+  }
+  return error.empty() ? last : error;
+}
+
+struct Slot {
+  std::unique_ptr<ProcessGroup> process;  // empty: idle
+  std::size_t run = 0;
+  Clock::time_point started;
+};
+
+}  // namespace
+
+std::string run_dir(const std::string& out_dir, std::size_t index) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%04zu", index);
+  return out_dir + "/runs/" + name;
+}
+
+std::vector<std::string> run_argv(const RunnerOptions& options, const PlannedRun& run, int domain) {
+  std::vector<std::string> argv = {options.robodds, "run", options.scenario_file, "--seed", std::to_string(run.seed),
+                                   "--out", run_dir(options.out_dir, run.index), "--domain", std::to_string(domain),
+                                   "--no-plots"};
+  for (const std::string& s : run.sets) {
+    argv.insert(argv.end(), {"--set", s});
+  }
+  argv.insert(argv.end(), options.run_args.begin(), options.run_args.end());
+  return argv;
+}
+
+RunOutcome collect_outcome(const PlannedRun& run, int exit_code, double wall_s, const std::string& dir) {
+  RunOutcome outcome;
+  outcome.run = run;
+  outcome.exit_code = exit_code;
+  outcome.wall_s = wall_s;
+  if (exit_code != 0) {
+    outcome.error = "exit " + std::to_string(exit_code) + ": " + last_error_line(dir + "/run.log");
+    return outcome;
+  }
+  try {
+    outcome.metrics = read_metrics(dir + "/summary.json");
+    outcome.ok = true;
+  } catch (const std::exception& e) {
+    outcome.error = e.what();
+  }
+  return outcome;
+}
+
+std::vector<RunOutcome> run_all(const std::vector<PlannedRun>& runs, const RunnerOptions& options,
+                                const std::function<void(const Progress&)>& progress) {
+  std::vector<std::optional<RunOutcome>> outcomes(runs.size());
+  std::vector<Slot> slots(std::max<std::size_t>(options.jobs, 1));
+  const Clock::time_point start = Clock::now();
+  Progress p;
+  p.total = runs.size();
+  std::size_t next = 0;
+  while (p.done < runs.size()) {
+    if (options.stop != nullptr && options.stop->load()) {
+      for (Slot& slot : slots) {
+        slot.process.reset();  // terminates the run (SIGTERM, then SIGKILL)
+      }
+      throw RunError("sweep interrupted by a signal after " + std::to_string(p.done) + " of " + std::to_string(p.total) + " runs");
+    }
+    bool changed = false;
+    for (std::size_t j = 0; j < slots.size(); ++j) {
+      Slot& slot = slots[j];
+      if (slot.process) {
+        int status = slot.process->poll_exit_status(0);
+        const double wall_s = seconds_between(slot.started, Clock::now());
+        const std::string dir = run_dir(options.out_dir, runs[slot.run].index);
+        if (status < 0 && wall_s > options.run_timeout_s) {
+          slot.process->terminate_all(2.0);
+          status = slot.process->poll_exit_status(0);
+          std::ofstream(dir + "/run.log", std::ios::app)
+              << "robodds sweep: error: the run did not finish within " << shortest_text(options.run_timeout_s)
+              << " s (--run-timeout) and was killed\n";
+        }
+        if (status < 0) {
+          continue;
+        }
+        outcomes[slot.run] = collect_outcome(runs[slot.run], status, wall_s, dir);
+        slot.process.reset();
+        ++p.done;
+        p.failed += outcomes[slot.run]->ok ? 0 : 1;
+        changed = true;
+      }
+      if (!slot.process && next < runs.size()) {
+        const PlannedRun& run = runs[next];
+        const std::string dir = run_dir(options.out_dir, run.index);
+        make_output_dir(dir);
+        slot.process = std::make_unique<ProcessGroup>();
+        slot.process->spawn("run " + std::to_string(run.index), run_argv(options, run, options.first_domain + static_cast<int>(j)),
+                            dir + "/run.log");
+        slot.run = next++;
+        slot.started = Clock::now();
+      }
+    }
+    if (changed) {
+      p.elapsed_s = seconds_between(start, Clock::now());
+      progress(p);
+    } else {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  }
+  std::vector<RunOutcome> out;
+  for (std::optional<RunOutcome>& o : outcomes) {
+    out.push_back(std::move(*o));
+  }
+  return out;
+}
+
+}  // namespace robodds::sweep
