@@ -3,7 +3,7 @@
 prints the table of docs/results/paper1.md ("Robustness"): way-points reached per seed, filter RMSE,
 recovery time. Every run's CSVs and summary.json stay under OUT.
 
-  scripts/paper1_robustness.py [--out DIR] [--seeds N] [--domains 124,125] [--cases LIST] [--check]
+  scripts/paper1_robustness.py [--out DIR] [--seeds N] [--first-seed S] [--domains 124,125] [--cases LIST] [--check]
                                [--set component.key=value ...] [--duration S] [--reuse]   (needs a build)
 
 --domains: one DDS domain per parallel run; --cases: comma-separated subset (default: all);
@@ -127,6 +127,7 @@ def main(argv):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--out", default=os.path.join(ROOT, "out", "paper1_robustness"))
     ap.add_argument("--seeds", type=int, default=10)
+    ap.add_argument("--first-seed", type=int, default=1, help="seeds first-seed .. first-seed + seeds - 1")
     ap.add_argument("--domains", default="124,125")
     ap.add_argument("--cases", default=",".join(CASES))
     ap.add_argument("--set", action="append", default=[], metavar="component.key=value")
@@ -140,7 +141,7 @@ def main(argv):
             raise SystemExit("unknown case %r (known: %s)" % (case, ", ".join(CASES)))
     os.makedirs(args.out, exist_ok=True)
     overrides = parse_sets(args.set)
-    seeds = list(range(1, args.seeds + 1))
+    seeds = list(range(args.first_seed, args.first_seed + args.seeds))
     paths = {case: scenario(case, args.out, overrides, args.duration) for case in cases}
     # The long standstill runs first so that the slots end together.
     jobs = sorted([("%s_seed%d" % (case, s), paths[case], s) for case in cases for s in seeds],
