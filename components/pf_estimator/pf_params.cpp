@@ -77,7 +77,7 @@ const params::ParamTable<PfParams>& pf_param_table() {
                "extra x and y diffusion per prediction")
           .add("process_theta_std_rad", &PfParams::process_theta_std_rad, "rad", non_negative(),
                "extra heading diffusion per prediction (widens the heading at standstill too)")
-          .add("turn_slip_std_radpm", &PfParams::turn_slip_std_radpm, "rad/m", non_negative("0 = no turn-slip state"),
+          .add("turn_slip_std_radpm", &PfParams::turn_slip_std_radpm, "rad/m", non_negative("0 with a 0 walk = no turn-slip state"),
                "initial spread of each particle's turn slip k: omega is corrected to omega - k v")
           .add("turn_slip_walk_std_radpm", &PfParams::turn_slip_walk_std_radpm, "rad/m", non_negative(),
                "random walk of k per sqrt(m) travelled")

@@ -62,7 +62,8 @@ struct PfParams {
   /// Turn-slip state k (rad/m) of every particle: the odometry turn rate is corrected to
   /// omega - k v, the error of a wheel that reads fast or slow (right wheel fast by s on track D:
   /// k = s / D). Drawn N(0, turn_slip_std_radpm^2) at initialisation; a random walk of
-  /// turn_slip_walk_std_radpm per sqrt(m) travelled lets it follow a changing slip. 0 = no state.
+  /// turn_slip_walk_std_radpm per sqrt(m) travelled lets it follow a changing slip. Both 0 = no
+  /// state.
   double turn_slip_std_radpm = 0.05;
   double turn_slip_walk_std_radpm = 0.0005;
   /// Regularised particle filter (regularization.hpp): after each resampling every copy is

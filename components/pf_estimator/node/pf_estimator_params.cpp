@@ -6,7 +6,8 @@ const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table() {
   static const params::ParamTable<PfEstimatorNodeParams> table =
       params::ParamTable<PfEstimatorNodeParams>(
           "Particle-filter pose estimator (paper 1 eq. 4-7, extended to the full pose [x, y, theta]).\n"
-          "Prediction: the constant-v/omega arc driven by odometry; update: Gaussian position likelihood.")
+          "Prediction: the constant-v/omega arc driven by odometry (with a per-particle turn slip); update: Gaussian\n"
+          "position likelihood behind a chi-square gate; a lost filter is redrawn around the last fixes (issue 12).")
           .add("rate_hz", &PfEstimatorNodeParams::rate_hz, "Hz", params::positive(),
                "estimate publication rate; must divide the simulation rate")
           .include(&PfEstimatorNodeParams::filter, pf_param_table())
