@@ -574,9 +574,7 @@ TEST(ParticleFilter, FivePercentOutliersAreRejectedWithoutHarm) {
   for (const double offset : {30.0, 100.0}) {
     PfParams params = first_fix_params();
     params.init_theta_known = true;
-    SimulationConfig config;
-    config.duration_s = 120.0;
-    ParticleFilter filter(params, 44);
+    const SimulationConfig config;
     RandomEngine world(derive_seed(44, "outliers"));
     model::Pose2 truth = config.start;
     params.init_theta_rad = truth.theta;
