@@ -45,7 +45,8 @@ ParticleFilter::ParticleFilter(const PfParams& params, std::uint64_t seed)
     gate_nis_ = chi_square_2dof_quantile(params_.gate_probability);
   }
   monitor_ = InconsistencyMonitor(params_.recovery_window_fixes, params_.recovery_rejected_share,
-                                  params_.recovery_nis);
+                                  params_.recovery_nis, params_.recovery_bias_window_fixes,
+                                  params_.recovery_bias_nis);
   num_particles_ = params_.num_particles;
   particles_.resize(num_particles_);
   resample_buffer_.resize(num_particles_);
@@ -173,9 +174,11 @@ void ParticleFilter::update(double z_x_m, double z_y_m) {
   recent_x_[recent_count_ % kRecoveryFixes] = z_x_m;
   recent_y_[recent_count_ % kRecoveryFixes] = z_y_m;
   ++recent_count_;
-  last_update_nis_ = position_fix_nis(particles_, weights_, z_x_m, z_y_m, params_.measurement_std_m);
+  const FixInnovation innovation =
+      position_fix_innovation(particles_, weights_, z_x_m, z_y_m, params_.measurement_std_m);
+  last_update_nis_ = innovation.nis();
   last_update_rejected_ = last_update_nis_ > gate_nis_;
-  const bool lost = monitor_.add(last_update_nis_, last_update_rejected_);
+  const bool lost = monitor_.add(innovation, last_update_rejected_);
   if (params_.recovery_nis > 0.0 && lost) {
     // Fixes keep disagreeing with the cloud: it is lost. Start again around the last fixes.
     const std::size_t n = std::min(recent_count_, kRecoveryFixes);

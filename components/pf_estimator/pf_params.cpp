@@ -90,7 +90,11 @@ const params::ParamTable<PfParams>& pf_param_table() {
           .add("recovery_rejected_share", &PfParams::recovery_rejected_share, "", params::in_open_interval(0.0, 1.0),
                "... or when the moving share of rejected fixes exceeds this")
           .add("recovery_window_fixes", &PfParams::recovery_window_fixes, "fixes", shown_as(positive(), ">= 1"),
-               "length of that moving average")
+               "length of those moving averages")
+          .add("recovery_bias_nis", &PfParams::recovery_bias_nis, "", non_negative("0 = off"),
+               "... or when the normalised moving mean of the accepted innovations exceeds this (fixes on one side)")
+          .add("recovery_bias_window_fixes", &PfParams::recovery_bias_window_fixes, "fixes", shown_as(positive(), ">= 1"),
+               "length of that moving mean")
           .add("recovery_uniform_heading_fraction", &PfParams::recovery_uniform_heading_fraction, "",
                shown_as(non_negative(), "[0, 1]"), "share of the redrawn particles with a uniform heading")
           .add_enum("init_mode", &PfParams::init_mode, init_mode_from_string, to_string, {"uniform_area", "first_fix"},
@@ -119,6 +123,9 @@ void PfParams::validate() const {
   }
   if (!(recovery_window_fixes >= 1.0)) {
     reject("recovery_window_fixes", "must be >= 1", recovery_window_fixes);
+  }
+  if (!(recovery_bias_window_fixes >= 1.0)) {
+    reject("recovery_bias_window_fixes", "must be >= 1", recovery_bias_window_fixes);
   }
   if (!(recovery_uniform_heading_fraction <= 1.0)) {
     reject("recovery_uniform_heading_fraction", "must be in [0, 1]", recovery_uniform_heading_fraction);

@@ -84,6 +84,12 @@ struct PfParams {
   double recovery_nis = 5.0;
   double recovery_rejected_share = 0.6;
   double recovery_window_fixes = 10.0;
+  /// ... or when the accepted fixes sit on one side of the estimate: the mean innovation over
+  /// recovery_bias_window_fixes, normalised (consistency.hpp), exceeds recovery_bias_nis
+  /// (chi-square(2) if consistent; the filter's own lag reached 6-25 in the robustness runs,
+  /// a 90-degree heading error at a way-point 40-70). 0 = this criterion off.
+  double recovery_bias_nis = 40.0;
+  double recovery_bias_window_fixes = 50.0;
   double recovery_uniform_heading_fraction = 0.5;
 
   InitMode init_mode = InitMode::kFirstFix;

@@ -124,5 +124,61 @@ TEST(InconsistencyMonitor, FivePercentOutliersNeverLookLost) {
   EXPECT_EQ(lost, 0) << "peak share " << peak_share << ", peak mean d^2 " << peak_nis;
 }
 
+TEST(InconsistencyMonitor, FixesOnOneSideTripTheBiasCriterionButWhiteInnovationsDoNot) {
+  // A steady 1.2 m offset along x with S = 2.4 I: each d^2 is only 0.6, far inside the gate and
+  // below the mean-d^2 threshold, but the side never changes.
+  FixInnovation offset;
+  offset.ex = 1.2;
+  offset.sxx = 2.4;
+  offset.syy = 2.4;
+  InconsistencyMonitor monitor(10.0, 0.6, 5.0, 50.0, 40.0);
+  int fixes = 1;
+  while (!monitor.add(offset, false)) {
+    ++fixes;
+    ASSERT_LT(fixes, 1000);
+    EXPECT_LT(monitor.mean_nis(), 5.0);
+  }
+  // b^2 = 99 * 0.6 * (1 - 0.98^n)^2 > 40 first at n = 86 (8.6 s at 10 Hz).
+  EXPECT_EQ(fixes, 86);
+  InconsistencyMonitor off(10.0, 0.6, 5.0, 50.0, 0.0);
+  for (int k = 0; k < 1000; ++k) {
+    ASSERT_FALSE(off.add(offset, false)) << "the bias criterion is off at 0";
+  }
+  // White innovations with the claimed S, gated as the filter does: b^2 is ~chi-square(2) at
+  // every fix, P(> 40) ~ 2e-9.
+  const double gate = chi_square_2dof_quantile(0.99);
+  RandomEngine engine(derive_seed(3, "consistency/bias"));
+  InconsistencyMonitor white(10.0, 0.6, 5.0, 50.0, 40.0);
+  double peak = 0.0;
+  for (int k = 0; k < 100000; ++k) {
+    FixInnovation f;
+    f.sxx = 2.4;
+    f.syy = 2.4;
+    f.ex = std::sqrt(2.4) * standard_normal(engine);
+    f.ey = std::sqrt(2.4) * standard_normal(engine);
+    ASSERT_FALSE(white.add(f, f.nis() > gate)) << "fix " << k << ", b^2 " << white.bias_nis() << ", mean d^2 " << white.mean_nis();
+    peak = std::max(peak, white.bias_nis());
+  }
+  RecordProperty("white_peak_bias_nis", std::to_string(peak));
+  monitor.reset();
+  EXPECT_EQ(monitor.bias_nis(), 0.0);
+}
+
+TEST(PositionFixInnovation, CarriesTheInnovationAndItsCovariance) {
+  ParticleSet particles;
+  particles.resize(2);
+  particles.x << -1.0, 1.0;
+  particles.y << 0.0, 0.0;
+  particles.theta.setZero();
+  const Eigen::ArrayXd w = Eigen::ArrayXd::Constant(2, 0.5);
+  const FixInnovation f = position_fix_innovation(particles, w, 2.0, -1.0, 1.0);
+  EXPECT_DOUBLE_EQ(f.ex, 2.0);
+  EXPECT_DOUBLE_EQ(f.ey, -1.0);
+  EXPECT_DOUBLE_EQ(f.sxx, 2.0);
+  EXPECT_DOUBLE_EQ(f.syy, 1.0);
+  EXPECT_DOUBLE_EQ(f.sxy, 0.0);
+  EXPECT_DOUBLE_EQ(f.nis(), 4.0 / 2.0 + 1.0);
+}
+
 }  // namespace
 }  // namespace robodds::pf

@@ -568,6 +568,34 @@ TEST(ParticleFilter, WithoutRecoveryAJumpIsNeverFollowed) {
   EXPECT_EQ(filter.rejected_count(), 50u);
 }
 
+// A robot turned by 90 degrees while it creeps: it moves at 0.3 m/s along +y, the filter (heading
+// known, wrongly, as 0) along +x. The fixes keep pulling the cloud back, so it stays within a few
+// metres and few fixes are rejected, but they are always on the same side: the bias criterion
+// notices it well before the others.
+std::size_t recoveries_while_creeping_sideways(double recovery_bias_nis, double duration_s) {
+  PfParams params = first_fix_params();
+  params.init_theta_known = true;
+  params.init_theta_rad = 0.0;
+  params.recovery_bias_nis = recovery_bias_nis;
+  ParticleFilter filter(params, 46);
+  RandomEngine world(derive_seed(46, "creep"));
+  double truth_y = 0.0;
+  filter.update(0.0, 0.0);
+  for (int step = 1; step <= static_cast<int>(duration_s / 0.02); ++step) {
+    truth_y += 0.3 * 0.02;
+    filter.predict(0.3, 0.0, 0.02);
+    if (step % 5 == 0) {
+      filter.update(kFixStd * standard_normal(world), truth_y + kFixStd * standard_normal(world));
+    }
+  }
+  return filter.recovery_count();
+}
+
+TEST(ParticleFilter, FixesOnOneSideOfTheEstimateTriggerARecovery) {
+  EXPECT_GE(recoveries_while_creeping_sideways(40.0, 20.0), 1u);
+  EXPECT_EQ(recoveries_while_creeping_sideways(0.0, 20.0), 0u) << "without the bias criterion";
+}
+
 // 5 % of the fixes 100 m (or 30 m) off: the gate drops them, no recovery fires, and the track is
 // as good as without outliers.
 TEST(ParticleFilter, FivePercentOutliersAreRejectedWithoutHarm) {
