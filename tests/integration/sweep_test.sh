@@ -7,7 +7,8 @@
 #    and its mean is the mean of the runs' summary.json values.
 # 2. A combination whose value fails at run time (plant.command_timeout_s=-1) is recorded as
 #    failed with the run's error and the sweep goes on; the sweep exits 1.
-# 3. --plan, then --run-index per run in separate invocations, then --aggregate: the same tables.
+# 3. --plan, then the generated Slurm array script per task (--run-index K) in separate invocations,
+#    then --aggregate: the same tables; the generated Kubernetes Indexed Job parses and names the runs.
 # 4. Bad input: errors before anything runs.
 source "$(dirname "$0")/lib.sh"
 S="$SRC/sim/scenarios/plant_smoke.yaml"
@@ -60,13 +61,39 @@ echo "ok: failed runs recorded, the sweep went on"
 timeout -k 5 60 "$ROBODDS" sweep "$S" --seeds 1-3 --set position_sensor.noise_var_x_m2=0.5,4 --duration 3 --domain "$DOMAIN" \
   --out "$WORK/p" --plan >"$WORK/p.log" 2>&1 || fail "--plan failed: $(cat "$WORK/p.log")"
 [[ $(grep -vc "^#" "$WORK/p/plan.txt") -eq 6 && ! -d "$WORK/p/runs" ]] || fail "--plan: $(ls "$WORK/p"; cat "$WORK/p/plan.txt")"
+# The generated Slurm script runs the array tasks here as sbatch would (SLURM_ARRAY_TASK_ID set, in
+# any order), on domain DOMAIN + 1 (tasks 0-5 take TASK % 233, so move them: --domain via a shim).
+timeout -k 5 60 "$ROBODDS" sweep --emit slurm --out "$WORK/p" >>"$WORK/p.log" 2>&1 || fail "--emit slurm failed: $(tail -3 "$WORK/p.log")"
+bash -n "$WORK/p/slurm.sbatch" || fail "slurm.sbatch is not valid bash"
+grep -q "^#SBATCH --array=0-5$" "$WORK/p/slurm.sbatch" || fail "slurm.sbatch: no --array=0-5: $(cat "$WORK/p/slurm.sbatch")"
+cat >"$WORK/robodds_on_test_domain" <<SHIM
+#!/bin/bash
+# robodds with the task's --domain K moved to $DOMAIN + 1 + K % 2 (this test's domains)
+args=(); while ((\$#)); do if [[ \$1 == --domain ]]; then args+=(--domain \$(( $DOMAIN + \$2 % 2 ))); shift 2; else args+=("\$1"); shift; fi; done
+exec "$ROBODDS" "\${args[@]}"
+SHIM
+chmod +x "$WORK/robodds_on_test_domain"
 for k in 5 0 3 1 4 2; do
-  timeout -k 5 60 "$ROBODDS" sweep --run-index "$k" --out "$WORK/p" --domain "$((DOMAIN + 1))" >>"$WORK/p.log" 2>&1 \
-    || fail "--run-index $k failed: $(tail -3 "$WORK/p.log")"
+  SLURM_ARRAY_TASK_ID=$k ROBODDS="$WORK/robodds_on_test_domain" timeout -k 5 60 bash "$WORK/p/slurm.sbatch" >>"$WORK/p.log" 2>&1 \
+    || fail "array task $k failed: $(tail -3 "$WORK/p.log")"
 done
+bash "$WORK/p/slurm.sbatch" >/dev/null 2>&1 && fail "slurm.sbatch ran outside an array task"
 timeout -k 5 60 "$ROBODDS" sweep --aggregate --out "$WORK/p" >>"$WORK/p.log" 2>&1 || fail "--aggregate failed: $(tail -3 "$WORK/p.log")"
 cmp "$WORK/a/summary.csv" "$WORK/p/summary.csv" || fail "--aggregate of the separate runs differs from the sweep's summary.csv"
-echo "ok: --plan, --run-index and --aggregate give the sweep's table"
+echo "ok: --plan, the Slurm array script (--run-index per task) and --aggregate give the sweep's table"
+timeout -k 5 60 "$ROBODDS" sweep --emit k8s --out "$WORK/p" --jobs 3 --image robodds:test >>"$WORK/p.log" 2>&1 || fail "--emit k8s failed"
+python3 - "$WORK/p/k8s-job.yaml" <<'PY' || fail "k8s-job.yaml: $(cat "$WORK/p/k8s-job.yaml")"
+import sys, yaml
+job = yaml.safe_load(open(sys.argv[1]))
+assert job["apiVersion"] == "batch/v1" and job["kind"] == "Job", job
+spec = job["spec"]
+assert spec["completionMode"] == "Indexed" and spec["completions"] == 6 and spec["parallelism"] == 3, spec
+pod = spec["template"]["spec"]
+c = pod["containers"][0]
+assert c["image"] == "robodds:test" and "--run-index \"$JOB_COMPLETION_INDEX\" --out /sweep" in c["args"][0], c
+assert c["volumeMounts"][0]["mountPath"] == "/sweep" and pod["volumes"][0]["persistentVolumeClaim"]["claimName"] == "robodds-sweep", pod
+print("ok: k8s-job.yaml is an Indexed Job of the 6 runs")
+PY
 
 # 4. Bad input: an error naming what is wrong, nothing run.
 expect_error 2 "--seeds '5-3': the range '5-3' is empty" -- "$ROBODDS" sweep "$S" --seeds 5-3 --out "$WORK/b1"

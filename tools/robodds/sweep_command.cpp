@@ -16,6 +16,7 @@
 #include "runtime/launch/output_dir.hpp"
 #include "runtime/share_dir.hpp"
 #include "tools/robodds/command.hpp"
+#include "tools/robodds/sweep_emit.hpp"
 #include "tools/robodds/sweep_runner.hpp"
 
 namespace robodds {
@@ -67,21 +68,30 @@ class SweepCommand : public Command {
     cmd_->add_flag("--plan", plan_only_, "write sweep.json and plan.txt (the run list) and stop");
     cmd_->add_option("--run-index", run_index_, "run only run K of the sweep already planned in --out (a batch array task)");
     cmd_->add_flag("--aggregate", aggregate_, "only (re)write the tables from the runs in --out");
+    cmd_->add_option("--emit", emit_, "write the planned sweep in --out as a batch array job: slurm (slurm.sbatch) or k8s (k8s-job.yaml)")
+        ->check(CLI::IsMember({"slurm", "k8s"}));
+    cmd_->add_option("--image", image_, "with --emit k8s: the container image (default robodds:latest, deploy/docker)");
+    cmd_->add_option("--claim", claim_, "with --emit k8s: the persistent volume claim holding the sweep folder (default robodds-sweep)");
   }
 
   bool parsed() const override { return cmd_->parsed(); }
 
   int run() override {
-    if (aggregate_ || run_index_) {
-      if (!scenario_file_.empty() || !seeds_.empty() || !grid_.empty() || duration_s_ || plan_only_ || (aggregate_ && run_index_)) {
-        throw ConfigError("robodds sweep: --aggregate and --run-index work on the sweep planned in --out; they take no "
+    const int planned_modes = (aggregate_ ? 1 : 0) + (run_index_ ? 1 : 0) + (emit_.empty() ? 0 : 1);
+    if (planned_modes > 0) {
+      if (!scenario_file_.empty() || !seeds_.empty() || !grid_.empty() || duration_s_ || plan_only_ || planned_modes > 1) {
+        throw ConfigError("robodds sweep: --aggregate, --run-index and --emit work on the sweep planned in --out; they take no "
                           "scenario, --seeds, --set, --duration or --plan (and not each other)");
       }
       const SweepSpec spec = read_planned_spec();
+      if (!emit_.empty()) {
+        return emit(spec);
+      }
       return aggregate_ ? write_tables(spec, collect_existing(spec)) : run_one(spec, *run_index_);
     }
     const SweepSpec spec = checked_spec();
     std::filesystem::create_directories(out_dir_);
+    std::filesystem::copy_file(spec.source, out_dir_ + "/" + spec.scenario_file, std::filesystem::copy_options::overwrite_existing);
     write_file(out_dir_ + "/sweep.json", spec_json(spec));
     const std::vector<PlannedRun> runs = planned_runs(spec);
     if (plan_only_) {
@@ -134,7 +144,8 @@ class SweepCommand : public Command {
       throw ConfigError("robodds sweep: --out " + out_dir_ + " holds another sweep (sweep.json); choose another folder or remove it");
     }
     SweepSpec spec;
-    spec.scenario_file = std::filesystem::absolute(scenario_file_).string();
+    spec.scenario_file = "scenario.yaml";
+    spec.source = std::filesystem::absolute(scenario_file_).string();
     spec.seeds = seeds_;
     spec.grid = grid_;
     if (duration_s_) {
@@ -147,7 +158,7 @@ class SweepCommand : public Command {
       throw ConfigError(std::string("robodds sweep: ") + e.what());
     }
     // Every combination's --set keys against the scenario's components and their parameter tables.
-    Scenario scenario = load_scenario(spec.scenario_file);
+    Scenario scenario = load_scenario(spec.source);
     apply_run_overrides(scenario, duration_s_, std::nullopt);
     const std::vector<GridAxis> axes = axes_of(spec);
     for (std::size_t c = 0; c < combination_count(axes); ++c) {
@@ -181,7 +192,8 @@ class SweepCommand : public Command {
   RunnerOptions runner_options(const SweepSpec& spec) const {
     RunnerOptions o;
     o.robodds = this_executable();
-    o.scenario_file = spec.scenario_file;
+    o.scenario_file = std::filesystem::path(spec.scenario_file).is_absolute() ? spec.scenario_file
+                                                                               : out_dir_ + "/" + spec.scenario_file;
     o.out_dir = out_dir_;
     o.jobs = jobs_;
     o.first_domain = domain();
@@ -204,7 +216,24 @@ class SweepCommand : public Command {
     write_file(out_dir_ + "/plan.txt", text);
   }
 
+  int emit(const SweepSpec& spec) const {
+    const std::size_t runs = planned_runs(spec).size();
+    const std::string dir = std::filesystem::absolute(out_dir_).lexically_normal().string();
+    if (emit_ == "slurm") {
+      write_file(out_dir_ + "/slurm.sbatch", slurm_script(dir, runs));
+      std::printf("wrote %s/slurm.sbatch (%zu array tasks): sbatch it where the nodes see %s\n", out_dir_.c_str(), runs, dir.c_str());
+    } else {
+      const std::string name = dns_label("robodds-sweep-" + std::filesystem::path(dir).filename().string());
+      write_file(out_dir_ + "/k8s-job.yaml", k8s_job(name, runs, jobs_, image_, claim_));
+      std::printf("wrote %s/k8s-job.yaml (Indexed Job %s, %zu completions, %u at a time): copy the folder to the claim %s, "
+                  "then kubectl apply -f it\n", out_dir_.c_str(), name.c_str(), runs, jobs_, claim_.c_str());
+    }
+    return 0;
+  }
+
   /// One planned run in this process's slot (a batch array task): its outcome goes to its folder.
+  /// Exit 0 once the run was carried out and recorded, also when its simulation failed (the
+  /// aggregate reports it; a batch engine should not retry it); non-zero when it could not run.
   int run_one(const SweepSpec& spec, std::size_t index) const {
     const std::vector<PlannedRun> runs = planned_runs(spec);
     if (index >= runs.size()) {
@@ -215,8 +244,8 @@ class SweepCommand : public Command {
     o.jobs = 1;
     const std::vector<RunOutcome> outcome = run_all({runs[index]}, o, [](const Progress&) {});
     std::printf("run %zu (seed %llu): %s\n", index, static_cast<unsigned long long>(runs[index].seed),
-                outcome.front().ok ? "ok" : outcome.front().error.c_str());
-    return outcome.front().ok ? 0 : 1;
+                outcome.front().ok ? "ok" : ("failed (recorded): " + outcome.front().error).c_str());
+    return 0;
   }
 
   /// The outcome of every planned run from its folder (a run without summary.json failed or never ran).
@@ -267,6 +296,9 @@ class SweepCommand : public Command {
   bool plan_only_ = false;
   std::optional<std::size_t> run_index_;
   bool aggregate_ = false;
+  std::string emit_;
+  std::string image_ = "robodds:latest";
+  std::string claim_ = "robodds-sweep";
 };
 
 }  // namespace

@@ -138,6 +138,7 @@ std::string spec_json(const SweepSpec& spec) {
   w.begin_object();
   w.value("robodds_sweep", std::int64_t{1});  // format version
   w.value("scenario", spec.scenario_file);
+  w.value("source", spec.source);
   w.value("seeds", spec.seeds);
   w.begin_array("set");
   for (const std::string& g : spec.grid) {
@@ -171,6 +172,7 @@ SweepSpec read_spec(const std::string& path) {
     need("robodds_sweep");
     SweepSpec spec;
     spec.scenario_file = need("scenario").as<std::string>();
+    spec.source = need("source").as<std::string>();
     spec.seeds = need("seeds").as<std::string>();
     spec.grid = need("set").as<std::vector<std::string>>();
     spec.run_args = need("run_args").as<std::vector<std::string>>();

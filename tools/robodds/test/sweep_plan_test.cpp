@@ -64,12 +64,13 @@ TEST(PlanRuns, OneKeyTwiceIsAnError) {
 }
 
 TEST(SweepSpec, JsonRoundTrip) {
-  const SweepSpec spec{"/abs/scenario.yaml", "1-3,7", {"controller.epsilon_m=0.1,0.01", "pf.list=[1, 2]"}, {"--duration", "50"}};
+  const SweepSpec spec{"scenario.yaml", "/abs/s.yaml", "1-3,7", {"controller.epsilon_m=0.1,0.01", "pf.list=[1, 2]"}, {"--duration", "50"}};
   const std::string path = std::filesystem::temp_directory_path() / ("sweep_spec_test_" + std::to_string(::getpid()) + ".json");
   std::ofstream(path) << spec_json(spec);
   const SweepSpec back = read_spec(path);
   std::filesystem::remove(path);
   EXPECT_EQ(back.scenario_file, spec.scenario_file);
+  EXPECT_EQ(back.source, spec.source);
   EXPECT_EQ(back.seeds, spec.seeds);
   EXPECT_EQ(back.grid, spec.grid);
   EXPECT_EQ(back.run_args, spec.run_args);
