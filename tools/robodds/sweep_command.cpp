@@ -151,6 +151,7 @@ class SweepCommand : public Command {
     if (duration_s_) {
       spec.run_args = {"--duration", shortest_text(*duration_s_)};
     }
+    spec.run_timeout_s = run_timeout_s_;
     std::vector<PlannedRun> runs;
     try {
       runs = planned_runs(spec);
@@ -171,8 +172,12 @@ class SweepCommand : public Command {
       for (const GridAxis& axis : axes) {
         const ComponentSpec& component = variant.component(axis.key.substr(0, axis.key.find('.')));
         try {
-          scenario_component_params(env_.registry.get(component.type), component);
-        } catch (const ConfigError& e) {  // "--set: key: unknown parameter (known: ...)"
+          const ComponentType& type = env_.registry.get(component.type);
+          ParamReader reader = scenario_component_params(type, component);  // an unknown key
+          if (type.check_params) {
+            type.check_params(reader);  // a value of the wrong type or out of range
+          }
+        } catch (const ConfigError& e) {  // "--set: key: unknown parameter (known: ...)", "--set: key: must be > 0 ..."
           throw ConfigError("robodds sweep: --set " + axis.key + ": component '" + component.name + "' (" + component.type +
                             ") of " + scenario_file_ + ": " + e.what());
         }
@@ -197,7 +202,7 @@ class SweepCommand : public Command {
     o.out_dir = out_dir_;
     o.jobs = jobs_;
     o.first_domain = domain();
-    o.run_timeout_s = run_timeout_s_;
+    o.run_timeout_s = spec.run_timeout_s;
     o.run_args = spec.run_args;
     o.stop = &env_.stop;
     return o;
@@ -223,6 +228,12 @@ class SweepCommand : public Command {
       write_file(out_dir_ + "/slurm.sbatch", slurm_script(dir, runs));
       std::printf("wrote %s/slurm.sbatch (%zu array tasks): sbatch it where the nodes see %s\n", out_dir_.c_str(), runs, dir.c_str());
     } else {
+      if (claim_.empty() || dns_label(claim_) != claim_) {
+        throw ConfigError("robodds sweep: --claim '" + claim_ + "': a Kubernetes name (lower case letters, digits and '-')");
+      }
+      if (image_.empty() || image_.find_first_of("\"\\ \n") != std::string::npos) {
+        throw ConfigError("robodds sweep: --image '" + image_ + "': not an image reference");
+      }
       const std::string name = dns_label("robodds-sweep-" + std::filesystem::path(dir).filename().string());
       write_file(out_dir_ + "/k8s-job.yaml", k8s_job(name, runs, jobs_, image_, claim_));
       std::printf("wrote %s/k8s-job.yaml (Indexed Job %s, %zu completions, %u at a time): copy the folder to the claim %s, "
@@ -248,16 +259,11 @@ class SweepCommand : public Command {
     return 0;
   }
 
-  /// The outcome of every planned run from its folder (a run without summary.json failed or never ran).
+  /// The outcome of every planned run as recorded in its folder.
   std::vector<RunOutcome> collect_existing(const SweepSpec& spec) const {
     std::vector<RunOutcome> outcomes;
     for (const PlannedRun& r : planned_runs(spec)) {
-      const std::string dir = run_dir(out_dir_, r.index);
-      const bool has_summary = std::filesystem::exists(dir + "/summary.json");
-      outcomes.push_back(collect_outcome(r, has_summary ? 0 : -1, 0.0, dir));
-      if (!has_summary) {
-        outcomes.back().error = std::filesystem::exists(dir) ? "no summary.json in " + dir : "not run (" + dir + " missing)";
-      }
+      outcomes.push_back(recorded_outcome(r, run_dir(out_dir_, r.index)));
     }
     return outcomes;
   }

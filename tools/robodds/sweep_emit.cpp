@@ -31,7 +31,7 @@ std::string slurm_script(const std::string& sweep_dir, std::size_t runs) {
          "#SBATCH --array=0-" + std::to_string(runs == 0 ? 0 : runs - 1) + "\n"
          "#SBATCH --ntasks=1\n"
          "#SBATCH --cpus-per-task=1\n"
-         "#SBATCH --output=" + sweep_dir + "/slurm-%a.log\n"
+         "#SBATCH --output=\"" + sweep_dir + "/slurm-%a.log\"\n"
          "set -euo pipefail\n"
          "TASK=\"${SLURM_ARRAY_TASK_ID:?not a Slurm array task: submit with sbatch}\"\n"
          "exec \"${ROBODDS:-robodds}\" sweep --run-index \"$TASK\" --out " + dir + " --domain \"$((TASK % " + kDomainOfTask + "))\"\n";

@@ -45,6 +45,7 @@ struct SweepSpec {
   std::string seeds;                  // the --seeds text
   std::vector<std::string> grid;      // the --set texts
   std::vector<std::string> run_args;  // passed to every `robodds run` (e.g. --duration 50)
+  double run_timeout_s = 3600.0;      // a run still going after this is killed and recorded as failed
 };
 
 /// sweep.json text of `spec` (plus the run count, for the reader).
