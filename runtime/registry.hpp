@@ -12,6 +12,7 @@
 
 #include "common/param_doc.hpp"
 #include "runtime/component.hpp"
+#include "runtime/param_table_reader.hpp"
 
 namespace robodds {
 
@@ -23,6 +24,10 @@ struct ComponentType {
   /// Its parameters from its parameter table: the key set, types and defaults the host reads
   /// (defaults_file is their generated, documented copy), and `robodds components --params`.
   std::function<params::ParamDoc()> params;
+  /// Reads every parameter of `reader` through the type's table: a value of the wrong type or out
+  /// of its range throws ConfigError naming the file and the key (cross-field rules of the node's
+  /// validate() are not run). Lets `robodds sweep` refuse a bad --set value before any run starts.
+  std::function<void(ParamReader& reader)> check_params;
 };
 
 /// The parameters of the scenario component `spec` of type `type`: the type's defaults (its
@@ -67,7 +72,8 @@ void register_builtin_components(ComponentRegistry& registry);
   }                                                                                                      \
   void ::robodds::component_registration::register_##type_name(::robodds::ComponentRegistry& registry) { \
     registry.add({#type_name, description, ROBODDS_COMPONENT_DEFAULTS_FILE, factory,                     \
-                  [] { return param_table().doc(); }});                                                  \
+                  [] { return param_table().doc(); },                                                    \
+                  [](::robodds::ParamReader& reader) { (void)::robodds::read_params(reader, param_table()); }}); \
   }                                                                                                      \
   static_assert(sizeof(description) > 1,                                                                 \
                 "ROBODDS_REGISTER_COMPONENT(" #type_name "): the description must not be empty")

@@ -453,7 +453,13 @@ void apply_param_overrides(Scenario& scenario, const FlatParams& overrides, cons
       }
     }
     if (!found) {
-      throw ConfigError(located(file, key, "expected <component>.<parameter> of a scenario component"));
+      std::string names;
+      for (const ComponentSpec& c : scenario.components) {
+        names += (names.empty() ? "" : ", ") + c.name;
+      }
+      throw ConfigError(located(file, key, "expected <component>.<parameter> of a scenario component: " +
+                                               (dot == std::string::npos ? "no '.'" : "no component '" + component + "'") +
+                                               " in " + scenario.file + " (components: " + names + ")"));
     }
   }
 }

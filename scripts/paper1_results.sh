@@ -23,14 +23,19 @@ IDEAL="$OUT/paper1_waypoints_ideal.yaml"
 sed -e 's/  - {name: plant, type: plant, params: {[^}]*}}/  - {name: plant, type: plant}/' \
   -e 's/  - {name: controller, type: waypoint_controller, params: {[^}]*}}/  - {name: controller, type: waypoint_controller}/' \
   -e 's/^duration_s: .*/duration_s: 150.0/' "$ROOT/sim/scenarios/paper1_waypoints.yaml" >"$IDEAL"
-grep -q "{name: plant, type: plant}" "$IDEAL" || { echo "paper1_results.sh: could not take the limits off" >&2; exit 1; }
+grep -q "{name: plant, type: plant}" "$IDEAL" && grep -q "{name: controller, type: waypoint_controller}" "$IDEAL" \
+  || { echo "paper1_results.sh: could not take the limits off the plant and the controller in $IDEAL" >&2; exit 1; }
 
 # sweep NAME ARGS...: `robodds sweep ARGS --out OUT/NAME`; a failed run is in its runs.csv (and the table).
 sweep() {
-  local name="$1"
+  local name="$1" rc=0
   shift
-  "$ROBODDS" sweep "$@" --jobs "$JOBS" --out "$OUT/$name" >"$OUT/$name.log" 2>&1 \
-    || echo "note: some runs of the $name sweep failed (see $OUT/$name/runs.csv)" >&2
+  "$ROBODDS" sweep "$@" --jobs "$JOBS" --out "$OUT/$name" >"$OUT/$name.log" 2>&1 || rc=$?
+  case $rc in
+    0) ;;
+    1) echo "note: some runs of the $name sweep failed (see $OUT/$name/runs.csv)" >&2 ;;
+    *) echo "paper1_results.sh: the $name sweep did not run (exit $rc): $(tail -3 "$OUT/$name.log")" >&2; exit 1 ;;
+  esac
 }
 sweep ideal "$ROOT/sim/scenarios/paper1_ideal.yaml" --seeds 1 --set controller.epsilon_m=0.1,0.01,0.001 --duration 200
 sweep pf "$IDEAL" --seeds "$SEEDS"

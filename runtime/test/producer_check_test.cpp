@@ -30,8 +30,8 @@ class Estimator : public Component {
 ComponentRegistry test_registry() {
   ComponentRegistry registry;
   const auto no_params = [] { return params::ParamDoc{}; };
-  registry.add({"commander", "plant/cmd", "none", [] { return std::make_unique<Commander>(); }, no_params});
-  registry.add({"estimator", "estimate/pose", "none", [] { return std::make_unique<Estimator>(); }, no_params});
+  registry.add({"commander", "plant/cmd", "none", [] { return std::make_unique<Commander>(); }, no_params, nullptr});
+  registry.add({"estimator", "estimate/pose", "none", [] { return std::make_unique<Estimator>(); }, no_params, nullptr});
   return registry;
 }
 

@@ -16,7 +16,7 @@ class Idle : public Component {
 
 ComponentType idle_type(const std::string& name) {
   return {name, "does nothing", "config/" + name + ".params.yaml", [] { return std::make_unique<Idle>(); },
-          [] { return params::ParamDoc{}; }};
+          [] { return params::ParamDoc{}; }, nullptr};
 }
 
 TEST(ComponentRegistry, FindsRegisteredTypesAndNamesTheKnownOnesOtherwise) {

@@ -225,7 +225,9 @@ TEST(ApplyParamOverrides, UnknownComponentIsNamedWithTheFile) {
   } catch (const ConfigError& e) {
     EXPECT_NE(std::string(e.what()).find(file), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("controller.gain"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("expected <component>.<parameter> of a scenario component"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("expected <component>.<parameter> of a scenario component: no component 'controller' in " +
+                                         s.file + " (components: "),
+              std::string::npos)
         << e.what();
   }
 }

@@ -83,7 +83,7 @@ class NodeHarness {
                          feed_(info.step);
                        }
                      });
-                   }, no_params});
+                   }, no_params, nullptr});
     // Next to the scenario file, named after the running test case like it.
     output_dir_ = scenario_file_.substr(0, scenario_file_.size() - std::string("scenario.yaml").size()) + "out";
     std::filesystem::remove_all(output_dir_);
@@ -117,7 +117,7 @@ class NodeHarness {
                   std::function<void(const StepInfo&)> step, std::function<void(const StepInfo&)> finish = nullptr) {
     registry_.add({type, "test script", kNoParamsFile, [configure, step, finish] {
                      return std::make_unique<ScriptComponent>(configure, step, finish);
-                   }, no_params});
+                   }, no_params, nullptr});
   }
 
   /// The time mode of run() (default lockstep).

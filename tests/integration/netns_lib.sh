@@ -171,8 +171,13 @@ netns_lockstep_run() {
   wait_pid "$SPAWNED" 240
   COORD_RC=$RC
   HOST_RCS=""
+  local grace_end=$((SECONDS + ${HOST_GRACE_S:-0}))
   for i in "${!pids[@]}"; do
-    # After a failed coordinator the hosts would wait 30 s for the next tick: stop them.
+    # After a failed coordinator the hosts would wait 30 s for the next tick: stop them, after
+    # HOST_GRACE_S (default 0) in which a host may end on its own (a test of the hosts' own errors).
+    while [[ $COORD_RC -ne 0 ]] && kill -0 "${pids[$i]}" 2>/dev/null && ((SECONDS < grace_end)); do
+      sleep 0.1
+    done
     if [[ $COORD_RC -ne 0 ]]; then
       kill -TERM "${pids[$i]}" 2>/dev/null || true
     fi

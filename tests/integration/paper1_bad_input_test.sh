@@ -6,7 +6,8 @@ S="$SRC/sim/scenarios/paper1_waypoints.yaml"
 with_params() {  # with_params NAME COMPONENT TYPE PARAMS: a copy of paper1_waypoints with params on one component
   # (added to the component's own params when it has some, e.g. the controller's actuator limits)
   local inner="${4:1:${#4}-2}"
-  sed -e "s/{name: $2, type: $3}/{name: $2, type: $3, params: $4}/" \
+  # (t: a line the first expression rewrote is not rewritten again by the second)
+  sed -e "s/{name: $2, type: $3}/{name: $2, type: $3, params: $4}/" -e t \
     -e "s/{name: $2, type: $3, params: {/&$inner, /" "$S" >"$WORK/$1.yaml"
   grep -qF "$inner" "$WORK/$1.yaml" || fail "rewrite of $1 did not apply"
   echo "$WORK/$1.yaml"

@@ -5,9 +5,12 @@
 #    lone `robodds run` with the same seed and --set (no cross-talk between the workers, the grid
 #    really applied); runs.csv has a row per run, summary.csv a row per combination and metric,
 #    and its mean is the mean of the runs' summary.json values.
-# 2. A combination whose value fails at run time (plant.command_timeout_s=-1) is recorded as
-#    failed with the run's error and the sweep goes on; the sweep exits 1.
-# 3. --plan, then --run-index per run in separate invocations, then --aggregate: the same tables.
+# 2. A combination whose value fails at run time (position_sensor.rate_hz=7 passes the type and range
+#    checks, but 7 Hz does not divide the 100 Hz simulation) is recorded as failed with the run's
+#    error and the sweep goes on; the sweep exits 1. Runs past --run-timeout are killed and recorded
+#    as failed, also by --aggregate (which reads outcome.json, else summary.json's status).
+# 3. --plan, then the generated Slurm array script per task (--run-index K) in separate invocations,
+#    then --aggregate: the same tables; the generated Kubernetes Indexed Job parses and names the runs.
 # 4. Bad input: errors before anything runs.
 source "$(dirname "$0")/lib.sh"
 S="$SRC/sim/scenarios/plant_smoke.yaml"
@@ -48,25 +51,65 @@ PY
 
 # 2. A failing combination.
 rc=0
-timeout -k 5 300 "$ROBODDS" sweep "$S" --seeds 1-2 --set plant.command_timeout_s=0.5,-1 --duration 2 --jobs 2 --domain "$DOMAIN" \
+timeout -k 5 300 "$ROBODDS" sweep "$S" --seeds 1-2 --set position_sensor.rate_hz=10,7 --duration 2 --jobs 2 --domain "$DOMAIN" \
   --out "$WORK/f" >"$WORK/f.log" 2>&1 || rc=$?
 [[ $rc -eq 1 ]] || fail "a sweep with failed runs exited $rc: $(tail -5 "$WORK/f.log")"
 [[ $(grep -c ",ok," "$WORK/f/runs.csv") -eq 2 && $(grep -c ",failed," "$WORK/f/runs.csv") -eq 2 ]] || fail "runs.csv: $(cat "$WORK/f/runs.csv")"
-grep -q "failed,2,.*command_timeout_s: must be > 0" "$WORK/f/runs.csv" || fail "the failure reason is not recorded: $(cat "$WORK/f/runs.csv")"
+grep -q "failed,2,.*rate_hz: 7.* Hz is not the simulation rate" "$WORK/f/runs.csv" || fail "the failure reason is not recorded: $(cat "$WORK/f/runs.csv")"
 grep -q "0 runs ok, 2 failed" "$WORK/f/summary.md" || fail "summary.md: $(cat "$WORK/f/summary.md")"
-echo "ok: failed runs recorded, the sweep went on"
+rc=0
+timeout -k 5 120 "$ROBODDS" sweep "$S" --seeds 1-2 --duration 5000 --run-timeout 0.3 --jobs 2 --domain "$DOMAIN" --out "$WORK/t" \
+  >"$WORK/t.log" 2>&1 || rc=$?
+[[ $rc -eq 1 && $(grep -c ",failed," "$WORK/t/runs.csv") -eq 2 ]] || fail "runs past --run-timeout: exit $rc, $(cat "$WORK/t/runs.csv")"
+grep -q "did not finish within 0.3 s (--run-timeout) and was killed" "$WORK/t/runs/0000/run.log" || fail "no timeout note in run.log"
+rc=0
+"$ROBODDS" sweep --aggregate --out "$WORK/t" >"$WORK/t.agg.log" 2>&1 || rc=$?
+[[ $rc -eq 1 && $(grep -c ",failed," "$WORK/t/runs.csv") -eq 2 ]] || fail "--aggregate counted killed runs as ok: exit $rc, $(cat "$WORK/t/runs.csv")"
+rm "$WORK"/t/runs/*/outcome.json  # as if their workers had died: summary.json's status alone decides
+rc=0
+"$ROBODDS" sweep --aggregate --out "$WORK/t" >"$WORK/t.agg.log" 2>&1 || rc=$?
+[[ $rc -eq 1 && $(grep -c ",failed," "$WORK/t/runs.csv") -eq 2 ]] || fail "--aggregate without outcome.json: exit $rc, $(cat "$WORK/t/runs.csv")"
+echo "ok: failed and timed-out runs recorded (also by --aggregate), the sweep went on"
 
 # 3. Plan, run each index on its own (as a batch array task would), aggregate.
 timeout -k 5 60 "$ROBODDS" sweep "$S" --seeds 1-3 --set position_sensor.noise_var_x_m2=0.5,4 --duration 3 --domain "$DOMAIN" \
   --out "$WORK/p" --plan >"$WORK/p.log" 2>&1 || fail "--plan failed: $(cat "$WORK/p.log")"
 [[ $(grep -vc "^#" "$WORK/p/plan.txt") -eq 6 && ! -d "$WORK/p/runs" ]] || fail "--plan: $(ls "$WORK/p"; cat "$WORK/p/plan.txt")"
+# The generated Slurm script runs the array tasks here as sbatch would (SLURM_ARRAY_TASK_ID set, in
+# any order), on domain DOMAIN + 1 (tasks 0-5 take TASK % 233, so move them: --domain via a shim).
+timeout -k 5 60 "$ROBODDS" sweep --emit slurm --out "$WORK/p" >>"$WORK/p.log" 2>&1 || fail "--emit slurm failed: $(tail -3 "$WORK/p.log")"
+bash -n "$WORK/p/slurm.sbatch" || fail "slurm.sbatch is not valid bash"
+grep -q "^#SBATCH --array=0-5$" "$WORK/p/slurm.sbatch" || fail "slurm.sbatch: no --array=0-5: $(cat "$WORK/p/slurm.sbatch")"
+cat >"$WORK/robodds_on_test_domain" <<SHIM
+#!/bin/bash
+# robodds with the task's --domain K moved to $DOMAIN + 1 + K % 2 (this test's domains)
+args=(); while ((\$#)); do if [[ \$1 == --domain ]]; then args+=(--domain \$(( $DOMAIN + \$2 % 2 ))); shift 2; else args+=("\$1"); shift; fi; done
+exec "$ROBODDS" "\${args[@]}"
+SHIM
+chmod +x "$WORK/robodds_on_test_domain"
 for k in 5 0 3 1 4 2; do
-  timeout -k 5 60 "$ROBODDS" sweep --run-index "$k" --out "$WORK/p" --domain "$((DOMAIN + 1))" >>"$WORK/p.log" 2>&1 \
-    || fail "--run-index $k failed: $(tail -3 "$WORK/p.log")"
+  SLURM_ARRAY_TASK_ID=$k ROBODDS="$WORK/robodds_on_test_domain" timeout -k 5 60 bash "$WORK/p/slurm.sbatch" >>"$WORK/p.log" 2>&1 \
+    || fail "array task $k failed: $(tail -3 "$WORK/p.log")"
 done
+out="$(env -u SLURM_ARRAY_TASK_ID ROBODDS="$WORK/robodds_on_test_domain" bash "$WORK/p/slurm.sbatch" 2>&1)" \
+  && fail "slurm.sbatch ran outside an array task: $out"
+grep -q "not a Slurm array task" <<<"$out" || fail "slurm.sbatch outside an array task: $out"
 timeout -k 5 60 "$ROBODDS" sweep --aggregate --out "$WORK/p" >>"$WORK/p.log" 2>&1 || fail "--aggregate failed: $(tail -3 "$WORK/p.log")"
 cmp "$WORK/a/summary.csv" "$WORK/p/summary.csv" || fail "--aggregate of the separate runs differs from the sweep's summary.csv"
-echo "ok: --plan, --run-index and --aggregate give the sweep's table"
+echo "ok: --plan, the Slurm array script (--run-index per task) and --aggregate give the sweep's table"
+timeout -k 5 60 "$ROBODDS" sweep --emit k8s --out "$WORK/p" --jobs 3 --image robodds:test >>"$WORK/p.log" 2>&1 || fail "--emit k8s failed"
+python3 - "$WORK/p/k8s-job.yaml" <<'PY' || fail "k8s-job.yaml: $(cat "$WORK/p/k8s-job.yaml")"
+import sys, yaml
+job = yaml.safe_load(open(sys.argv[1]))
+assert job["apiVersion"] == "batch/v1" and job["kind"] == "Job", job
+spec = job["spec"]
+assert spec["completionMode"] == "Indexed" and spec["completions"] == 6 and spec["parallelism"] == 3, spec
+pod = spec["template"]["spec"]
+c = pod["containers"][0]
+assert c["image"] == "robodds:test" and "--run-index \"$JOB_COMPLETION_INDEX\" --out /sweep" in c["args"][0], c
+assert c["volumeMounts"][0]["mountPath"] == "/sweep" and pod["volumes"][0]["persistentVolumeClaim"]["claimName"] == "robodds-sweep", pod
+print("ok: k8s-job.yaml is an Indexed Job of the 6 runs")
+PY
 
 # 4. Bad input: an error naming what is wrong, nothing run.
 expect_error 2 "--seeds '5-3': the range '5-3' is empty" -- "$ROBODDS" sweep "$S" --seeds 5-3 --out "$WORK/b1"
@@ -75,7 +118,11 @@ expect_error 2 "--jobs must be at least 1" -- "$ROBODDS" sweep "$S" --seeds 1 --
 expect_error 2 "--set plant.nope: component 'plant' \(plant\) of .*plant_smoke.yaml: --set: nope: unknown parameter \(known: " -- \
   "$ROBODDS" sweep "$S" --seeds 1 --set plant.nope=1,2 --out "$WORK/b4"
 expect_error 2 "--set 'plant.rate_hz': expected component.parameter=value" -- "$ROBODDS" sweep "$S" --seeds 1 --set plant.rate_hz --out "$WORK/b5"
+expect_error 2 "--set plant.command_timeout_s: component 'plant' \(plant\) of .*: --set: command_timeout_s: must be > 0 and finite \(got -1\)" -- \
+  "$ROBODDS" sweep "$S" --seeds 1 --set plant.command_timeout_s=0.5,-1 --out "$WORK/b6"
+expect_error 2 "--set position_sensor.rate_hz: .*: --set: rate_hz: expected a number, got 'ten'" -- \
+  "$ROBODDS" sweep "$S" --seeds 1 --set position_sensor.rate_hz=ten --out "$WORK/b7"
 expect_error 2 "--out $WORK/a holds another sweep \(sweep.json\)" -- "$ROBODDS" sweep "$S" --seeds 1 --out "$WORK/a"
-for d in b1 b2 b3 b4 b5; do
+for d in b1 b2 b3 b4 b5 b6 b7; do
   [[ ! -e "$WORK/$d/runs" ]] || fail "$d: a run started despite the error"
 done

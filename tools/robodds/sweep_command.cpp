@@ -16,6 +16,7 @@
 #include "runtime/launch/output_dir.hpp"
 #include "runtime/share_dir.hpp"
 #include "tools/robodds/command.hpp"
+#include "tools/robodds/sweep_emit.hpp"
 #include "tools/robodds/sweep_runner.hpp"
 
 namespace robodds {
@@ -67,21 +68,30 @@ class SweepCommand : public Command {
     cmd_->add_flag("--plan", plan_only_, "write sweep.json and plan.txt (the run list) and stop");
     cmd_->add_option("--run-index", run_index_, "run only run K of the sweep already planned in --out (a batch array task)");
     cmd_->add_flag("--aggregate", aggregate_, "only (re)write the tables from the runs in --out");
+    cmd_->add_option("--emit", emit_, "write the planned sweep in --out as a batch array job: slurm (slurm.sbatch) or k8s (k8s-job.yaml)")
+        ->check(CLI::IsMember({"slurm", "k8s"}));
+    cmd_->add_option("--image", image_, "with --emit k8s: the container image (default robodds:latest, deploy/docker)");
+    cmd_->add_option("--claim", claim_, "with --emit k8s: the persistent volume claim holding the sweep folder (default robodds-sweep)");
   }
 
   bool parsed() const override { return cmd_->parsed(); }
 
   int run() override {
-    if (aggregate_ || run_index_) {
-      if (!scenario_file_.empty() || !seeds_.empty() || !grid_.empty() || duration_s_ || plan_only_ || (aggregate_ && run_index_)) {
-        throw ConfigError("robodds sweep: --aggregate and --run-index work on the sweep planned in --out; they take no "
+    const int planned_modes = (aggregate_ ? 1 : 0) + (run_index_ ? 1 : 0) + (emit_.empty() ? 0 : 1);
+    if (planned_modes > 0) {
+      if (!scenario_file_.empty() || !seeds_.empty() || !grid_.empty() || duration_s_ || plan_only_ || planned_modes > 1) {
+        throw ConfigError("robodds sweep: --aggregate, --run-index and --emit work on the sweep planned in --out; they take no "
                           "scenario, --seeds, --set, --duration or --plan (and not each other)");
       }
       const SweepSpec spec = read_planned_spec();
+      if (!emit_.empty()) {
+        return emit(spec);
+      }
       return aggregate_ ? write_tables(spec, collect_existing(spec)) : run_one(spec, *run_index_);
     }
     const SweepSpec spec = checked_spec();
     std::filesystem::create_directories(out_dir_);
+    std::filesystem::copy_file(spec.source, out_dir_ + "/" + spec.scenario_file, std::filesystem::copy_options::overwrite_existing);
     write_file(out_dir_ + "/sweep.json", spec_json(spec));
     const std::vector<PlannedRun> runs = planned_runs(spec);
     if (plan_only_) {
@@ -134,12 +144,14 @@ class SweepCommand : public Command {
       throw ConfigError("robodds sweep: --out " + out_dir_ + " holds another sweep (sweep.json); choose another folder or remove it");
     }
     SweepSpec spec;
-    spec.scenario_file = std::filesystem::absolute(scenario_file_).string();
+    spec.scenario_file = "scenario.yaml";
+    spec.source = std::filesystem::absolute(scenario_file_).string();
     spec.seeds = seeds_;
     spec.grid = grid_;
     if (duration_s_) {
       spec.run_args = {"--duration", shortest_text(*duration_s_)};
     }
+    spec.run_timeout_s = run_timeout_s_;
     std::vector<PlannedRun> runs;
     try {
       runs = planned_runs(spec);
@@ -147,7 +159,7 @@ class SweepCommand : public Command {
       throw ConfigError(std::string("robodds sweep: ") + e.what());
     }
     // Every combination's --set keys against the scenario's components and their parameter tables.
-    Scenario scenario = load_scenario(spec.scenario_file);
+    Scenario scenario = load_scenario(spec.source);
     apply_run_overrides(scenario, duration_s_, std::nullopt);
     const std::vector<GridAxis> axes = axes_of(spec);
     for (std::size_t c = 0; c < combination_count(axes); ++c) {
@@ -160,8 +172,12 @@ class SweepCommand : public Command {
       for (const GridAxis& axis : axes) {
         const ComponentSpec& component = variant.component(axis.key.substr(0, axis.key.find('.')));
         try {
-          scenario_component_params(env_.registry.get(component.type), component);
-        } catch (const ConfigError& e) {  // "--set: key: unknown parameter (known: ...)"
+          const ComponentType& type = env_.registry.get(component.type);
+          ParamReader reader = scenario_component_params(type, component);  // an unknown key
+          if (type.check_params) {
+            type.check_params(reader);  // a value of the wrong type or out of range
+          }
+        } catch (const ConfigError& e) {  // "--set: key: unknown parameter (known: ...)", "--set: key: must be > 0 ..."
           throw ConfigError("robodds sweep: --set " + axis.key + ": component '" + component.name + "' (" + component.type +
                             ") of " + scenario_file_ + ": " + e.what());
         }
@@ -181,11 +197,12 @@ class SweepCommand : public Command {
   RunnerOptions runner_options(const SweepSpec& spec) const {
     RunnerOptions o;
     o.robodds = this_executable();
-    o.scenario_file = spec.scenario_file;
+    o.scenario_file = std::filesystem::path(spec.scenario_file).is_absolute() ? spec.scenario_file
+                                                                               : out_dir_ + "/" + spec.scenario_file;
     o.out_dir = out_dir_;
     o.jobs = jobs_;
     o.first_domain = domain();
-    o.run_timeout_s = run_timeout_s_;
+    o.run_timeout_s = spec.run_timeout_s;
     o.run_args = spec.run_args;
     o.stop = &env_.stop;
     return o;
@@ -204,7 +221,30 @@ class SweepCommand : public Command {
     write_file(out_dir_ + "/plan.txt", text);
   }
 
+  int emit(const SweepSpec& spec) const {
+    const std::size_t runs = planned_runs(spec).size();
+    const std::string dir = std::filesystem::absolute(out_dir_).lexically_normal().string();
+    if (emit_ == "slurm") {
+      write_file(out_dir_ + "/slurm.sbatch", slurm_script(dir, runs));
+      std::printf("wrote %s/slurm.sbatch (%zu array tasks): sbatch it where the nodes see %s\n", out_dir_.c_str(), runs, dir.c_str());
+    } else {
+      if (claim_.empty() || dns_label(claim_) != claim_) {
+        throw ConfigError("robodds sweep: --claim '" + claim_ + "': a Kubernetes name (lower case letters, digits and '-')");
+      }
+      if (image_.empty() || image_.find_first_of("\"\\ \n") != std::string::npos) {
+        throw ConfigError("robodds sweep: --image '" + image_ + "': not an image reference");
+      }
+      const std::string name = dns_label("robodds-sweep-" + std::filesystem::path(dir).filename().string());
+      write_file(out_dir_ + "/k8s-job.yaml", k8s_job(name, runs, jobs_, image_, claim_));
+      std::printf("wrote %s/k8s-job.yaml (Indexed Job %s, %zu completions, %u at a time): copy the folder to the claim %s, "
+                  "then kubectl apply -f it\n", out_dir_.c_str(), name.c_str(), runs, jobs_, claim_.c_str());
+    }
+    return 0;
+  }
+
   /// One planned run in this process's slot (a batch array task): its outcome goes to its folder.
+  /// Exit 0 once the run was carried out and recorded, also when its simulation failed (the
+  /// aggregate reports it; a batch engine should not retry it); non-zero when it could not run.
   int run_one(const SweepSpec& spec, std::size_t index) const {
     const std::vector<PlannedRun> runs = planned_runs(spec);
     if (index >= runs.size()) {
@@ -215,20 +255,15 @@ class SweepCommand : public Command {
     o.jobs = 1;
     const std::vector<RunOutcome> outcome = run_all({runs[index]}, o, [](const Progress&) {});
     std::printf("run %zu (seed %llu): %s\n", index, static_cast<unsigned long long>(runs[index].seed),
-                outcome.front().ok ? "ok" : outcome.front().error.c_str());
-    return outcome.front().ok ? 0 : 1;
+                outcome.front().ok ? "ok" : ("failed (recorded): " + outcome.front().error).c_str());
+    return 0;
   }
 
-  /// The outcome of every planned run from its folder (a run without summary.json failed or never ran).
+  /// The outcome of every planned run as recorded in its folder.
   std::vector<RunOutcome> collect_existing(const SweepSpec& spec) const {
     std::vector<RunOutcome> outcomes;
     for (const PlannedRun& r : planned_runs(spec)) {
-      const std::string dir = run_dir(out_dir_, r.index);
-      const bool has_summary = std::filesystem::exists(dir + "/summary.json");
-      outcomes.push_back(collect_outcome(r, has_summary ? 0 : -1, 0.0, dir));
-      if (!has_summary) {
-        outcomes.back().error = std::filesystem::exists(dir) ? "no summary.json in " + dir : "not run (" + dir + " missing)";
-      }
+      outcomes.push_back(recorded_outcome(r, run_dir(out_dir_, r.index)));
     }
     return outcomes;
   }
@@ -267,6 +302,9 @@ class SweepCommand : public Command {
   bool plan_only_ = false;
   std::optional<std::size_t> run_index_;
   bool aggregate_ = false;
+  std::string emit_;
+  std::string image_ = "robodds:latest";
+  std::string claim_ = "robodds-sweep";
 };
 
 }  // namespace

@@ -11,10 +11,14 @@ namespace robodds::sweep {
 namespace {
 
 std::uint64_t parse_seed(const std::string& part, const std::string& text) {
-  if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos || part.size() > 19) {
+  if (part.empty() || part.find_first_not_of("0123456789") != std::string::npos || part.size() > 20) {
     throw std::invalid_argument("--seeds '" + text + "': '" + part + "' is not a seed (a non-negative integer)");
   }
-  return std::stoull(part);
+  try {
+    return std::stoull(part);
+  } catch (const std::out_of_range&) {
+    throw std::invalid_argument("--seeds '" + text + "': '" + part + "' is above the largest seed (2^64 - 1)");
+  }
 }
 
 std::string trim(const std::string& s) {
@@ -138,6 +142,7 @@ std::string spec_json(const SweepSpec& spec) {
   w.begin_object();
   w.value("robodds_sweep", std::int64_t{1});  // format version
   w.value("scenario", spec.scenario_file);
+  w.value("source", spec.source);
   w.value("seeds", spec.seeds);
   w.begin_array("set");
   for (const std::string& g : spec.grid) {
@@ -149,6 +154,7 @@ std::string spec_json(const SweepSpec& spec) {
     w.value("", a);
   }
   w.end_array();
+  w.value("run_timeout_s", spec.run_timeout_s);
   w.value("runs", static_cast<std::int64_t>(parse_seeds(spec.seeds).size() * combination_count(axes)));
   w.end_object();
   return w.str() + "\n";
@@ -171,9 +177,11 @@ SweepSpec read_spec(const std::string& path) {
     need("robodds_sweep");
     SweepSpec spec;
     spec.scenario_file = need("scenario").as<std::string>();
+    spec.source = need("source").as<std::string>();
     spec.seeds = need("seeds").as<std::string>();
     spec.grid = need("set").as<std::vector<std::string>>();
     spec.run_args = need("run_args").as<std::vector<std::string>>();
+    spec.run_timeout_s = need("run_timeout_s").as<double>();
     return spec;
   } catch (const YAML::Exception& e) {
     throw std::runtime_error(path + ": " + e.what());

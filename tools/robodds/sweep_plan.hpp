@@ -40,10 +40,12 @@ std::vector<std::string> combination_sets(const std::vector<GridAxis>& axes, std
 /// What defines a sweep, as given on the command line; sweep.json in the sweep's folder holds it
 /// so that `--run-index` and `--aggregate` see the same runs.
 struct SweepSpec {
-  std::string scenario_file;          // absolute
+  std::string scenario_file;          // relative to the sweep's folder (a copy: the folder is self-contained), or absolute
+  std::string source;                 // the scenario file it was copied from (for the reader)
   std::string seeds;                  // the --seeds text
   std::vector<std::string> grid;      // the --set texts
   std::vector<std::string> run_args;  // passed to every `robodds run` (e.g. --duration 50)
+  double run_timeout_s = 3600.0;      // a run still going after this is killed and recorded as failed
 };
 
 /// sweep.json text of `spec` (plus the run count, for the reader).

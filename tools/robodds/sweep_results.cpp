@@ -138,8 +138,10 @@ std::string summary_csv(const std::vector<GridAxis>& axes, const std::vector<Met
       out += csv_cell(assigned_value(s)) + ",";
     }
     const stats::SampleSummary& s = r.summary;
-    out += csv_cell(r.metric) + "," + std::to_string(s.count) + "," + shortest_text(s.mean) + "," + shortest_text(s.stddev) + "," +
-           shortest_text(s.min) + "," + shortest_text(s.max) + "," + shortest_text(s.ci95) + "\n";
+    const bool spread = s.count >= 2;  // one value has no standard deviation or interval: empty cells
+    out += csv_cell(r.metric) + "," + std::to_string(s.count) + "," + shortest_text(s.mean) + "," +
+           (spread ? shortest_text(s.stddev) : "") + "," + shortest_text(s.min) + "," + shortest_text(s.max) + "," +
+           (spread ? shortest_text(s.ci95) : "") + "\n";
   }
   return out;
 }
@@ -164,8 +166,9 @@ std::string summary_markdown(const std::vector<GridAxis>& axes, const std::vecto
         continue;
       }
       const stats::SampleSummary& s = r.summary;
-      out += "| " + r.metric + " | " + std::to_string(s.count) + " | " + brief(s.mean) + " | " + brief(s.ci95) +
-             " | " + brief(s.stddev) + " | " + brief(s.min) + " | " + brief(s.max) + " |\n";
+      const bool spread = s.count >= 2;
+      out += "| " + r.metric + " | " + std::to_string(s.count) + " | " + brief(s.mean) + " | " + (spread ? brief(s.ci95) : "n/a") +
+             " | " + (spread ? brief(s.stddev) : "n/a") + " | " + brief(s.min) + " | " + brief(s.max) + " |\n";
     }
     out += "\n";
   }

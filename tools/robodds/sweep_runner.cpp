@@ -1,16 +1,19 @@
 #include "tools/robodds/sweep_runner.hpp"
 
 #include <chrono>
+#include <filesystem>
 #include <cstdio>
 #include <fstream>
 #include <memory>
 #include <optional>
 #include <thread>
 
+#include "common/json_writer.hpp"
 #include "common/number_text.hpp"
 #include "runtime/error.hpp"
 #include "runtime/launch/output_dir.hpp"
 #include "runtime/launch/process_group.hpp"
+#include "tools/robodds/summary_table.hpp"
 
 namespace robodds::sweep {
 namespace {
@@ -34,6 +37,16 @@ std::string last_error_line(const std::string& log) {
     }
   }
   return error.empty() ? last : error;
+}
+
+/// summary.json's "status" ("completed" or "failed"); std::runtime_error naming the file if unreadable.
+std::string summary_status(const std::string& path) {
+  for (const SummaryLeaf& leaf : summary_leaves(path)) {
+    if (leaf.path == "status") {
+      return leaf.json.size() >= 2 && leaf.json.front() == '"' ? leaf.json.substr(1, leaf.json.size() - 2) : leaf.json;
+    }
+  }
+  return "missing";
 }
 
 struct Slot {
@@ -71,12 +84,55 @@ RunOutcome collect_outcome(const PlannedRun& run, int exit_code, double wall_s, 
     return outcome;
   }
   try {
+    const std::string status = summary_status(dir + "/summary.json");
+    if (status != "completed") {
+      outcome.error = dir + "/summary.json: status " + status;
+      return outcome;
+    }
     outcome.metrics = read_metrics(dir + "/summary.json");
     outcome.ok = true;
   } catch (const std::exception& e) {
     outcome.error = e.what();
   }
   return outcome;
+}
+
+static void record_outcome(const RunOutcome& outcome, const std::string& dir) {
+  JsonWriter w;
+  w.begin_object();
+  w.value("exit_code", static_cast<std::int64_t>(outcome.exit_code));
+  w.value("wall_s", outcome.wall_s);
+  w.value("error", outcome.error);
+  w.end_object();
+  std::ofstream(dir + "/outcome.json") << w.str() << "\n";
+}
+
+RunOutcome recorded_outcome(const PlannedRun& run, const std::string& dir) {
+  if (!std::filesystem::exists(dir)) {
+    RunOutcome outcome;
+    outcome.run = run;
+    outcome.error = "not run (" + dir + " missing)";
+    return outcome;
+  }
+  const std::string recorded = dir + "/outcome.json";
+  if (!std::filesystem::exists(recorded)) {  // still running, killed with its worker, or an older sweep
+    RunOutcome outcome = collect_outcome(run, 0, 0.0, dir);
+    if (!outcome.ok) {
+      outcome.exit_code = -1;
+      outcome.error = "no outcome.json in " + dir + " (running, or its worker died): " + outcome.error;
+    }
+    return outcome;
+  }
+  int exit_code = -1;
+  double wall_s = 0.0;
+  for (const SummaryLeaf& leaf : summary_leaves(recorded)) {
+    if (leaf.path == "exit_code" && leaf.number) {
+      exit_code = static_cast<int>(*leaf.number);
+    } else if (leaf.path == "wall_s" && leaf.number) {
+      wall_s = *leaf.number;
+    }
+  }
+  return collect_outcome(run, exit_code, wall_s, dir);
 }
 
 std::vector<RunOutcome> run_all(const std::vector<PlannedRun>& runs, const RunnerOptions& options,
@@ -112,6 +168,7 @@ std::vector<RunOutcome> run_all(const std::vector<PlannedRun>& runs, const Runne
           continue;
         }
         outcomes[slot.run] = collect_outcome(runs[slot.run], status, wall_s, dir);
+        record_outcome(*outcomes[slot.run], dir);
         slot.process.reset();
         ++p.done;
         p.failed += outcomes[slot.run]->ok ? 0 : 1;
@@ -120,6 +177,7 @@ std::vector<RunOutcome> run_all(const std::vector<PlannedRun>& runs, const Runne
       if (!slot.process && next < runs.size()) {
         const PlannedRun& run = runs[next];
         const std::string dir = run_dir(options.out_dir, run.index);
+        std::filesystem::remove_all(dir);  // a retried run (a batch engine's retry) starts clean
         make_output_dir(dir);
         slot.process = std::make_unique<ProcessGroup>();
         slot.process->spawn("run " + std::to_string(run.index), run_argv(options, run, options.first_domain + static_cast<int>(j)),

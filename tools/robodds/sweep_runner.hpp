@@ -35,8 +35,14 @@ std::string run_dir(const std::string& out_dir, std::size_t index);
 /// The command line of `run` on `domain`.
 std::vector<std::string> run_argv(const RunnerOptions& options, const PlannedRun& run, int domain);
 
-/// The outcome of a finished run from its exit code and its directory (summary.json, run.log).
+/// The outcome of a finished run from its exit code and its directory (summary.json, run.log): ok
+/// only if it exited 0 and its summary.json says "status": "completed" (a failed run writes one too).
 RunOutcome collect_outcome(const PlannedRun& run, int exit_code, double wall_s, const std::string& dir);
+
+/// The outcome recorded in `dir`/outcome.json by run_all (--aggregate reads it back: a run of a
+/// batch array task ends with code 0 whatever its simulation did). Without outcome.json: from
+/// summary.json alone ("not run" if `dir` is missing).
+RunOutcome recorded_outcome(const PlannedRun& run, const std::string& dir);
 
 /// Runs every run of `runs` (a failed run is recorded and the sweep goes on) and returns their
 /// outcomes in plan order. `progress` is called after each run. Throws RunError if interrupted.

@@ -17,6 +17,8 @@ TEST(ParseSeeds, RangesAndLists) {
   EXPECT_EQ(parse_seeds("1-5"), (Seeds{1, 2, 3, 4, 5}));
   EXPECT_EQ(parse_seeds("7"), (Seeds{7}));
   EXPECT_EQ(parse_seeds("0,3, 10-12"), (Seeds{0, 3, 10, 11, 12}));
+  EXPECT_EQ(parse_seeds("18446744073709551615"), (Seeds{18446744073709551615ULL}));  // the largest
+  EXPECT_THROW(parse_seeds("18446744073709551616"), std::invalid_argument);
 }
 
 TEST(ParseSeeds, BadTextNamesIt) {
@@ -64,15 +66,17 @@ TEST(PlanRuns, OneKeyTwiceIsAnError) {
 }
 
 TEST(SweepSpec, JsonRoundTrip) {
-  const SweepSpec spec{"/abs/scenario.yaml", "1-3,7", {"controller.epsilon_m=0.1,0.01", "pf.list=[1, 2]"}, {"--duration", "50"}};
+  const SweepSpec spec{"scenario.yaml", "/abs/s.yaml", "1-3,7", {"controller.epsilon_m=0.1,0.01", "pf.list=[1, 2]"}, {"--duration", "50"}, 12.5};
   const std::string path = std::filesystem::temp_directory_path() / ("sweep_spec_test_" + std::to_string(::getpid()) + ".json");
   std::ofstream(path) << spec_json(spec);
   const SweepSpec back = read_spec(path);
   std::filesystem::remove(path);
   EXPECT_EQ(back.scenario_file, spec.scenario_file);
+  EXPECT_EQ(back.source, spec.source);
   EXPECT_EQ(back.seeds, spec.seeds);
   EXPECT_EQ(back.grid, spec.grid);
   EXPECT_EQ(back.run_args, spec.run_args);
+  EXPECT_EQ(back.run_timeout_s, 12.5);
   EXPECT_NE(spec_json(spec).find("\"runs\": 8"), std::string::npos) << spec_json(spec);
 }
 

@@ -74,5 +74,12 @@ TEST(Tables, SummaryCsvAndMarkdownRowPerCombinationAndMetric) {
   EXPECT_NE(md.find("| a | 2 | 2 | 12.71 | 1.414 | 1 | 3 |"), std::string::npos) << md;
 }
 
+TEST(Tables, OneRunHasNoSpread) {
+  const std::vector<RunOutcome> outcomes = {outcome(0, 0, 1, true, {{"a", 1.5}})};
+  const std::vector<MetricStats> rows = aggregate(outcomes);
+  EXPECT_NE(summary_csv({}, rows).find("\na,1,1.5,,1.5,1.5,\n"), std::string::npos) << summary_csv({}, rows);
+  EXPECT_NE(summary_markdown({}, outcomes, rows).find("| a | 1 | 1.5 | n/a | n/a | 1.5 | 1.5 |"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace robodds::sweep
