@@ -27,9 +27,8 @@ DISTURBANCE_AT_S = 40.0  # s: mid-run, the robot is driving between way-points
 DEG = math.pi / 180.0
 
 # paper1_waypoints carries issue 12's realistic actuator (0.3 m track, 1.5 m/s wheels, 1 m/s^2,
-# 5 rad/s^2) on the plant and the controller; the odometry is put on the same 0.3 m track here, so
-# that a wheel's scale error turns the robot as it would on that robot (k = slip / track).
-REALISTIC = {"odometry_sensor": {"wheel_base_m": 0.3}}
+# 5 rad/s^2) on the plant and the controller, and its odometry is on the same 0.3 m track, so that a
+# wheel's scale error turns the robot as it would on that robot (k = slip / track).
 
 # name -> (what it is, {component: {param: value}}, {top-level scenario key: value}).
 CASES = {
@@ -59,7 +58,7 @@ def scenario(case, out_dir, overrides, duration_s=None):
     _, params, top = CASES[case]
     if duration_s and "duration_s" not in top:
         top = dict(top, duration_s=duration_s)
-    merged = {c: dict(p) for c, p in REALISTIC.items()}
+    merged = {}
     for component, values in list(params.items()) + list(overrides.items()):
         merged.setdefault(component, {}).update(values)
     path = paper3_results.variant(BASE, "p1_" + case, out_dir, merged)

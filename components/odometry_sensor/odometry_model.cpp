@@ -1,12 +1,13 @@
 #include "components/odometry_sensor/odometry_model.hpp"
 
-#include "components/odometry_sensor/wheel_speeds.hpp"
+#include "common/model/actuator.hpp"
+#include "common/model/diff_drive_kinematics.hpp"
 
 namespace robodds::odometry_sensor {
 
 OdometryReading measure_odometry(const model::Twist& true_twist, double dt_s,
                                  const OdometryParams& params, RandomEngine& engine) {
-  const WheelSpeeds truth = wheel_speeds_from_twist(true_twist, params.wheel_base_m);
+  const model::WheelSpeeds truth = model::wheel_speeds_from_twist(true_twist, params.wheel_base_m);
   // Named locals fix the draw order (left, then right) regardless of argument evaluation order.
   const double unit_noise_left = standard_normal(engine);
   const double unit_noise_right = standard_normal(engine);
