@@ -72,7 +72,7 @@ void security_init(const Scenario& scenario, const std::vector<SecurityIdentity>
     openssl(options, "CA certificate",
             {"req", "-x509", "-new", "-key", (ca / "ca_key.pem").string(), "-sha256", "-days", days, "-subj",
              "/CN=robodds CA " + scenario.name, "-addext", "basicConstraints=critical,CA:TRUE", "-addext",
-             "keyUsage=critical,keyCertSign,cRLSign", "-out", (ca / "ca_cert.pem").string()});
+             "keyUsage=critical,keyCertSign,cRLSign,digitalSignature", "-out", (ca / "ca_cert.pem").string()});
     log::info("security", "new certificate authority " + (ca / "ca_cert.pem").string());
   } else {
     log::info("security", "re-issuing the identities under the existing CA " + (ca / "ca_cert.pem").string() +

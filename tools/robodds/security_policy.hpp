@@ -34,7 +34,8 @@ std::vector<SecurityIdentity> security_identities(const Scenario& scenario,
                                                   const std::map<std::string, ComponentTopics>& component_topics);
 
 /// The governance document: every domain, unauthenticated participants refused, join and
-/// read/write access control on every topic, discovery, liveliness and data encrypted (AES-GCM).
+/// read/write access control on every topic, payloads encrypted (AES-GCM); discovery, liveliness
+/// and submessage metadata unprotected (why: the document's comment).
 std::string governance_xml();
 
 /// The permissions document of one identity: its subject name, validity (ISO 8601 UTC, e.g.

@@ -68,12 +68,13 @@ TEST(SecurityPolicy, PermissionsListTheTopicsAndDenyTheRest) {
   EXPECT_EQ(tools.find("<publish>"), std::string::npos);
 }
 
-TEST(SecurityPolicy, GovernanceEncryptsAndControlsEveryTopic) {
+TEST(SecurityPolicy, GovernanceEncryptsPayloadsAndControlsEveryTopic) {
   const std::string xml = governance_xml();
   EXPECT_NE(xml.find("<allow_unauthenticated_participants>false</allow_unauthenticated_participants>"), std::string::npos);
   EXPECT_NE(xml.find("<enable_write_access_control>true</enable_write_access_control>"), std::string::npos);
   EXPECT_NE(xml.find("<data_protection_kind>ENCRYPT</data_protection_kind>"), std::string::npos);
-  EXPECT_NE(xml.find("<discovery_protection_kind>ENCRYPT</discovery_protection_kind>"), std::string::npos);
+  EXPECT_NE(xml.find("<enable_read_access_control>true</enable_read_access_control>"), std::string::npos);
+  EXPECT_NE(xml.find("<enable_join_access_control>true</enable_join_access_control>"), std::string::npos);
 }
 
 TEST(SecurityPolicy, AGroupNamedLikeAToolIdentityIsRefused) {
