@@ -8,6 +8,12 @@
 
 namespace robodds {
 
+/// Identities that are not deployment groups (`robodds security init` makes them; a group may not
+/// take these names). A host's identity is its group.
+inline constexpr const char* kCoordinatorIdentity = "coordinator";  // `robodds run --deploy processes`, `robodds host --coordinate`
+inline constexpr const char* kColocatedIdentity = "colocated";      // `robodds run` (one process: every group and the coordinator)
+inline constexpr const char* kToolsIdentity = "tools";              // `robodds topics` and `robodds echo` (read only)
+
 /// The files of `identity` under `dir` (the names `robodds security init` writes).
 struct SecurityFiles {
   std::string identity_ca;   // CA certificate (identity CA and permissions CA)

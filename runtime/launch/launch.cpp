@@ -91,7 +91,7 @@ RunStats run_colocated(const ComponentRegistry& registry, const Scenario& scenar
   options.stop = launch.stop;
   // One participant is every group and the coordinator: the `colocated` identity, whose
   // permissions are the union of theirs (tools/robodds/security_policy.hpp).
-  return run_in_process(registry, scenario, with_identity(launch.dds, "colocated"), options,
+  return run_in_process(registry, scenario, with_identity(launch.dds, kColocatedIdentity), options,
                         InProcessRun{time_mode(launch.realtime), launch.out_dir, to_string(Deploy::kColocated)});
 }
 
@@ -131,7 +131,7 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
   }
   check_qos_profiles(launch.dds);  // one error line here, not one per child and a coordinator
   if (!launch.dds.security_dir.empty()) {  // likewise every identity the run uses
-    check_security_files(launch.dds.security_dir, "coordinator");
+    check_security_files(launch.dds.security_dir, kCoordinatorIdentity);
     for (const GroupSpec& group : scenario.groups) {
       check_security_files(launch.dds.security_dir, group.name);
     }
@@ -168,7 +168,7 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
   options.progress = launch.progress;
   options.poll = [&children] { children.check_alive(); };
   options.stop = launch.stop;
-  stats = run_in_process(registry, scenario, with_identity(launch.dds, "coordinator"), options,
+  stats = run_in_process(registry, scenario, with_identity(launch.dds, kCoordinatorIdentity), options,
                          InProcessRun{TimeMode::kLockstep, launch.out_dir, ""});
   children.wait_all(30.0);
   return stats;
@@ -211,7 +211,7 @@ DdsOptions resolve_dds(const DdsArgs& args, const std::string& participant_name)
 }
 
 DdsOptions tools_dds(const DdsArgs& args, const std::string& participant_name) {
-  return with_identity(resolve_dds(args, participant_name), "tools");
+  return with_identity(resolve_dds(args, participant_name), kToolsIdentity);
 }
 
 RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scenario, const DdsOptions& dds,
@@ -338,7 +338,7 @@ void run_host(const ComponentRegistry& registry, const HostArgs& args, const std
   // coordinator alone; a host of loose --components has none (it would need a group's rights).
   const std::string identity = !args.type.empty()     ? scenario.groups.front().name
                                : !args.group.empty()  ? args.group
-                               : options.components.empty() ? std::string("coordinator")
+                               : options.components.empty() ? std::string(kCoordinatorIdentity)
                                                             : std::string();
   run_in_process(registry, scenario, with_identity(resolve_dds(args.dds, "robodds-" + options.member), identity), options,
                  InProcessRun{time_mode(args.realtime), args.out, args.deploy});

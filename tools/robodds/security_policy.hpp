@@ -9,16 +9,15 @@
 #include <string>
 #include <vector>
 
+#include "runtime/dds/security_files.hpp"
 #include "runtime/producer_check.hpp"
 #include "runtime/scenario.hpp"
 
 namespace robodds {
 
-/// Identities that are not deployment groups (a group may not take these names).
-inline constexpr const char* kCoordinatorIdentity = "coordinator";  // `robodds run --deploy processes`, `robodds host --coordinate`
-inline constexpr const char* kColocatedIdentity = "colocated";      // `robodds run` (one process: every group and the coordinator)
-inline constexpr const char* kToolsIdentity = "tools";              // `robodds topics` and `robodds echo` (read only)
-inline constexpr const char* kCaDir = "ca";                          // the CA's key: never deployed
+/// The CA's folder under the security directory (its key: never deployed). The identity names
+/// (kCoordinatorIdentity, ...) are runtime/dds/security_files.hpp's.
+inline constexpr const char* kCaDir = "ca";
 
 struct SecurityIdentity {
   std::string name;                  // folder name under the security directory and certificate CN
