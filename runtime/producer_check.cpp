@@ -11,7 +11,7 @@
 namespace robodds {
 namespace {
 
-/// A MemoryBus that remembers the topics of the writers asked for.
+/// A MemoryBus that remembers the topics of the writers and readers asked for.
 class RecordingBus : public MemoryBus {
  public:
   std::shared_ptr<WriterHandle> writer(const std::string& topic, const std::string& type_name,
@@ -19,7 +19,13 @@ class RecordingBus : public MemoryBus {
     topics.insert(topic);
     return MemoryBus::writer(topic, type_name, profile);
   }
+  std::shared_ptr<ReaderHandle> reader(const std::string& topic, const std::string& type_name, const std::string& profile,
+                                       SampleCallback on_sample, ReaderEventCallback on_event) override {
+    read_topics.insert(topic);
+    return MemoryBus::reader(topic, type_name, profile, std::move(on_sample), std::move(on_event));
+  }
   std::set<std::string> topics;
+  std::set<std::string> read_topics;
 };
 
 /// "robot_id=3" for a keyed topic, "the topic's one instance" for an unkeyed one.
@@ -34,8 +40,9 @@ std::string instance_text(const TopicInfo& topic, std::uint32_t robot) {
 
 }  // namespace
 
-ScenarioProducers scenario_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode) {
-  ScenarioProducers producers;
+std::map<std::string, ComponentTopics> scenario_component_topics(const ComponentRegistry& registry, const Scenario& scenario,
+                                                                 TimeMode mode) {
+  std::map<std::string, ComponentTopics> topics;
   for (const ComponentSpec& spec : scenario.components) {
     const ComponentType& type = registry.get(spec.type);
     RecordingBus bus;
@@ -50,7 +57,15 @@ ScenarioProducers scenario_producers(const ComponentRegistry& registry, const Sc
     ComponentContext context(run, spec, scenario_component_params(type, spec), &state);
     std::unique_ptr<Component> component = type.create();
     component->configure(context);
-    producers[spec.name] = bus.topics;
+    topics[spec.name] = ComponentTopics{bus.topics, bus.read_topics, context.wants_run_health()};
+  }
+  return topics;
+}
+
+ScenarioProducers scenario_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode) {
+  ScenarioProducers producers;
+  for (auto& [name, topics] : scenario_component_topics(registry, scenario, mode)) {
+    producers[name] = std::move(topics.publishes);
   }
   return producers;
 }

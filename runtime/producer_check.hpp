@@ -23,6 +23,17 @@ using ScenarioProducers = std::map<std::string, std::set<std::string>>;
 /// propagates (it would stop the run anyway).
 ScenarioProducers scenario_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode);
 
+/// What one component instance writes and reads on the bus (its DDS endpoints, for DDS Security
+/// permissions): found like scenario_producers(), with readers recorded too.
+struct ComponentTopics {
+  std::set<std::string> publishes;
+  std::set<std::string> subscribes;
+  bool wants_run_health = false;  // its host reads run/health across processes
+};
+/// Component instance name -> its topics, in time mode `mode`.
+std::map<std::string, ComponentTopics> scenario_component_topics(const ComponentRegistry& registry, const Scenario& scenario,
+                                                                 TimeMode mode);
+
 /// ConfigError (one line naming the scenario file, the topic, the instance and both components)
 /// if two components that are not standbys publish one topic for one instance. Instances: a
 /// robot-keyed topic's instances are the component's robots; a pair-keyed topic (robot_id,

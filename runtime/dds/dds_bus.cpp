@@ -103,7 +103,9 @@ class FastDdsBus : public DdsBus {
       }
     }
     if (writer == nullptr) {
-      throw ConfigError("cannot create a writer on " + topic + " with QoS profile '" + profile + "'");
+      const std::string reasons = take_dds_errors();  // e.g. DDS Security: not allowed by the permissions
+      throw ConfigError("cannot create a writer on " + topic + " with QoS profile '" + profile + "'" +
+                        (reasons.empty() ? std::string() : ": Fast DDS: " + reasons));
     }
     writer_listeners_[key] = std::move(listener);
     auto handle = std::make_shared<DdsWriter>(writer, topic);
@@ -249,7 +251,9 @@ class FastDdsBus : public DdsBus {
       }
     }
     if (pending.reader == nullptr) {
-      throw ConfigError("cannot create a reader on " + pending.topic + " with QoS profile '" + pending.profile + "'");
+      const std::string reasons = take_dds_errors();
+      throw ConfigError("cannot create a reader on " + pending.topic + " with QoS profile '" + pending.profile + "'" +
+                        (reasons.empty() ? std::string() : ": Fast DDS: " + reasons));
     }
   }
 

@@ -15,6 +15,10 @@ struct DdsOptions {
   std::vector<std::string> qos_files;  // loaded in order; the first must define the data profiles
   std::string participant_profile = kDefaultParticipantProfile;
   std::string participant_name = "robodds";
+  // DDS Security (`--security DIR`): empty = an unsecured participant. The participant uses the
+  // files of DIR/<security_identity>/ (runtime/dds/security_files.hpp), checked before it is made.
+  std::string security_dir;
+  std::string security_identity;
 };
 
 class DdsBus : public Bus {

@@ -4,6 +4,7 @@
 
 #include <atomic>
 
+#include "runtime/dds/qos_files.hpp"
 #include "runtime/error.hpp"
 #include "runtime/log.hpp"
 #include "runtime/shutdown_watchdog.hpp"
@@ -40,10 +41,12 @@ void ParticipantDeleter::operator()(dds::DomainParticipant* participant) const {
 
 ParticipantPtr create_participant(int domain_id, const dds::DomainParticipantQos& qos, dds::DomainParticipantListener* listener,
                                   const dds::StatusMask& mask, const std::string& profile) {
+  take_dds_errors();  // only this creation's
   ParticipantPtr participant(dds::DomainParticipantFactory::get_instance()->create_participant(domain_id, qos, listener, mask));
   if (participant == nullptr) {
+    const std::string reasons = take_dds_errors();
     throw RunError("could not create a DDS participant on domain " + std::to_string(domain_id) + " with profile '" +
-                   profile + "'");
+                   profile + "'" + (reasons.empty() ? std::string() : ": Fast DDS: " + reasons));
   }
   ++g_live_participants;
   return participant;

@@ -8,6 +8,8 @@
 #include <fastrtps/utils/IPLocator.h>
 #include <fastrtps/xmlparser/XMLProfileManager.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <memory>
@@ -16,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/dds/security_files.hpp"
 #include "runtime/dds/text.hpp"
 #include "runtime/error.hpp"
 
@@ -31,6 +34,9 @@ class CapturingConsumer : public dds::LogConsumer {
  public:
   void Consume(const dds::Log::Entry& entry) override {
     std::lock_guard<std::mutex> lock(mutex_);
+    if (echo_) {  // $ROBODDS_FASTDDS_LOG: Fast DDS's own warnings and errors on stderr (debugging)
+      std::fprintf(stderr, "[fastdds %s] %s\n", entry.kind == dds::Log::Kind::Error ? "error" : "warning", entry.message.c_str());
+    }
     if (entry.kind == dds::Log::Kind::Error) {
       messages_.push_back(entry.message);
     }
@@ -43,6 +49,7 @@ class CapturingConsumer : public dds::LogConsumer {
  private:
   std::mutex mutex_;
   std::vector<std::string> messages_;
+  const bool echo_ = std::getenv("ROBODDS_FASTDDS_LOG") != nullptr;
 };
 
 CapturingConsumer* install_log_consumer() {
@@ -51,7 +58,7 @@ CapturingConsumer* install_log_consumer() {
     CapturingConsumer* raw = owned.get();
     dds::Log::ClearConsumers();
     dds::Log::RegisterConsumer(std::move(owned));
-    dds::Log::SetVerbosity(dds::Log::Kind::Error);
+    dds::Log::SetVerbosity(std::getenv("ROBODDS_FASTDDS_LOG") != nullptr ? dds::Log::Kind::Warning : dds::Log::Kind::Error);
     return raw;
   }();
   return consumer;
@@ -115,6 +122,28 @@ bool profile_defined(const QosProfileRef& profile) {
   return XMLProfileManager::fillSubscriberAttributes(profile.name, attributes, false) == XMLP_ret::XML_OK;
 }
 
+/// The builtin plugins of Fast DDS (authentication PKI-DH, access control Permissions,
+/// cryptography AES-GCM-GMAC) on the participant, with the identity's checked files; what is
+/// encrypted is the governance's (tools/robodds/security_policy.cpp).
+void add_security_properties(dds::DomainParticipantQos& qos, const DdsOptions& options) {
+  if (options.security_identity.empty()) {
+    throw ConfigError("--security " + options.security_dir + ": this process has no DDS Security identity (a host needs "
+                      "--group or --coordinate alone; docs/security.md)");
+  }
+  const SecurityFiles files = check_security_files(options.security_dir, options.security_identity);
+  auto& properties = qos.properties().properties();
+  const auto add = [&properties](const std::string& name, const std::string& value) { properties.emplace_back(name, value); };
+  add("dds.sec.auth.plugin", "builtin.PKI-DH");
+  add("dds.sec.auth.builtin.PKI-DH.identity_ca", "file://" + files.identity_ca);
+  add("dds.sec.auth.builtin.PKI-DH.identity_certificate", "file://" + files.certificate);
+  add("dds.sec.auth.builtin.PKI-DH.private_key", "file://" + files.private_key);
+  add("dds.sec.access.plugin", "builtin.Access-Permissions");
+  add("dds.sec.access.builtin.Access-Permissions.permissions_ca", "file://" + files.identity_ca);
+  add("dds.sec.access.builtin.Access-Permissions.governance", "file://" + files.governance);
+  add("dds.sec.access.builtin.Access-Permissions.permissions", "file://" + files.permissions);
+  add("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+}
+
 }  // namespace
 
 void check_qos_profiles(const DdsOptions& options) {
@@ -167,6 +196,21 @@ void load_qos_files(const std::vector<std::string>& files) {
   }
 }
 
+std::string take_dds_errors() {
+  CapturingConsumer* consumer = install_log_consumer();
+  dds::Log::Flush();
+  // Fast DDS logs the cause first, then the same cause again wrapped by each caller: keep the first.
+  const std::vector<std::string> messages = consumer->take();
+  if (messages.empty()) {
+    return "";
+  }
+  std::string first = messages.front();
+  while (!first.empty() && (first.back() == '\n' || first.back() == ' ')) {
+    first.pop_back();
+  }
+  return first;
+}
+
 dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
   check_qos_profiles(options);
   const std::string last = options.qos_files.empty() ? "(no QoS file)" : options.qos_files.back();
@@ -177,6 +221,9 @@ dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
   }
   check_discovery_servers(qos, options.participant_profile,
                           file_defining(options.qos_files, options.participant_profile, last));
+  if (!options.security_dir.empty()) {
+    add_security_properties(qos, options);
+  }
   return qos;
 }
 

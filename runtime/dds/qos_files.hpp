@@ -14,4 +14,8 @@ namespace robodds {
 /// element if a profile is missing or unusable. Creates no participant.
 eprosima::fastdds::dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options);
 
+/// The first error Fast DDS logged since the last call (e.g. why it refused a participant or a
+/// writer: its cause; the later lines repeat it), empty if none.
+std::string take_dds_errors();
+
 }  // namespace robodds

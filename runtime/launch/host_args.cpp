@@ -93,7 +93,8 @@ void add_max_missed_steps_option(CLI::App* app, std::optional<std::uint64_t>& ma
 }
 
 bool DdsArgs::operator==(const DdsArgs& o) const {
-  return domain == o.domain && qos_files == o.qos_files && participant_profile == o.participant_profile;
+  return domain == o.domain && qos_files == o.qos_files && participant_profile == o.participant_profile &&
+         security_dir == o.security_dir;
 }
 
 bool LockstepArgs::operator==(const LockstepArgs& o) const {
@@ -143,6 +144,7 @@ std::vector<std::string> to_argv(const HostArgs& args, const ArgPlaceholders& pl
   }
   ArgvWriter rest(placeholders);
   rest.option("--participant-profile", args.dds.participant_profile, args.dds.participant_profile.empty());
+  rest.option("--security", args.dds.security_dir, args.dds.security_dir.empty());
   rest.option("--input-timeout", shortest_text(args.lockstep.input_timeout_s),
               args.lockstep.input_timeout_s == defaults.lockstep.input_timeout_s);
   rest.option("--start-timeout", shortest_text(args.lockstep.start_timeout_s),
@@ -161,6 +163,9 @@ void add_dds_options(CLI::App* app, DdsArgs& args) {
                   "QoS profile XML file(s) (default: deploy/qos/robodds_qos.xml, plus $ROBODDS_QOS_FILE if set)");
   app->add_option("--participant-profile", args.participant_profile,
                   "participant profile (default: $ROBODDS_PARTICIPANT_PROFILE or robodds.participant)");
+  app->add_option("--security", args.security_dir,
+                  "DDS Security: directory made by `robodds security init` (authenticated, access-controlled, encrypted; "
+                  "default: $ROBODDS_SECURITY_DIR or none)");
 }
 
 void add_lockstep_options(CLI::App* app, LockstepArgs& args) {

@@ -21,6 +21,7 @@ struct DdsArgs {
   int domain = -1;                      // -1: $ROBODDS_DOMAIN_ID or 0
   std::vector<std::string> qos_files;   // empty: deploy/qos/robodds_qos.xml (+ $ROBODDS_QOS_FILE)
   std::string participant_profile;      // empty: $ROBODDS_PARTICIPANT_PROFILE or robodds.participant
+  std::string security_dir;             // empty: $ROBODDS_SECURITY_DIR or no DDS Security (docs/security.md)
   bool operator==(const DdsArgs& other) const;
 };
 

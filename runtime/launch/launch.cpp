@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "common/number_parse.hpp"
+#include "runtime/dds/security_files.hpp"
 #include "runtime/error.hpp"
 #include "runtime/launch/failed_summary.hpp"
 #include "runtime/log.hpp"
@@ -70,6 +71,12 @@ void apply(const LockstepArgs& lockstep, HostOptions& options) {
 
 TimeMode time_mode(bool realtime) { return realtime ? TimeMode::kRealtime : TimeMode::kLockstep; }
 
+/// The DDS options of a participant with DDS Security identity `identity` (unused when unsecured).
+DdsOptions with_identity(DdsOptions dds, const std::string& identity) {
+  dds.security_identity = identity;
+  return dds;
+}
+
 RunStats run_colocated(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& launch) {
   HostOptions options;
   options.member = "colocated";
@@ -82,7 +89,9 @@ RunStats run_colocated(const ComponentRegistry& registry, const Scenario& scenar
   apply(launch.lockstep, options);
   options.progress = launch.progress;
   options.stop = launch.stop;
-  return run_in_process(registry, scenario, launch.dds, options,
+  // One participant is every group and the coordinator: the `colocated` identity, whose
+  // permissions are the union of theirs (tools/robodds/security_policy.hpp).
+  return run_in_process(registry, scenario, with_identity(launch.dds, kColocatedIdentity), options,
                         InProcessRun{time_mode(launch.realtime), launch.out_dir, to_string(Deploy::kColocated)});
 }
 
@@ -105,6 +114,7 @@ std::vector<std::string> child_argv(const Scenario& scenario, const LaunchOption
   args.dds.domain = launch.dds.domain_id;
   args.dds.qos_files = launch.dds.qos_files;
   args.dds.participant_profile = launch.dds.participant_profile;
+  args.dds.security_dir = launch.dds.security_dir;  // the child's identity is its group
   args.lockstep.input_timeout_s = launch.lockstep.input_timeout_s;
   args.lockstep.start_timeout_s = launch.lockstep.start_timeout_s;
   std::vector<std::string> argv = {self_exe(), "host"};
@@ -120,6 +130,12 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
     registry.get(c.type);
   }
   check_qos_profiles(launch.dds);  // one error line here, not one per child and a coordinator
+  if (!launch.dds.security_dir.empty()) {  // likewise every identity the run uses
+    check_security_files(launch.dds.security_dir, kCoordinatorIdentity);
+    for (const GroupSpec& group : scenario.groups) {
+      check_security_files(launch.dds.security_dir, group.name);
+    }
+  }
   const std::uint64_t run_id = make_run_id();
   const std::int64_t epoch_ns = (wall_clock_now_ns() / 1000000000LL + 2) * 1000000000LL;  // start in 2 s, on a whole second
   ProcessGroup children;
@@ -152,7 +168,8 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
   options.progress = launch.progress;
   options.poll = [&children] { children.check_alive(); };
   options.stop = launch.stop;
-  stats = run_in_process(registry, scenario, launch.dds, options, InProcessRun{TimeMode::kLockstep, launch.out_dir, ""});
+  stats = run_in_process(registry, scenario, with_identity(launch.dds, kCoordinatorIdentity), options,
+                         InProcessRun{TimeMode::kLockstep, launch.out_dir, ""});
   children.wait_all(30.0);
   return stats;
 }
@@ -189,7 +206,12 @@ DdsOptions resolve_dds(const DdsArgs& args, const std::string& participant_name)
                               ? args.participant_profile
                               : env_or("ROBODDS_PARTICIPANT_PROFILE", kDefaultParticipantProfile);
   o.participant_name = participant_name;
+  o.security_dir = !args.security_dir.empty() ? args.security_dir : env_or("ROBODDS_SECURITY_DIR", "");
   return o;
+}
+
+DdsOptions tools_dds(const DdsArgs& args, const std::string& participant_name) {
+  return with_identity(resolve_dds(args, participant_name), kToolsIdentity);
 }
 
 RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scenario, const DdsOptions& dds,
@@ -312,7 +334,13 @@ void run_host(const ComponentRegistry& registry, const HostArgs& args, const std
   options.stop_ends_run = !args.type.empty() && !args.duration_s;
   apply(args.lockstep, options);
   options.stop = stop;
-  run_in_process(registry, scenario, resolve_dds(args.dds, "robodds-" + options.member), options,
+  // DDS Security identity: the group's (also under another --member), the coordinator's for a
+  // coordinator alone; a host of loose --components has none (it would need a group's rights).
+  const std::string identity = !args.type.empty()     ? scenario.groups.front().name
+                               : !args.group.empty()  ? args.group
+                               : options.components.empty() ? std::string(kCoordinatorIdentity)
+                                                            : std::string();
+  run_in_process(registry, scenario, with_identity(resolve_dds(args.dds, "robodds-" + options.member), identity), options,
                  InProcessRun{time_mode(args.realtime), args.out, args.deploy});
 }
 

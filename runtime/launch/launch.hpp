@@ -63,6 +63,8 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
 /// The DDS options of `args`, the environment filling what is not given:
 /// $ROBODDS_DOMAIN_ID (ConfigError if not 0..232), $ROBODDS_QOS_FILE, $ROBODDS_PARTICIPANT_PROFILE.
 DdsOptions resolve_dds(const DdsArgs& args, const std::string& participant_name);
+/// resolve_dds() for `robodds topics/echo`: DDS Security identity `tools` (reads every topic, writes none).
+DdsOptions tools_dds(const DdsArgs& args, const std::string& participant_name);
 
 /// Repository root or install prefix: $ROBODDS_SHARE_DIR, else the source tree it was built from.
 std::string share_dir();

@@ -36,5 +36,6 @@ std::unique_ptr<Command> add_components_command(CLI::App& app, const CommandEnv&
 std::unique_ptr<Command> add_report_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_deploy_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_sweep_command(CLI::App& app, const CommandEnv& env);
+std::unique_ptr<Command> add_security_command(CLI::App& app, const CommandEnv& env);
 
 }  // namespace robodds

@@ -31,7 +31,7 @@ class EchoCommand : public Command {
     Notifier notifier;
     std::mutex mutex;
     std::vector<std::string> lines;
-    auto bus = make_dds_bus(resolve_dds(dds_, "robodds-echo"));
+    auto bus = make_dds_bus(tools_dds(dds_, "robodds-echo"));
     idl::dispatch_type(info.type_name, [&](auto tag) {
       using Msg = typename decltype(tag)::type;
       // Missions are transient local: read them with the mission profile to get the last one.

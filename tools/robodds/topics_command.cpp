@@ -19,7 +19,7 @@ class TopicsCommand : public Command {
   bool parsed() const override { return cmd_->parsed(); }
 
   int run() override {
-    const auto topics = discover_topics(resolve_dds(dds_, "robodds-topics"), seconds_);
+    const auto topics = discover_topics(tools_dds(dds_, "robodds-topics"), seconds_);
     std::printf("%-24s %-36s %3s %3s  %-26s %s\n", "topic", "type", "W", "R", "writer QoS", "reader QoS");
     for (const DiscoveredTopic& t : topics) {
       std::printf("%-24s %-36s %3d %3d  %-26s %s\n", t.name.c_str(), t.type_name.c_str(), t.writers, t.readers,

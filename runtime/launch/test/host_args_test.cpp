@@ -45,6 +45,7 @@ HostArgs every_field_set() {
   a.dds.domain = 102;
   a.dds.qos_files = {"a.xml", "b.xml"};
   a.dds.participant_profile = "robodds.participant.udp_only";
+  a.dds.security_dir = "sec/plant_smoke";
   a.lockstep.input_timeout_s = 2.5;
   a.lockstep.start_timeout_s = 1.0 / 3.0;
   a.lockstep.lockstep_window = 8;
@@ -95,6 +96,7 @@ TEST(HostArgs, EachFieldAloneSurvivesTheRoundTrip) {
       [&](HostArgs& a) { a.dds.qos_files = {"q.xml"}; },  [&](HostArgs& a) { a.dds.participant_profile = "p"; },
       [&](HostArgs& a) { a.lockstep.input_timeout_s = 3; }, [&](HostArgs& a) { a.lockstep.start_timeout_s = 4; },
       [&](HostArgs& a) { a.lockstep.lockstep_window = 2; }, [&](HostArgs& a) { a.max_missed_steps = 3; },
+      [&](HostArgs& a) { a.dds.security_dir = full.dds.security_dir; },
   };
   for (std::size_t i = 0; i < set_one.size(); ++i) {
     HostArgs one;
