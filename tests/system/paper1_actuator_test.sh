@@ -1,19 +1,24 @@
 #!/usr/bin/env bash
 # Issue 12, the actuator side: paper 1 with the particle filter in the loop on a robot with real
 # actuators (sim/scenarios/paper1_waypoints.yaml: 0.3 m track, 1.5 m/s wheels, 1 m/s^2, 5 rad/s^2,
-# the controller aware of them). On the paper's mission over several seeds and on four missions
+# the controller aware of them). On the paper's mission and on four missions
 # the project was not tuned on (random way-points with start heading pi, way-points 0.5 m apart
 # with a U-turn, a way-point at the start, a 500 m leg), every way-point is reached, and what the
 # plant applied (plant/state) and what the controller commanded (plant/cmd) never exceed the
 # limits: |v|, |omega|, each wheel's speed, |dv/dt| and |domega/dt| from summary.json. The limits
-# are read from each scenario's plant line.
+# are read from each scenario's plant line. Each scenario over seeds 1-10 (a robodds sweep).
 source "$(dirname "$0")/../integration/lib.sh"
-check_run() {  # check_run SCENARIO_FILE OUT_DIR LABEL [robodds run options...]
-  local scenario="$1" out="$2" label="$3"
-  shift 3
-  timeout -k 5 120 "$ROBODDS" run "$scenario" --out "$out" --domain "$DOMAIN" --no-plots "$@" >"$out.log" 2>&1 \
-    || fail "$label: run failed: $(tail -5 "$out.log")"
-  python3 - "$scenario" "$out/summary.json" "$label" <<'PY' || fail "$label: check failed"
+check_sweep() {  # check_sweep SCENARIO_FILE OUT_DIR: 10 seeds (robodds sweep, 2 workers on DOMAIN, DOMAIN + 1), every run checked
+  local scenario="$1" out="$2" k
+  timeout -k 5 600 "$ROBODDS" sweep "$scenario" --seeds 1-10 --jobs 2 --domain "$DOMAIN" --out "$out" >"$out.log" 2>&1 \
+    || fail "$(basename "$scenario"): a run failed: $(grep -h failed "$out.log" | tail -3)"
+  for k in $(seq 0 9); do
+    check_summary "$scenario" "$out/runs/000$k/summary.json" "$(basename "$scenario" .yaml) seed $((k + 1))"
+  done
+}
+check_summary() {  # check_summary SCENARIO_FILE SUMMARY_JSON LABEL
+  local scenario="$1" summary="$2" label="$3"
+  python3 - "$scenario" "$summary" "$label" <<'PY' || fail "$label: check failed"
 import json, re, sys
 scenario, summary, label = sys.argv[1], sys.argv[2], sys.argv[3]
 plant = next(line for line in open(scenario) if re.search(r"\{name: plant, type: plant, params: \{", line))
@@ -39,9 +44,6 @@ print(f"ok: {label}: {m['waypoints_reached']}/{m['waypoints_total']} in {m['time
       f"|domega/dt| {m['max_abs_angular_accel_applied_radps2']:.4g} (limits {wheel}, {accel}, {angular})")
 PY
 }
-for seed in 1 2 3; do
-  check_run "$SRC/sim/scenarios/paper1_waypoints.yaml" "$WORK/paper_seed$seed" "paper1_waypoints seed $seed" --seed "$seed"
-done
-for name in paper1_random_heading_pi paper1_close_uturn paper1_waypoint_at_start paper1_long_leg; do
-  check_run "$SRC/sim/scenarios/$name.yaml" "$WORK/$name" "$name"
+for name in paper1_waypoints paper1_random_heading_pi paper1_close_uturn paper1_waypoint_at_start paper1_long_leg; do
+  check_sweep "$SRC/sim/scenarios/$name.yaml" "$WORK/$name"
 done
