@@ -2,10 +2,13 @@
 #include "components/waypoint_controller/node/waypoint_controller_node.hpp"
 
 #include <map>
+#include <set>
+#include <string>
 
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 #include "robodds/idl/robodds.h"
 #include "components/waypoint_controller/node/waypoint_controller_params.hpp"
+#include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
 
@@ -21,6 +24,7 @@ class WaypointControllerNode : public Component {
     params_ = node_params.controller;
     require_valid_ = node_params.require_valid_estimate;
     invalid_estimate_speed_mps_ = node_params.invalid_estimate_speed_mps;
+    invalid_estimate_creep_limit_s_ = node_params.invalid_estimate_creep_limit_s;
     estimate_timeout_s_ = node_params.estimate_timeout_s;
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
@@ -36,7 +40,7 @@ class WaypointControllerNode : public Component {
     status_out_ = &ctx.advertise<idl::ControllerStatus>("control/status");
   }
 
-  void on_step(const StepInfo&) override {
+  void on_step(const StepInfo& info) override {
     for (auto& [id, tracker] : trackers_) {
       if (const idl::WaypointMission* mission = missions_->latest(id); mission != nullptr && !tracker.has_mission()) {
         std::vector<Eigen::Vector2d> waypoints;
@@ -70,7 +74,8 @@ class WaypointControllerNode : public Component {
         status.switched(out.status.reached_this_step);
         status.switch_distance(out.status.reached_this_step ? out.status.reached_distance_m : 0.0);
         status.state(out.status.done ? idl::DONE : idl::TRACKING);
-      } else if (status.state() == idl::ESTIMATE_INVALID && invalid_estimate_speed_mps_ > 0.0) {
+        creep_started_s_.erase(id);
+      } else if (status.state() == idl::ESTIMATE_INVALID && invalid_estimate_speed_mps_ > 0.0 && may_creep(id, info.time_s)) {
         const Command creep = tracker.hold(Command{invalid_estimate_speed_mps_, 0.0});  // until the estimate is valid
         cmd.v(creep.v);
         cmd.omega(creep.omega);
@@ -83,6 +88,21 @@ class WaypointControllerNode : public Component {
   }
 
  private:
+  /// Whether robot `id` may still creep at `time_s` (s): within invalid_estimate_creep_limit_s of
+  /// the first creeping step since its estimate was last valid. Says once when the limit stops it.
+  bool may_creep(std::uint32_t id, double time_s) {
+    const double since_s = creep_started_s_.try_emplace(id, time_s).first->second;
+    if (invalid_estimate_creep_limit_s_ <= 0.0 || time_s - since_s <= invalid_estimate_creep_limit_s_) {
+      return true;
+    }
+    if (creep_stopped_.insert(id).second) {
+      log::warn("waypoint_controller", "robot " + std::to_string(id) + ": no valid pose estimate after " +
+                                           std::to_string(time_s - since_s) + " s of creeping "
+                                           "(invalid_estimate_creep_limit_s): stopped until the estimate is valid");
+    }
+    return false;
+  }
+
   /// TRACKING when the tracker may run on `estimate`; otherwise why the command is zero.
   idl::ControlState state_for(std::uint32_t id, const WaypointTracker& tracker, const idl::PoseEstimate* estimate) const {
     if (!tracker.has_mission()) {
@@ -103,6 +123,9 @@ class WaypointControllerNode : public Component {
   ControllerParams params_;
   bool require_valid_ = true;
   double invalid_estimate_speed_mps_ = 0.0;
+  double invalid_estimate_creep_limit_s_ = 60.0;
+  std::map<std::uint32_t, double> creep_started_s_;  // robot -> time (s) of its first creeping step
+  std::set<std::uint32_t> creep_stopped_;            // robots told once that the creep limit stopped them
   double estimate_timeout_s_ = 0.5;
   bool realtime_ = false;
   std::map<std::uint32_t, WaypointTracker> trackers_;

@@ -18,6 +18,10 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
                params::non_negative("0 = stand still"),
                "with require_valid_estimate: drive straight ahead at this speed while the estimate is not valid "
                "(motion makes the heading observable from position fixes), within the acceleration limits")
+          .add("invalid_estimate_creep_limit_s", &WaypointControllerNodeParams::invalid_estimate_creep_limit_s, "s",
+               params::non_negative("0 = no limit"),
+               "with invalid_estimate_speed_mps: stop after creeping this long without a valid estimate (a filter that "
+               "never converges must not drive the robot on forever); a valid estimate resets it")
           .add("estimate_timeout_s", &WaypointControllerNodeParams::estimate_timeout_s, "s", params::positive(),
                "real time only: an estimate received longer ago than this stops the robot (state ESTIMATE_STALE); > the control period");
   return table;

@@ -145,6 +145,37 @@ components:
   EXPECT_GT(std::abs(commands[8].omega()), 0.0) << "valid: it turns towards the way-point (to its left)";
 }
 
+// A filter that never becomes valid must not drive the robot on forever: the creep stops after
+// invalid_estimate_creep_limit_s, and a valid estimate lets it track again.
+TEST(WaypointControllerNode, CreepingStopsAfterItsLimitWithoutAValidEstimate) {
+  NodeHarness h(R"(name: waypoint_controller_creep_limit
+step_s: 0.01
+duration_s: 0.3
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: controller, type: waypoint_controller,
+     params: {invalid_estimate_speed_mps: 0.3, invalid_estimate_creep_limit_s: 0.1, max_accel_mps2: 100.0}}
+)");
+  add_controller(h);
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{0.0, 10.0}}), 0, kNeverAgain);
+    }
+    h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, step >= 25), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 31u);
+  EXPECT_NEAR(commands[10].v(), 0.3, 1e-12) << "creeping at 0.1 s";
+  EXPECT_DOUBLE_EQ(commands[12].v(), 0.0) << "stopped past the 0.1 s limit";
+  EXPECT_DOUBLE_EQ(commands[24].v(), 0.0) << "still stopped while invalid";
+  EXPECT_EQ(status[24].state(), idl::ESTIMATE_INVALID);
+  EXPECT_EQ(status[25].state(), idl::TRACKING) << "a valid estimate tracks again";
+}
+
 TEST(WaypointControllerNode, DrivesToTheWaypointAndSwitchesWithinEpsilon) {
   NodeHarness h(kScenario);
   add_controller(h);
