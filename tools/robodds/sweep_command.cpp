@@ -101,21 +101,13 @@ class SweepCommand : public Command {
       return 0;
     }
     std::fprintf(stderr, "sweep: %zu runs (%zu combinations x %zu seeds) on %u workers, domains %d-%d\n", runs.size(),
-                 combination_count(axes_of(spec)), parse_seeds(spec.seeds).size(), jobs_, domain(),
+                 combination_count(grid_axes(spec)), parse_seeds(spec.seeds).size(), jobs_, domain(),
                  domain() + static_cast<int>(jobs_) - 1);
     return write_tables(spec, run_all(runs, runner_options(spec), print_progress));
   }
 
  private:
-  static std::vector<GridAxis> axes_of(const SweepSpec& spec) {
-    std::vector<GridAxis> axes;
-    for (const std::string& g : spec.grid) {
-      axes.push_back(parse_grid_axis(g));
-    }
-    return axes;
-  }
-
-  static std::vector<PlannedRun> planned_runs(const SweepSpec& spec) { return plan_runs(parse_seeds(spec.seeds), axes_of(spec)); }
+  static std::vector<PlannedRun> planned_runs(const SweepSpec& spec) { return plan_runs(parse_seeds(spec.seeds), grid_axes(spec)); }
 
   int domain() const {
     if (!resolved_domain_) {
@@ -161,7 +153,7 @@ class SweepCommand : public Command {
     // Every combination's --set keys against the scenario's components and their parameter tables.
     Scenario scenario = load_scenario(spec.source);
     apply_run_overrides(scenario, duration_s_, std::nullopt);
-    const std::vector<GridAxis> axes = axes_of(spec);
+    const std::vector<GridAxis> axes = grid_axes(spec);
     for (std::size_t c = 0; c < combination_count(axes); ++c) {
       Scenario variant = scenario;
       try {
@@ -269,7 +261,7 @@ class SweepCommand : public Command {
   }
 
   int write_tables(const SweepSpec& spec, const std::vector<RunOutcome>& outcomes) const {
-    const std::vector<GridAxis> axes = axes_of(spec);
+    const std::vector<GridAxis> axes = grid_axes(spec);
     const std::vector<MetricStats> rows = aggregate(outcomes);
     write_file(out_dir_ + "/runs.csv", runs_csv(axes, outcomes));
     write_file(out_dir_ + "/summary.csv", summary_csv(axes, rows));

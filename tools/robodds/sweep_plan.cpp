@@ -133,11 +133,16 @@ std::vector<PlannedRun> plan_runs(const std::vector<std::uint64_t>& seeds, const
   return runs;
 }
 
-std::string spec_json(const SweepSpec& spec) {
+std::vector<GridAxis> grid_axes(const SweepSpec& spec) {
   std::vector<GridAxis> axes;
   for (const std::string& g : spec.grid) {
     axes.push_back(parse_grid_axis(g));
   }
+  return axes;
+}
+
+std::string spec_json(const SweepSpec& spec) {
+  const std::vector<GridAxis> axes = grid_axes(spec);
   JsonWriter w;
   w.begin_object();
   w.value("robodds_sweep", std::int64_t{1});  // format version

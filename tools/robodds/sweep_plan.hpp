@@ -48,6 +48,9 @@ struct SweepSpec {
   double run_timeout_s = 3600.0;      // a run still going after this is killed and recorded as failed
 };
 
+/// The grid axes of `spec.grid` (parse_grid_axis of each --set text).
+std::vector<GridAxis> grid_axes(const SweepSpec& spec);
+
 /// sweep.json text of `spec` (plus the run count, for the reader).
 std::string spec_json(const SweepSpec& spec);
 

@@ -62,10 +62,12 @@ std::string combination_title(const std::vector<GridAxis>& axes, const std::vect
 
 }  // namespace
 
-std::vector<std::pair<std::string, double>> read_metrics(const std::string& path) {
+std::vector<std::pair<std::string, double>> read_metrics(const std::string& path) { return metrics_of(summary_leaves(path)); }
+
+std::vector<std::pair<std::string, double>> metrics_of(const std::vector<SummaryLeaf>& leaves) {
   std::vector<std::pair<std::string, double>> out;
   const std::string prefix = kMetricsPrefix;
-  for (const SummaryLeaf& leaf : summary_leaves(path)) {
+  for (const SummaryLeaf& leaf : leaves) {
     if (leaf.number && leaf.path.compare(0, prefix.size(), prefix) == 0) {
       out.emplace_back(leaf.path.substr(prefix.size()), *leaf.number);
     }

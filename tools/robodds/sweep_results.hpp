@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/sample_stats.hpp"
+#include "tools/robodds/summary_table.hpp"
 #include "tools/robodds/sweep_plan.hpp"
 
 namespace robodds::sweep {
@@ -23,6 +24,9 @@ struct RunOutcome {
 /// The finite numeric leaves under "metrics" of the summary.json at `path`, their paths without
 /// the "metrics." prefix, in file order. Throws std::runtime_error naming the file if unreadable.
 std::vector<std::pair<std::string, double>> read_metrics(const std::string& path);
+
+/// The same from leaves already read (summary_leaves()).
+std::vector<std::pair<std::string, double>> metrics_of(const std::vector<SummaryLeaf>& leaves);
 
 /// The statistics of one metric over the successful runs of one combination.
 struct MetricStats {

@@ -39,14 +39,24 @@ std::string last_error_line(const std::string& log) {
   return error.empty() ? last : error;
 }
 
-/// summary.json's "status" ("completed" or "failed"); std::runtime_error naming the file if unreadable.
-std::string summary_status(const std::string& path) {
-  for (const SummaryLeaf& leaf : summary_leaves(path)) {
+/// summary.json's "status" ("completed" or "failed") among its leaves.
+std::string summary_status(const std::vector<SummaryLeaf>& leaves) {
+  for (const SummaryLeaf& leaf : leaves) {
     if (leaf.path == "status") {
       return leaf.json.size() >= 2 && leaf.json.front() == '"' ? leaf.json.substr(1, leaf.json.size() - 2) : leaf.json;
     }
   }
   return "missing";
+}
+
+void record_outcome(const RunOutcome& outcome, const std::string& dir) {
+  JsonWriter w;
+  w.begin_object();
+  w.value("exit_code", static_cast<std::int64_t>(outcome.exit_code));
+  w.value("wall_s", outcome.wall_s);
+  w.value("error", outcome.error);
+  w.end_object();
+  std::ofstream(dir + "/outcome.json") << w.str() << "\n";
 }
 
 struct Slot {
@@ -84,27 +94,18 @@ RunOutcome collect_outcome(const PlannedRun& run, int exit_code, double wall_s, 
     return outcome;
   }
   try {
-    const std::string status = summary_status(dir + "/summary.json");
+    const std::vector<SummaryLeaf> leaves = summary_leaves(dir + "/summary.json");  // read once: status and metrics
+    const std::string status = summary_status(leaves);
     if (status != "completed") {
       outcome.error = dir + "/summary.json: status " + status;
       return outcome;
     }
-    outcome.metrics = read_metrics(dir + "/summary.json");
+    outcome.metrics = metrics_of(leaves);
     outcome.ok = true;
   } catch (const std::exception& e) {
     outcome.error = e.what();
   }
   return outcome;
-}
-
-static void record_outcome(const RunOutcome& outcome, const std::string& dir) {
-  JsonWriter w;
-  w.begin_object();
-  w.value("exit_code", static_cast<std::int64_t>(outcome.exit_code));
-  w.value("wall_s", outcome.wall_s);
-  w.value("error", outcome.error);
-  w.end_object();
-  std::ofstream(dir + "/outcome.json") << w.str() << "\n";
 }
 
 RunOutcome recorded_outcome(const PlannedRun& run, const std::string& dir) {
