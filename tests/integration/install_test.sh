@@ -78,7 +78,8 @@ echo "ok: installed robodds-position-sensor (no scenario file) with build-tree g
 
 # The component executable's own input handling: --help lists its parameters; a bad parameter
 # file names file and key; no robot is one clear error.
-"$SENSOR" --help | grep -q "noise_var_x_m2" || fail "robodds-position-sensor --help does not list its parameters"
+sensor_help="$("$SENSOR" --help)" || fail "robodds-position-sensor --help failed"  # whole: no SIGPIPE under pipefail
+grep -q "noise_var_x_m2" <<<"$sensor_help" || fail "robodds-position-sensor --help does not list its parameters"
 printf 'rate_hz: -1\n' >"$WORK/bad_sensor.yaml"
 expect_error 2 "$WORK/bad_sensor.yaml.*rate_hz" -- "$SENSOR" --robot 1 --params "$WORK/bad_sensor.yaml" --domain "$DOMAIN"
 expect_error 2 "give the robots it serves with --robot" -- "$SENSOR" --domain "$DOMAIN"
