@@ -24,6 +24,9 @@ class WriterHandle {
   /// be lost with it (Fast DDS drops a sample it has not yet handed out when its writer leaves).
   /// In-process delivery completes inside write(): nothing to wait for.
   virtual bool wait_acknowledged(std::chrono::milliseconds /*timeout*/) { return true; }
+  /// False when no reader is matched now, so a volatile sample written now reaches nobody (a
+  /// reader matched later gets only later samples either way). Default: true (unknown).
+  virtual bool has_matched_readers() const { return true; }
 };
 
 /// What the transport knows about a sample besides its contents: who wrote it (to tell two

@@ -184,39 +184,45 @@ class InputBase {
     return age && *age <= max_age_s;
   }
 
-  /// Lockstep: the error of the first second producer of an instance (empty: none seen).
-  std::string producer_conflict() const {
+  /// Lockstep: the error that ends the run, if one was seen (empty: none): the first second
+  /// producer of an instance, or the first lost sample of a stream.
+  std::string lockstep_error() const {
     std::lock_guard<std::mutex> lock(mutex_);
-    return producer_conflict_;
+    return lockstep_error_;
   }
 
   /// Lockstep: true when every expected instance has delivered all samples with
   /// step <= step - delay. Otherwise names the first missing instance in *missing.
-  /// Throws RunError once a second producer of an instance was seen in lockstep (producer_conflict()).
+  /// Throws RunError once a second producer or a lost sample was seen in lockstep (lockstep_error()).
   bool ready(std::uint64_t step, std::string* missing) const {
     {
       std::lock_guard<std::mutex> lock(mutex_);
-      if (!producer_conflict_.empty()) {
-        throw RunError(producer_conflict_);
+      if (!lockstep_error_.empty()) {
+        throw RunError(lockstep_error_);
       }
     }
     if (state_->mode == TimeMode::kRealtime || step < options_.delay_steps) {
       return true;  // real time reads whatever is there; before `delay` steps nothing is due
     }
     std::lock_guard<std::mutex> lock(mutex_);
+    std::size_t missing_streams = 0;
     for (std::uint64_t key : options_.expected) {
       auto it = progress_.find(key);
-      // next_step > step - delay, written without unsigned underflow.
-      if (it == progress_.end() || it->second.next_step + options_.delay_steps <= step) {
-        if (missing != nullptr) {
+      if (it == progress_.end() || !covers(it->second, step)) {
+        if (missing_streams++ == 0 && missing != nullptr) {
           *missing = it == progress_.end() ? label_of(key) + " (nothing received yet)"
                                            : label_of(key) + " (newest sample: step " +
                                                  std::to_string(it->second.step) + ")";
         }
-        return false;
       }
     }
-    return true;
+    // Not ready: the executor will wait, and this input wakes it once, when the last missing
+    // stream arrives (on_sample), not at every sample: across processes a wake-up per sample
+    // was a context switch per robot and topic (docs/performance.md, "Cost per robot-tick").
+    armed_ = missing_streams != 0;
+    armed_step_ = step;
+    armed_missing_ = missing_streams;
+    return missing_streams == 0;
   }
 
  protected:
@@ -225,7 +231,25 @@ class InputBase {
     std::uint64_t next_step = 0;
     std::int64_t received_ns = 0;  // SampleMeta::received_ns of the newest accepted sample
     std::uint64_t producer = 0;    // the writer that owns this instance (0: none seen yet)
+    bool seen = false;             // a sample of this stream arrived
   };
+
+  /// Lockstep: a stream's samples form a chain, each announcing the step of the next
+  /// (SampleHeader::next_step); a sample beyond the announced step means one was lost on the way
+  /// (e.g. dropped, and gone from a writer history too short to resend it). That would change the
+  /// results silently, so it ends the run (ready() throws), naming the stream and the steps.
+  /// Call with mutex_ held, before `p` takes the sample's step.
+  void check_chain(const Progress& p, const std::string& label, std::uint64_t step) {
+    if (state_->mode != TimeMode::kLockstep || options_.ignore_step || !p.seen || step <= p.next_step ||
+        !lockstep_error_.empty()) {
+      return;
+    }
+    lockstep_error_ = "lockstep: topic " + topic_ + " (" + label + ") lost samples: after step " + std::to_string(p.step) +
+                      ", whose sample announced the next at step " + std::to_string(p.next_step) + ", came step " +
+                      std::to_string(step) + " (a sample dropped and no longer in the writer's history: its lockstep "
+                      "QoS profile's history depth must exceed --lockstep-window)";
+    log::error(owner_, lockstep_error_);
+  }
 
   /// One producer per instance (docs/architecture.md, "One producer per instance and hot standby"):
   /// true if the sample of `writer_id` may be used. The first writer of an instance becomes its
@@ -251,11 +275,11 @@ class InputBase {
       return true;
     }
     if (state_->mode == TimeMode::kLockstep) {
-      if (producer_conflict_.empty()) {
-        producer_conflict_ = "lockstep: topic " + topic_ + " (" + label + ") has two producers: " + old_writer + " and " +
+      if (lockstep_error_.empty()) {
+        lockstep_error_ = "lockstep: topic " + topic_ + " (" + label + ") has two producers: " + old_writer + " and " +
                              new_writer + " (a second component or a restarted process publishes this instance; one "
                              "producer per topic instance)";
-        log::error(owner_, producer_conflict_);
+        log::error(owner_, lockstep_error_);
       }
       ++counts_.rejected[detail::kRejectSecondProducer];
       return false;
@@ -309,6 +333,25 @@ class InputBase {
   }
   /// The unit of readiness and producer tracking: the instance, or its robot id (by_robot).
   std::uint64_t stream_of(std::uint64_t key) const { return options_.by_robot ? key >> 32 : key; }
+  /// Lockstep: the stream has delivered every sample with step <= `step` - delay, i.e. its next
+  /// sample's step is beyond it (next_step > step - delay, written without unsigned underflow).
+  bool covers(const Progress& p, std::uint64_t step) const { return p.next_step + options_.delay_steps > step; }
+  /// Whether a sample must wake the executor: always, unless this is a gated lockstep input
+  /// whose waiting executor (armed by ready()) still misses other streams. Call with mutex_ held,
+  /// `was_covering`: covers(p, armed_step_) before the sample was applied.
+  bool wakes_executor(const Progress& p, bool was_covering) {
+    if (options_.ignore_step || state_->mode == TimeMode::kRealtime || options_.expected.empty()) {
+      return true;
+    }
+    if (!armed_ || was_covering || !covers(p, armed_step_)) {
+      return false;
+    }
+    if (--armed_missing_ != 0) {
+      return false;
+    }
+    armed_ = false;
+    return true;
+  }
   bool wanted(std::uint64_t key) const {
     return options_.expected.empty() || expected_set_.count(key) != 0;
   }
@@ -335,7 +378,13 @@ class InputBase {
   std::map<std::uint64_t, std::uint64_t> current_key_;  // by_robot: robot id -> its newest instance key
   InputCounts counts_;
   std::set<std::pair<std::uint64_t, std::string>> logged_rejections_;  // (writer_id, reason)
-  std::string producer_conflict_;  // lockstep: the first second-producer error, thrown by ready()
+  std::string lockstep_error_;  // lockstep: the first second producer or lost sample, thrown by ready()
+  // Set by a ready() that returned false, under mutex_: the step it waited for and how many
+  // expected streams it still missed then (wakes_executor()). Mutable: ready() is a query for
+  // its callers; this is only whom to wake.
+  mutable bool armed_ = false;
+  mutable std::uint64_t armed_step_ = 0;
+  mutable std::size_t armed_missing_ = 0;
 };
 
 template <class Msg>
@@ -351,35 +400,9 @@ class Input : public InputBase {
       return;
     }
     const std::optional<SampleCheckFailure> failed = first_failed_check(sample);
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      // Spelled once per instance, for messages only: no string is built for an ordinary sample.
-      auto labelled = labels_.find(key);
-      if (labelled == labels_.end()) {
-        labelled = labels_.emplace(key, idl::instance_label(sample)).first;
-      }
-      const std::string& label = labelled->second;
-      Progress& p = progress_[stream];
-      if (!accept_producer(p, label, meta)) {
-        return;
-      }
-      p.step = sample.header().step();
-      p.next_step = sample.header().next_step();
-      if (options_.by_robot) {
-        current_key_[stream] = key;  // the robot's current instance, for "waiting for" messages
-      }
-      if (!failed) {
-        p.received_ns = meta.received_ns;
-        ++counts_.accepted;
-        slots_[key].pending.push_back(sample);
-      } else {
-        count_rejection(failed->reason,
-                        "(" + label + ", step " + std::to_string(sample.header().step()) + "): field '" + failed->field +
-                            "' " + failed->detail,
-                        meta.writer_id);
-      }
+    if (store(sample, key, stream, failed, meta)) {
+      notifier_->notify();  // outside the lock: the executor takes it at once
     }
-    notifier_->notify();
   }
 
   /// Readable samples of `key` not taken before, in step order.
@@ -446,6 +469,43 @@ class Input : public InputBase {
   }
 
  private:
+  /// Applies `sample` to its stream's progress and, if it passed its checks, queues it for the
+  /// component; true when the executor must be woken (wakes_executor()).
+  bool store(const Msg& sample, std::uint64_t key, std::uint64_t stream, const std::optional<SampleCheckFailure>& failed,
+             const SampleMeta& meta) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    // Spelled once per instance, for messages only: no string is built for an ordinary sample.
+    auto labelled = labels_.find(key);
+    if (labelled == labels_.end()) {
+      labelled = labels_.emplace(key, idl::instance_label(sample)).first;
+    }
+    const std::string& label = labelled->second;
+    Progress& p = progress_[stream];
+    if (!accept_producer(p, label, meta)) {
+      return true;  // in lockstep a second producer ends the run: let ready() throw it now
+    }
+    check_chain(p, label, sample.header().step());
+    const bool was_covering = armed_ && covers(p, armed_step_);
+    p.seen = true;
+    p.step = sample.header().step();
+    p.next_step = sample.header().next_step();
+    const bool wake = wakes_executor(p, was_covering) || !lockstep_error_.empty();
+    if (options_.by_robot) {
+      current_key_[stream] = key;  // the robot's current instance, for "waiting for" messages
+    }
+    if (!failed) {
+      p.received_ns = meta.received_ns;
+      ++counts_.accepted;
+      slots_[key].pending.push_back(sample);
+    } else {
+      count_rejection(failed->reason,
+                      "(" + label + ", step " + std::to_string(sample.header().step()) + "): field '" + failed->field +
+                          "' " + failed->detail,
+                      meta.writer_id);
+    }
+    return wake;
+  }
+
   /// Why `sample` is refused: a non-finite number first, then the plausibility checks of its
   /// topic type (runtime/sample_checks.hpp); nullopt when it passes.
   std::optional<SampleCheckFailure> first_failed_check(const Msg& sample) const {

@@ -91,10 +91,9 @@ bool LockstepHost::run_due_components() {
     if (!slot->pending) {
       continue;
     }
-    std::string missing;
     const InputBase* blocking = nullptr;
     for (const auto& input : slot->context->inputs()) {
-      if (!input->ready(tick_step_, &missing)) {
+      if (!input->ready(tick_step_, nullptr)) {  // no message built at every wake-up
         blocking = input.get();
         break;
       }
@@ -102,6 +101,10 @@ bool LockstepHost::run_due_components() {
     if (blocking != nullptr) {
       all_done = false;
       if (seconds_since(waiting_since_) > options_.input_timeout_s) {
+        std::string missing;
+        if (blocking->ready(tick_step_, &missing)) {
+          continue;  // it arrived meanwhile
+        }
         throw RunError("lockstep: component '" + slot->spec->name + "' waited " + fmt_s(options_.input_timeout_s) +
                        " s at step " + std::to_string(tick_step_) + " for topic " + blocking->topic() + ", " + missing +
                        dds_report(*run_.bus));

@@ -126,20 +126,37 @@ struct MemoryBus::State {
     rebuild_callbacks(it->second);
   }
 
-  /// Delivers `delivery` now, or queues it behind the delivery already running on this thread.
-  void deliver(Delivery delivery) {
-    for (ActiveDelivery& active : active_deliveries) {
+  /// The queue of the delivery running on this thread for this bus, or nullptr.
+  std::deque<Delivery>* active_queue() const {
+    for (const ActiveDelivery& active : active_deliveries) {
       if (active.bus == this) {
-        active.queue->push_back(std::move(delivery));
-        return;
+        return active.queue;
       }
     }
+    return nullptr;
+  }
+
+  /// Delivers `delivery` now, or queues it behind the delivery already running on this thread.
+  void deliver(Delivery delivery) {
+    if (std::deque<Delivery>* queue = active_queue()) {
+      queue->push_back(std::move(delivery));
+      return;
+    }
+    deliver_now(delivery.callbacks, delivery.sample.get(), delivery.meta);
+  }
+
+  /// Runs `callbacks` on `sample` now, then every delivery queued meanwhile on this thread.
+  /// `sample` is only read while its own callbacks run, so the caller's sample needs no copy.
+  /// Call only when no delivery runs on this thread for this bus (active_queue() is nullptr).
+  void deliver_now(const std::shared_ptr<const Callbacks>& callbacks, const void* sample, const SampleMeta& meta) {
     std::deque<Delivery> queue;
-    queue.push_back(std::move(delivery));
     active_deliveries.push_back({this, &queue});
     struct Leave {
       ~Leave() { active_deliveries.pop_back(); }
     } leave;
+    for (const SampleCallback& callback : *callbacks) {
+      callback(sample, meta);
+    }
     while (!queue.empty()) {
       const Delivery next = std::move(queue.front());
       queue.pop_front();
@@ -164,8 +181,11 @@ class MemoryWriter : public WriterHandle {
       throw RunError("write on " + topic_ + " after the in-memory bus was destroyed");
     }
     Delivery delivery;
-    delivery.sample = ops_.copy(sample);  // a queued delivery outlives the caller's sample
     delivery.meta = SampleMeta{id_, monotonic_now_ns()};
+    std::deque<Delivery>* queue = state->active_queue();
+    if (queue != nullptr || transient_local_) {
+      delivery.sample = ops_.copy(sample);  // a queued or retained sample outlives the caller's
+    }
     {
       std::lock_guard<std::mutex> lock(state->mutex);
       MemoryBus::State::Topic& topic = state->topics.at(topic_);
@@ -174,7 +194,11 @@ class MemoryWriter : public WriterHandle {
       }
       delivery.callbacks = topic.callbacks;
     }
-    state->deliver(std::move(delivery));
+    if (queue != nullptr) {
+      queue->push_back(std::move(delivery));
+    } else {
+      state->deliver_now(delivery.callbacks, sample, delivery.meta);
+    }
   }
 
   const std::string& topic() const override { return topic_; }

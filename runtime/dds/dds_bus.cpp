@@ -34,7 +34,8 @@ namespace {
 
 class DdsWriter : public WriterHandle {
  public:
-  DdsWriter(dds::DataWriter* writer, std::string topic) : writer_(writer), topic_(std::move(topic)) {}
+  DdsWriter(dds::DataWriter* writer, std::string topic, const MatchState* match)
+      : writer_(writer), topic_(std::move(topic)), match_(match) {}
   void write(const void* sample) override {
     if (!writer_->write(const_cast<void*>(sample))) {
       throw RunError("DDS write failed on topic " + topic_);
@@ -45,11 +46,13 @@ class DdsWriter : public WriterHandle {
     const eprosima::fastrtps::Duration_t limit(static_cast<double>(timeout.count()) / 1000.0);
     return writer_->wait_for_acknowledgments(limit) == ReturnCode_t::RETCODE_OK;
   }
+  bool has_matched_readers() const override { return match_->matched.load(std::memory_order_relaxed) > 0; }
   dds::DataWriter* writer() const { return writer_; }
 
  private:
   dds::DataWriter* writer_;
   std::string topic_;
+  const MatchState* match_;  // the writer's listener's: matched readers now
 };
 
 class DdsReader : public ReaderHandle {};
@@ -107,8 +110,8 @@ class FastDdsBus : public DdsBus {
       throw ConfigError("cannot create a writer on " + topic + " with QoS profile '" + profile + "'" +
                         (reasons.empty() ? std::string() : ": Fast DDS: " + reasons));
     }
+    auto handle = std::make_shared<DdsWriter>(writer, topic, &listener->match());
     writer_listeners_[key] = std::move(listener);
-    auto handle = std::make_shared<DdsWriter>(writer, topic);
     writers_[key] = handle;
     return handle;
   }

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "common/number_parse.hpp"
+#include "runtime/colocated_bus.hpp"
 #include "runtime/dds/security_files.hpp"
 #include "runtime/error.hpp"
 #include "runtime/launch/failed_summary.hpp"
@@ -217,10 +218,15 @@ DdsOptions tools_dds(const DdsArgs& args, const std::string& participant_name) {
 RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scenario, const DdsOptions& dds,
                         HostOptions options, const InProcessRun& in_process) {
   auto bus = make_dds_bus(dds);
+  // A co-located lockstep run: its components' samples stay in memory, DDS serves observers.
+  std::unique_ptr<ColocatedBus> colocated;
+  if (options.single_process && in_process.mode == TimeMode::kLockstep) {
+    colocated = std::make_unique<ColocatedBus>(*bus);
+  }
   Notifier notifier;
   RunContext run;
   run.scenario = &scenario;
-  run.bus = bus.get();
+  run.bus = colocated ? static_cast<Bus*>(colocated.get()) : bus.get();
   run.notifier = &notifier;
   run.mode = in_process.mode;
   run.output_dir = in_process.out_dir;

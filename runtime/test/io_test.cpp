@@ -92,6 +92,66 @@ TEST_F(InputTest, RobotStreamsWaitPerRobotWhateverTheSecondKey) {
   EXPECT_TRUE(input.take_new_of_robot(2).empty());
 }
 
+// Across processes each sample used to wake the executor, which found the input still not ready
+// and slept again: a context switch per robot and topic. Now only the last missing stream wakes it.
+TEST_F(InputTest, LockstepInputWakesOnceWhenTheLastStreamArrives) {
+  detail::InputOptions options;
+  options.expected = {1, 2, 3};
+  options.key_names = "robot_id";
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, options);
+  const std::uint64_t before = notifier.generation();
+  input.on_sample(state(1, 0, 1, 1.0));  // nobody waits yet: no wake-up
+  EXPECT_EQ(notifier.generation(), before);
+  EXPECT_FALSE(input.ready(0, nullptr));  // the executor will wait for robots 2 and 3
+  input.on_sample(state(2, 0, 1, 2.0));
+  EXPECT_EQ(notifier.generation(), before);
+  input.on_sample(state(3, 0, 1, 3.0));  // the last one: one wake-up
+  EXPECT_EQ(notifier.generation(), before + 1);
+  EXPECT_TRUE(input.ready(0, nullptr));
+  input.on_sample(state(1, 1, 2, 1.0));  // ready was true: nobody waits
+  EXPECT_EQ(notifier.generation(), before + 1);
+
+  // Protocol inputs (ticks, acknowledgements) and real-time inputs wake at every sample.
+  detail::InputOptions protocol = options;
+  protocol.ignore_step = true;
+  Input<idl::RobotState> ticks("sim/clock", "test", &clock, &notifier, protocol);
+  ticks.on_sample(state(1, 0, 1, 1.0));
+  ticks.on_sample(state(2, 0, 1, 1.0));
+  EXPECT_EQ(notifier.generation(), before + 3);
+  StepState realtime_clock;
+  realtime_clock.mode = TimeMode::kRealtime;
+  Input<idl::RobotState> live("plant/state", "test", &realtime_clock, &notifier, options);
+  live.on_sample(state(1, 0, 1, 1.0));
+  EXPECT_EQ(notifier.generation(), before + 4);
+}
+
+// A stream's samples announce the step of the next; one beyond it means a sample was lost (and
+// could not be resent): the run ends naming the stream, instead of reading a gap as "no news".
+TEST_F(InputTest, LockstepLostSampleEndsTheRun) {
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, robot_one(0));
+  input.on_sample(state(1, 0, 5, 1.0));
+  input.on_sample(state(1, 3, 8, 1.0));  // earlier than announced: allowed (an event moved it)
+  input.on_sample(state(1, 8, 9, 1.0));  // exactly as announced
+  EXPECT_TRUE(input.ready(8, nullptr));
+  EXPECT_TRUE(input.lockstep_error().empty());
+  input.on_sample(state(1, 10, 11, 1.0));  // step 9 never came
+  try {
+    input.ready(10, nullptr);
+    FAIL() << "expected a RunError";
+  } catch (const RunError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("plant/state (robot_id=1) lost samples"), std::string::npos) << what;
+    EXPECT_NE(what.find("at step 9, came step 10"), std::string::npos) << what;
+  }
+  // Real time has no chain: a stream may skip steps there.
+  StepState realtime_clock;
+  realtime_clock.mode = TimeMode::kRealtime;
+  Input<idl::RobotState> live("plant/state", "test", &realtime_clock, &notifier, robot_one(0));
+  live.on_sample(state(1, 0, 1, 1.0));
+  live.on_sample(state(1, 10, 11, 1.0));
+  EXPECT_TRUE(live.lockstep_error().empty());
+}
+
 TEST_F(InputTest, ReadsOnlySamplesUpToTheCurrentStepMinusDelay) {
   detail::InputOptions options;
   options.expected = {1};
@@ -233,7 +293,7 @@ TEST_F(InputTest, LockstepSecondProducerOfAnInstanceEndsTheRunNamingTopicInstanc
   input.on_sample(state(1, 0, 1, 1.0), SampleMeta{7, 0});
   input.on_sample(state(1, 1, 2, 2.0), SampleMeta{7, 0});
   EXPECT_TRUE(input.ready(1, nullptr));
-  EXPECT_TRUE(input.producer_conflict().empty());
+  EXPECT_TRUE(input.lockstep_error().empty());
   input.on_sample(state(1, 0, 1, 9.0), SampleMeta{8, 0});  // a restarted producer replays step 0
   try {
     input.ready(1, nullptr);
@@ -257,7 +317,7 @@ TEST_F(InputTest, OtherInstancesMayHaveOtherProducers) {
   input.on_sample(state(1, 0, 1, 1.0), SampleMeta{7, 0});
   input.on_sample(state(2, 0, 1, 1.0), SampleMeta{8, 0});
   EXPECT_TRUE(input.ready(0, nullptr));
-  EXPECT_TRUE(input.producer_conflict().empty());
+  EXPECT_TRUE(input.lockstep_error().empty());
 }
 
 TEST_F(InputTest, RealtimeFirstWriterWinsAndTheSecondIsCountedAsSecondProducer) {
@@ -311,7 +371,7 @@ TEST_F(InputTest, TwoWritersOfOneInstanceOnABusAreTwoProducersNamedByTheBus) {
   EXPECT_TRUE(input.ready(0, nullptr));
   second->write(&sample);
   EXPECT_THROW(input.ready(0, nullptr), RunError);
-  const std::string conflict = input.producer_conflict();
+  const std::string conflict = input.lockstep_error();
   EXPECT_NE(conflict.find("(plant/state|state)"), std::string::npos) << conflict;
   EXPECT_NE(conflict.find("(plant/state|lockstep)"), std::string::npos) << conflict;
 }
