@@ -27,7 +27,9 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 # and names the Debian packages that own them, so the list cannot fall behind the link line.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
 # Plots (`robodds run` without --no-plots, `robodds report`) need python3 with matplotlib;
-# fastdds-tools gives `fastdds discovery` for the Discovery Server deployments.
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3, python3-matplotlib")
+# `robodds security init` drives the openssl tool (keys, certificates, signed documents; the
+# runtime's own libcrypto comes through shlibdeps); fastdds-tools gives `fastdds discovery` for
+# the Discovery Server deployments.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3, python3-matplotlib, openssl")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "fastdds-tools")
 include(CPack)

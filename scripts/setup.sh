@@ -7,7 +7,7 @@ PACKAGES=(
   libeigen3-dev libceres-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libssl-dev openssl
-  iproute2 procps bc docker-compose python3-matplotlib python3-yaml file time
+  iproute2 tcpdump procps bc docker-compose python3-matplotlib python3-yaml file time
   cyclonedds-dev cyclonedds-tools libcycloneddsidl0
 )
 missing=()

@@ -29,7 +29,10 @@ if grep -qE "(test|bench)" <<<"$(grep ' ./usr/bin/' <<<"$contents")"; then
 fi
 depends="$(dpkg-deb -f "$DEB" Depends)"
 grep -q "libfastrtps" <<<"$depends" || fail "Depends does not name the Fast DDS library package: $depends"
-echo "ok: $(basename "$DEB"): robodds, $(wc -w <<<"$types") component executables, share/robodds; Depends: $depends"
+grep -q "libssl" <<<"$depends" || fail "Depends does not name libssl (the security start-up checks link libcrypto): $depends"
+recommends="$(dpkg-deb -f "$DEB" Recommends)"
+grep -qE "(^|, )openssl(,|$)" <<<"$recommends" || fail "Recommends does not name openssl (robodds security init runs it): $recommends"
+echo "ok: $(basename "$DEB"): robodds, $(wc -w <<<"$types") component executables, share/robodds; Depends: $depends; Recommends: $recommends"
 
 # Unpacked, not installed: the binaries find /usr/share/robodds next to them (../share/robodds).
 dpkg -x "$DEB" "$WORK/root"

@@ -2,6 +2,7 @@
 //
 //   latency_bench raw|runtime|cv colocated|processes [--samples N] [--warmup N] [--domain D]
 //                 [--qos FILE] [--profile state|lockstep|...] [--participant-profile NAME]
+//                 [--security DIR]
 //
 // A pinger writes a sample on bench/ping; a ponger echoes it on bench/pong; one hop is half
 // the round trip measured by the pinger (steady_clock before write(), after its waiting
@@ -23,6 +24,9 @@
 //            `--role pinger` skips the spawn and waits for a ponger started by hand (another
 //            host: give both the same --domain, and --participant-profile robodds.participant.udp_only
 //            where shared memory is not shared).
+//
+// --security DIR (runtime only): both participants use DDS Security with the files of DIR/bench/
+//            (docs/security.md, "Cost": an identity whose permissions allow bench/ping and bench/pong).
 //
 // Output, one line per configuration (times in microseconds, one hop):
 //   latency raw colocated state participants=1 samples=20000 median_us=.. p90_us=.. p99_us=.. max_us=..
@@ -111,6 +115,7 @@ struct Options {
   std::string qos_file = std::string(ROBODDS_SOURCE_DIR) + "/deploy/qos/robodds_qos.xml";
   std::string profile = robodds::kStateProfile;
   std::string participant_profile = robodds::kDefaultParticipantProfile;
+  std::string security_dir;  // runtime only: DDS Security with DIR/bench/ ("" = none)
 };
 
 /// One side of the exchange: writes on one topic, waits for samples on the other.
@@ -333,6 +338,8 @@ std::unique_ptr<robodds::DdsBus> make_bus(const Options& o, const std::string& n
   d.qos_files = {o.qos_file};
   d.participant_profile = o.participant_profile;
   d.participant_name = name;
+  d.security_dir = o.security_dir;
+  d.security_identity = "bench";
   try {
     return robodds::make_dds_bus(d);
   } catch (const robodds::ConfigError& e) {
@@ -464,7 +471,7 @@ class Child {
   explicit Child(const Options& o) {
     std::vector<std::string> args = {self_exe(), o.impl, o.deploy, "--role", "ponger", "--domain", std::to_string(o.domain),
                                      "--qos", o.qos_file, "--profile", o.profile, "--participant-profile",
-                                     o.participant_profile};
+                                     o.participant_profile, "--security", o.security_dir};
     std::fflush(stdout);
     std::fflush(stderr);
     const pid_t parent = getpid();
@@ -615,7 +622,7 @@ void run_processes(const Options& o) {
 [[noreturn]] void usage(const std::string& why) {
   throw UsageError(why +
                    "\nusage: latency_bench raw|runtime|cv colocated|processes [--samples N] [--warmup N] [--domain D] "
-                   "[--qos FILE] [--profile state|lockstep] [--participant-profile NAME] [--role pinger|ponger]");
+                   "[--qos FILE] [--profile state|lockstep] [--participant-profile NAME] [--security DIR] [--role pinger|ponger]");
 }
 
 Options parse(int argc, char** argv) {
@@ -653,6 +660,8 @@ Options parse(int argc, char** argv) {
       o.profile = value();
     } else if (a == "--participant-profile") {
       o.participant_profile = value();
+    } else if (a == "--security") {
+      o.security_dir = value();
     } else if (a == "--role") {
       o.role = value();
       if (o.role != "pinger" && o.role != "ponger") {
@@ -679,6 +688,9 @@ Options parse(int argc, char** argv) {
   }
   if (o.deploy != "colocated" && o.deploy != "processes") {
     usage("second argument: colocated or processes, got '" + o.deploy + "'");
+  }
+  if (!o.security_dir.empty() && o.impl != "runtime") {
+    usage("--security is only for the runtime implementation");
   }
   if (!o.role.empty() && o.deploy != "processes") {
     usage("--role is only for processes mode");
