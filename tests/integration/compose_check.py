@@ -152,8 +152,8 @@ def check(robodds, src, compose_file):
     config = compose_config(compose_file)
     services = config.get("services", {})
     entrypoint = dockerfile_entrypoint(src)
-    if entrypoint != ["robodds", "host"]:
-        fail(f"Dockerfile ENTRYPOINT is {entrypoint}, expected [robodds, host]")
+    if entrypoint != ["robodds-entrypoint", "robodds", "host"]:
+        fail(f"Dockerfile ENTRYPOINT is {entrypoint}, expected [robodds-entrypoint, robodds, host]")
     types = registered_types(robodds)
     scenario_file = None
     for service in services.values():
@@ -167,11 +167,16 @@ def check(robodds, src, compose_file):
 
     seen_groups = []
     discovery = services.get("discovery")
+    builders = [name for name, service in services.items() if service.get("build")]
+    if len(builders) != 1:
+        fail(f"expected exactly one service with build: (the one image), found {builders}")
+    expected_image = os.environ.get("ROBODDS_IMAGE") or "robodds:latest"
     for name, service in services.items():
-        if service.get("image") != "robodds:latest":
-            fail(f"{name}: image {service.get('image')}, expected robodds:latest")
-        build = service.get("build") or {}
-        if os.path.realpath(build.get("context", "")) != os.path.realpath(src) or build.get("dockerfile") != "deploy/docker/Dockerfile":
+        if service.get("image") != expected_image:
+            fail(f"{name}: image {service.get('image')}, expected {expected_image}")
+        build = service.get("build")
+        if build is not None and (os.path.realpath(build.get("context", "")) != os.path.realpath(src)
+                                  or build.get("dockerfile") != "deploy/docker/Dockerfile"):
             fail(f"{name}: build {build} is not the repository with deploy/docker/Dockerfile")
         network_mode = service.get("network_mode")
         if network_mode == "host" and service.get("ipc") != "host":

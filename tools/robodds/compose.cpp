@@ -78,8 +78,10 @@ class ComposeWriter {
     validate();
     header();
     out_ << "services:\n";
+    bool first = true;
     for (const Service& service : services()) {
-      write_service(service);
+      write_service(service, first);
+      first = false;
     }
     footer();
     return out_.str();
@@ -175,11 +177,19 @@ class ComposeWriter {
            << "# no data arrives.\n";
     }
     out_ << "# Run from the repository root, FILE = this file (docs/deployment.md):\n"
-         << "#   " << compose << " up -d --build\n"
+         << "#   " << compose << " build     # once: the image\n"
+         << "#   " << compose << " up -d\n"
          << "#   docker wait $(" << compose << " ps -q coordinator)   # exit code of the run, 0 = completed\n"
-         << "#   " << compose << " down\n"
-         << "# ROBODDS_DOMAIN_ID and ROBODDS_RUN_ID (defaults 0 and 1) are taken from the environment.\n";
+         << "#   " << compose << " run -T --rm --no-deps --entrypoint tar " << results_service()
+         << " -C " << C::kShareDir << "/out -cf - " << scenario_.name << " | tar -xf - -C out/\n"
+         << "#   " << compose << " down -v\n"
+         << "# Results: volume <project>_results, folder " << out_dir() << " (the scenario's name, whatever -p is).\n"
+         << "# ROBODDS_DOMAIN_ID, ROBODDS_RUN_ID and ROBODDS_IMAGE (defaults 0, 1, robodds:latest) are taken\n"
+         << "# from the environment.\n";
   }
+
+  /// A group service (it mounts the results volume) to read the results through.
+  std::string results_service() const { return scenario_.groups.empty() ? std::string("GROUP") : scenario_.groups.back().name; }
 
   std::vector<Service> services() const {
     std::vector<Service> result;
@@ -234,13 +244,17 @@ class ComposeWriter {
     return result;
   }
 
-  void write_service(const Service& s) {
+  /// Only the first service builds the image (`docker-compose build` would otherwise build the
+  /// same image once per service); the others name it.
+  void write_service(const Service& s, bool builds_image) {
     out_ << "  # " << s.comment << "\n"
          << "  " << s.name << ":\n"
-         << "    image: " << scalar(C::kImage) << "\n"
-         << "    build:\n"
-         << "      context: " << scalar(options_.repo_dir) << "\n"
-         << "      dockerfile: " << scalar(C::kDockerfile) << "\n";
+         << "    image: " << scalar(C::kImage) << "\n";
+    if (builds_image) {
+      out_ << "    build:  # the one image of every service\n"
+           << "      context: " << scalar(options_.repo_dir) << "\n"
+           << "      dockerfile: " << scalar(C::kDockerfile) << "\n";
+    }
     if (!s.entrypoint.empty()) {
       out_ << "    entrypoint: " << flow_list(s.entrypoint) << "\n";
     }

@@ -31,7 +31,8 @@ struct ComposeOptions {
 
 /// Fixed names and addresses of the generated deployments (also used by the tests and docs).
 struct ComposeConstants {
-  static constexpr const char* kImage = "robodds:latest";
+  /// The image every service runs: $ROBODDS_IMAGE when compose reads the file, else robodds:latest.
+  static constexpr const char* kImage = "${ROBODDS_IMAGE:-robodds:latest}";
   static constexpr const char* kDockerfile = "deploy/docker/Dockerfile";
   static constexpr const char* kShareDir = "/opt/robodds";  // ROBODDS_SHARE_DIR in the image
   static constexpr const char* kNetwork = "robodds";

@@ -96,9 +96,21 @@ TEST(Compose, HostCommandsMatchTheProcessRunner) {
   EXPECT_THAT(yaml, HasSubstr("      ROBODDS_DOMAIN_ID: \"${ROBODDS_DOMAIN_ID:-0}\"\n"));
 }
 
-TEST(Compose, SharedImageBuiltFromTheRepository) {
-  const std::string block = service_block(generate(), "sim");
-  EXPECT_THAT(block, HasSubstr("    image: \"robodds:latest\"\n    build:\n      context: ../..\n      dockerfile: deploy/docker/Dockerfile\n"));
+TEST(Compose, SharedImageBuiltFromTheRepositoryByTheFirstServiceOnly) {
+  const std::string yaml = generate();
+  EXPECT_THAT(service_block(yaml, "coordinator"),
+              HasSubstr("    image: \"${ROBODDS_IMAGE:-robodds:latest}\"\n    build:  # the one image of every service\n"
+                        "      context: ../..\n      dockerfile: deploy/docker/Dockerfile\n"));
+  EXPECT_THAT(service_block(yaml, "sim"), HasSubstr("    image: \"${ROBODDS_IMAGE:-robodds:latest}\"\n"));
+  EXPECT_THAT(service_block(yaml, "sim"), Not(HasSubstr("build:")));
+  EXPECT_EQ(yaml.find("    build:"), yaml.rfind("    build:"));
+  const std::string server = generate(ComposeDiscovery::kServer);
+  EXPECT_THAT(service_block(server, "discovery"), HasSubstr("    build:"));
+  EXPECT_EQ(server.find("    build:"), server.rfind("    build:"));
+}
+
+TEST(Compose, HeaderExtractsResultsFromTheScenarioFolderWhateverTheProject) {
+  EXPECT_THAT(generate(), HasSubstr(" -C /opt/robodds/out -cf - demo | tar -xf - -C out/\n"));
 }
 
 TEST(Compose, MountsQosAndScenarioReadOnlyAndNoParameterFile) {
@@ -125,7 +137,7 @@ TEST(Compose, DiscoveryServerOnTheBridgeHasAFixedAddressInTheClientProfile) {
   const std::string discovery = service_block(yaml, "discovery");
   EXPECT_THAT(discovery, HasSubstr("    entrypoint: [fastdds, discovery, \"-i\", \"0\", \"-l\", \"172.30.77.2\", \"-p\", \"11811\"]\n"));
   EXPECT_THAT(discovery, HasSubstr("      robodds:\n        ipv4_address: \"172.30.77.2\"\n"));
-  EXPECT_THAT(discovery, Not(HasSubstr("ROBODDS_")));
+  EXPECT_THAT(discovery, Not(HasSubstr("environment:")));
   EXPECT_THAT(yaml, HasSubstr("    ipam:\n      config:\n        - subnet: \"172.30.77.0/24\"\n"));
   const std::string sim = service_block(yaml, "sim");
   EXPECT_THAT(sim, HasSubstr("      ROBODDS_PARTICIPANT_PROFILE: robodds.participant.discovery_client\n"));
