@@ -13,7 +13,7 @@ check_readable() {
   bad="$(find -L "$1" \( ! -readable -o -type d ! -executable \) -print 2>&1 | head -n 1)" || true
   if [ -n "$bad" ]; then
     echo "robodds: error: ${bad%%: Permission denied*} is not readable by uid $(id -u) ($(id -un 2>/dev/null || echo '?')), the image's user:" \
-      "bind-mounted files must be readable by uid 10001 (on the host: chmod -R a+rX, or chown -R 10001), see docs/deployment.md" >&2
+      "bind-mounted files must be readable by uid 10001 (on the host: chown -R 10001 the folder, or chmod -R a+rX if nothing in it is secret), see docs/deployment.md" >&2
     exit 2
   fi
 }

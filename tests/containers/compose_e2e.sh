@@ -146,20 +146,27 @@ for s in plant_smoke paper1_waypoints; do
     >"$WORK/native_$s.log" 2>&1 || fail "native $s run failed: $(tail -n 20 "$WORK/native_$s.log")"
 done
 
-# compose_run PROJECT FILE SCENARIO: the commands of docs/deployment.md, results into $WORK/containers/PROJECT.
-compose_run() {
-  local p="$1" f="$2" s="$3" t rc cid
-  t=$(date +%s)
+# The commands of docs/deployment.md, in two halves so that deployments can run side by side.
+# compose_up PROJECT FILE: `up -d` (the file is used from the repository root).
+compose_up() {
+  local p="$1" f="$2"
   PROJECTS+=("$p=$f")
-  local c=(env "${COMPOSE_ENV[@]}" ROBODDS_DOMAIN_ID="$DOMAIN" ROBODDS_RUN_ID="$RANDOM$$" "${COMPOSE[@]}" -p "$p" -f "$f")
-  (cd "$SRC" && "${c[@]}" up -d) >"$WORK/$p.up.log" 2>&1 || fail "$p: up -d failed: $(tail -n 20 "$WORK/$p.up.log")"
+  STARTED_AT[$p]=$(date +%s)
+  (cd "$SRC" && env "${COMPOSE_ENV[@]}" ROBODDS_DOMAIN_ID="$DOMAIN" ROBODDS_RUN_ID="$RANDOM$$" "${COMPOSE[@]}" -p "$p" -f "$f" up -d) \
+    >"$WORK/$p.up.log" 2>&1 || fail "$p: up -d failed: $(tail -n 20 "$WORK/$p.up.log")"
+}
+# compose_finish PROJECT FILE SCENARIO: docker wait on the coordinator (exit 0), the logs, the
+# results extraction command into $WORK/containers/PROJECT, down -v; then the comparison.
+compose_finish() {
+  local p="$1" f="$2" s="$3" rc cid
+  local c=(env "${COMPOSE_ENV[@]}" "${COMPOSE[@]}" -p "$p" -f "$f")
   cid="$(cd "$SRC" && "${c[@]}" ps -q coordinator)"
   [[ -n "$cid" ]] || fail "$p: no coordinator container"
   rc="$(timeout -k 5 600 docker wait "$cid")" || fail "$p: the coordinator did not finish within 600 s"
   (cd "$SRC" && "${c[@]}" logs --no-color) >"$WORK/$p.logs" 2>&1 || true
   [[ "$rc" == 0 ]] || fail "$p: the coordinator exited $rc: $(tail -n 30 "$WORK/$p.logs")"
   mkdir -p "$WORK/containers/$p"
-  (cd "$SRC" && "${c[@]}" run -T --rm --no-deps --entrypoint tar evaluation -C /opt/robodds/out -cf - "$s" |
+  (cd "$SRC" && "${c[@]}" run -T --rm --no-deps --entrypoint tar evaluation -C /opt/robodds/out -cf - "$s" 2>/dev/null |
     tar -xf - -C "$WORK/containers/$p/") || fail "$p: the results extraction command failed"
   (cd "$SRC" && "${c[@]}" down -v -t 5) >"$WORK/$p.down.log" 2>&1 || fail "$p: down failed: $(cat "$WORK/$p.down.log")"
   grep -qE "coordinator.*run [0-9]+ of '$s' completed: [0-9]+ steps" "$WORK/$p.logs" ||
@@ -167,12 +174,42 @@ compose_run() {
   grep -qE "evaluation.*run [0-9]+ of '$s' completed" "$WORK/$p.logs" || fail "$p: no completion line of the evaluation group"
   grep -qE "coordinator.*acknowledged by every group \(50 %\)" "$WORK/$p.logs" || fail "$p: no progress line of the coordinator"
   same_outputs "$WORK/native/$s" "$WORK/containers/$p/$s"
-  echo "ok: $p ($(basename "$f")): exit 0, $N_CSV CSVs byte-identical to co-located, progress in the logs, $(($(date +%s) - t)) s [$(elapsed)]"
+  echo "ok: $p ($(basename "$f")): exit 0, $N_CSV CSVs byte-identical to co-located, progress in the logs," \
+    "$(($(date +%s) - STARTED_AT[$p])) s [$(elapsed)]"
 }
+declare -A STARTED_AT
 
-compose_run "e2e$$ps" deploy/compose/plant_smoke.yml plant_smoke
-compose_run "e2e$$psds" deploy/compose/plant_smoke.discovery-server.yml plant_smoke
-compose_run "e2e$$pw" deploy/compose/paper1_waypoints.yml paper1_waypoints
+compose_up "e2e$$ps" deploy/compose/plant_smoke.yml
+compose_finish "e2e$$ps" deploy/compose/plant_smoke.yml plant_smoke
+# Two Discovery Server deployments at once on one engine (no fixed subnet or address).
+compose_up "e2e$$ds1" deploy/compose/plant_smoke.discovery-server.yml
+compose_up "e2e$$ds2" deploy/compose/plant_smoke.discovery-server.yml
+compose_finish "e2e$$ds1" deploy/compose/plant_smoke.discovery-server.yml plant_smoke
+compose_finish "e2e$$ds2" deploy/compose/plant_smoke.discovery-server.yml plant_smoke
+compose_up "e2e$$pw" deploy/compose/paper1_waypoints.yml
+compose_finish "e2e$$pw" deploy/compose/paper1_waypoints.yml paper1_waypoints
+
+# ---- DDS Security: robodds deploy compose --security -------------------------------------------
+SEC="$WORK/sec/plant_smoke"
+"$ROBODDS" security init "$SRC/sim/scenarios/plant_smoke.yaml" --out "$SEC" >"$WORK/security_init.log" 2>&1 ||
+  fail "robodds security init failed: $(tail -n 5 "$WORK/security_init.log")"
+SECURE_FILE="$WORK/plant_smoke.secure.yml"
+"$ROBODDS" deploy compose "$SRC/sim/scenarios/plant_smoke.yaml" --security "$SEC" -o "$SECURE_FILE" >/dev/null
+# Each service mounts its own identity only, read-only (the CA and the other identities stay out).
+python3 - "$SECURE_FILE" "$SEC" <<'PY' || fail "secure compose file: identities not mounted one per service"
+import sys, yaml
+doc, sec = yaml.safe_load(open(sys.argv[1])), sys.argv[2]
+for name, service in doc["services"].items():
+    mounts = [v for v in service["volumes"] if v.startswith(sec)]
+    assert mounts == [f"{sec}/{name}:/opt/robodds/security/{name}:ro"], (name, mounts)
+    assert service["command"][-2:] == ["--security", "/opt/robodds/security"], (name, service["command"])
+PY
+# The keys are the owner's only (0600): the containers' user must own its identity (docs/deployment.md).
+for identity in coordinator $(python3 -c 'import sys, yaml; print(" ".join(yaml.safe_load(open(sys.argv[1]))["services"]))' "$SECURE_FILE"); do
+  chown -R 10001:10001 "$SEC/$identity"
+done
+compose_up "e2e$$sec" "$SECURE_FILE"
+compose_finish "e2e$$sec" "$SECURE_FILE" plant_smoke
 
 # ---- SIGTERM (docker stop) -> 143 ------------------------------------------------------------
 # A group host waiting for its first tick (no coordinator): a signal interrupts the run.
