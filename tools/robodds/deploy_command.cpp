@@ -72,17 +72,18 @@ int DeployCommand::run() {
   for (const ComponentType& type : env_.registry.types()) {
     options.component_types.push_back(type.name);
   }
+  if (!security_dir_.empty()) {  // absolute in the file: the folder is usually outside the repository
+    options.security_dir = fs::weakly_canonical(fs::absolute(security_dir_)).generic_string();
+  }
+
+  const std::string text = generate_compose(scenario, options);  // validates groups and types first
   if (!security_dir_.empty()) {
-    // Every identity the containers use, checked now (missing, expired, of another CA...), not
-    // at `up`; absolute in the file, since the folder is usually outside the repository.
+    // Every identity the containers use, checked now (missing, expired, of another CA...), not at `up`.
     check_security_files(security_dir_, kCoordinatorIdentity);
     for (const GroupSpec& group : scenario.groups) {
       check_security_files(security_dir_, group.name);
     }
-    options.security_dir = fs::canonical(security_dir_).generic_string();
   }
-
-  const std::string text = generate_compose(scenario, options);  // validates groups and types first
 
   // Everything the file mounts must exist, or docker would mount an empty directory instead.
   require_in_repo(root, "deploy/qos/robodds_qos.xml", "QoS file");
