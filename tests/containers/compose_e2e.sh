@@ -55,7 +55,6 @@ e2e_cleanup() {
     kill "$STARTED_DOCKERD" 2>/dev/null || true
     timeout 30 tail --pid="$STARTED_DOCKERD" -f /dev/null || kill -9 "$STARTED_DOCKERD" 2>/dev/null || true
   fi
-  rm -rf "$SRC/out/compose_e2e.$$"
   cleanup
   exit "$rc"
 }
