@@ -6,14 +6,15 @@
 Reads the file through `docker-compose config` (so interpolation and path resolution are
 docker-compose's own), then checks that:
   - every robodds service uses the one image built from deploy/docker/Dockerfile, whose
-    ENTRYPOINT is `robodds host`;
+    ENTRYPOINT is `robodds-entrypoint robodds host`, and only one service builds it;
   - there is exactly one service per deployment group of the scenario, plus the coordinator;
   - the scenario, the QoS file and each group component's parameter file are mounted
     read-only from files that exist in the repository, at their paths under /opt/robodds;
   - the participant profile exists in the QoS files the service loads, and is UDP-only on a
     bridge network (shared memory across containers delivers nothing); host networking has
     `ipc: host`;
-  - a Discovery Server service listens on the address and port the client profile names.
+  - a Discovery Server service listens on the address and port the client profile names (host
+    network), or on every address with the clients naming it `discovery:PORT` (bridge).
 With --run, starts every robodds service as a local process instead of a container (paths
 under /opt/robodds mapped back through the mounts, the results volume to OUT_DIR) and requires
 the coordinator to finish the run.
@@ -152,8 +153,8 @@ def check(robodds, src, compose_file):
     config = compose_config(compose_file)
     services = config.get("services", {})
     entrypoint = dockerfile_entrypoint(src)
-    if entrypoint != ["robodds", "host"]:
-        fail(f"Dockerfile ENTRYPOINT is {entrypoint}, expected [robodds, host]")
+    if entrypoint != ["robodds-entrypoint", "robodds", "host"]:
+        fail(f"Dockerfile ENTRYPOINT is {entrypoint}, expected [robodds-entrypoint, robodds, host]")
     types = registered_types(robodds)
     scenario_file = None
     for service in services.values():
@@ -167,11 +168,16 @@ def check(robodds, src, compose_file):
 
     seen_groups = []
     discovery = services.get("discovery")
+    builders = [name for name, service in services.items() if service.get("build")]
+    if len(builders) != 1:
+        fail(f"expected exactly one service with build: (the one image), found {builders}")
+    expected_image = os.environ.get("ROBODDS_IMAGE") or "robodds:latest"
     for name, service in services.items():
-        if service.get("image") != "robodds:latest":
-            fail(f"{name}: image {service.get('image')}, expected robodds:latest")
-        build = service.get("build") or {}
-        if os.path.realpath(build.get("context", "")) != os.path.realpath(src) or build.get("dockerfile") != "deploy/docker/Dockerfile":
+        if service.get("image") != expected_image:
+            fail(f"{name}: image {service.get('image')}, expected {expected_image}")
+        build = service.get("build")
+        if build is not None and (os.path.realpath(build.get("context", "")) != os.path.realpath(src)
+                                  or build.get("dockerfile") != "deploy/docker/Dockerfile"):
             fail(f"{name}: build {build} is not the repository with deploy/docker/Dockerfile")
         network_mode = service.get("network_mode")
         if network_mode == "host" and service.get("ipc") != "host":
@@ -198,15 +204,23 @@ def check_discovery(discovery, services, src):
         fail(f"discovery: entrypoint {entry}, expected fastdds discovery -i ID -l ADDRESS -p PORT")
         return
     address, port = entry[entry.index("-l") + 1], entry[entry.index("-p") + 1]
-    networks = discovery.get("networks") or {}
-    if discovery.get("network_mode") != "host":
-        fixed = [n.get("ipv4_address") for n in networks.values() if isinstance(n, dict)]
-        if fixed != [address]:
-            fail(f"discovery: listens on {address} but its network address is {fixed}")
+    host_network = discovery.get("network_mode") == "host"
+    if not host_network:
+        # On the bridge: no fixed address (two deployments side by side); the server listens on
+        # every address of its container and the clients name it: ROS_DISCOVERY_SERVER=discovery:PORT.
+        if address != "0.0.0.0":
+            fail(f"discovery: listens on {address}, expected 0.0.0.0 (the clients reach it by its service name)")
+        if "ipv4_address" in str(discovery.get("networks")):
+            fail(f"discovery: fixed network address {discovery.get('networks')} (two deployments could not run at once)")
     for name, service in services.items():
         if name == "discovery":
             continue
-        qos = host_path((service.get("environment") or {}).get("ROBODDS_QOS_FILE", ""), bind_mounts(service))
+        env = service.get("environment") or {}
+        if not host_network:
+            if env.get("ROS_DISCOVERY_SERVER") != f"discovery:{port}":
+                fail(f"{name}: ROS_DISCOVERY_SERVER is {env.get('ROS_DISCOVERY_SERVER')}, expected discovery:{port}")
+            continue
+        qos = host_path(env.get("ROBODDS_QOS_FILE", ""), bind_mounts(service))
         text = open(qos).read() if qos and os.path.isfile(qos) else ""
         if f"<address>{address}</address>" not in text or f"<port>{port}</port>" not in text:
             fail(f"{name}: client profile {qos} does not name the server {address}:{port}")

@@ -56,6 +56,11 @@ expect_error 2 "groups\.coordinator: group name 'coordinator' is reserved" -- \
   "${D[@]}" "$(in_repo_scenario t3 's/sim: \[plant\]/coordinator: [plant]/')"
 expect_error 2 "groups\.discovery: group name 'discovery' is reserved" -- \
   "${D[@]}" "$(in_repo_scenario t4 's/sim: \[plant\]/discovery: [plant]/')" --discovery server
+expect_error 2 "no-such-sec: DDS Security: security directory not found" -- "${D[@]}" "$S" --security "$WORK/no-such-sec"
+"$ROBODDS" security init "$S" --out "$WORK/sec" >/dev/null 2>&1 || fail "robodds security init failed"
+rm -r "$WORK/sec/sensing"
+expect_error 2 "no identity 'sensing'" -- "${D[@]}" "$S" --security "$WORK/sec"
+expect_error 2 "--security goes with --discovery multicast" -- "${D[@]}" "$S" --security "$WORK/sec" --discovery server
 cp "$S" "$WORK/outside.yaml"
 expect_error 2 "outside\.yaml: is outside the repository" -- "${D[@]}" "$WORK/outside.yaml"
 

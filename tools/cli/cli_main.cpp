@@ -14,11 +14,14 @@ namespace robodds::cli {
 namespace {
 
 std::atomic<bool> g_stop{false};
+std::atomic<int> g_signal{0};  // the signal that stopped the run: its exit code is 128 + it (130 SIGINT, 143 SIGTERM)
 
-// A signal asks the run loop to stop (outputs are written, exit 130). Once the run has ended, no
+// A signal asks the run loop to stop (outputs are written, exit 128 + signal: 130 for SIGINT, 143
+// for SIGTERM, as a shell and `docker stop` expect). Once the run has ended, no
 // loop looks at g_stop any more: a signal while the process tears down its DDS entities
 // (shutting_down(), a step Fast DDS may block in) ends the process at once with 128 + signal.
 void on_signal(int signal_number) {
+  g_signal = signal_number;
   g_stop = true;
   if (shutting_down()) {
     static const char kLine[] = "robodds: error: stopped by a signal during shutdown\n";
@@ -64,7 +67,7 @@ int parse_and_run(CLI::App& app, int argc, char** argv, const std::function<int(
     return 2;
   } catch (const RunError& e) {
     std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
-    return g_stop ? 130 : 1;
+    return g_stop ? 128 + g_signal.load() : 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
     return 1;

@@ -2,7 +2,7 @@
 // What every robodds executable does around its work: SIGINT/SIGTERM set a stop flag (the host
 // loops poll it and end cleanly, deleting their participants), command-line mistakes are one
 // line and exit 2, and errors map to exit codes: ConfigError 2 (bad input), RunError 1 (a failed
-// run; 130 when a signal stopped it), anything else 1. Used by `robodds` and by the component
+// run; 128 + the signal when one stopped it: 130 SIGINT, 143 SIGTERM), anything else 1. Used by `robodds` and by the component
 // executables robodds-<type>.
 
 #include <CLI/CLI.hpp>

@@ -11,7 +11,7 @@ namespace robodds {
 /// Parses the component options (runtime/launch/host_args.hpp add_component_options: --robot, --name,
 /// --params, --step, --realtime, DDS and lockstep options ...; --help lists the component's
 /// parameters too) and runs the component until the run ends (lockstep: the coordinator's
-/// final tick) or a signal stops it. Returns the exit code (0, 1, 2, 130 as for robodds).
+/// final tick) or a signal stops it. Returns the exit code (0, 1, 2, 130/143 as for robodds).
 int component_main(int argc, char** argv, const char* type, void (*register_type)(ComponentRegistry&));
 
 }  // namespace robodds

@@ -24,6 +24,11 @@ struct ComposeOptions {
   /// The repository root as seen from the compose file's directory (build context and the
   /// host side of every bind mount), e.g. "../.." for a file in deploy/compose/.
   std::string repo_dir = "../..";
+  /// DDS Security (`--security DIR`): DIR as the compose file names it (host side of the mounts),
+  /// empty = none. Each robodds service mounts its own identity DIR/<identity>/ read-only, at
+  /// kSecurityDir/<identity> (the identity is its group, `coordinator` for the coordinator), and
+  /// runs with --security kSecurityDir. Not with the Discovery Server (it would need an identity).
+  std::string security_dir;
   /// The registered component types; a scenario component of another type is an error. (No
   /// parameter file is mounted: defaults are compiled in, scenario overrides are in the scenario.)
   std::vector<std::string> component_types;
@@ -31,16 +36,13 @@ struct ComposeOptions {
 
 /// Fixed names and addresses of the generated deployments (also used by the tests and docs).
 struct ComposeConstants {
-  static constexpr const char* kImage = "robodds:latest";
+  /// The image every service runs: $ROBODDS_IMAGE when compose reads the file, else robodds:latest.
+  static constexpr const char* kImage = "${ROBODDS_IMAGE:-robodds:latest}";
   static constexpr const char* kDockerfile = "deploy/docker/Dockerfile";
   static constexpr const char* kShareDir = "/opt/robodds";  // ROBODDS_SHARE_DIR in the image
   static constexpr const char* kNetwork = "robodds";
-  static constexpr const char* kSubnet = "172.30.77.0/24";
-  static constexpr const char* kDiscoveryAddress = "172.30.77.2";
   static constexpr int kDiscoveryPort = 11811;
-  /// The discovery client profile for the bridge network: deploy/qos/discovery_client.xml with
-  /// 127.0.0.1 replaced by kDiscoveryAddress (XML cannot read the address from the environment).
-  static constexpr const char* kBridgeDiscoveryClientXml = "deploy/compose/discovery_client.compose.xml";
+  static constexpr const char* kSecurityDir = "/opt/robodds/security";  // --security in the containers
   static constexpr const char* kCoordinatorService = "coordinator";
   static constexpr const char* kDiscoveryService = "discovery";
 };

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "runtime/dds/security_files.hpp"
 #include "runtime/error.hpp"
 #include "runtime/launch/launch.hpp"
 #include "runtime/scenario.hpp"
@@ -47,6 +48,8 @@ DeployCommand::DeployCommand(CLI::App& app, const CommandEnv& env) : env_(env) {
       ->check(CLI::IsMember({"multicast", "server"}));
   compose->add_option("--network", network_, "bridge (user-defined network, UDP only) or host (network_mode: host, ipc: host)")
       ->check(CLI::IsMember({"bridge", "host"}));
+  compose->add_option("--security", security_dir_,
+                      "DDS Security: directory made by `robodds security init`; each container mounts its own identity, read-only");
   compose->add_option("-o,--output", output_, "write here (default: stdout, with paths for a file in deploy/compose/)");
 }
 
@@ -69,15 +72,25 @@ int DeployCommand::run() {
   for (const ComponentType& type : env_.registry.types()) {
     options.component_types.push_back(type.name);
   }
+  if (!security_dir_.empty()) {  // absolute in the file: the folder is usually outside the repository
+    options.security_dir = fs::weakly_canonical(fs::absolute(security_dir_)).generic_string();
+  }
 
   const std::string text = generate_compose(scenario, options);  // validates groups and types first
+  if (!security_dir_.empty()) {
+    // Every identity the containers use, checked now (missing, expired, of another CA...), not at `up`.
+    check_security_files(security_dir_, kCoordinatorIdentity);
+    for (const GroupSpec& group : scenario.groups) {
+      check_security_files(security_dir_, group.name);
+    }
+  }
 
   // Everything the file mounts must exist, or docker would mount an empty directory instead.
   require_in_repo(root, "deploy/qos/robodds_qos.xml", "QoS file");
   if (options.discovery == ComposeDiscovery::kServer) {
-    require_in_repo(root, options.network == ComposeNetwork::kBridge ? ComposeConstants::kBridgeDiscoveryClientXml
-                                                                     : "deploy/qos/discovery_client.xml",
-                    "discovery client profile");
+    if (options.network == ComposeNetwork::kHost) {
+      require_in_repo(root, "deploy/qos/discovery_client.xml", "discovery client profile");
+    }
   }
 
   if (output_.empty()) {

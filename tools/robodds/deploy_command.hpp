@@ -26,6 +26,7 @@ class DeployCommand : public Command {
   std::string discovery_ = "multicast";
   std::string network_ = "bridge";
   std::string output_;
+  std::string security_dir_;  // empty: no DDS Security
 };
 
 }  // namespace robodds

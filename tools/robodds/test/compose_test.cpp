@@ -96,9 +96,21 @@ TEST(Compose, HostCommandsMatchTheProcessRunner) {
   EXPECT_THAT(yaml, HasSubstr("      ROBODDS_DOMAIN_ID: \"${ROBODDS_DOMAIN_ID:-0}\"\n"));
 }
 
-TEST(Compose, SharedImageBuiltFromTheRepository) {
-  const std::string block = service_block(generate(), "sim");
-  EXPECT_THAT(block, HasSubstr("    image: \"robodds:latest\"\n    build:\n      context: ../..\n      dockerfile: deploy/docker/Dockerfile\n"));
+TEST(Compose, SharedImageBuiltFromTheRepositoryByTheFirstServiceOnly) {
+  const std::string yaml = generate();
+  EXPECT_THAT(service_block(yaml, "coordinator"),
+              HasSubstr("    image: \"${ROBODDS_IMAGE:-robodds:latest}\"\n    build:  # the one image of every service\n"
+                        "      context: ../..\n      dockerfile: deploy/docker/Dockerfile\n"));
+  EXPECT_THAT(service_block(yaml, "sim"), HasSubstr("    image: \"${ROBODDS_IMAGE:-robodds:latest}\"\n"));
+  EXPECT_THAT(service_block(yaml, "sim"), Not(HasSubstr("build:")));
+  EXPECT_EQ(yaml.find("    build:"), yaml.rfind("    build:"));
+  const std::string server = generate(ComposeDiscovery::kServer);
+  EXPECT_THAT(service_block(server, "discovery"), HasSubstr("    build:"));
+  EXPECT_EQ(server.find("    build:"), server.rfind("    build:"));
+}
+
+TEST(Compose, HeaderExtractsResultsFromTheScenarioFolderWhateverTheProject) {
+  EXPECT_THAT(generate(), HasSubstr(" -C /opt/robodds/out -cf - demo | tar -xf - -C out/\n"));
 }
 
 TEST(Compose, MountsQosAndScenarioReadOnlyAndNoParameterFile) {
@@ -115,23 +127,52 @@ TEST(Compose, BridgeMulticastUsesUdpOnlyOnAUserDefinedNetwork) {
   EXPECT_THAT(service_block(yaml, "sim"), HasSubstr("      ROBODDS_PARTICIPANT_PROFILE: robodds.participant.udp_only\n"));
   EXPECT_THAT(service_block(yaml, "sim"), HasSubstr("      ROBODDS_QOS_FILE: /opt/robodds/deploy/qos/robodds_qos.xml\n"));
   EXPECT_THAT(service_block(yaml, "sim"), HasSubstr("    networks:\n      - robodds\n"));
-  EXPECT_THAT(yaml, HasSubstr("\nnetworks:\n  robodds:\n    driver: bridge\n"));
+  EXPECT_THAT(yaml, HasSubstr("\nnetworks:\n  robodds:\n    driver: bridge  # subnet chosen by docker"));
   EXPECT_THAT(yaml, Not(HasSubstr("ipam")));
   EXPECT_THAT(yaml, Not(HasSubstr("network_mode")));
 }
 
-TEST(Compose, DiscoveryServerOnTheBridgeHasAFixedAddressInTheClientProfile) {
+TEST(Compose, DiscoveryServerOnTheBridgeIsFoundByNameWithoutAFixedSubnet) {
   const std::string yaml = generate(ComposeDiscovery::kServer);
   const std::string discovery = service_block(yaml, "discovery");
-  EXPECT_THAT(discovery, HasSubstr("    entrypoint: [fastdds, discovery, \"-i\", \"0\", \"-l\", \"172.30.77.2\", \"-p\", \"11811\"]\n"));
-  EXPECT_THAT(discovery, HasSubstr("      robodds:\n        ipv4_address: \"172.30.77.2\"\n"));
-  EXPECT_THAT(discovery, Not(HasSubstr("ROBODDS_")));
-  EXPECT_THAT(yaml, HasSubstr("    ipam:\n      config:\n        - subnet: \"172.30.77.0/24\"\n"));
+  EXPECT_THAT(discovery, HasSubstr("    entrypoint: [fastdds, discovery, \"-i\", \"0\", \"-l\", \"0.0.0.0\", \"-p\", \"11811\"]\n"));
+  EXPECT_THAT(discovery, HasSubstr("    networks:\n      - robodds\n"));
+  EXPECT_THAT(discovery, Not(HasSubstr("environment:")));
+  // No address anywhere: docker picks the subnet, so two deployments can run on one engine.
+  EXPECT_THAT(yaml, Not(HasSubstr("ipam")));
+  EXPECT_THAT(yaml, Not(HasSubstr("ipv4_address")));
+  EXPECT_THAT(yaml, Not(HasSubstr("172.")));
   const std::string sim = service_block(yaml, "sim");
-  EXPECT_THAT(sim, HasSubstr("      ROBODDS_PARTICIPANT_PROFILE: robodds.participant.discovery_client\n"));
-  EXPECT_THAT(sim, HasSubstr("      ROBODDS_QOS_FILE: /opt/robodds/deploy/compose/discovery_client.compose.xml\n"));
-  EXPECT_THAT(sim, HasSubstr("../../deploy/compose/discovery_client.compose.xml:/opt/robodds/deploy/compose/discovery_client.compose.xml:ro"));
+  EXPECT_THAT(sim, HasSubstr("      ROBODDS_PARTICIPANT_PROFILE: robodds.participant.udp_only\n"));
+  EXPECT_THAT(sim, HasSubstr("      ROBODDS_QOS_FILE: /opt/robodds/deploy/qos/robodds_qos.xml\n"));
+  EXPECT_THAT(sim, HasSubstr("      ROS_DISCOVERY_SERVER: \"discovery:11811\""));
   EXPECT_THAT(sim, HasSubstr("    depends_on: [discovery]\n"));
+  EXPECT_THAT(yaml, Not(HasSubstr("compose.xml")));
+}
+
+TEST(Compose, SecurityMountsEachServiceItsOwnIdentityReadOnly) {
+  ComposeOptions options = options_for(ComposeDiscovery::kMulticast, ComposeNetwork::kBridge);
+  options.security_dir = "/srv/sec";
+  const std::string yaml = generate_compose(scenario_from(kTwoGroups), options);
+  const std::string sim = service_block(yaml, "sim");
+  EXPECT_THAT(sim, HasSubstr("      - \"/srv/sec/sim:/opt/robodds/security/sim:ro\"\n"));
+  EXPECT_THAT(sim, HasSubstr(", --security, /opt/robodds/security"));
+  EXPECT_THAT(sim, Not(HasSubstr("/srv/sec/sensing")));
+  EXPECT_THAT(sim, Not(HasSubstr("/srv/sec/coordinator")));
+  const std::string coordinator = service_block(yaml, "coordinator");
+  EXPECT_THAT(coordinator, HasSubstr("      - \"/srv/sec/coordinator:/opt/robodds/security/coordinator:ro\"\n"));
+  EXPECT_THAT(coordinator, HasSubstr(", --security, /opt/robodds/security"));
+  EXPECT_THAT(service_block(yaml, "sensing"), HasSubstr("/srv/sec/sensing:/opt/robodds/security/sensing:ro"));
+  // Nothing else of the folder (the CA, other identities) is mounted anywhere.
+  EXPECT_THAT(yaml, Not(HasSubstr("/srv/sec:")));
+  EXPECT_THAT(yaml, Not(HasSubstr("/srv/sec/ca")));
+  EXPECT_THAT(generate(), Not(HasSubstr("--security")));
+}
+
+TEST(Compose, SecurityWithTheDiscoveryServerIsRefused) {
+  ComposeOptions options = options_for(ComposeDiscovery::kServer, ComposeNetwork::kBridge);
+  options.security_dir = "/srv/sec";
+  EXPECT_THAT(config_error(scenario_from(kTwoGroups), options), HasSubstr("--security goes with --discovery multicast"));
 }
 
 TEST(Compose, HostNetworkSharesIpcAndUsesTheDefaultProfile) {
