@@ -6,7 +6,7 @@ and the largest resident set of one process. Prints a Markdown table; --plot dra
 robot-tick against N (docs/performance.md, "Cost per robot-tick").
 
   scripts/scale_bench.py [--robots 20,50,100,200,500,1000] [--deploy colocated,processes] [--duration S]
-                         [--repeat K] [--robodds PATH] [--domain D] [--out DIR] [--plot FILE.png]
+                         [--repeat K] [--robodds PATH] [--qos FILE] [--domain D] [--out DIR] [--plot FILE.png]
 
 Each (N, deploy) is run --repeat times, in turn, and the median is printed (the machine is noisy:
 read the figures side by side, from one invocation). --duration is simulated seconds (100 Hz)."""
@@ -39,11 +39,11 @@ def scenario_with_robots(n):
     return scenario
 
 
-def run_once(robodds, scenario_file, deploy, duration_s, domain, out_dir, timeout_s):
+def run_once(robodds, scenario_file, deploy, duration_s, domain, out_dir, timeout_s, qos):
     """One run; returns (ticks per second, max RSS of one process in MB). Raises on failure."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
     cmd = [robodds, "--log", "warn", "run", scenario_file, "--deploy", deploy, "--duration", str(duration_s),
-           "--domain", str(domain), "--out", out_dir, "--no-plots"]
+           "--domain", str(domain), "--out", out_dir, "--no-plots"] + (["--qos", qos] if qos else [])
     done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, timeout=timeout_s)
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} exited {done.returncode}: {done.stderr.strip()[-400:]}")
@@ -60,7 +60,7 @@ def measure(args, n, deploy, scenario_file, work):
     for k in range(args.repeat):
         out_dir = os.path.join(work, f"{deploy}_{n}_{k}")
         child = subprocess.run([sys.executable, os.path.abspath(__file__), "--one", scenario_file, deploy, str(args.duration),
-                                str(args.domain), out_dir, args.robodds, str(args.timeout)],
+                                str(args.domain), out_dir, args.robodds, str(args.timeout), args.qos or ""],
                                capture_output=True, text=True)
         if child.returncode != 0:
             raise RuntimeError(child.stderr.strip())
@@ -73,8 +73,8 @@ def measure(args, n, deploy, scenario_file, work):
 
 def main():
     if len(sys.argv) > 1 and sys.argv[1] == "--one":  # internal: one run in a fresh process
-        scenario_file, deploy, duration, domain, out_dir, robodds, timeout = sys.argv[2:9]
-        print(json.dumps(run_once(robodds, scenario_file, deploy, float(duration), int(domain), out_dir, float(timeout))))
+        scenario_file, deploy, duration, domain, out_dir, robodds, timeout, qos = sys.argv[2:10]
+        print(json.dumps(run_once(robodds, scenario_file, deploy, float(duration), int(domain), out_dir, float(timeout), qos)))
         return 0
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--robots", default="20,50,100,200,500,1000", help="comma-separated robot counts")
@@ -82,6 +82,7 @@ def main():
     p.add_argument("--duration", type=float, default=5.0, help="simulated seconds per run (100 Hz steps)")
     p.add_argument("--repeat", type=int, default=3, help="runs per (N, deploy); the median is printed")
     p.add_argument("--robodds", default=os.path.join(ROOT, "build", "tools", "robodds", "robodds"))
+    p.add_argument("--qos", help="QoS profile file instead of the default (e.g. an older robodds_qos.xml, to compare)")
     p.add_argument("--domain", type=int, default=127)
     p.add_argument("--timeout", type=float, default=600.0, help="s, per run")
     p.add_argument("--out", help="keep the scenarios here (default: a temporary folder)")
