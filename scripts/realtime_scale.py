@@ -49,7 +49,9 @@ def cpu_and_name(pid):
         argv = f.read().split("\0")
     if "--group" in argv:
         return cpu_s, argv[argv.index("--group") + 1]
-    return cpu_s, "run (coordinator)" if "run" in argv else os.path.basename(argv[0])
+    if "run" in argv:
+        return cpu_s, "run (coordinator)"
+    return cpu_s, os.path.basename(argv[0]) if argv[0] else ""
 
 
 def run_realtime(args, scenario_file, deploy, out_dir):
@@ -67,7 +69,9 @@ def run_realtime(args, scenario_file, deploy, out_dir):
                 cpu_s, name = cpu_and_name(pid)
             except (OSError, IndexError):
                 continue
-            cpu[pid] = (name, cpu_s)
+            # A process that has exited (a zombie until reaped) keeps its times but loses its
+            # command line: keep the name read while it ran.
+            cpu[pid] = (cpu[pid][0] if pid in cpu and cpu[pid][0] else name, cpu_s)
         if time.monotonic() - started > args.duration + 120:
             proc.kill()
             break
