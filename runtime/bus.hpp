@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace robodds {
@@ -85,6 +86,9 @@ class Bus {
   /// DDS EXCLUSIVE ownership, its writers with `writer_strength` (the highest alive strength owns
   /// each instance). Default: nothing (a bus without ownership, e.g. MemoryBus).
   virtual void set_exclusive_ownership(const std::string& /*topic*/, std::uint32_t /*writer_strength*/) {}
+  /// KEEP_LAST depth of a writer with QoS profile `profile` (samples kept per instance), or
+  /// nullopt when the bus keeps no such history (KEEP_ALL, or a bus without one, e.g. MemoryBus).
+  virtual std::optional<std::size_t> writer_history_depth(const std::string& /*profile*/) const { return std::nullopt; }
   /// Samples of this process's input topics that the DDS type support could not decode and
   /// dropped (runtime/dds/undecodable.hpp), per topic; topics with none are left out. Default:
   /// none (a bus without decoding, e.g. MemoryBus). summary.json "hosts".<member>."undecodable".

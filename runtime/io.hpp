@@ -148,10 +148,17 @@ inline constexpr std::int64_t kProducerSilenceNs = 1000000000;
 class InputBase {
  public:
   InputBase(std::string topic, std::string owner, const StepState* state, Notifier* notifier, detail::InputOptions options)
-      : topic_(std::move(topic)), owner_(std::move(owner)), state_(state), notifier_(notifier), options_(std::move(options)) {}
+      : topic_(std::move(topic)), owner_(std::move(owner)), state_(state), notifier_(notifier), options_(std::move(options)) {
+    // Each stream once: the wake-up count of ready() counts streams (a key named twice would
+    // never be counted down, and the executor would only notice at its 20 ms poll).
+    options_.expected.assign(expected_set_.begin(), expected_set_.end());
+  }
   virtual ~InputBase() = default;
 
   const std::string& topic() const { return topic_; }
+  /// Lockstep: reads samples up to `delay_steps()` steps old, and waits for some streams (gated).
+  std::uint64_t delay_steps() const { return options_.delay_steps; }
+  bool gated() const { return !options_.ignore_step && !options_.expected.empty(); }
   std::uint64_t rejected_count() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return counts_.rejected_total();
@@ -252,8 +259,8 @@ class InputBase {
     }
     lockstep_error_ = "lockstep: topic " + topic_ + " (" + label + ") lost samples: after step " + std::to_string(p.step) +
                       ", whose sample announced the next at step " + std::to_string(p.next_step) + ", came step " +
-                      std::to_string(step) + " (a sample dropped and no longer in the writer's history: its lockstep "
-                      "QoS profile's history depth must exceed --lockstep-window)";
+                      std::to_string(step) + " (a sample dropped and no longer in the writer's history, or one that "
+                      "could not be decoded: see summary.json hosts.*.undecodable)";
     log::error(owner_, lockstep_error_);
   }
 

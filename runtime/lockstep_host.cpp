@@ -1,6 +1,11 @@
 #include "runtime/lockstep_host.hpp"
 
+#include <algorithm>
+#include <optional>
+
 #include "common/number_text.hpp"
+#include "runtime/error.hpp"
+#include "runtime/qos_profiles.hpp"
 #include "runtime/log.hpp"
 
 namespace robodds {
@@ -28,6 +33,39 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
                                  [this](const std::string& e) { log::warn(options_.member, "sim/clock: " + e); });
   ack_writer_ = protocol_bus.writer(done.name, done.type_name, profile);
   ack_output_ = std::make_unique<Output<idl::StepDone>>(ack_writer_, &state_);
+  if (run.mode == TimeMode::kLockstep && !run.single_process) {
+    check_history_bound(run, options, slots);
+  }
+}
+
+void check_history_bound(const RunContext& run, const HostOptions& options, const LockstepHost::Slots& slots) {
+  const std::optional<std::size_t> depth = run.bus->writer_history_depth(kLockstepProfile);
+  if (!depth) {
+    return;
+  }
+  const std::uint64_t window = std::max<std::uint64_t>(1, options.lockstep_window);
+  for (const auto& slot : slots) {
+    for (const auto& input : slot->context->inputs()) {
+      if (!input->gated()) {
+        continue;
+      }
+      // A consumer due every p steps reading d steps late needs, at its due step m, the samples up
+      // to m - d. Its host acknowledges the steps in between without them, and producers run up
+      // to `window` ticks past the last acknowledged step: W + p + d - 1 samples of an instance
+      // may be written before the consumer must have them. A writer keeping fewer may drop one a
+      // reader never got (e.g. a reader that matched late, at the start): a silently different run.
+      const std::uint64_t ahead = window + slot->state.period_steps + input->delay_steps() - 1;
+      if (ahead > *depth) {
+        throw ConfigError("lockstep: component '" + slot->spec->name + "' reads " + input->topic() + " " +
+                          std::to_string(input->delay_steps()) + " step(s) late every " +
+                          std::to_string(slot->state.period_steps) + " step(s): with --lockstep-window " +
+                          std::to_string(window) + " its producers may write " + std::to_string(ahead) +
+                          " samples of an instance before it reads them, more than the '" + kLockstepProfile +
+                          "' QoS profile's writer history keeps (KEEP_LAST " + std::to_string(*depth) +
+                          "): lower --lockstep-window or raise that depth in the QoS file");
+      }
+    }
+  }
 }
 
 void LockstepHost::begin(Clock::time_point start) {

@@ -74,6 +74,7 @@ def run_realtime(args, scenario_file, deploy, out_dir):
             cpu[pid] = (cpu[pid][0] if pid in cpu and cpu[pid][0] else name, cpu_s)
         if time.monotonic() - started > args.duration + 120:
             proc.kill()
+            proc.wait()
             break
         time.sleep(0.2)
     wall_s = time.monotonic() - started

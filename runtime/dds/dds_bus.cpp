@@ -116,6 +116,15 @@ class FastDdsBus : public DdsBus {
     return handle;
   }
 
+  std::optional<std::size_t> writer_history_depth(const std::string& profile) const override {
+    dds::DataWriterQos qos;
+    if (publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK ||
+        qos.history().kind != dds::KEEP_LAST_HISTORY_QOS) {
+      return std::nullopt;
+    }
+    return static_cast<std::size_t>(qos.history().depth);
+  }
+
   std::shared_ptr<ReaderHandle> reader(const std::string& topic, const std::string& type_name, const std::string& profile,
                                        SampleCallback on_sample, ReaderEventCallback on_event) override {
     std::lock_guard<std::mutex> lock(mutex_);

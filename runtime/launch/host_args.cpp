@@ -173,7 +173,8 @@ void add_lockstep_options(CLI::App* app, LockstepArgs& args) {
   app->add_option("--start-timeout", args.start_timeout_s, "s, max wait for peers to start");
   app->add_option("--lockstep-window", args.lockstep_window,
                   "lockstep coordinator: ticks outstanding at once (1 = each tick waits for all acknowledgements; "
-                  "more pipelines the groups, same results; at most 32, the lockstep QoS profile's writer history)")
+                  "more pipelines the groups, same results; at most 32; a host given it checks that its producers' "
+                  "lockstep writer history covers it)")
       ->check(CLI::Range(1, 32));
 }
 

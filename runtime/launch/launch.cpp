@@ -120,6 +120,7 @@ std::vector<std::string> child_argv(const Scenario& scenario, const LaunchOption
   args.dds.security_dir = launch.dds.security_dir;  // the child's identity is its group
   args.lockstep.input_timeout_s = launch.lockstep.input_timeout_s;
   args.lockstep.start_timeout_s = launch.lockstep.start_timeout_s;
+  args.lockstep.lockstep_window = launch.lockstep.lockstep_window;  // the hosts check their history bound with it
   std::vector<std::string> argv = {self_exe(), "host"};
   for (std::string& arg : to_argv(args)) {
     argv.push_back(std::move(arg));
@@ -354,7 +355,8 @@ void run_host(const ComponentRegistry& registry, const HostArgs& args, const std
   const bool standalone = args.deploy != to_string(Deploy::kProcesses);
   const std::string run_name = "run " + std::to_string(options.run_id) + " of '" + scenario.name + "'";
   if (standalone && options.coordinator) {
-    options.progress = [member = options.member, reported = std::uint64_t{0}](std::uint64_t acked, std::uint64_t last) mutable {
+    options.progress = [member = options.member, reported = std::uint64_t{0}](std::uint64_t step, std::uint64_t last) mutable {
+      const std::uint64_t acked = step + 1;  // `step` is the index of the step just acknowledged
       const std::uint64_t decile = acked * 10 / (last + 1);
       if (decile > reported) {
         reported = decile;

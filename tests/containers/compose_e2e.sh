@@ -59,6 +59,10 @@ e2e_cleanup() {
   exit "$rc"
 }
 trap e2e_cleanup EXIT
+# A SIGTERM or SIGINT (a CI cancel, ctest's timeout) would end bash without the EXIT trap: turn
+# them into exits so the cleanup runs (the daemon started here, containers, networks, volumes).
+trap 'exit 143' TERM
+trap 'exit 130' INT
 
 apt_install() {  # PACKAGE...: from the Debian archive of this machine's apt sources
   echo "installing $* (apt-get)"
