@@ -232,7 +232,6 @@ class InputBase {
     // Not ready: the executor will wait, and this input wakes it once, when the last missing
     // stream arrives (on_sample), not at every sample: across processes a wake-up per sample
     // was a context switch per robot and topic (docs/performance.md, "Cost per robot-tick").
-    armed_ = missing_streams != 0;
     armed_step_ = step;
     armed_missing_ = missing_streams;
     return missing_streams == 0;
@@ -350,20 +349,16 @@ class InputBase {
   /// sample's step is beyond it (next_step > step - delay, written without unsigned underflow).
   bool covers(const Progress& p, std::uint64_t step) const { return p.next_step + options_.delay_steps > step; }
   /// Whether a sample must wake the executor: always, unless this is a gated lockstep input
-  /// whose waiting executor (armed by ready()) still misses other streams. Call with mutex_ held,
+  /// whose waiting executor (counted by ready()) still misses other streams. Call with mutex_ held,
   /// `was_covering`: covers(p, armed_step_) before the sample was applied.
   bool wakes_executor(const Progress& p, bool was_covering) {
-    if (options_.ignore_step || state_->mode == TimeMode::kRealtime || options_.expected.empty()) {
+    if (!gated() || state_->mode == TimeMode::kRealtime) {
       return true;
     }
-    if (!armed_ || was_covering || !covers(p, armed_step_)) {
-      return false;
+    if (armed_missing_ == 0 || was_covering || !covers(p, armed_step_)) {
+      return false;  // nobody waits, or this stream was not among the missing
     }
-    if (--armed_missing_ != 0) {
-      return false;
-    }
-    armed_ = false;
-    return true;
+    return --armed_missing_ == 0;
   }
   bool wanted(std::uint64_t key) const {
     return options_.expected.empty() || expected_set_.count(key) != 0;
@@ -392,10 +387,9 @@ class InputBase {
   InputCounts counts_;
   std::set<std::pair<std::uint64_t, std::string>> logged_rejections_;  // (writer_id, reason)
   std::string lockstep_error_;  // lockstep: the first second producer or lost sample, thrown by ready()
-  // Set by a ready() that returned false, under mutex_: the step it waited for and how many
-  // expected streams it still missed then (wakes_executor()). Mutable: ready() is a query for
-  // its callers; this is only whom to wake.
-  mutable bool armed_ = false;
+  // Set by ready(), under mutex_: the step it was asked about and how many expected streams
+  // it still missed then, counted down by wakes_executor() (0: nobody waits). Mutable: ready() is
+  // a query for its callers; this is only whom to wake.
   mutable std::uint64_t armed_step_ = 0;
   mutable std::size_t armed_missing_ = 0;
 };
@@ -498,7 +492,7 @@ class Input : public InputBase {
       return true;  // in lockstep a second producer ends the run: let ready() throw it now
     }
     check_chain(p, label, sample.header().step());
-    const bool was_covering = armed_ && covers(p, armed_step_);
+    const bool was_covering = armed_missing_ != 0 && covers(p, armed_step_);
     p.seen = true;
     p.step = sample.header().step();
     p.next_step = sample.header().next_step();

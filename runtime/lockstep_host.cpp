@@ -18,26 +18,11 @@ using host_detail::samples_of_run;
 using host_detail::seconds_since;
 using host_detail::sim_stamp_ns;
 
-LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& slots, Bus& protocol_bus,
-                           HealthExchange* health)
-    : run_(run), options_(options), slots_(slots), health_(health) {
-  state_.mode = run.mode;
-  const TopicInfo& clock = topic_info("sim/clock");
-  const TopicInfo& done = topic_info("sim/step_done");
-  const std::string profile = qos_profile_for(clock, run.mode, run.single_process);
-  detail::InputOptions tick_options;
-  tick_options.ignore_step = true;
-  tick_input_ = std::make_unique<Input<idl::SimTick>>(clock.name, options.member, &state_, run.notifier, tick_options);
-  auto* raw = tick_input_.get();
-  tick_reader_ = protocol_bus.reader(clock.name, clock.type_name, profile, samples_of_run(raw, options.run_id),
-                                 [this](const std::string& e) { log::warn(options_.member, "sim/clock: " + e); });
-  ack_writer_ = protocol_bus.writer(done.name, done.type_name, profile);
-  ack_output_ = std::make_unique<Output<idl::StepDone>>(ack_writer_, &state_);
-  if (run.mode == TimeMode::kLockstep && !run.single_process) {
-    check_history_bound(run, options, slots);
-  }
-}
+namespace {
 
+/// Lockstep across processes: ConfigError, naming the component, topic and figures, when a
+/// component's gated input could need a sample its producer's writer history (the `lockstep` QoS
+/// profile's KEEP_LAST depth) no longer holds: window + period + delay - 1 > depth.
 void check_history_bound(const RunContext& run, const HostOptions& options, const LockstepHost::Slots& slots) {
   const std::optional<std::size_t> depth = run.bus->writer_history_depth(kLockstepProfile);
   if (!depth) {
@@ -65,6 +50,28 @@ void check_history_bound(const RunContext& run, const HostOptions& options, cons
                           "): lower --lockstep-window or raise that depth in the QoS file");
       }
     }
+  }
+}
+
+}  // namespace
+
+LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& slots, Bus& protocol_bus,
+                           HealthExchange* health)
+    : run_(run), options_(options), slots_(slots), health_(health) {
+  state_.mode = run.mode;
+  const TopicInfo& clock = topic_info("sim/clock");
+  const TopicInfo& done = topic_info("sim/step_done");
+  const std::string profile = qos_profile_for(clock, run.mode, run.single_process);
+  detail::InputOptions tick_options;
+  tick_options.ignore_step = true;
+  tick_input_ = std::make_unique<Input<idl::SimTick>>(clock.name, options.member, &state_, run.notifier, tick_options);
+  auto* raw = tick_input_.get();
+  tick_reader_ = protocol_bus.reader(clock.name, clock.type_name, profile, samples_of_run(raw, options.run_id),
+                                 [this](const std::string& e) { log::warn(options_.member, "sim/clock: " + e); });
+  ack_writer_ = protocol_bus.writer(done.name, done.type_name, profile);
+  ack_output_ = std::make_unique<Output<idl::StepDone>>(ack_writer_, &state_);
+  if (run.mode == TimeMode::kLockstep && !run.single_process) {
+    check_history_bound(run, options, slots);
   }
 }
 

@@ -16,12 +16,6 @@
 
 namespace robodds {
 
-/// Lockstep across processes: ConfigError, naming the component, topic and figures, when a
-/// component's gated input could need a sample its producer's writer history (the `lockstep` QoS
-/// profile's KEEP_LAST depth) no longer holds: window + period + delay - 1 > depth.
-void check_history_bound(const RunContext& run, const HostOptions& options,
-                         const std::vector<std::unique_ptr<host_detail::ComponentSlot>>& slots);
-
 class LockstepHost {
  public:
   using Slots = std::vector<std::unique_ptr<host_detail::ComponentSlot>>;
