@@ -219,10 +219,7 @@ def main(argv):
         print("| %s: %s | %s | %.3f / %.3f / %.3f | %s | %s |" % (case, CASES[case][0], reached, min(rmse), sum(rmse) / len(rmse),
                                                               max(rmse), recovery or "-", required))
     json.dump(table, open(os.path.join(args.out, "results.json"), "w"), indent=1, sort_keys=True)
-    if failures:
-        print("\nMISSED:\n" + "\n".join(failures), file=sys.stderr)
-        return 1 if args.check else 0
-    return 0
+    return paper3_results.report_misses(failures, args.check)
 
 
 if __name__ == "__main__":

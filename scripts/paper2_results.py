@@ -17,6 +17,9 @@ import sys
 
 import yaml
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import paper3_results  # noqa: E402  (report_misses: one ending for every results script)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROBODDS = os.environ.get("ROBODDS", os.path.join(ROOT, "build", "tools", "robodds", "robodds"))
 SCENARIOS = os.path.join(ROOT, "sim", "scenarios")
@@ -173,10 +176,7 @@ def main(argv):
             get(b, "phase1.spacing_rmse_deg"), get(b, "phase2.spacing_rmse_deg")))
     json.dump({label: summary["metrics"] for label, summary in m.items()}, open(os.path.join(args.out, "results.json"), "w"),
               indent=1, sort_keys=True)
-    if failures:
-        print("\nMISSED:\n" + "\n".join(failures), file=sys.stderr)
-        return 1 if args.check else 0
-    return 0
+    return paper3_results.report_misses(failures, args.check)
 
 
 if __name__ == "__main__":

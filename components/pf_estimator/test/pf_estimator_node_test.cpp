@@ -35,23 +35,33 @@ components:
 double fix_x(std::uint32_t robot) { return robot == 1 ? 10.0 : 50.0; }
 double fix_y(std::uint32_t robot) { return robot == 1 ? 20.0 : 60.0; }
 
+/// Odometry of `robot` standing still at `step`, the next at step + 1.
+void publish_standstill_odometry(NodeHarness& h, std::uint32_t robot, std::uint64_t step) {
+  idl::Odometry odometry;
+  odometry.robot_id(robot);
+  odometry.dt_s(0.01);
+  h.publish("sensor/odometry", odometry, step, step + 1);
+}
+
+/// A position fix of `robot` at (fix_x, fix_y), variance 2.28 m^2 per axis, the next at `next_step`.
+void publish_fix(NodeHarness& h, std::uint32_t robot, std::uint64_t step, std::uint64_t next_step) {
+  idl::PositionMeasurement fix;
+  fix.robot_id(robot);
+  fix.x(fix_x(robot));
+  fix.y(fix_y(robot));
+  fix.var_x(2.28);
+  fix.var_y(2.28);
+  h.publish("sensor/position", fix, step, next_step);
+}
+
 TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
   NodeHarness h(kScenario);
   robodds::component_registration::register_pf_estimator(h.registry());
   h.feed([&h](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
-      idl::Odometry odometry;  // standing still
-      odometry.robot_id(robot);
-      odometry.dt_s(0.01);
-      h.publish("sensor/odometry", odometry, step, step + 1);
+      publish_standstill_odometry(h, robot, step);
       if (step % 10 == 0) {
-        idl::PositionMeasurement fix;
-        fix.robot_id(robot);
-        fix.x(fix_x(robot));
-        fix.y(fix_y(robot));
-        fix.var_x(2.28);
-        fix.var_y(2.28);
-        h.publish("sensor/position", fix, step, step + 10);
+        publish_fix(h, robot, step, step + 10);
       }
     }
   });
@@ -91,18 +101,9 @@ components:
                   heading_check + "}}\n");
     robodds::component_registration::register_pf_estimator(h.registry());
     h.feed([&h](std::uint64_t step) {
-      idl::Odometry odometry;  // standing still
-      odometry.robot_id(1);
-      odometry.dt_s(0.01);
-      h.publish("sensor/odometry", odometry, step, step + 1);
+      publish_standstill_odometry(h, 1, step);
       if (step % 10 == 0) {
-        idl::PositionMeasurement fix;
-        fix.robot_id(1);
-        fix.x(fix_x(1));
-        fix.y(fix_y(1));
-        fix.var_x(2.28);
-        fix.var_y(2.28);
-        h.publish("sensor/position", fix, step, step + 10);
+        publish_fix(h, 1, step, step + 10);
       }
     });
     const auto& estimates = h.record<idl::PoseEstimate>("estimate/pose");
@@ -133,17 +134,8 @@ components:
     if (step > kLastFed) {
       return;
     }
-    idl::Odometry odometry;
-    odometry.robot_id(1);
-    odometry.dt_s(0.01);
-    h.publish("sensor/odometry", odometry, step, step + 1);
-    idl::PositionMeasurement fix;
-    fix.robot_id(1);
-    fix.x(fix_x(1));
-    fix.y(fix_y(1));
-    fix.var_x(2.28);
-    fix.var_y(2.28);
-    h.publish("sensor/position", fix, step, step + 1);
+    publish_standstill_odometry(h, 1, step);
+    publish_fix(h, 1, step, step + 1);
   });
   const auto& estimates = h.record<idl::PoseEstimate>("estimate/pose");
   h.run({"pf"});
