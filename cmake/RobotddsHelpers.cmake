@@ -29,7 +29,11 @@ function(robodds_unit_test name)
   if(ARG_READS_SOURCE_TREE)
     target_compile_definitions(${name} PRIVATE ROBODDS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   endif()
-  gtest_discover_tests(${name} TEST_PREFIX "${name}." DISCOVERY_MODE PRE_TEST PROPERTIES LABELS unit)
+  # TempDir() of every case is the build tree's test_tmp/, not /tmp: two checkouts testing on one
+  # machine never share a case's files, and nothing is left in /tmp.
+  file(MAKE_DIRECTORY "${PROJECT_BINARY_DIR}/test_tmp")
+  gtest_discover_tests(${name} TEST_PREFIX "${name}." DISCOVERY_MODE PRE_TEST
+                       PROPERTIES LABELS unit ENVIRONMENT "TEST_TMPDIR=${PROJECT_BINARY_DIR}/test_tmp/")
 endfunction()
 
 # robodds_benchmark(NAME SOURCES s... [DEPS d...])
