@@ -1,5 +1,6 @@
 #include "common/random.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace robodds {
@@ -102,5 +103,10 @@ double standard_normal_outside_rectangle(RandomEngine& engine, std::uint64_t bit
 }
 
 }  // namespace detail
+
+double gauss_markov_step(double x, double dt_s, double tau_s, double sigma, double unit_normal) {
+  const double a = std::exp(-dt_s / tau_s);
+  return a * x + std::sqrt(std::max(0.0, 1.0 - a * a)) * sigma * unit_normal;
+}
 
 }  // namespace robodds

@@ -101,4 +101,10 @@ inline double standard_normal(RandomEngine& engine) {
   return detail::standard_normal_outside_rectangle(engine, bits);
 }
 
+/// One exact step of a first-order Gauss-Markov process (stationary standard deviation sigma,
+/// correlation time tau_s > 0) over dt_s >= 0: a x + sqrt(1 - a^2) sigma unit_normal with
+/// a = exp(-dt_s / tau_s). dt_s = 0 keeps x; a long gap forgets x. The caller draws unit_normal,
+/// so the draw order stays visible where the stream is used.
+double gauss_markov_step(double x, double dt_s, double tau_s, double sigma, double unit_normal);
+
 }  // namespace robodds

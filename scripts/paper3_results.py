@@ -43,6 +43,9 @@ T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8:
 # White-only range noise of the ablation: the single-epoch position error of the structured model
 # (NOTES.md: white 0.13 m gives eq. 1's 0.39 m at side 0.5).
 WHITE_ONLY = {"white_sigma_m": 0.13, "link_bias_sigma_m": 0.0, "common_sigma_m": 0.0}
+# Experiment 2's range noise as issue 11 first put it: the base sigmas (0.04 / 0.07 / 0.30 m) all
+# x 1.25; paper3_exp2.yaml grows the per-link terms only (components/uwb_sensor/README.md).
+EXP2_UNIFORM = {"white_sigma_m": 0.04, "link_bias_sigma_m": 0.07, "common_sigma_m": 0.30, "sigma_scale": 1.25}
 
 
 def variant(base, name, out_dir, component_params):
@@ -146,6 +149,8 @@ def main(argv):
     if "ablation" in parts:
         configs["exp1a_s0.5_w30"] = exp1a("exp1a_s0.5_w30", args.out, 0.5, 30)
         configs["white_only"] = exp1a("white_only", args.out, uwb=WHITE_ONLY)
+        configs["exp2"] = os.path.join(SCENARIOS, "paper3_exp2.yaml")
+        configs["exp2_uniform"] = variant("paper3_exp2", "exp2_uniform", args.out, {"uwb1": EXP2_UNIFORM, "uwb2": EXP2_UNIFORM})
     if "table2" in parts:
         configs["exp2"] = os.path.join(SCENARIOS, "paper3_exp2.yaml")
     # Longest runs first so that the two slots end together.
@@ -246,6 +251,17 @@ def main(argv):
                               ("white only, 0.13 m", "white_only")):
             print("| %s | %s | %s | %s | %.2f |" % (title, cell(config, "uwb"), cell(config, "window"), cell(config, "pf"),
                                                     stat(config, "window") / stat(config, "uwb")))
+    if "exp2_uniform" in configs:
+        print()
+        print("### Experiment 2's range noise: every sigma x 1.25 vs the per-link terms grown (Table 2)")
+        print()
+        print("| range noise | UWB only | window | PF (ranges) [22] | PF |")
+        print("|---|---|---|---|---|")
+        for title, config in (("every sigma x 1.25: white 0.05, link 0.0875, common 0.375 m", "exp2_uniform"),
+                              ("per link (paper3_exp2.yaml): white 0.05, link 0.105, common 0.30 m", "exp2")):
+            print("| %s | %s | %s | %s | %s |" % (title, cell(config, "uwb"), cell(config, "window"), cell(config, "pf_baseline"),
+                                                cell(config, "pf")))
+        print("| paper | %s | %s | %s | %s |" % tuple(paper(PAPER_T2[k]) for k in ("uwb", "window", "pf_baseline", "pf")))
 
     # --- acceptance (issue 11) -------------------------------------------------------------------
     def need(ok, text):

@@ -93,5 +93,12 @@ TEST(Uniform01, StaysInHalfOpenUnitInterval) {
   }
 }
 
+TEST(GaussMarkovStep, IsTheExactDiscretisation) {
+  EXPECT_DOUBLE_EQ(gauss_markov_step(0.3, 0.0, 2.0, 0.07, 5.0), 0.3) << "dt = 0 keeps the value";
+  const double a = std::exp(-0.5 / 2.0);
+  EXPECT_DOUBLE_EQ(gauss_markov_step(0.3, 0.5, 2.0, 0.07, 1.5), a * 0.3 + std::sqrt(1.0 - a * a) * 0.07 * 1.5);
+  EXPECT_NEAR(gauss_markov_step(0.3, 1e6, 2.0, 0.07, 1.5), 0.07 * 1.5, 1e-12) << "long gaps forget";
+}
+
 }  // namespace
 }  // namespace robodds

@@ -20,6 +20,12 @@ struct OdometryParams {
   /// not cover.
   double left_slip = 0.0;
   double right_slip = 0.0;
+  /// Slip that wanders (an uneven floor: paper 3's wheels "slip and spin to different degrees"):
+  /// each wheel's scale error also carries an independent zero-mean Gauss-Markov process of this
+  /// stationary standard deviation (dimensionless, like the slips) and correlation time. 0 = off
+  /// (and then no random draws are spent on it, so existing streams are unchanged).
+  double slip_wander_sigma = 0.0;
+  double slip_wander_tau_s = 10.0;
   /// A constant error added to the measured turn rate (like a gyro's bias), on top of what the
   /// wheels give; like the slips, not covered by the reading's claimed variance.
   double turn_rate_bias_radps = 0.0;

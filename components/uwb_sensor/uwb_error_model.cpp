@@ -28,7 +28,7 @@ const params::ParamTable<UwbErrorParams>& uwb_error_param_table() {
                "smallest NLOS excess (uniform in [nlos_min_m, nlos_max_m])")
           .add("nlos_max_m", &P::nlos_max_m, "m", params::non_negative(), "largest NLOS excess")
           .add("sigma_scale", &P::sigma_scale, "", params::non_negative(),
-               "multiplies every sigma (white, link bias, common mode); issue 11's experiment 2: 1.25")
+               "multiplies every sigma (white, link bias, common mode): uniformly worse ranging in one knob")
           .add("frame_loss_probability", &P::frame_loss_probability, "", params::in_half_open_interval(0.0, 1.0),
                "probability that a whole frame (K x L ranges of one direction) is lost (0 = never)");
   return table;
@@ -39,11 +39,6 @@ void UwbErrorParams::validate() const {
   if (!(nlos_min_m <= nlos_max_m)) {
     param_checks::reject("nlos_min_m", "must be <= nlos_max_m (" + shortest_text(nlos_max_m) + ")", nlos_min_m);
   }
-}
-
-double gauss_markov_step(double x, double dt_s, double tau_s, double sigma, double unit_normal) {
-  const double a = std::exp(-dt_s / tau_s);
-  return a * x + std::sqrt(std::max(0.0, 1.0 - a * a)) * sigma * unit_normal;
 }
 
 PairErrors::PairErrors(Eigen::Index nodes_a, Eigen::Index nodes_b, double time_s, const UwbErrorParams& params,

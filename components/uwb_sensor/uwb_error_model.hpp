@@ -38,8 +38,8 @@ struct UwbErrorParams {
   /// nlos_min_m <= nlos_max_m (validate()). Not scaled by sigma_scale: an excess path, not a sigma.
   double nlos_min_m = 0.2;
   double nlos_max_m = 1.5;
-  /// Multiplies every sigma (white, link bias, common mode): issue 11's experiment 2 runs 1.25
-  /// ("ranging grew worse there", the paper says).
+  /// Multiplies every sigma (white, link bias, common mode): uniformly worse ranging in one knob.
+  /// (Experiment 2 sets the sigmas one by one instead: components/uwb_sensor/README.md.)
   double sigma_scale = 1.0;
   /// A whole frame (all K x L ranges of one direction at one sample time) is lost.
   double frame_loss_probability = 0.0;
@@ -49,10 +49,6 @@ struct UwbErrorParams {
 };
 
 const params::ParamTable<UwbErrorParams>& uwb_error_param_table();
-
-/// One exact Gauss-Markov step over dt_s >= 0: a x + sqrt(1 - a^2) sigma unit_normal,
-/// a = exp(-dt_s / tau_s). dt_s = 0 keeps x.
-double gauss_markov_step(double x, double dt_s, double tau_s, double sigma, double unit_normal);
 
 /// The errors that both directions of one robot pair (a, b) share: the link biases b_kl
 /// (nodes_a x nodes_b, row k: node k of a) and the common-mode error c_ab.

@@ -20,7 +20,7 @@ class OdometrySensorNode : public Component {
     p.validate(params_);
     ctx.set_rate_hz(params_.rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {
-      robots_.emplace(robot.id, Robot{RandomEngine(ctx.seed_for("robot" + std::to_string(robot.id))), TwistAccumulator{}});
+      robots_.emplace(robot.id, Robot{RandomEngine(ctx.seed_for("robot" + std::to_string(robot.id))), TwistAccumulator{}, SlipWander{}});
     }
     truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(ctx.robot_keys()));
     out_ = &ctx.advertise<idl::Odometry>("sensor/odometry");
@@ -34,7 +34,11 @@ class OdometrySensorNode : public Component {
         const double covered_s = static_cast<double>(state.header().next_step() - state.header().step()) * step_s_;
         robot.travel.add(model::Twist{state.v(), state.omega()}, covered_s);
       }
-      const OdometryReading reading = measure_odometry(robot.travel.mean(), robot.travel.elapsed_s(), params_, robot.engine);
+      const double covered_s = robot.travel.elapsed_s();
+      // Draw order per reading: the wander's step over this interval, then the wheel noise (inside
+      // measure_odometry); with the wander off it draws nothing, so the stream is what it was.
+      advance_slip_wander(robot.wander, covered_s, params_, robot.engine);
+      const OdometryReading reading = measure_odometry(robot.travel.mean(), covered_s, params_, robot.engine, robot.wander);
       robot.travel.reset();
       idl::Odometry m;
       m.robot_id(id);
@@ -51,6 +55,7 @@ class OdometrySensorNode : public Component {
   struct Robot {
     RandomEngine engine;
     TwistAccumulator travel;  // true twist since the last reading
+    SlipWander wander;        // the wandering part of the slips (uneven floor)
   };
 
   OdometryParams params_;

@@ -205,5 +205,54 @@ TEST(OdometryModel, TurnRateBiasDrawsNothingExtra) {
   EXPECT_EQ(a, b);
 }
 
+// The wander off (the default) spends no draws: every scenario without it keeps its streams.
+TEST(SlipWander, OffDrawsNothingAndStaysZero) {
+  RandomEngine engine(11);
+  const RandomEngine before = engine;
+  SlipWander wander;
+  advance_slip_wander(wander, 0.05, OdometryParams{}, engine);
+  EXPECT_EQ(engine, before);
+  EXPECT_EQ(wander.left, 0.0);
+  EXPECT_EQ(wander.right, 0.0);
+}
+
+// On: starts stationary, keeps its sigma, and its lag correlation is exp(-dt / tau) (so it is
+// neither white nor frozen); the two wheels wander independently.
+TEST(SlipWander, IsAStationaryGaussMarkovProcessPerWheel) {
+  OdometryParams params;
+  params.slip_wander_sigma = 0.004;
+  params.slip_wander_tau_s = 10.0;
+  const double dt_s = 0.05;
+  const int kSteps = 400000;  // 20,000 s: 2,000 correlation times
+  RandomEngine engine(derive_seed(5, "odometry_sensor/wander"));
+  SlipWander wander;
+  double sum_l = 0.0, sum_ll = 0.0, sum_lag = 0.0, sum_lr = 0.0, previous = 0.0;
+  for (int i = 0; i < kSteps; ++i) {
+    advance_slip_wander(wander, dt_s, params, engine);
+    ASSERT_TRUE(wander.started);
+    sum_l += wander.left;
+    sum_ll += wander.left * wander.left;
+    sum_lr += wander.left * wander.right;
+    if (i > 0) sum_lag += wander.left * previous;
+    previous = wander.left;
+  }
+  const double var = sum_ll / kSteps;
+  EXPECT_NEAR(std::sqrt(var), 0.004, 0.004 * 0.1);
+  EXPECT_NEAR(sum_l / kSteps, 0.0, 0.0008);
+  EXPECT_NEAR(sum_lag / (kSteps - 1) / var, std::exp(-dt_s / 10.0), 0.002);
+  EXPECT_NEAR(sum_lr / kSteps / var, 0.0, 0.1) << "left and right wander independently";
+}
+
+TEST(SlipWander, ScalesTheWheelSpeedsLikeTheSlip) {
+  OdometryParams params = noiseless();
+  params.left_slip = 0.001;
+  RandomEngine engine(3);
+  const OdometryReading reading =
+      measure_odometry(model::Twist{1.0, 0.0}, 0.02, params, engine, SlipWander{0.002, -0.003, true});
+  // Left reads 1.003, right 0.997: v = 1.0, omega = (0.997 - 1.003) / 0.5.
+  EXPECT_NEAR(reading.v, 1.0, 1e-12);
+  EXPECT_NEAR(reading.omega, -0.006 / params.wheel_base_m, 1e-12);
+}
+
 }  // namespace
 }  // namespace robodds::odometry_sensor

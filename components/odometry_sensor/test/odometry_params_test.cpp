@@ -102,5 +102,20 @@ TEST(OdometryParams, TurnRateBiasMayHaveEitherSignButMustBeFinite) {
   }
 }
 
+TEST(OdometryParams, RejectsABadSlipWander) {
+  for (double bad : {-0.001, 0.5, kNan, kInf}) {
+    OdometryParams params;
+    params.slip_wander_sigma = bad;
+    const std::string message = validation_error(params);
+    EXPECT_TRUE(starts_with(message, "slip_wander_sigma: must be in [0, 0.5) (got ")) << message;
+  }
+  for (double bad : {0.0, -1.0, kNan, kInf}) {
+    OdometryParams params;
+    params.slip_wander_tau_s = bad;
+    const std::string message = validation_error(params);
+    EXPECT_TRUE(starts_with(message, "slip_wander_tau_s: must be > 0 and finite (got ")) << message;
+  }
+}
+
 }  // namespace
 }  // namespace robodds::odometry_sensor

@@ -94,13 +94,6 @@ std::vector<std::vector<double>> error_series(const UwbErrorParams& p, double dt
   return series;
 }
 
-TEST(GaussMarkovStep, IsTheExactDiscretisation) {
-  EXPECT_DOUBLE_EQ(gauss_markov_step(0.3, 0.0, 2.0, 0.07, 5.0), 0.3) << "dt = 0 keeps the value";
-  const double a = std::exp(-0.5 / 2.0);
-  EXPECT_DOUBLE_EQ(gauss_markov_step(0.3, 0.5, 2.0, 0.07, 1.5), a * 0.3 + std::sqrt(1.0 - a * a) * 0.07 * 1.5);
-  EXPECT_NEAR(gauss_markov_step(0.3, 1e6, 2.0, 0.07, 1.5), 0.07 * 1.5, 1e-12) << "long gaps forget";
-}
-
 // White noise only: std 0.04, mean 0, no correlation between frames.
 TEST(UwbErrorModel, WhiteNoiseHasItsSigmaAndNoMemory) {
   const SeriesStats s = stats_of(error_series(only(0.04, 0.0, 0.0), 0.02, 5000), 1);
