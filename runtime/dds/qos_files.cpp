@@ -21,6 +21,7 @@
 #include "runtime/dds/security_files.hpp"
 #include "runtime/dds/text.hpp"
 #include "runtime/error.hpp"
+#include "runtime/log.hpp"
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;
@@ -142,6 +143,10 @@ void add_security_properties(dds::DomainParticipantQos& qos, const DdsOptions& o
   add("dds.sec.access.builtin.Access-Permissions.governance", "file://" + files.governance);
   add("dds.sec.access.builtin.Access-Permissions.permissions", "file://" + files.permissions);
   add("dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC");
+  // Said once per participant, so a deployment's logs show that each process really runs secure
+  // (tests/containers/compose_e2e.sh checks it for every container).
+  log::info("security", "DDS Security on: identity '" + options.security_identity + "' (" + files.certificate +
+                            "), authentication PKI-DH, access control Permissions, cryptography AES-GCM-GMAC");
 }
 
 }  // namespace

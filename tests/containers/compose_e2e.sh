@@ -163,15 +163,16 @@ compose_up() {
 compose_finish() {
   local p="$1" f="$2" s="$3" rc cid
   local c=(env "${COMPOSE_ENV[@]}" "${COMPOSE[@]}" -p "$p" -f "$f")
-  cid="$(cd "$SRC" && "${c[@]}" ps -q coordinator)"
+  cid="$(cd "$SRC" && timeout -k 5 60 "${c[@]}" ps -q coordinator)"
   [[ -n "$cid" ]] || fail "$p: no coordinator container"
   rc="$(timeout -k 5 600 docker wait "$cid")" || fail "$p: the coordinator did not finish within 600 s"
-  (cd "$SRC" && "${c[@]}" logs --no-color) >"$WORK/$p.logs" 2>&1 || true
+  (cd "$SRC" && timeout -k 5 60 "${c[@]}" logs --no-color) >"$WORK/$p.logs" 2>&1 || true
   [[ "$rc" == 0 ]] || fail "$p: the coordinator exited $rc: $(tail -n 30 "$WORK/$p.logs")"
   mkdir -p "$WORK/containers/$p"
-  (cd "$SRC" && "${c[@]}" run -T --rm --no-deps --entrypoint tar evaluation -C /opt/robodds/out -cf - "$s" 2>/dev/null |
-    tar -xf - -C "$WORK/containers/$p/") || fail "$p: the results extraction command failed"
-  (cd "$SRC" && "${c[@]}" down -v -t 5) >"$WORK/$p.down.log" 2>&1 || fail "$p: down failed: $(cat "$WORK/$p.down.log")"
+  (cd "$SRC" && timeout -k 5 120 "${c[@]}" run -T --rm --no-deps --entrypoint tar evaluation -C /opt/robodds/out -cf - "$s" 2>/dev/null |
+    tar -xf - -C "$WORK/containers/$p/") || fail "$p: the results extraction command failed (or took over 120 s)"
+  (cd "$SRC" && timeout -k 5 120 "${c[@]}" down -v -t 5) >"$WORK/$p.down.log" 2>&1 ||
+    fail "$p: down failed (or took over 120 s): $(cat "$WORK/$p.down.log")"
   grep -qE "coordinator.*run [0-9]+ of '$s' completed: [0-9]+ steps" "$WORK/$p.logs" ||
     fail "$p: docker-compose logs show no completion line of the coordinator: $(head -c 2000 "$WORK/$p.logs")"
   grep -qE "evaluation.*run [0-9]+ of '$s' completed" "$WORK/$p.logs" || fail "$p: no completion line of the evaluation group"
@@ -194,10 +195,11 @@ compose_finish "e2e$$pw" deploy/compose/paper1_waypoints.yml paper1_waypoints
 
 # ---- DDS Security: robodds deploy compose --security -------------------------------------------
 SEC="$WORK/sec/plant_smoke"
-"$ROBODDS" security init "$SRC/sim/scenarios/plant_smoke.yaml" --out "$SEC" >"$WORK/security_init.log" 2>&1 ||
+timeout -k 5 120 "$ROBODDS" security init "$SRC/sim/scenarios/plant_smoke.yaml" --out "$SEC" >"$WORK/security_init.log" 2>&1 ||
   fail "robodds security init failed: $(tail -n 5 "$WORK/security_init.log")"
 SECURE_FILE="$WORK/plant_smoke.secure.yml"
-"$ROBODDS" deploy compose "$SRC/sim/scenarios/plant_smoke.yaml" --security "$SEC" -o "$SECURE_FILE" >/dev/null
+timeout -k 5 60 "$ROBODDS" deploy compose "$SRC/sim/scenarios/plant_smoke.yaml" --security "$SEC" -o "$SECURE_FILE" >/dev/null ||
+  fail "robodds deploy compose --security failed"
 # Each service mounts its own identity only, read-only (the CA and the other identities stay out).
 python3 - "$SECURE_FILE" "$SEC" <<'PY' || fail "secure compose file: identities not mounted one per service"
 import sys, yaml
@@ -213,13 +215,21 @@ for identity in coordinator $(python3 -c 'import sys, yaml; print(" ".join(yaml.
 done
 compose_up "e2e$$sec" "$SECURE_FILE"
 compose_finish "e2e$$sec" "$SECURE_FILE" plant_smoke
+# Every container's participant ran secure with its own identity (the runtime says so once per
+# participant; what security then enforces is integration.security's and netns_security_*'s part).
+for identity in $(python3 -c 'import sys, yaml; print(" ".join(yaml.safe_load(open(sys.argv[1]))["services"]))' "$SECURE_FILE"); do
+  # Each service's identity has the service's name; a log line is prefixed with its container.
+  grep -qE "^[^|]*$identity[^|]*[|].*DDS Security on: identity '$identity'" "$WORK/e2e$$sec.logs" ||
+    fail "secure compose: the $identity container does not say it ran with DDS Security as '$identity': $(grep -m3 "$identity" "$WORK/e2e$$sec.logs")"
+done
+echo "ok: every container of the secure deployment ran with DDS Security and its own identity"
 
 # ---- SIGTERM (docker stop) -> 143 ------------------------------------------------------------
 # A group host waiting for its first tick (no coordinator): a signal interrupts the run.
-docker run -d --name "e2e-stop-$$" --network none "$IMAGE" --scenario /opt/robodds/sim/scenarios/plant_smoke.yaml --group sim \
-  --start-timeout 60 >/dev/null
+timeout -k 5 60 docker run -d --name "e2e-stop-$$" --network none "$IMAGE" --scenario /opt/robodds/sim/scenarios/plant_smoke.yaml --group sim \
+  --start-timeout 60 >/dev/null || fail "docker run -d of a group host failed"
 sleep 2
-docker stop -t 10 "e2e-stop-$$" >/dev/null
+timeout -k 5 60 docker stop -t 10 "e2e-stop-$$" >/dev/null || fail "docker stop did not return within 60 s"
 rc="$(docker inspect -f '{{.State.ExitCode}}' "e2e-stop-$$")"
 [[ "$rc" == 143 ]] || fail "docker stop: robodds exited $rc, expected 143 (SIGTERM): $(docker logs "e2e-stop-$$" 2>&1 | tail -n 5)"
 docker rm "e2e-stop-$$" >/dev/null
@@ -229,7 +239,7 @@ echo "ok: docker stop (SIGTERM) -> exit 143"
 mkdir -p "$WORK/private"
 cp "$SRC/sim/scenarios/plant_smoke.yaml" "$WORK/private/"
 chmod 0600 "$WORK/private/plant_smoke.yaml"
-out="$(docker run --rm -v "$WORK/private/plant_smoke.yaml:/opt/robodds/sim/scenarios/plant_smoke.yaml:ro" "$IMAGE" \
+out="$(timeout -k 5 120 docker run --rm -v "$WORK/private/plant_smoke.yaml:/opt/robodds/sim/scenarios/plant_smoke.yaml:ro" "$IMAGE" \
   --scenario /opt/robodds/sim/scenarios/plant_smoke.yaml --group sim 2>&1)" && fail "an unreadable scenario was accepted: $out"
 grep -q "error: /opt/robodds/sim/scenarios/plant_smoke.yaml is not readable by uid 10001" <<<"$out" ||
   fail "unexpected error for an unreadable bind mount: $out"
