@@ -29,6 +29,7 @@ TEST(OdometryParams, DefaultsAreValid) {
   EXPECT_EQ(params.left_slip, 0.0);
   EXPECT_EQ(params.right_slip, 0.0);
   EXPECT_EQ(params.turn_rate_bias_radps, 0.0);
+  EXPECT_EQ(params.slip_wander_sigma, 0.0) << "off by default: no scenario draws for it unless it asks";
 }
 
 TEST(OdometryParams, AcceptsZeroNoiseAndSlipsInsideTheRange) {
