@@ -82,8 +82,10 @@ Eigen::MatrixXd PairErrors::link_bias_m(bool from_a) const {
 }
 
 Eigen::MatrixXd measure_ranges(const Eigen::MatrixXd& true_m, const Eigen::MatrixXd& link_bias_m, double common_m,
-                               const UwbErrorParams& params, RandomEngine& white_engine, RandomEngine& nlos_engine) {
+                               const UwbErrorParams& params, RandomEngine& white_engine, RandomEngine& nlos_engine,
+                               const BlockedLinks& blocked) {
   const double white_sigma = params.sigma_scale * params.white_sigma_m;
+  const bool any_wall = blocked.size() != 0;
   Eigen::MatrixXd ranges(true_m.rows(), true_m.cols());
   for (Eigen::Index k = 0; k < true_m.rows(); ++k) {
     for (Eigen::Index l = 0; l < true_m.cols(); ++l) {
@@ -91,9 +93,8 @@ Eigen::MatrixXd measure_ranges(const Eigen::MatrixXd& true_m, const Eigen::Matri
       const double white = standard_normal(white_engine);
       const double nlos_draw = uniform01(nlos_engine);
       const double nlos_size = uniform01(nlos_engine);
-      const double excess = nlos_draw < params.nlos_probability
-                                ? params.nlos_min_m + (params.nlos_max_m - params.nlos_min_m) * nlos_size
-                                : 0.0;
+      const bool nlos = nlos_draw < params.nlos_probability || (any_wall && blocked(k, l));
+      const double excess = nlos ? params.nlos_min_m + (params.nlos_max_m - params.nlos_min_m) * nlos_size : 0.0;
       const double r = true_m(k, l) + white_sigma * white + link_bias_m(k, l) + common_m + excess;
       ranges(k, l) = std::max(0.0, r);
     }

@@ -23,6 +23,7 @@
 
 #include "common/param_table.hpp"
 #include "common/random.hpp"
+#include "components/uwb_sensor/uwb_walls.hpp"
 
 namespace robodds::uwb_sensor {
 
@@ -88,11 +89,14 @@ struct DirectionStreams {
 };
 
 /// One frame of one direction: `true_m` (K x L) plus white noise, the shared `link_bias_m`
-/// (oriented like `true_m`) and `common_m`, plus NLOS excesses, clamped at 0. Draws K * L
-/// normals from `white_engine` and 2 * K * L uniforms from `nlos_engine` (whether, how much), row
-/// major, whatever the parameters. `params` must have passed validate().
+/// (oriented like `true_m`) and `common_m`, plus NLOS excesses, clamped at 0. A link gets an
+/// excess with probability nlos_probability, and always where `blocked` (K x L, a wall in the
+/// way: uwb_walls.hpp; empty = nothing blocked). Draws K * L normals from `white_engine` and
+/// 2 * K * L uniforms from `nlos_engine` (whether, how much), row major, whatever the parameters
+/// and walls. `params` must have passed validate().
 Eigen::MatrixXd measure_ranges(const Eigen::MatrixXd& true_m, const Eigen::MatrixXd& link_bias_m, double common_m,
-                               const UwbErrorParams& params, RandomEngine& white_engine, RandomEngine& nlos_engine);
+                               const UwbErrorParams& params, RandomEngine& white_engine, RandomEngine& nlos_engine,
+                               const BlockedLinks& blocked = BlockedLinks());
 
 /// Whether a frame is lost (probability frame_loss_probability). Always one uniform.
 bool frame_lost(const UwbErrorParams& params, RandomEngine& loss_engine);

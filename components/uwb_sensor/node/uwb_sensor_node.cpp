@@ -30,6 +30,7 @@ class UwbSensorNode : public Component {
     ctx.set_rate_hz(params_.rate_hz, "rate_hz");
     lockstep_ = ctx.mode() == TimeMode::kLockstep;
     array_ = params_.array();
+    walls_ = params_.walls();
     const auto nodes = static_cast<Eigen::Index>(array_.nodes_m.size());
     std::vector<std::uint64_t> everyone;
     for (const RobotSpec& peer : ctx.scenario().robots) {
@@ -73,8 +74,9 @@ class UwbSensorNode : public Component {
       // Every draw happens whatever the outcome, so that losses and range do not shift the streams.
       const bool lost = frame_lost(params_.errors, streams.loss);
       const Eigen::MatrixXd truth = model::array_ranges(array_, pose_of(*own), array_, pose_of(*other));
+      const BlockedLinks blocked = links_through_walls(array_, pose_of(*own), array_, pose_of(*other), walls_);
       const Eigen::MatrixXd ranges = measure_ranges(truth, shared.link_bias_m(robot < peer), shared.common_m(), params_.errors,
-                                                    streams.white, streams.nlos);
+                                                    streams.white, streams.nlos, blocked);
       const bool in_range = truth.maxCoeff() <= params_.max_range_m;
       if ((lost || !in_range) && !lockstep_) {
         continue;  // real time: nothing sent
@@ -102,6 +104,7 @@ class UwbSensorNode : public Component {
   UwbSensorParams params_;
   bool lockstep_ = true;
   model::UwbArray array_;
+  std::vector<Wall> walls_;
   std::map<RobotPair, DirectionStreams> directions_;
   std::map<RobotPair, PairErrors> pairs_;  // (lower id, higher id)
   Input<idl::RobotState>* truth_ = nullptr;

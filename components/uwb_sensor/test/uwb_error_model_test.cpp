@@ -214,6 +214,36 @@ TEST(UwbErrorModel, NlosExcessesHaveTheirRateAndRange) {
   }
 }
 
+// A wall in the way: every blocked link gets an excess in [min, max] at every frame, the others
+// none (p = 0), and the draws are those of an open room (the streams do not shift).
+TEST(UwbErrorModel, BlockedLinksAlwaysGetAnExcessAndTheDrawsStayTheSame) {
+  const Eigen::MatrixXd truth = Eigen::MatrixXd::Constant(4, 4, 3.0);
+  const Eigen::MatrixXd zero = Eigen::MatrixXd::Zero(4, 4);
+  const UwbErrorParams p = only(0.0, 0.0, 0.0);
+  BlockedLinks blocked = BlockedLinks::Constant(4, 4, false);
+  blocked(0, 1) = true;
+  blocked(3, 2) = true;
+  RandomEngine white_a(9), white_b(9), nlos_a(10), nlos_b(10);
+  for (int f = 0; f < 200; ++f) {
+    const Eigen::MatrixXd r = measure_ranges(truth, zero, 0.0, p, white_a, nlos_a, blocked);
+    const Eigen::MatrixXd open = measure_ranges(truth, zero, 0.0, p, white_b, nlos_b);
+    for (Eigen::Index k = 0; k < 4; ++k) {
+      for (Eigen::Index l = 0; l < 4; ++l) {
+        const double excess = r(k, l) - 3.0;
+        if (blocked(k, l)) {
+          ASSERT_GE(excess, 0.2 - 1e-9);
+          ASSERT_LE(excess, 1.5 + 1e-9);
+        } else {
+          ASSERT_NEAR(excess, 0.0, 1e-12);
+        }
+        ASSERT_NEAR(open(k, l), 3.0, 1e-12);
+      }
+    }
+  }
+  EXPECT_EQ(white_a, white_b);
+  EXPECT_EQ(nlos_a, nlos_b);
+}
+
 // The NLOS and white streams advance by the same draws whatever p: the other draws do not shift.
 TEST(UwbErrorModel, DrawsDoNotDependOnTheParameters) {
   const Eigen::MatrixXd truth = Eigen::MatrixXd::Constant(4, 4, 3.0);

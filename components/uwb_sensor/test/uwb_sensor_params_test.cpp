@@ -71,5 +71,20 @@ TEST(UwbSensorParams, ExplicitNodesNeedThreeToEightDistinctNodes) {
   EXPECT_EQ(message_of(p), "nodes_m: must have at most 8 nodes (K x L ranges per sample, at most 64) (got 9 nodes)");
 }
 
+TEST(UwbSensorParams, WallsArePairsOfFinitePointsAndNotPoints) {
+  UwbSensorParams p;
+  p.nlos_walls_m = {{1.0, -1.0}, {1.0, 1.0}, {3.0, 0.0}, {4.0, 0.0}};
+  EXPECT_EQ(message_of(p), "ok");
+  ASSERT_EQ(p.walls().size(), 2u);
+  EXPECT_EQ(p.walls()[1].to, Eigen::Vector2d(4.0, 0.0));
+  p.nlos_walls_m = {{1.0, -1.0}, {1.0, 1.0}, {3.0, 0.0}};
+  EXPECT_EQ(message_of(p),
+            "nlos_walls_m: must list walls as pairs of end points (an even number of points) (got 3 points)");
+  p.nlos_walls_m = {{1.0, std::nan("")}, {1.0, 1.0}};
+  EXPECT_EQ(message_of(p).rfind("nlos_walls_m: point 0 must be finite", 0), 0u) << message_of(p);
+  p.nlos_walls_m = {{1.0, 1.0}, {1.0, 1.0}};
+  EXPECT_EQ(message_of(p).rfind("nlos_walls_m: a wall must be at least 1 mm long", 0), 0u) << message_of(p);
+}
+
 }  // namespace
 }  // namespace robodds::uwb_sensor
