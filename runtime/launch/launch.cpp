@@ -146,6 +146,8 @@ LaunchOptions secure_local_profile(const Scenario& scenario, LaunchOptions launc
     return launch;
   }
   launch.dds.participant_profile = kSecureLocalParticipantProfile;
+  log::info("run", std::string("DDS Security across processes: participant profile ") + kSecureLocalParticipantProfile +
+                       " (one socket for discovery and handshakes: Fast DDS 2.9.1 start-up race, docs/security.md)");
   return launch;
 }
 
