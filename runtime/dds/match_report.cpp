@@ -69,9 +69,7 @@ std::string PeerDirectory::unauthenticated() const {
   }
   for (const std::string& key : alive_) {
     if (authenticated_.count(key) == 0) {
-      auto it = names_.find(key);
-      const std::string name = it == names_.end() ? "participant " + key : "'" + it->second + "'";
-      out += (out.empty() ? "" : ", ") + name;
+      out += (out.empty() ? "" : ", ") + who_locked(key);
     }
   }
   return out;
@@ -133,6 +131,10 @@ std::string PeerDirectory::writer_name(std::uint64_t id) const {
 std::string PeerDirectory::who(const rtps::GUID_t& guid) const {
   const std::string key = guid_prefix_text(guid.guidPrefix);
   std::lock_guard<std::mutex> lock(mutex_);
+  return who_locked(key);
+}
+
+std::string PeerDirectory::who_locked(const std::string& key) const {
   auto it = names_.find(key);
   if (it == names_.end()) {
     return "participant " + key;

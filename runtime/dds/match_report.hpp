@@ -42,8 +42,8 @@ class PeerDirectory : public dds::DomainParticipantListener {
 
   std::size_t participants_alive() const;
 
-  /// Secure runs: the discovered participants whose authentication has not succeeded (yet), e.g.
-  /// "'control', 'sim'"; empty when all did or the run is not secure (`secure`: this participant
+  /// Secure runs: the discovered participants whose authentication has not succeeded (yet), as
+  /// who() spells them, e.g. "'control', 'sim'"; empty when all did or the run is not secure (`secure`: this participant
   /// has DDS Security on, so every peer must authenticate).
   std::string unauthenticated() const;
   void set_secure(bool secure);
@@ -59,6 +59,7 @@ class PeerDirectory : public dds::DomainParticipantListener {
 
  private:
   using Table = std::map<std::string, std::map<std::string, std::pair<std::string, rtps::GUID_t>>>;
+  std::string who_locked(const std::string& guid_prefix_key) const;  // who(), mutex_ held
   void remember(Table& table, const std::string& topic, const rtps::GUID_t& guid, bool present, const std::string& qos);
 
   mutable std::mutex mutex_;
