@@ -26,7 +26,7 @@ const std::vector<std::string>& data_profile_names() {
 
 const std::vector<std::string>& participant_profile_names() {
   static const std::vector<std::string> names = {kDefaultParticipantProfile, kUdpOnlyParticipantProfile,
-                                                 kDiscoveryClientParticipantProfile};
+                                                 kSecureLocalParticipantProfile, kDiscoveryClientParticipantProfile};
   return names;
 }
 

@@ -3,6 +3,7 @@
 // profiles) and deploy/qos/discovery_client.xml define them; runtime/test/qos_profiles_test.cpp
 // fails if a name here has no profile there. Write these constants, never the plain strings.
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,11 @@ inline constexpr const char* kMonitorProfile = "monitor";
 /// Participant profiles.
 inline constexpr const char* kDefaultParticipantProfile = "robodds.participant";  // SHM + UDPv4
 inline constexpr const char* kUdpOnlyParticipantProfile = "robodds.participant.udp_only";
+/// DDS Security on one machine: discovery and handshakes on one 127.0.0.1 socket (the Fast DDS
+/// 2.9.1 race it avoids: deploy/qos/robodds_qos.xml, docs/security.md).
+inline constexpr const char* kSecureLocalParticipantProfile = "robodds.participant.secure_local";
+/// How many participants of one domain it finds on this machine (its transport's maxInitialPeersRange).
+inline constexpr std::size_t kSecureLocalMaxParticipants = 32;
 /// Defined in discovery_client.xml, which is loaded after robodds_qos.xml.
 inline constexpr const char* kDiscoveryClientParticipantProfile = "robodds.participant.discovery_client";
 

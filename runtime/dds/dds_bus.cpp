@@ -65,6 +65,7 @@ class FastDdsBus : public DdsBus {
     // delete what was built (it is declared after what its listeners point to).
     dds::DomainParticipantQos qos = checked_participant_qos(options);
     qos.name(options.participant_name);
+    peers_.set_secure(!options.security_dir.empty());
     // Only discovery callbacks (participant names, remote QoS): with an empty mask no entity
     // status reaches this listener, so on_data_available stays with the readers' listeners.
     participant_ = create_participant(options.domain_id, qos, &peers_, dds::StatusMask::none(), options.participant_profile);

@@ -44,6 +44,56 @@ void PeerDirectory::on_subscriber_discovery(dds::DomainParticipant*, rtps::Reade
            describe_qos(q.m_reliability, q.m_durability, q.m_deadline, q.m_liveliness));
 }
 
+void PeerDirectory::onParticipantAuthentication(dds::DomainParticipant*, rtps::ParticipantAuthenticationInfo&& info) {
+  const std::string key = guid_prefix_text(info.guid.guidPrefix);
+  const bool authorized = info.status == rtps::ParticipantAuthenticationInfo::AUTHORIZED_PARTICIPANT;
+  log::debug("dds", "DDS Security: participant " + key + (authorized ? " authenticated" : " refused (authentication failed)"));
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (authorized) {
+    authenticated_.insert(key);
+  } else {
+    authenticated_.erase(key);
+  }
+}
+
+void PeerDirectory::set_secure(bool secure) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  secure_ = secure;
+}
+
+std::string PeerDirectory::unauthenticated() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::string out;
+  if (!secure_) {
+    return out;
+  }
+  for (const std::string& key : alive_) {
+    if (authenticated_.count(key) == 0) {
+      out += (out.empty() ? "" : ", ") + who_locked(key);
+    }
+  }
+  return out;
+}
+
+std::string PeerDirectory::discovered(const std::string& topic, bool of_writers) const {
+  std::vector<rtps::GUID_t> found;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto& table = of_writers ? writers_ : readers_;
+    auto it = table.find(topic);
+    if (it != table.end()) {
+      for (const auto& [guid_key, entry] : it->second) {
+        found.push_back(entry.second);
+      }
+    }
+  }
+  std::string out;
+  for (const rtps::GUID_t& guid : found) {
+    out += (out.empty() ? "" : ", ") + who(guid);
+  }
+  return out;
+}
+
 std::uint64_t PeerDirectory::writer_id(const rtps::GUID_t& writer) {
   // FNV-1a over prefix and entity id: stable for the writer's life, the same in every process.
   std::uint64_t hash = 1469598103934665603ULL;
@@ -81,6 +131,10 @@ std::string PeerDirectory::writer_name(std::uint64_t id) const {
 std::string PeerDirectory::who(const rtps::GUID_t& guid) const {
   const std::string key = guid_prefix_text(guid.guidPrefix);
   std::lock_guard<std::mutex> lock(mutex_);
+  return who_locked(key);
+}
+
+std::string PeerDirectory::who_locked(const std::string& key) const {
   auto it = names_.find(key);
   if (it == names_.end()) {
     return "participant " + key;
@@ -151,7 +205,11 @@ std::string MatchState::problem() const {
     return what + ": " + incompatibility;
   }
   if (matched == 0) {
-    return what + (reader_ ? ": no writer matched" : ": no reader matched");
+    // A remote endpoint that discovery reported but that never matched: with DDS Security, the
+    // pair's crypto tokens were not (yet) exchanged.
+    const std::string seen = peers_->discovered(topic_, reader_);
+    return what + (reader_ ? ": no writer matched" : ": no reader matched") +
+           (seen.empty() ? std::string() : " (discovered: " + seen + ")");
   }
   return "";
 }
@@ -171,6 +229,10 @@ std::string describe_match_problems(const PeerDirectory& peers, const std::vecto
   std::string out = alive == 0 ? "DDS: no other participant discovered (another domain id, multicast blocked, "
                                  "or discovery server unreachable?)"
                                : "DDS: " + std::to_string(alive) + " other participant(s) discovered";
+  const std::string unauthenticated = peers.unauthenticated();
+  if (!unauthenticated.empty()) {
+    out += "; DDS Security: not authenticated (yet): " + unauthenticated;
+  }
   for (const std::string& problem : problems) {
     out += "; " + problem;
   }

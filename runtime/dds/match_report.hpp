@@ -28,6 +28,9 @@ class PeerDirectory : public dds::DomainParticipantListener {
   void on_participant_discovery(dds::DomainParticipant*, rtps::ParticipantDiscoveryInfo&& info) override;
   void on_publisher_discovery(dds::DomainParticipant*, rtps::WriterDiscoveryInfo&& info) override;
   void on_subscriber_discovery(dds::DomainParticipant*, rtps::ReaderDiscoveryInfo&& info) override;
+  /// DDS Security: a discovered participant passed (or failed) the PKI-DH handshake and access
+  /// control; only then does it exchange endpoints and crypto tokens with this one.
+  void onParticipantAuthentication(dds::DomainParticipant*, rtps::ParticipantAuthenticationInfo&& info) override;
 
   /// "'control'" for a participant named "robodds-control" (the host names participants
   /// "robodds-<group>"), another participant's full name, or its GUID prefix if not yet known.
@@ -39,6 +42,15 @@ class PeerDirectory : public dds::DomainParticipantListener {
 
   std::size_t participants_alive() const;
 
+  /// Secure runs: the discovered participants whose authentication has not succeeded (yet), as
+  /// who() spells them, e.g. "'control', 'sim'"; empty when all did or the run is not secure (`secure`: this participant
+  /// has DDS Security on, so every peer must authenticate).
+  std::string unauthenticated() const;
+  void set_secure(bool secure);
+
+  /// The remote endpoints of `topic` discovered so far, e.g. "'control'", or "" if none.
+  std::string discovered(const std::string& topic, bool of_writers) const;
+
   /// SampleMeta::writer_id of a writer GUID (a hash of its 16 bytes), remembered so that
   /// writer_name() can spell it later.
   std::uint64_t writer_id(const rtps::GUID_t& writer);
@@ -47,11 +59,14 @@ class PeerDirectory : public dds::DomainParticipantListener {
 
  private:
   using Table = std::map<std::string, std::map<std::string, std::pair<std::string, rtps::GUID_t>>>;
+  std::string who_locked(const std::string& guid_prefix_key) const;  // who(), mutex_ held
   void remember(Table& table, const std::string& topic, const rtps::GUID_t& guid, bool present, const std::string& qos);
 
   mutable std::mutex mutex_;
   std::map<std::string, std::string> names_;  // GUID prefix -> participant name
   std::set<std::string> alive_;
+  bool secure_ = false;
+  std::set<std::string> authenticated_;  // GUID prefixes
   Table writers_;
   Table readers_;
   std::map<std::uint64_t, rtps::GUID_t> writer_guids_;  // writer_id() -> GUID

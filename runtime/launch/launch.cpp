@@ -20,6 +20,7 @@
 #include "runtime/launch/failed_summary.hpp"
 #include "runtime/log.hpp"
 #include "runtime/producer_check.hpp"
+#include "runtime/qos_profiles.hpp"
 #include "runtime/launch/process_group.hpp"
 #include "runtime/share_dir.hpp"
 #include "runtime/launch/standalone_scenario.hpp"
@@ -128,11 +129,34 @@ std::vector<std::string> child_argv(const Scenario& scenario, const LaunchOption
   return argv;
 }
 
-RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& launch) {
+/// A secure run across processes (all on this machine) uses kSecureLocalParticipantProfile instead
+/// of the default profile: with Fast DDS 2.9.1, discovery and handshakes handled by several receive
+/// threads at once sometimes leave a pair of participants unauthenticated for good (the run stalls
+/// at step 0); that profile puts them on one socket (deploy/qos/robodds_qos.xml, docs/security.md).
+/// Another --participant-profile is kept as given.
+LaunchOptions secure_local_profile(const Scenario& scenario, LaunchOptions launch) {
+  if (launch.dds.security_dir.empty() || launch.dds.participant_profile != kDefaultParticipantProfile) {
+    return launch;
+  }
+  if (scenario.groups.size() + 1 > kSecureLocalMaxParticipants) {
+    log::warn("run", std::to_string(scenario.groups.size()) + " groups and the coordinator are more participants than " +
+                         kSecureLocalParticipantProfile + " finds (" + std::to_string(kSecureLocalMaxParticipants) +
+                         "): using " + kDefaultParticipantProfile +
+                         ", whose secure start-up can stall with Fast DDS 2.9.1 (docs/security.md)");
+    return launch;
+  }
+  launch.dds.participant_profile = kSecureLocalParticipantProfile;
+  log::info("run", std::string("DDS Security across processes: participant profile ") + kSecureLocalParticipantProfile +
+                       " (one socket for discovery and handshakes: Fast DDS 2.9.1 start-up race, docs/security.md)");
+  return launch;
+}
+
+RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& given) {
   // Validate everything in this process first so that bad input fails before spawning.
   for (const ComponentSpec& c : scenario.components) {
     registry.get(c.type);
   }
+  const LaunchOptions launch = secure_local_profile(scenario, given);
   check_qos_profiles(launch.dds);  // one error line here, not one per child and a coordinator
   if (!launch.dds.security_dir.empty()) {  // likewise every identity the run uses
     check_security_files(launch.dds.security_dir, kCoordinatorIdentity);

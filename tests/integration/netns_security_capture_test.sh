@@ -30,6 +30,13 @@ print(data.count(struct.pack("<d", float(sys.argv[2]))))
 PY
 }
 
+count_text() {  # count_text PCAP TEXT: occurrences of TEXT in the capture
+  python3 - "$1" "$2" <<'PY'
+import sys
+print(open(sys.argv[1], "rb").read().count(sys.argv[2].encode()))
+PY
+}
+
 # captured_run NAME [HOST_ARGS...]: one lockstep run across the two hosts with host 1's cable
 # captured into $WORK/NAME.pcap. Sets RUN_RC (0, or 1 for the known secure-matching stall).
 captured_run() {
@@ -85,6 +92,13 @@ t2=$SECONDS
 same_outputs "$WORK/plain" "$WORK/secure"
 [[ $secure_bytes -gt $((plain_bytes / 2)) ]] || fail "the secure capture is only $secure_bytes bytes (unsecured: $plain_bytes): traffic was not captured"
 [[ $secure_count -eq 0 ]] || fail "the secure capture shows the plaintext value $V_MPS $secure_count times"
+# Discovery is protected too (governance discovery_protection_kind ENCRYPT): the type names that
+# the endpoint announcements carry are in the unsecured capture and not in the secure one (topic
+# names still are: the permissions document in the PKI-DH handshake lists them; docs/security.md).
+type_plain=$(count_text "$WORK/plain.pcap" VelocityCommand)
+type_secure=$(count_text "$WORK/secure.pcap" VelocityCommand)
+[[ $type_plain -gt 0 ]] || fail "the unsecured capture does not show the type name VelocityCommand: the check cannot see discovery"
+[[ $type_secure -eq 0 ]] || fail "the secure capture shows the type name VelocityCommand $type_secure times: discovery is not encrypted"
 grep -q "ENCRYPT" "$SEC/governance.xml" || fail "governance does not encrypt"
 echo "ok: v_mps=$V_MPS on host 1's cable: $plain_count times in the unsecured capture ($plain_bytes bytes, $((t1 - t0)) s)," \
   "0 times in the secure one ($secure_bytes bytes, $((t2 - t1)) s); results byte-identical ($SAME_COUNT CSVs)"
