@@ -24,6 +24,7 @@
 
 #include "runtime/bus.hpp"
 #include "runtime/error.hpp"
+#include "runtime/key_index.hpp"
 #include "runtime/log.hpp"
 #include "runtime/notifier.hpp"
 #include "runtime/sample_checks.hpp"
@@ -150,8 +151,13 @@ class InputBase {
   InputBase(std::string topic, std::string owner, const StepState* state, Notifier* notifier, detail::InputOptions options)
       : topic_(std::move(topic)), owner_(std::move(owner)), state_(state), notifier_(notifier), options_(std::move(options)) {
     // Each stream once: the wake-up count of ready() counts streams (a key named twice would
-    // never be counted down, and the executor would only notice at its 20 ms poll).
-    options_.expected.assign(expected_set_.begin(), expected_set_.end());
+    // never be counted down, and the executor would only notice at its 20 ms poll). The
+    // expected streams are the first streams_, in key order: ready() walks them without lookups.
+    std::sort(options_.expected.begin(), options_.expected.end());
+    options_.expected.erase(std::unique(options_.expected.begin(), options_.expected.end()), options_.expected.end());
+    for (std::uint64_t id : options_.expected) {
+      add_stream(id);
+    }
   }
   virtual ~InputBase() = default;
 
@@ -177,11 +183,11 @@ class InputBase {
   /// its receive time is unknown. Judges freshness by the receiver's clock, not the sender's stamp.
   std::optional<double> age_s(std::uint64_t key, std::int64_t now_ns = monotonic_now_ns()) const {
     std::lock_guard<std::mutex> lock(mutex_);
-    auto it = progress_.find(key);
-    if (it == progress_.end() || it->second.received_ns == 0) {
+    const std::size_t s = stream_index_.find(key);
+    if (s == KeyIndex::kNone || streams_[s].progress.received_ns == 0) {
       return std::nullopt;
     }
-    return static_cast<double>(now_ns - it->second.received_ns) * 1e-9;
+    return static_cast<double>(now_ns - streams_[s].progress.received_ns) * 1e-9;
   }
 
   /// Real time: the newest accepted sample of `key` was received at most `max_age_s` before
@@ -213,19 +219,14 @@ class InputBase {
     }
     std::lock_guard<std::mutex> lock(mutex_);
     std::size_t missing_streams = 0;
-    // Both in key order: one walk, no lookup per key (at 1,000 robots the lookups were ~8 % of a
-    // co-located run). progress_ holds expected streams only (wanted()).
-    auto it = progress_.begin();
-    for (std::uint64_t key : expected_set_) {
-      while (it != progress_.end() && it->first < key) {
-        ++it;
-      }
-      const bool have = it != progress_.end() && it->first == key;
-      if (!have || !covers(it->second, step)) {
+    // The expected streams are the first streams_, in key order (constructor): one walk over
+    // an array, no lookup per key.
+    for (std::size_t i = 0; i < options_.expected.size(); ++i) {
+      const Stream& s = streams_[i];
+      if (!covers(s.progress, step)) {
         if (missing_streams++ == 0 && missing != nullptr) {
-          *missing = !have ? label_of(key) + " (nothing received yet)"
-                                           : label_of(key) + " (newest sample: step " +
-                                                 std::to_string(it->second.step) + ")";
+          *missing = !s.progress.seen ? label_of(s.id) + " (nothing received yet)"
+                                      : label_of(s.id) + " (newest sample: step " + std::to_string(s.progress.step) + ")";
         }
       }
     }
@@ -244,6 +245,19 @@ class InputBase {
     std::int64_t received_ns = 0;  // SampleMeta::received_ns of the newest accepted sample
     std::uint64_t producer = 0;    // the writer that owns this instance (0: none seen yet)
     bool seen = false;             // a sample of this stream arrived
+  };
+  /// The unit of readiness and producer tracking (stream_of()): an instance, or a robot id.
+  struct Stream {
+    std::uint64_t id = 0;
+    Progress progress;
+    std::uint64_t current_key = 0;  // by_robot: the robot's newest instance key, for "waiting for" messages
+    bool has_current = false;
+  };
+  /// An instance that sent a sample this input wants, numbered in arrival order (instance_index_).
+  struct Instance {
+    std::uint64_t key = 0;
+    std::string label;       // spelled once, for messages only
+    std::size_t stream = 0;  // in streams_
   };
 
   /// Lockstep: a stream's samples form a chain, each announcing the step of the next
@@ -318,14 +332,18 @@ class InputBase {
   /// `key`: an instance, or with by_robot a robot id (then its current instance's label).
   std::string label_of(std::uint64_t key) const {
     if (options_.by_robot) {
-      auto current = current_key_.find(key);
-      if (current != current_key_.end()) {
-        key = current->second;
+      const std::size_t s = stream_index_.find(key);
+      if (s != KeyIndex::kNone && streams_[s].has_current) {
+        key = streams_[s].current_key;
       }
     }
-    auto it = labels_.find(key);
-    if (it != labels_.end()) {
-      return it->second;
+    const std::size_t i = instance_index_.find(key);
+    if (i != KeyIndex::kNone) {
+      return instances_[i].label;
+    }
+    auto preset = options_.labels.find(key);
+    if (preset != options_.labels.end()) {
+      return preset->second;
     }
     // Not seen yet: spell the key with the topic's key field names ("robot_id, target_id").
     const std::string& names = options_.key_names;
@@ -360,8 +378,44 @@ class InputBase {
     }
     return --armed_missing_ == 0;
   }
-  bool wanted(std::uint64_t key) const {
-    return options_.expected.empty() || expected_set_.count(key) != 0;
+  std::size_t add_stream(std::uint64_t id) {
+    stream_index_.insert(id);
+    Stream s;
+    s.id = id;
+    streams_.push_back(std::move(s));
+    return streams_.size() - 1;
+  }
+  /// The number of stream `id` in streams_, added at its first sample when the input takes every
+  /// instance; KeyIndex::kNone when the input does not want it. Call with mutex_ held.
+  std::size_t wanted_stream(std::uint64_t id) {
+    const std::size_t s = stream_index_.find(id);
+    if (s == KeyIndex::kNone && options_.expected.empty()) {
+      return add_stream(id);
+    }
+    return s;
+  }
+  /// Numbers a new instance of stream `stream` (an index in streams_), labelled with the preset
+  /// label of InputOptions::labels or else `label`. Call with mutex_ held.
+  std::size_t add_instance(std::uint64_t key, std::size_t stream, std::string label) {
+    const std::size_t i = instance_index_.insert(key).first;
+    auto preset = options_.labels.find(key);
+    instances_.push_back(Instance{key, preset != options_.labels.end() ? preset->second : std::move(label), stream});
+    // The robot's instances in key order (the *_of_robot() reads go through them in that order).
+    const auto [r, added] = robot_index_.insert(key >> 32);
+    if (added) {
+      robot_instances_.emplace_back();
+    }
+    std::vector<std::size_t>& of_robot = robot_instances_[r];
+    of_robot.insert(std::upper_bound(of_robot.begin(), of_robot.end(), key,
+                                     [this](std::uint64_t k, std::size_t n) { return k < instances_[n].key; }),
+                    i);
+    return i;
+  }
+  /// The numbers of robot `robot_id`'s instances (keys robot_id << 32 | X), in key order, or
+  /// nullptr. Call with mutex_ held.
+  const std::vector<std::size_t>* instances_of_robot(std::uint32_t robot_id) const {
+    const std::size_t r = robot_index_.find(robot_id);
+    return r == KeyIndex::kNone ? nullptr : &robot_instances_[r];
   }
   /// Highest step a consumer may read now.
   std::uint64_t readable_limit() const {
@@ -379,11 +433,15 @@ class InputBase {
   const StepState* state_;
   Notifier* notifier_;
   detail::InputOptions options_;
-  std::set<std::uint64_t> expected_set_{options_.expected.begin(), options_.expected.end()};
   mutable std::mutex mutex_;
-  std::map<std::uint64_t, Progress> progress_;
-  std::map<std::uint64_t, std::string> labels_{options_.labels};  // instance key -> label
-  std::map<std::uint64_t, std::uint64_t> current_key_;  // by_robot: robot id -> its newest instance key
+  // Per sample, one O(1) lookup (key_index.hpp), whatever the number of instances: ordered maps
+  // here made the cost per robot-tick grow with the robots (docs/performance.md).
+  std::vector<Stream> streams_;  // the expected streams first, in key order, then others as they come
+  KeyIndex stream_index_;        // stream id -> index in streams_
+  std::vector<Instance> instances_;
+  KeyIndex instance_index_;  // instance key -> index in instances_
+  KeyIndex robot_index_;     // robot id (key >> 32) -> index in robot_instances_
+  std::vector<std::vector<std::size_t>> robot_instances_;  // indices in instances_, in key order
   InputCounts counts_;
   std::set<std::pair<std::uint64_t, std::string>> logged_rejections_;  // (writer_id, reason)
   std::string lockstep_error_;  // lockstep: the first second producer or lost sample, thrown by ready()
@@ -401,13 +459,7 @@ class Input : public InputBase {
 
   /// Stores a sample; called by the bus (listener thread or inside a local writer's write()).
   void on_sample(const Msg& sample, const SampleMeta& meta = SampleMeta{}) {
-    const std::uint64_t key = idl::instance_key(sample);
-    const std::uint64_t stream = stream_of(key);
-    if (!wanted(stream)) {
-      return;
-    }
-    const std::optional<SampleCheckFailure> failed = first_failed_check(sample);
-    if (store(sample, key, stream, failed, meta)) {
+    if (store(sample, meta)) {
       notifier_->notify();  // outside the lock: the executor takes it at once
     }
   }
@@ -416,48 +468,76 @@ class Input : public InputBase {
   std::vector<Msg> take_new(std::uint64_t key) {
     std::vector<Msg> out;
     std::lock_guard<std::mutex> lock(mutex_);
-    auto it = slots_.find(key);
-    if (it != slots_.end() && !nothing_readable()) {
-      take_readable(it->second, out);
+    const std::size_t i = instance_index_.find(key);
+    if (i != KeyIndex::kNone && !nothing_readable()) {
+      take_readable(slots_[i], out);
     }
     return out;
+  }
+
+  /// take_new() of each of `keys` in turn, appended to `out`: one lock for all (a recorder's step).
+  void take_new(const std::vector<std::uint64_t>& keys, std::vector<Msg>& out) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (nothing_readable()) {
+      return;
+    }
+    for (std::uint64_t key : keys) {
+      const std::size_t i = instance_index_.find(key);
+      if (i != KeyIndex::kNone) {
+        take_readable(slots_[i], out);
+      }
+    }
   }
 
   /// The newest readable sample of `key` (older unread ones are skipped), or nullptr.
   const Msg* latest(std::uint64_t key) {
     std::lock_guard<std::mutex> lock(mutex_);
-    auto it = slots_.find(key);
-    if (it == slots_.end() || nothing_readable()) {
+    const std::size_t i = instance_index_.find(key);
+    if (i == KeyIndex::kNone || nothing_readable()) {
       return nullptr;
     }
-    return newest_readable(it->second);
+    return newest_readable(slots_[i]);
   }
 
   /// Subscription::robot_streams(): the readable samples of robot `robot_id` not taken before,
   /// whatever their second key part, in step order.
   std::vector<Msg> take_new_of_robot(std::uint32_t robot_id) {
     std::vector<Msg> out;
+    take_new_of_robots(std::vector<std::uint64_t>{robot_id}, out);
+    return out;
+  }
+
+  /// take_new_of_robot() of each of `robot_ids` in turn, appended to `out`: one lock for all.
+  void take_new_of_robots(const std::vector<std::uint64_t>& robot_ids, std::vector<Msg>& out) {
     std::lock_guard<std::mutex> lock(mutex_);
     if (nothing_readable()) {
-      return out;
+      return;
     }
-    for (auto it = first_slot_of(robot_id); it != slots_.end() && (it->first >> 32) == robot_id; ++it) {
-      take_readable(it->second, out);
+    for (std::uint64_t robot_id : robot_ids) {
+      const std::vector<std::size_t>* numbers = instances_of_robot(static_cast<std::uint32_t>(robot_id));
+      if (numbers == nullptr) {
+        continue;
+      }
+      const std::size_t first = out.size();
+      for (std::size_t i : *numbers) {
+        take_readable(slots_[i], out);
+      }
+      std::stable_sort(out.begin() + static_cast<std::ptrdiff_t>(first), out.end(),
+                       [](const Msg& a, const Msg& b) { return a.header().step() < b.header().step(); });
     }
-    std::stable_sort(out.begin(), out.end(), [](const Msg& a, const Msg& b) { return a.header().step() < b.header().step(); });
-    return out;
   }
 
   /// Subscription::robot_streams(): the newest readable sample of robot `robot_id` over all its
   /// second key parts (older unread ones are skipped), or nullptr.
   const Msg* latest_of_robot(std::uint32_t robot_id) {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (nothing_readable()) {
+    const std::vector<std::size_t>* numbers = instances_of_robot(robot_id);
+    if (numbers == nullptr || nothing_readable()) {
       return nullptr;
     }
     const Msg* newest = nullptr;
-    for (auto it = first_slot_of(robot_id); it != slots_.end() && (it->first >> 32) == robot_id; ++it) {
-      const Msg* m = newest_readable(it->second);
+    for (std::size_t i : *numbers) {
+      const Msg* m = newest_readable(slots_[i]);
       if (m != nullptr && (newest == nullptr || m->header().step() >= newest->header().step())) {
         newest = m;
       }
@@ -469,25 +549,36 @@ class Input : public InputBase {
   std::vector<std::uint64_t> instances() const {
     std::lock_guard<std::mutex> lock(mutex_);
     std::vector<std::uint64_t> keys;
-    for (const auto& [key, slot] : slots_) {
-      keys.push_back(key);
+    for (std::size_t i = 0; i < instances_.size(); ++i) {
+      if (slots_[i].valid) {
+        keys.push_back(instances_[i].key);
+      }
     }
+    std::sort(keys.begin(), keys.end());
     return keys;
   }
 
  private:
   /// Applies `sample` to its stream's progress and, if it passed its checks, queues it for the
-  /// component; true when the executor must be woken (wakes_executor()).
-  bool store(const Msg& sample, std::uint64_t key, std::uint64_t stream, const std::optional<SampleCheckFailure>& failed,
-             const SampleMeta& meta) {
+  /// component; true when the executor must be woken (wakes_executor()). A sample of a stream
+  /// this input does not want is dropped: false.
+  bool store(const Msg& sample, const SampleMeta& meta) {
+    const std::uint64_t key = idl::instance_key(sample);
     std::lock_guard<std::mutex> lock(mutex_);
-    // Spelled once per instance, for messages only: no string is built for an ordinary sample.
-    auto labelled = labels_.find(key);
-    if (labelled == labels_.end()) {
-      labelled = labels_.emplace(key, idl::instance_label(sample)).first;
+    std::size_t i = instance_index_.find(key);
+    if (i == KeyIndex::kNone) {
+      const std::size_t stream = wanted_stream(stream_of(key));
+      if (stream == KeyIndex::kNone) {
+        return false;
+      }
+      // Spelled once per instance, for messages only: no string is built for an ordinary sample.
+      i = add_instance(key, stream, idl::instance_label(sample));
+      slots_.emplace_back();
     }
-    const std::string& label = labelled->second;
-    Progress& p = progress_[stream];
+    const std::optional<SampleCheckFailure> failed = first_failed_check(sample);
+    const std::string& label = instances_[i].label;
+    Stream& s = streams_[instances_[i].stream];
+    Progress& p = s.progress;
     if (!accept_producer(p, label, meta)) {
       return true;  // in lockstep a second producer ends the run: let ready() throw it now
     }
@@ -498,12 +589,15 @@ class Input : public InputBase {
     p.next_step = sample.header().next_step();
     const bool wake = wakes_executor(p, was_covering) || !lockstep_error_.empty();
     if (options_.by_robot) {
-      current_key_[stream] = key;  // the robot's current instance, for "waiting for" messages
+      s.current_key = key;  // the robot's current instance, for "waiting for" messages
+      s.has_current = true;
     }
     if (!failed) {
       p.received_ns = meta.received_ns;
       ++counts_.accepted;
-      slots_[key].pending.push_back(sample);
+      Slot& slot = slots_[i];
+      slot.pending.push_back(sample);
+      slot.valid = true;
     } else {
       count_rejection(failed->reason,
                       "(" + label + ", step " + std::to_string(sample.header().step()) + "): field '" + failed->field +
@@ -528,23 +622,35 @@ class Input : public InputBase {
     return std::nullopt;
   }
 
+  /// One instance's samples. pending[head..] are not taken yet, in arrival order: a vector whose
+  /// storage is reused step after step (a deque allocated and freed a block every few samples).
   struct Slot {
-    std::deque<Msg> pending;
+    std::vector<Msg> pending;
+    std::size_t head = 0;
     std::optional<Msg> latest;
+    bool valid = false;  // a valid sample arrived (instances())
+
+    bool has_readable(std::uint64_t limit) const { return head < pending.size() && pending[head].header().step() <= limit; }
+    /// Forgets the taken samples at the front: all of them at once when nothing is left.
+    void drop_taken() {
+      if (head == pending.size()) {
+        pending.clear();
+        head = 0;
+      } else if (head >= 64) {
+        pending.erase(pending.begin(), pending.begin() + static_cast<std::ptrdiff_t>(head));
+        head = 0;
+      }
+    }
   };
-  /// The first slot of robot `robot_id`'s instances (keys robot_id << 32 | X). Call with mutex_ held.
-  typename std::map<std::uint64_t, Slot>::iterator first_slot_of(std::uint32_t robot_id) {
-    return slots_.lower_bound(std::uint64_t{robot_id} << 32);
-  }
   /// Moves the slot's readable pending samples to `out`, in step order; the last becomes its
   /// latest. Call with mutex_ held.
   void take_readable(Slot& slot, std::vector<Msg>& out) const {
     const std::uint64_t limit = readable_limit();
     const std::size_t first = out.size();
-    while (!slot.pending.empty() && slot.pending.front().header().step() <= limit) {
-      out.push_back(std::move(slot.pending.front()));
-      slot.pending.pop_front();
+    while (slot.has_readable(limit)) {
+      out.push_back(std::move(slot.pending[slot.head++]));
     }
+    slot.drop_taken();
     if (out.size() > first) {
       slot.latest = out.back();
     }
@@ -553,14 +659,16 @@ class Input : public InputBase {
   /// nullptr. Call with mutex_ held.
   const Msg* newest_readable(Slot& slot) const {
     const std::uint64_t limit = readable_limit();
-    while (!slot.pending.empty() && slot.pending.front().header().step() <= limit) {
-      slot.latest = std::move(slot.pending.front());
-      slot.pending.pop_front();
+    while (slot.has_readable(limit)) {
+      slot.latest = std::move(slot.pending[slot.head++]);
     }
+    slot.drop_taken();
     return slot.latest ? &*slot.latest : nullptr;
   }
 
-  std::map<std::uint64_t, Slot> slots_;
+  // slots_[i] belongs to instances_[i]. A deque: latest() hands out pointers into it that stay
+  // valid while samples of new instances arrive (and add slots) on a listener thread.
+  std::deque<Slot> slots_;
 };
 
 template <class Msg>

@@ -63,17 +63,20 @@ class Recorder : public RecorderBase {
   }
   void collect(Metrics& metrics) override {
     text_.clear();
-    for (std::uint64_t key : keys_) {
-      const std::vector<Msg> samples =
-          by_robot_ ? input_->take_new_of_robot(static_cast<std::uint32_t>(key)) : input_->take_new(key);
-      for (const Msg& sample : samples) {
-        append_seconds(text_, static_cast<std::int64_t>(sample.header().stamp_ns()));
-        text_ += ',';
-        append_csv_row(text_, sample);
-        text_ += '\n';
-        ++rows_;
-        metrics.observe(sample, topic_);
-      }
+    samples_.clear();
+    // Every key's samples in one call (one lock), in the order of keys_, into a reused buffer.
+    if (by_robot_) {
+      input_->take_new_of_robots(keys_, samples_);
+    } else {
+      input_->take_new(keys_, samples_);
+    }
+    for (const Msg& sample : samples_) {
+      append_seconds(text_, static_cast<std::int64_t>(sample.header().stamp_ns()));
+      text_ += ',';
+      append_csv_row(text_, sample);
+      text_ += '\n';
+      ++rows_;
+      metrics.observe(sample, topic_);
     }
     if (file_.is_open()) {
       file_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
@@ -96,6 +99,7 @@ class Recorder : public RecorderBase {
   std::string path_;
   std::ofstream file_;  // buffered: rows reach the disk in blocks, and at flush()
   std::string text_;    // the rows of one collect()
+  std::vector<Msg> samples_;  // the samples of one collect()
   std::size_t rows_ = 0;
 };
 
