@@ -11,6 +11,10 @@
 # byte-identical to that run's (the robots' trajectories), and the intruder was refused its writer.
 # With the intruder's permissions re-signed to allow plant/cmd the run fails with two producers of
 # plant/cmd: checked by hand, see the commit adding this test.
+# A second intruder on host 7 tests the REMOTE side: a `control` identity of a foreign CA (its own
+# `robodds security init`), whose permissions DO allow plant/cmd and whose files pass its own
+# start-up checks; only the run's participants, authenticating it against their CA, can refuse it.
+# Were they to accept it, the plant would see two producers of plant/cmd and the run would fail.
 source "$(dirname "$0")/netns_lib.sh"
 SCENARIO="$SRC/sim/scenarios/plant_smoke.yaml"
 DURATION=5
@@ -23,6 +27,12 @@ sed -e 's/^  sensing: \[position_sensor\]/  sensing: [commander]/; /^  control: 
   "$SCENARIO" >"$WORK/intruder.yaml"
 grep -q "^  sensing: \[commander\]" "$WORK/intruder.yaml" && grep -q "v_mps: 0.9" "$WORK/intruder.yaml" ||
   fail "intruder scenario not rewritten: $(cat "$WORK/intruder.yaml")"
+FOREIGN="$WORK/foreign"
+"$ROBODDS" security init "$SCENARIO" --out "$FOREIGN" >"$WORK/foreign_init.log" 2>&1 || fail "foreign security init: $(cat "$WORK/foreign_init.log")"
+grep -q "<topic>plant/cmd</topic>" "$FOREIGN/control/permissions.xml" || fail "the foreign control identity must allow plant/cmd"
+! cmp -s "$FOREIGN/ca/ca_cert.pem" "$SEC/ca/ca_cert.pem" || fail "the foreign identities share the run's CA"
+sed -e 's/^  - {name: commander, type: open_loop_commander}/  - {name: commander, type: open_loop_commander, params: {v_mps: 0.9}}/' \
+  "$SCENARIO" >"$WORK/foreign.yaml"
 
 # plant_cmd_counts SUMMARY: "accepted=N rejected={...}" of the plant's plant/cmd input.
 plant_cmd_counts() {
@@ -43,7 +53,7 @@ timeout -k 5 120 "$ROBODDS" run "$SCENARIO" --duration "$DURATION" --out "$WORK/
 plain_counts="$(plant_cmd_counts "$WORK/plain/summary.json")"
 [[ $plain_counts == "accepted="[1-9]*" rejected={}" ]] || fail "unexpected counters of the unsecured run: $plain_counts"
 
-netns_setup 6
+netns_setup 7
 t1=$SECONDS
 GROUPS_="control sim sensing evaluation"
 for attempt in 1 2 3; do
@@ -54,12 +64,17 @@ for attempt in 1 2 3; do
     --member intruder --run-id "$run_id" --duration "$DURATION" --domain "$DOMAIN" --security "$SEC" \
     --participant-profile robodds.participant.udp_only --start-timeout 20
   intruder=$SPAWNED
+  netns_spawn 7 "$WORK/secure.logs/foreign.log" "$ROBODDS" host --scenario "$WORK/foreign.yaml" --group control \
+    --member foreign --run-id "$run_id" --duration "$DURATION" --domain "$DOMAIN" --security "$FOREIGN" \
+    --participant-profile robodds.participant.udp_only --start-timeout 20
+  foreign=$SPAWNED
   sleep 1
   netns_lockstep_run "$SCENARIO" "$WORK/secure" "$run_id" 5 "$GROUPS_" -- --domain "$DOMAIN" --duration "$DURATION" \
     --participant-profile robodds.participant.udp_only --start-timeout 20 --input-timeout 5 --security "$SEC"
-  kill -TERM "$intruder" 2>/dev/null || true
+  kill -TERM "$intruder" "$foreign" 2>/dev/null || true
   wait_pid "$intruder" 30
   intruder_rc=$RC
+  wait_pid "$foreign" 30
   # Fast DDS 2.9.1's secure-matching stall (docs/security.md, known problem) is retried; any other
   # failure is judged below.
   [[ $COORD_RC -ne 0 ]] && ! grep -q "has two producers" "$WORK/secure.logs/"*.log &&
@@ -85,5 +100,8 @@ same_outputs "$WORK/plain" "$WORK/secure"
 [[ $intruder_rc -eq 2 ]] || fail "the intruder exited $intruder_rc, expected 2 (writer refused): $(cat "$WORK/secure.logs/intruder.log")"
 grep -qE "cannot create a writer on plant/cmd .*plant/cmd topic not found in allow rule" "$WORK/secure.logs/intruder.log" ||
   fail "the intruder was not refused its plant/cmd writer: $(cat "$WORK/secure.logs/intruder.log")"
-echo "ok: the plant's plant/cmd input with the intruder: $secure_counts, without: $plain_counts; $SAME_COUNT CSVs" \
-  "identical; the intruder was refused its writer (unsecured run $((t1 - t0)) s, secure run $((t2 - t1)) s)"
+# The foreign identity passed its own start-up checks and got as far as waiting for the run.
+! grep -q "error: .*security" "$WORK/secure.logs/foreign.log" ||
+  fail "the foreign-CA intruder was stopped by its own start-up checks, not by the run: $(cat "$WORK/secure.logs/foreign.log")"
+echo "ok: the plant's plant/cmd input with the intruders: $secure_counts, without: $plain_counts; $SAME_COUNT CSVs" \
+  "identical; the intruder was refused its writer, the foreign-CA one its peers (unsecured run $((t1 - t0)) s, secure run $((t2 - t1)) s)"
