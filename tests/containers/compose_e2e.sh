@@ -167,6 +167,15 @@ compose_finish() {
   [[ -n "$cid" ]] || fail "$p: no coordinator container"
   rc="$(timeout -k 5 600 docker wait "$cid")" || fail "$p: the coordinator did not finish within 600 s"
   (cd "$SRC" && timeout -k 5 60 "${c[@]}" logs --no-color) >"$WORK/$p.logs" 2>&1 || true
+  # Secure containers discover each other over multicast, where Fast DDS 2.9.1's secure start-up
+  # race (docs/security.md, fixed upstream in 2.9.2) can leave one pair unauthenticated: the run
+  # stops at step 0 with a clear error. Return 2 (after down) so that the caller may try again.
+  if [[ "$rc" != 0 && -n "${RETRY_SECURE_STALL:-}" ]] &&
+    grep -qE "waited [0-9.]+ s at step [01] for topic|no tick on sim/clock .* after step [01]|no acknowledgement of step [01] " "$WORK/$p.logs"; then
+    (cd "$SRC" && timeout -k 5 120 "${c[@]}" down -v -t 5) >"$WORK/$p.down.log" 2>&1 || true
+    echo "known Fast DDS 2.9.1 secure start-up stall in $p: $(grep -m1 -E "error" "$WORK/$p.logs")"
+    return 2
+  fi
   [[ "$rc" == 0 ]] || fail "$p: the coordinator exited $rc: $(tail -n 30 "$WORK/$p.logs")"
   mkdir -p "$WORK/containers/$p"
   (cd "$SRC" && timeout -k 5 120 "${c[@]}" run -T --rm --no-deps --entrypoint tar evaluation -C /opt/robodds/out -cf - "$s" 2>/dev/null |
@@ -213,14 +222,19 @@ PY
 for identity in coordinator $(python3 -c 'import sys, yaml; print(" ".join(yaml.safe_load(open(sys.argv[1]))["services"]))' "$SECURE_FILE"); do
   chown -R 10001:10001 "$SEC/$identity"
 done
-compose_up "e2e$$sec" "$SECURE_FILE"
-compose_finish "e2e$$sec" "$SECURE_FILE" plant_smoke
+for attempt in 1 2 3; do
+  compose_up "e2e$$sec$attempt" "$SECURE_FILE"
+  secure_rc=0
+  RETRY_SECURE_STALL=$( ((attempt < 3)) && echo 1) compose_finish "e2e$$sec$attempt" "$SECURE_FILE" plant_smoke || secure_rc=$?
+  [[ $secure_rc -eq 2 ]] || break
+done
+SECURE_LOGS="$WORK/e2e$$sec$attempt.logs"
 # Every container's participant ran secure with its own identity (the runtime says so once per
 # participant; what security then enforces is integration.security's and netns_security_*'s part).
 for identity in $(python3 -c 'import sys, yaml; print(" ".join(yaml.safe_load(open(sys.argv[1]))["services"]))' "$SECURE_FILE"); do
   # Each service's identity has the service's name; a log line is prefixed with its container.
-  grep -qE "^[^|]*$identity[^|]*[|].*DDS Security on: identity '$identity'" "$WORK/e2e$$sec.logs" ||
-    fail "secure compose: the $identity container does not say it ran with DDS Security as '$identity': $(grep -m3 "$identity" "$WORK/e2e$$sec.logs")"
+  grep -qE "^[^|]*$identity[^|]*[|].*DDS Security on: identity '$identity'" "$SECURE_LOGS" ||
+    fail "secure compose: the $identity container does not say it ran with DDS Security as '$identity': $(grep -m3 "$identity" "$SECURE_LOGS")"
 done
 echo "ok: every container of the secure deployment ran with DDS Security and its own identity"
 
