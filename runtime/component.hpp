@@ -34,6 +34,10 @@ class Component {
   virtual ~Component() = default;
   /// Reads and validates parameters, declares inputs/outputs and the rate. Errors: ConfigError.
   virtual void configure(ComponentContext& ctx) = 0;
+  /// Called once when this host starts its run, before the first on_step(): in real time before
+  /// the wall clock's first due step, so that one-off work done here (e.g. the evaluator opening
+  /// its files) does not make the first steps late. Errors: as on_step().
+  virtual void on_start() {}
   /// Called at each due step once the inputs are ready (lockstep) or on the timer (real-time).
   virtual void on_step(const StepInfo& info) = 0;
   /// Called once after the last step (e.g. the evaluator writes its files).

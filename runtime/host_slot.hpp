@@ -50,6 +50,15 @@ struct ComponentSlot {
   std::uint64_t last_run_step = 0;
   Clock::time_point last_run_wall;
 
+  /// on_start(); a component's exception becomes a RunError naming it.
+  void start() {
+    try {
+      component->on_start();
+    } catch (const std::exception& e) {
+      throw RunError("component '" + spec->name + "' failed at the start of the run: " + e.what());
+    }
+  }
+
   /// on_step(); a component's exception becomes a RunError naming it and the step.
   void run(std::uint64_t step, double time_s, double dt_s) {
     try {

@@ -305,5 +305,42 @@ components:
   }
 }
 
+/// Logs on_start() and on_step() calls, to check the order the host calls them in.
+class StartLogger : public Component {
+ public:
+  explicit StartLogger(std::shared_ptr<std::vector<std::string>> log) : log_(std::move(log)) {}
+  void configure(ComponentContext&) override {}
+  void on_start() override { log_->push_back("start"); }
+  void on_step(const StepInfo& info) override { log_->push_back("step " + std::to_string(info.step)); }
+
+ private:
+  std::shared_ptr<std::vector<std::string>> log_;
+};
+
+// on_start() runs once, before the first step, in both modes (real time: before the clock's first
+// due step, so one-off work there does not make step 0 late).
+TEST(HostLoop, OnStartRunsOnceBeforeTheFirstStepInBothModes) {
+  for (const TimeMode mode : {TimeMode::kLockstep, TimeMode::kRealtime}) {
+    NodeHarness h(R"(name: start_hook
+step_s: 0.01
+duration_s: 0.05
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: logger, type: logger}
+)");
+    auto log = std::make_shared<std::vector<std::string>>();
+    h.registry().add({"logger", "logs its calls", testing::kNoParamsFile, [log] { return std::make_unique<StartLogger>(log); },
+                      testing::no_params, nullptr});
+    h.set_mode(mode);
+    h.run({"logger"});
+    ASSERT_GE(log->size(), 2u);
+    EXPECT_EQ(log->front(), "start");
+    EXPECT_EQ(std::count(log->begin(), log->end(), "start"), 1);
+    EXPECT_EQ((*log)[1].rfind("step ", 0), 0u);
+  }
+}
+
 }  // namespace
 }  // namespace robodds

@@ -59,7 +59,12 @@ captured_run() {
   local captured filtered
   captured=$(sed -nE 's/^([0-9]+) packets captured$/\1/p' "$WORK/$name.tcpdump.log")
   filtered=$(sed -nE 's/^([0-9]+) packets received by filter$/\1/p' "$WORK/$name.tcpdump.log")
-  [[ -n $captured && $captured == "$filtered" ]] && grep -q "^0 packets dropped by kernel" "$WORK/$name.tcpdump.log" ||
+  # Nothing dropped by the kernel; "received by filter" may exceed "captured" by a packet or two
+  # that reached the interface as tcpdump was being stopped, 0.5 s after the run's last process
+  # ended (the capture has no filter: IPv6 neighbour and multicast-listener packets come at any
+  # time), so none of them can carry a sample of the run (seen once in CI: 1,308 of 1,309).
+  [[ -n $captured && -n $filtered ]] && ((captured <= filtered && filtered - captured <= 3)) &&
+    grep -q "^0 packets dropped by kernel" "$WORK/$name.tcpdump.log" ||
     fail "tcpdump missed packets: $(cat "$WORK/$name.tcpdump.log")"
   RUN_RC=0
   [[ $COORD_RC -eq 0 && "$HOST_RCS" == "control=0 rest=0 " ]] && return 0

@@ -93,6 +93,15 @@ class EvaluatorNode : public Component {
     ctx.request_run_health();  // summary.json "hosts" and "inputs" (health_summary.hpp)
   }
 
+  void on_start() override {
+    // Real time: the files before the clock starts (opening them took 3-18 ms at step 0 with 200
+    // robots, which made steps 0-1 overrun; docs/performance.md). Lockstep: at the first step, so
+    // that a run stopped at its start barrier leaves no files.
+    if (context_->mode() == TimeMode::kRealtime) {
+      open_files();
+    }
+  }
+
   void on_step(const StepInfo& info) override {
     if (!started_) {
       // The run's start as a stamp (s): sim time 0 in lockstep, the epoch's wall clock in real time.
@@ -100,14 +109,7 @@ class EvaluatorNode : public Component {
       start_s_ = static_cast<double>(info.stamp_ns) * 1e-9 - info.time_s;
       metrics_->set_gaps_after_s(start_s_ + metrics_after_s_);
     }
-    if (!files_open_ && !context_->output_dir().empty()) {
-      // At the first step, not at configure: a run that never starts leaves no files.
-      files_open_ = true;
-      ::mkdir(context_->output_dir().c_str(), 0755);
-      for (auto& recorder : recorders_) {
-        recorder->open(context_->output_dir());
-      }
-    }
+    open_files();
     for (auto& recorder : recorders_) {
       recorder->collect(*metrics_);
     }
@@ -149,6 +151,19 @@ class EvaluatorNode : public Component {
   }
 
  private:
+  /// Creates the output folder and each recorder's file, once; not at configure: a run that never
+  /// starts leaves no files.
+  void open_files() {
+    if (files_open_ || context_->output_dir().empty()) {
+      return;
+    }
+    files_open_ = true;
+    ::mkdir(context_->output_dir().c_str(), 0755);
+    for (auto& recorder : recorders_) {
+      recorder->open(context_->output_dir());
+    }
+  }
+
   /// Paper 3: records relative pose topic `topic` of stage `stage` (relative_recorder.hpp),
   /// subscribed for every pair (served robot i, other robot j of the scenario).
   void add_relative_topic(ComponentContext& ctx, const std::string& topic, const char* stage,

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <fstream>
 #include <limits>
+#include <optional>
 #include <regex>
 #include <sstream>
 #include <string>
@@ -540,6 +541,32 @@ components:
   add_evaluator(h);
   const std::string error = h.run_error<ConfigError>({"evaluator"});
   EXPECT_NE(error.find("sim/clock"), std::string::npos) << "expected a ConfigError, got: " << error;
+}
+
+// Real time: the files are opened in on_start(), before the clock starts (opening them at step 0
+// made steps 0-1 late at 200 robots); lockstep: at the first step, so a run stopped at its start
+// barrier leaves no files. The feeder runs before the evaluator at each step: what it sees at step
+// 0 is what on_start() did.
+TEST(EvaluatorNode, OpensItsFilesBeforeTheClockInRealTimeAndAtTheFirstStepInLockstep) {
+  for (const TimeMode mode : {TimeMode::kRealtime, TimeMode::kLockstep}) {
+    NodeHarness h(kScenario);
+    add_evaluator(h);
+    h.set_mode(mode);
+    std::optional<bool> file_at_step0;
+    h.feed([&](std::uint64_t step) {
+      if (!file_at_step0) {
+        file_at_step0 = std::ifstream(h.output_dir() + "/plant_state.csv").good();
+      }
+      for (std::uint32_t robot : {1u, 2u}) {
+        idl::RobotState state;
+        state.robot_id(robot);
+        h.publish("plant/state", state, step, step + 1);
+      }
+    });
+    h.run({"evaluator"});
+    ASSERT_TRUE(file_at_step0.has_value());
+    EXPECT_EQ(*file_at_step0, mode == TimeMode::kRealtime) << (mode == TimeMode::kRealtime ? "real time" : "lockstep");
+  }
 }
 
 }  // namespace
