@@ -89,10 +89,15 @@ struct Host::Impl {
 
   /// One loop drives both sides of the protocol on this thread: the host part runs the
   /// components of each tick, the coordinator part publishes ticks and collects acknowledgements.
-  RunStats run_lockstep() {
+  /// Every component's on_start(), once, before the run's first step.
+  void start_components() {
     for (auto& slot : slots) {
       slot->start();
     }
+  }
+
+  RunStats run_lockstep() {
+    start_components();
     const Clock::time_point start = Clock::now();
     if (lockstep_host) {
       lockstep_host->begin(start);
@@ -132,9 +137,7 @@ struct Host::Impl {
     const std::uint64_t last = run.scenario->last_step();
     const double step_s = run.scenario->step_s;
     // Before the clock: what a component does once at the start must not make step 0 late.
-    for (auto& slot : slots) {
-      slot->start();
-    }
+    start_components();
     const std::int64_t epoch_ns = options.realtime_epoch_ns != 0 ? options.realtime_epoch_ns : wall_clock_now_ns();
     const Clock::time_point start = Clock::now();
     std::vector<std::uint64_t> next_due(slots.size(), 0);

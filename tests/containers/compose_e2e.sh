@@ -219,7 +219,9 @@ for name, service in doc["services"].items():
     assert service["command"][-2:] == ["--security", "/opt/robodds/security"], (name, service["command"])
 PY
 # The keys are the owner's only (0600): the containers' user must own its identity (docs/deployment.md).
-for identity in coordinator $(python3 -c 'import sys, yaml; print(" ".join(yaml.safe_load(open(sys.argv[1]))["services"]))' "$SECURE_FILE"); do
+# One identity per service (the coordinator is one), named like it.
+SERVICES=$(python3 -c 'import sys, yaml; print(" ".join(yaml.safe_load(open(sys.argv[1]))["services"]))' "$SECURE_FILE")
+for identity in $SERVICES; do
   chown -R 10001:10001 "$SEC/$identity"
 done
 for attempt in 1 2 3; do
@@ -231,8 +233,8 @@ done
 SECURE_LOGS="$WORK/e2e$$sec$attempt.logs"
 # Every container's participant ran secure with its own identity (the runtime says so once per
 # participant; what security then enforces is integration.security's and netns_security_*'s part).
-for identity in $(python3 -c 'import sys, yaml; print(" ".join(yaml.safe_load(open(sys.argv[1]))["services"]))' "$SECURE_FILE"); do
-  # Each service's identity has the service's name; a log line is prefixed with its container.
+for identity in $SERVICES; do
+  # A log line is prefixed with its container.
   grep -qE "^[^|]*$identity[^|]*[|].*DDS Security on: identity '$identity'" "$SECURE_LOGS" ||
     fail "secure compose: the $identity container does not say it ran with DDS Security as '$identity': $(grep -m3 "$identity" "$SECURE_LOGS")"
 done

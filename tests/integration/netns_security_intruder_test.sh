@@ -21,18 +21,18 @@ DURATION=5
 SEC="$WORK/sec"
 "$ROBODDS" security init "$SCENARIO" --out "$SEC" >"$WORK/init.log" 2>&1 || fail "security init: $(cat "$WORK/init.log")"
 ! grep -q "<topic>plant/cmd</topic>" "$SEC/sensing/permissions.xml" || fail "sensing must not name plant/cmd"
-# The intruder's scenario: group 'sensing' runs the commander (v 0.9 m/s instead of 1) alone.
+# Both intruders command at v 0.9 m/s instead of 1: the foreign one as group 'control'
+# (foreign.yaml), the first one as group 'sensing', which runs the commander alone (intruder.yaml).
+sed -e 's/^  - {name: commander, type: open_loop_commander}/  - {name: commander, type: open_loop_commander, params: {v_mps: 0.9}}/' \
+  "$SCENARIO" >"$WORK/foreign.yaml"
 sed -e 's/^  sensing: \[position_sensor\]/  sensing: [commander]/; /^  control: \[commander\]/d' \
-  -e 's/^  - {name: commander, type: open_loop_commander}/  - {name: commander, type: open_loop_commander, params: {v_mps: 0.9}}/' \
-  "$SCENARIO" >"$WORK/intruder.yaml"
+  "$WORK/foreign.yaml" >"$WORK/intruder.yaml"
 grep -q "^  sensing: \[commander\]" "$WORK/intruder.yaml" && grep -q "v_mps: 0.9" "$WORK/intruder.yaml" ||
   fail "intruder scenario not rewritten: $(cat "$WORK/intruder.yaml")"
 FOREIGN="$WORK/foreign"
 "$ROBODDS" security init "$SCENARIO" --out "$FOREIGN" >"$WORK/foreign_init.log" 2>&1 || fail "foreign security init: $(cat "$WORK/foreign_init.log")"
 grep -q "<topic>plant/cmd</topic>" "$FOREIGN/control/permissions.xml" || fail "the foreign control identity must allow plant/cmd"
 ! cmp -s "$FOREIGN/ca/ca_cert.pem" "$SEC/ca/ca_cert.pem" || fail "the foreign identities share the run's CA"
-sed -e 's/^  - {name: commander, type: open_loop_commander}/  - {name: commander, type: open_loop_commander, params: {v_mps: 0.9}}/' \
-  "$SCENARIO" >"$WORK/foreign.yaml"
 
 # plant_cmd_counts SUMMARY: "accepted=N rejected={...}" of the plant's plant/cmd input.
 plant_cmd_counts() {

@@ -73,8 +73,10 @@ class UwbSensorNode : public Component {
       shared.advance_to(info.time_s);
       // Every draw happens whatever the outcome, so that losses and range do not shift the streams.
       const bool lost = frame_lost(params_.errors, streams.loss);
-      const Eigen::MatrixXd truth = model::array_ranges(array_, pose_of(*own), array_, pose_of(*other));
-      const BlockedLinks blocked = links_through_walls(array_, pose_of(*own), array_, pose_of(*other), walls_);
+      const model::Pose2 own_pose = pose_of(*own);
+      const model::Pose2 other_pose = pose_of(*other);
+      const Eigen::MatrixXd truth = model::array_ranges(array_, own_pose, array_, other_pose);
+      const BlockedLinks blocked = links_through_walls(array_, own_pose, array_, other_pose, walls_);
       const Eigen::MatrixXd ranges = measure_ranges(truth, shared.link_bias_m(robot < peer), shared.common_m(), params_.errors,
                                                     streams.white, streams.nlos, blocked);
       const bool in_range = truth.maxCoeff() <= params_.max_range_m;
