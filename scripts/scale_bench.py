@@ -6,11 +6,13 @@ and the largest resident set of one process. Prints a Markdown table; --plot dra
 robot-tick against N (docs/performance.md, "Cost per robot-tick").
 
   scripts/scale_bench.py [--robots 20,50,100,200,500,1000] [--deploy colocated,processes] [--duration S]
-                         [--repeat K] [--robodds PATH] [--qos FILE] [--domain D] [--out DIR] [--plot FILE.png]
+                         [--repeat K] [--lockstep-window W] [--robodds PATH] [--qos FILE] [--domain D]
+                         [--out DIR] [--plot FILE.png]
 
 Each (N, deploy) is run --repeat times, in turn, and the median is printed (the machine is noisy:
 read the figures side by side, from one invocation). --duration is simulated seconds (100 Hz)."""
 import argparse
+import atexit
 import json
 import math
 import os
@@ -39,11 +41,13 @@ def scenario_with_robots(n):
     return scenario
 
 
-def run_once(robodds, scenario_file, deploy, duration_s, domain, out_dir, timeout_s, qos):
+def run_once(robodds, scenario_file, deploy, duration_s, domain, out_dir, timeout_s, qos, window):
     """One run; returns (ticks per second, max RSS of one process in MB). Raises on failure."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
     cmd = [robodds, "--log", "warn", "run", scenario_file, "--deploy", deploy, "--duration", str(duration_s),
            "--domain", str(domain), "--out", out_dir, "--no-plots"] + (["--qos", qos] if qos else [])
+    if deploy == "processes" and window != 1:  # co-located runs have no window (one process, no coordinator)
+        cmd += ["--lockstep-window", str(window)]
     done = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, timeout=timeout_s)
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} exited {done.returncode}: {done.stderr.strip()[-400:]}")
@@ -60,7 +64,8 @@ def measure(args, n, deploy, scenario_file, work):
     for k in range(args.repeat):
         out_dir = os.path.join(work, f"{deploy}_{n}_{k}")
         child = subprocess.run([sys.executable, os.path.abspath(__file__), "--one", scenario_file, deploy, str(args.duration),
-                                str(args.domain), out_dir, args.robodds, str(args.timeout), args.qos or ""],
+                                str(args.domain), out_dir, args.robodds, str(args.timeout), args.qos or "",
+                                str(args.lockstep_window)],
                                capture_output=True, text=True)
         if child.returncode != 0:
             raise RuntimeError(child.stderr.strip())
@@ -73,14 +78,17 @@ def measure(args, n, deploy, scenario_file, work):
 
 def main():
     if len(sys.argv) > 1 and sys.argv[1] == "--one":  # internal: one run in a fresh process
-        scenario_file, deploy, duration, domain, out_dir, robodds, timeout, qos = sys.argv[2:10]
-        print(json.dumps(run_once(robodds, scenario_file, deploy, float(duration), int(domain), out_dir, float(timeout), qos)))
+        scenario_file, deploy, duration, domain, out_dir, robodds, timeout, qos, window = sys.argv[2:11]
+        print(json.dumps(run_once(robodds, scenario_file, deploy, float(duration), int(domain), out_dir, float(timeout), qos,
+                                  int(window))))
         return 0
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--robots", default="20,50,100,200,500,1000", help="comma-separated robot counts")
     p.add_argument("--deploy", default="colocated,processes", help="colocated, processes or both")
     p.add_argument("--duration", type=float, default=5.0, help="simulated seconds per run (100 Hz steps)")
     p.add_argument("--repeat", type=int, default=3, help="runs per (N, deploy); the median is printed")
+    p.add_argument("--lockstep-window", type=int, default=1,
+                   help="ticks the coordinator may run ahead across processes (robodds run --lockstep-window)")
     p.add_argument("--robodds", default=os.path.join(ROOT, "build", "tools", "robodds", "robodds"))
     p.add_argument("--qos", help="QoS profile file instead of the default (e.g. an older robodds_qos.xml, to compare)")
     p.add_argument("--domain", type=int, default=127)
@@ -100,13 +108,18 @@ def main():
             p.error(f"--deploy: '{d}' is neither colocated nor processes")
     if args.repeat < 1 or args.duration <= 0:
         p.error("--repeat must be >= 1 and --duration > 0")
+    if args.lockstep_window < 1:
+        p.error("--lockstep-window must be >= 1")
     if not os.access(args.robodds, os.X_OK):
         p.error(f"--robodds: {args.robodds} is not an executable (build first: scripts/build.sh)")
 
     work = args.out or tempfile.mkdtemp(prefix="robodds_scale_")
     os.makedirs(work, exist_ok=True)
+    if not args.out:  # also when a run fails and main() raises
+        atexit.register(shutil.rmtree, work, True)
     rows = []
-    print(f"plant_smoke with N robots, lockstep, {args.duration:g} s simulated, median of {args.repeat}", file=sys.stderr)
+    print(f"plant_smoke with N robots, lockstep (window {args.lockstep_window} across processes), {args.duration:g} s "
+          f"simulated, median of {args.repeat}", file=sys.stderr)
     for n in robots:
         scenario_file = os.path.join(work, f"plant_smoke_{n}.yaml")
         with open(scenario_file, "w") as f:
@@ -142,8 +155,6 @@ def main():
         fig.tight_layout()
         fig.savefig(args.plot, dpi=120)
         print(f"plot: {args.plot}", file=sys.stderr)
-    if not args.out:
-        shutil.rmtree(work, ignore_errors=True)
     return 0
 
 

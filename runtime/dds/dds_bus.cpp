@@ -10,18 +10,25 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <map>
 #include <memory>
 #include <mutex>
 #include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "runtime/dds/listeners.hpp"
 #include "runtime/dds/match_report.hpp"
 #include "runtime/dds/participant.hpp"
 #include "runtime/dds/qos_files.hpp"
+#include "common/random.hpp"
 #include "runtime/error.hpp"
+#include "runtime/instance_spread.hpp"
+#include "runtime/log.hpp"
+#include "runtime/qos_profiles.hpp"
 #include "runtime/shutdown_watchdog.hpp"
 #include "runtime/dds/type_support.hpp"
 #include "runtime/dds/undecodable.hpp"
@@ -32,27 +39,50 @@ using eprosima::fastrtps::types::ReturnCode_t;
 
 namespace {
 
+/// One topic's writer. In lockstep with many instances, several DataWriters of the topic, each
+/// publishing its share of the instances (runtime/instance_spread.hpp); the first one carries
+/// the listener (matches, incompatible QoS: the others have the same QoS and readers).
 class DdsWriter : public WriterHandle {
  public:
-  DdsWriter(dds::DataWriter* writer, std::string topic, const MatchState* match)
-      : writer_(writer), topic_(std::move(topic)), match_(match) {}
+  DdsWriter(std::vector<dds::DataWriter*> writers, std::string topic, const MatchState* match)
+      : writers_(std::move(writers)), type_(writers_.front()->get_type().get()), spread_(writers_.size()),
+        topic_(std::move(topic)), match_(match) {}
   void write(const void* sample) override {
-    if (!writer_->write(const_cast<void*>(sample))) {
+    dds::DataWriter* writer = writers_.front();
+    if (writers_.size() > 1) {
+      eprosima::fastrtps::rtps::InstanceHandle_t instance;
+      std::lock_guard<std::mutex> lock(spread_mutex_);  // type_'s key buffer and spread_
+      type_->getKey(const_cast<void*>(sample), &instance, false);
+      const eprosima::fastrtps::rtps::octet* key = instance.value;  // 16 bytes: the key or its MD5
+      const std::string_view bytes(reinterpret_cast<const char*>(key), 16);
+      writer = writers_[spread_.writer_of(stable_hash(bytes))];
+    }
+    if (!writer->write(const_cast<void*>(sample))) {
       throw RunError("DDS write failed on topic " + topic_);
     }
   }
   const std::string& topic() const override { return topic_; }
+  /// Every DataWriter of the topic, within one `timeout` in all.
   bool wait_acknowledged(std::chrono::milliseconds timeout) override {
-    const eprosima::fastrtps::Duration_t limit(static_cast<double>(timeout.count()) / 1000.0);
-    return writer_->wait_for_acknowledgments(limit) == ReturnCode_t::RETCODE_OK;
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    bool all = true;
+    for (dds::DataWriter* writer : writers_) {
+      const auto left = std::max(std::chrono::nanoseconds(0), deadline - std::chrono::steady_clock::now());
+      const eprosima::fastrtps::Duration_t limit(std::chrono::duration<double>(left).count());
+      all = writer->wait_for_acknowledgments(limit) == ReturnCode_t::RETCODE_OK && all;
+    }
+    return all;
   }
   bool has_matched_readers() const override { return match_->matched.load(std::memory_order_relaxed) > 0; }
-  dds::DataWriter* writer() const { return writer_; }
+  const std::vector<dds::DataWriter*>& writers() const { return writers_; }
 
  private:
-  dds::DataWriter* writer_;
+  std::vector<dds::DataWriter*> writers_;  // owned by the participant
+  dds::TopicDataType* type_;               // the registered type support, owned by the participant
+  std::mutex spread_mutex_;
+  InstanceSpread spread_;
   std::string topic_;
-  const MatchState* match_;  // the writer's listener's: matched readers now
+  const MatchState* match_;  // the first writer's listener's: matched readers now
 };
 
 class DdsReader : public ReaderHandle {};
@@ -106,15 +136,31 @@ class FastDdsBus : public DdsBus {
         writer = publisher_->create_datawriter(dds_topic, qos, listener.get(), mask);
       }
     }
+    std::vector<dds::DataWriter*> writers{writer};
+    const std::size_t spread = writer == nullptr ? 1 : writers_per_topic(profile, type_name, owned != exclusive_.end());
+    while (writer != nullptr && writers.size() < spread) {
+      writer = publisher_->create_datawriter_with_profile(dds_topic, profile, nullptr, dds::StatusMask::none());
+      writers.push_back(writer);
+    }
     if (writer == nullptr) {
       const std::string reasons = take_dds_errors();  // e.g. DDS Security: not allowed by the permissions
       throw ConfigError("cannot create a writer on " + topic + " with QoS profile '" + profile + "'" +
                         (reasons.empty() ? std::string() : ": Fast DDS: " + reasons));
     }
-    auto handle = std::make_shared<DdsWriter>(writer, topic, &listener->match());
+    if (spread > 1) {
+      log::debug("dds", topic + ": " + std::to_string(spread) + " writers (profile '" + profile + "', " +
+                            std::to_string(expected_instances_) + " instances, at most " +
+                            std::to_string(kInstancesPerLockstepWriter) + " each)");
+    }
+    auto handle = std::make_shared<DdsWriter>(std::move(writers), topic, &listener->match());
     writer_listeners_[key] = std::move(listener);
     writers_[key] = handle;
     return handle;
+  }
+
+  void expect_instances(std::size_t instances_per_topic) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    expected_instances_ = instances_per_topic;
   }
 
   std::optional<std::size_t> writer_history_depth(const std::string& profile) const override {
@@ -184,7 +230,9 @@ class FastDdsBus : public DdsBus {
     ShutdownWatchdog watchdog("emptying the DDS writers' histories");
     for (auto& [key, writer] : writers_) {
       std::size_t removed = 0;
-      writer->writer()->clear_history(&removed);  // RETCODE_ERROR when it was empty already
+      for (dds::DataWriter* each : writer->writers()) {
+        each->clear_history(&removed);  // RETCODE_ERROR when it was empty already
+      }
     }
   }
 
@@ -270,6 +318,16 @@ class FastDdsBus : public DdsBus {
     }
   }
 
+  /// How many DataWriters publish one topic: several only for a keyed type in the `lockstep`
+  /// profile (the deep history; runtime/instance_spread.hpp) and without exclusive ownership.
+  std::size_t writers_per_topic(const std::string& profile, const std::string& type_name, bool exclusive) const {
+    if (profile != kLockstepProfile || exclusive) {
+      return 1;
+    }
+    const dds::TypeSupport type = participant_->find_type(type_name);
+    return !type.empty() && type->m_isGetKeyDefined ? writers_for_instances(expected_instances_) : 1;
+  }
+
   dds::Topic* ensure_topic(const std::string& topic, const std::string& type_name) {
     auto it = topics_.find(topic);
     if (it != topics_.end()) {
@@ -308,6 +366,7 @@ class FastDdsBus : public DdsBus {
   dds::Publisher* publisher_ = nullptr;    // owned by participant_
   dds::Subscriber* subscriber_ = nullptr;  // owned by participant_
   bool started_ = false;
+  std::size_t expected_instances_ = 1;  // expect_instances()
 };
 
 }  // namespace

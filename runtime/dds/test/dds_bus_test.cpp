@@ -1,12 +1,20 @@
 // FastDdsBus::undecodable_samples(): the type support's per-type counts, credited to the topics
 // this bus reads. A real participant on domain 83 (the counters helper's test domain); no reader
 // is started, so nothing goes on the wire.
+// FastDdsBus::expect_instances(): a lockstep topic's instances spread over several writers,
+// seen by a reader of another participant on domain 85 (real DDS, in this process).
 #include "runtime/dds/dds_bus.hpp"
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <condition_variable>
 #include <cstring>
+#include <map>
 #include <memory>
+#include <mutex>
+#include <set>
+#include <thread>
 
 #include "robodds/idl/robodds.h"
 #include "runtime/dds/type_support.hpp"
@@ -37,6 +45,76 @@ TEST(FastDdsBus, CreditsItsInputTopicsWithTheUndecodableSamplesOfTheirType) {
   ASSERT_EQ(counts.count("plant/cmd"), 1u);
   EXPECT_EQ(counts.at("plant/cmd"), 2u);
   EXPECT_EQ(counts.size(), 1u) << "only the topics this bus reads";
+}
+
+/// Robot id -> the writer ids its samples came from, as a reader on another participant saw them.
+struct WritersSeen {
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::map<std::uint32_t, std::set<std::uint64_t>> by_robot;
+  std::size_t samples = 0;
+};
+
+/// `robots` robots' RobotState written `rounds` times through a bus that expects `expected`
+/// instances per topic, on `profile`; returns what the reader saw (after all arrived, or 10 s).
+std::map<std::uint32_t, std::set<std::uint64_t>> writers_seen(std::size_t expected, std::uint32_t robots, int rounds,
+                                                              const char* profile) {
+  DdsOptions options;
+  options.domain_id = 85;
+  options.qos_files = {std::string(ROBODDS_SOURCE_DIR) + "/deploy/qos/robodds_qos.xml"};
+  const std::string type_name = "robodds::idl::RobotState";
+  auto seen = std::make_shared<WritersSeen>();
+  options.participant_name = "spread_reader";
+  auto reader_bus = make_dds_bus(options);
+  reader_bus->reader("plant/state", type_name, profile, [seen](const void* p, const SampleMeta& meta) {
+    const auto* sample = static_cast<const idl::RobotState*>(p);
+    std::lock_guard<std::mutex> lock(seen->mutex);
+    seen->by_robot[sample->robot_id()].insert(meta.writer_id);
+    ++seen->samples;
+    seen->changed.notify_all();
+  }, nullptr);
+  reader_bus->start();
+  options.participant_name = "spread_writer";
+  auto writer_bus = make_dds_bus(options);
+  writer_bus->expect_instances(expected);
+  auto writer = writer_bus->writer("plant/state", type_name, profile);
+  for (int round = 0; round < rounds; ++round) {
+    for (std::uint32_t robot = 1; robot <= robots; ++robot) {
+      idl::RobotState sample;
+      sample.robot_id(robot);
+      sample.x(round);
+      writer->write(&sample);
+    }
+  }
+  std::unique_lock<std::mutex> lock(seen->mutex);
+  seen->changed.wait_for(lock, std::chrono::seconds(10), [&] { return seen->samples >= robots * static_cast<std::size_t>(rounds); });
+  EXPECT_EQ(seen->samples, robots * static_cast<std::size_t>(rounds)) << "transient-local + reliable: every sample arrives";
+  auto result = seen->by_robot;
+  lock.unlock();
+  reader_bus->close_readers();
+  return result;
+}
+
+std::set<std::uint64_t> all_writers(const std::map<std::uint32_t, std::set<std::uint64_t>>& by_robot) {
+  std::set<std::uint64_t> all;
+  for (const auto& [robot, writers] : by_robot) {
+    all.insert(writers.begin(), writers.end());
+  }
+  return all;
+}
+
+TEST(FastDdsBus, SpreadsALockstepTopicsInstancesOverWritersOf32AndKeepsEachOnOne) {
+  const auto by_robot = writers_seen(70, 70, 3, "lockstep");
+  ASSERT_EQ(by_robot.size(), 70u);
+  for (const auto& [robot, writers] : by_robot) {
+    EXPECT_EQ(writers.size(), 1u) << "robot " << robot << ": one producer per instance, every round";
+  }
+  EXPECT_EQ(all_writers(by_robot).size(), 3u) << "70 instances, at most 32 per writer";
+}
+
+TEST(FastDdsBus, KeepsOneWriterForFewInstancesAndForOtherProfiles) {
+  EXPECT_EQ(all_writers(writers_seen(3, 3, 2, "lockstep")).size(), 1u);
+  EXPECT_EQ(all_writers(writers_seen(70, 40, 1, "mission")).size(), 1u) << "only the deep lockstep history is spread";
 }
 
 }  // namespace
