@@ -75,6 +75,11 @@ std::vector<std::pair<std::string, double>> metrics_of(const std::vector<Summary
   return out;
 }
 
+bool is_never(const std::string& metric, double value) {
+  constexpr double kNever = -1.0;
+  return value == kNever && metric.size() >= 2 && metric.compare(metric.size() - 2, 2, "_s") == 0;
+}
+
 std::vector<MetricStats> aggregate(const std::vector<RunOutcome>& outcomes) {
   std::size_t combinations = 0;
   for (const RunOutcome& o : outcomes) {
@@ -84,18 +89,29 @@ std::vector<MetricStats> aggregate(const std::vector<RunOutcome>& outcomes) {
   std::vector<MetricStats> rows;
   for (std::size_t c = 0; c < combinations; ++c) {
     std::map<std::string, std::vector<double>> values;
+    std::map<std::string, std::size_t> never;
     for (const RunOutcome& o : outcomes) {
       if (o.ok && o.run.combination == c) {
         for (const auto& [name, value] : o.metrics) {
-          values[name].push_back(value);
+          if (is_never(name, value)) {
+            ++never[name];
+          } else {
+            values[name].push_back(value);
+          }
         }
       }
     }
     for (const std::string& name : order) {
       const auto it = values.find(name);
-      if (it != values.end()) {
-        rows.push_back(MetricStats{c, name, stats::summarize(it->second)});
+      const auto nv = never.find(name);
+      if (it == values.end() && nv == never.end()) {
+        continue;
       }
+      MetricStats row{c, name, {}, nv == never.end() ? 0 : nv->second};
+      if (it != values.end()) {
+        row.summary = stats::summarize(it->second);
+      }
+      rows.push_back(row);
     }
   }
   return rows;
@@ -134,16 +150,17 @@ std::string summary_csv(const std::vector<GridAxis>& axes, const std::vector<Met
   for (const GridAxis& axis : axes) {
     out += csv_cell(axis.key) + ",";
   }
-  out += "metric,n,mean,std,min,max,ci95\n";
+  out += "metric,n,mean,std,min,max,ci95,never\n";
   for (const MetricStats& r : rows) {
     for (const std::string& s : combination_sets(axes, r.combination)) {
       out += csv_cell(assigned_value(s)) + ",";
     }
     const stats::SampleSummary& s = r.summary;
+    const bool any = s.count >= 1;     // every run "never": no statistics, empty cells
     const bool spread = s.count >= 2;  // one value has no standard deviation or interval: empty cells
-    out += csv_cell(r.metric) + "," + std::to_string(s.count) + "," + shortest_text(s.mean) + "," +
-           (spread ? shortest_text(s.stddev) : "") + "," + shortest_text(s.min) + "," + shortest_text(s.max) + "," +
-           (spread ? shortest_text(s.ci95) : "") + "\n";
+    const auto cell = [](bool shown, double v) { return shown ? shortest_text(v) : std::string(); };
+    out += csv_cell(r.metric) + "," + std::to_string(s.count) + "," + cell(any, s.mean) + "," + cell(spread, s.stddev) + "," +
+           cell(any, s.min) + "," + cell(any, s.max) + "," + cell(spread, s.ci95) + "," + std::to_string(r.never) + "\n";
   }
   return out;
 }
@@ -161,16 +178,19 @@ std::string summary_markdown(const std::vector<GridAxis>& axes, const std::vecto
       }
     }
     out += "## " + combination_title(axes, combination_sets(axes, c)) + "\n\n" + std::to_string(ok) + " runs ok, " +
-           std::to_string(failed) + " failed; mean ± half-width of the 95 % confidence interval (Student t)\n\n";
-    out += "| metric | n | mean | ± 95 % | std | min | max |\n|---|---:|---:|---:|---:|---:|---:|\n";
+           std::to_string(failed) + " failed; mean ± half-width of the 95 % confidence interval (Student t); never: runs whose "
+           "time metric (-1) never came, not in n\n\n";
+    out += "| metric | n | mean | ± 95 % | std | min | max | never |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const MetricStats& r : rows) {
       if (r.combination != c) {
         continue;
       }
       const stats::SampleSummary& s = r.summary;
+      const bool any = s.count >= 1;
       const bool spread = s.count >= 2;
-      out += "| " + r.metric + " | " + std::to_string(s.count) + " | " + brief(s.mean) + " | " + (spread ? brief(s.ci95) : "n/a") +
-             " | " + (spread ? brief(s.stddev) : "n/a") + " | " + brief(s.min) + " | " + brief(s.max) + " |\n";
+      const auto cell = [](bool shown, double v) { return shown ? brief(v) : std::string("n/a"); };
+      out += "| " + r.metric + " | " + std::to_string(s.count) + " | " + cell(any, s.mean) + " | " + cell(spread, s.ci95) + " | " +
+             cell(spread, s.stddev) + " | " + cell(any, s.min) + " | " + cell(any, s.max) + " | " + std::to_string(r.never) + " |\n";
     }
     out += "\n";
   }

@@ -28,22 +28,30 @@ std::vector<std::pair<std::string, double>> read_metrics(const std::string& path
 /// The same from leaves already read (summary_leaves()).
 std::vector<std::pair<std::string, double>> metrics_of(const std::vector<SummaryLeaf>& leaves);
 
+/// The evaluator reports a time that never came as -1 (time_to_final_s, settle_time_s,
+/// convergence_s, time_to_valid_s: "-1: never" in sim/evaluator): true for a metric whose name
+/// ends in "_s" with that value. Such a value is counted, never averaged as a duration.
+bool is_never(const std::string& metric, double value);
+
 /// The statistics of one metric over the successful runs of one combination.
 struct MetricStats {
   std::size_t combination = 0;
   std::string metric;
-  stats::SampleSummary summary;
+  stats::SampleSummary summary;  // over the runs with a value; count 0 when every one was "never"
+  std::size_t never = 0;         // runs that reported "never" (is_never), not in `summary`
 };
 
 /// Per combination (in order) and metric (in order of first appearance): the statistics over the
-/// runs that succeeded and report it. A metric no successful run reports is absent.
+/// runs that succeeded and report it, "never" values counted apart. A metric no successful run
+/// reports is absent.
 std::vector<MetricStats> aggregate(const std::vector<RunOutcome>& outcomes);
 
 /// Every run: index, seed, one column per grid axis, status, exit code, wall time, error, then one
 /// column per metric (empty where a run lacks it).
 std::string runs_csv(const std::vector<GridAxis>& axes, const std::vector<RunOutcome>& outcomes);
 
-/// One row per combination and metric: the axes' values, n, mean, std, min, max, ci95 (half width).
+/// One row per combination and metric: the axes' values, n, mean, std, min, max, ci95 (half width),
+/// never (runs that reported "never", not in n; the statistics cells are empty when n is 0).
 std::string summary_csv(const std::vector<GridAxis>& axes, const std::vector<MetricStats>& rows);
 
 /// The same as Markdown: a section per combination with its runs done/failed and a table.
