@@ -67,17 +67,28 @@ FlatParams load_param_file(const std::string& path) {
   return out;
 }
 
+std::optional<std::pair<std::string, std::string>> split_param_assignment(const std::string& text) {
+  const std::size_t equals = text.find('=');
+  if (equals == std::string::npos) {
+    return std::nullopt;
+  }
+  std::string key = text.substr(0, equals);
+  const std::size_t dot = key.find('.');
+  if (dot == std::string::npos || dot == 0 || dot + 1 == key.size()) {
+    return std::nullopt;
+  }
+  return std::make_pair(std::move(key), text.substr(equals + 1));
+}
+
 FlatParams parse_param_assignments(const std::vector<std::string>& assignments) {
   FlatParams out;
   for (const std::string& assignment : assignments) {
-    const std::size_t equals = assignment.find('=');
-    const std::string key = assignment.substr(0, equals);
-    const std::size_t dot = key.find('.');
-    if (equals == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 == key.size() ||
-        equals + 1 == assignment.size()) {
+    const auto split = split_param_assignment(assignment);
+    if (!split || split->second.empty()) {
       throw ConfigError("--set '" + assignment + "': expected component.parameter=value (e.g. controller.epsilon_m=0.1)");
     }
-    if (!out.emplace(key, ParamEntry{assignment.substr(equals + 1), "--set"}).second) {
+    const auto& [key, value] = *split;
+    if (!out.emplace(key, ParamEntry{value, "--set"}).second) {
       throw ConfigError("--set '" + assignment + "': " + key + " is set twice");
     }
   }

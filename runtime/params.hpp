@@ -9,8 +9,10 @@
 #include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace robodds {
@@ -26,6 +28,11 @@ using FlatParams = std::map<std::string, ParamEntry>;
 
 /// Reads a YAML file's top-level map into FlatParams (throws ConfigError naming the file).
 FlatParams load_param_file(const std::string& path);
+
+/// A `--set` text "component.parameter=value" split at its first '=' into {key, value}; nullopt
+/// when it has no '=' or the key is not two non-empty parts around a '.'. The value may be empty
+/// (parse_param_assignments refuses that; a sweep's grid splits it further).
+std::optional<std::pair<std::string, std::string>> split_param_assignment(const std::string& text);
 
 /// The command line's `--set component.parameter=value` assignments as FlatParams whose file is
 /// "--set" (so later errors say "--set: controller.epsilon_m: ..."). The value is YAML text, e.g.

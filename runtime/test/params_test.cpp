@@ -77,6 +77,15 @@ TEST(Params, MalformedSetAssignmentNamesIt) {
   EXPECT_THROW(parse_param_assignments({"c.k=1", "c.k=2"}), ConfigError);
 }
 
+TEST(Params, SplitParamAssignmentIsShapeOnly) {
+  using Split = std::optional<std::pair<std::string, std::string>>;
+  EXPECT_EQ(split_param_assignment("c.k=1,2"), Split(std::make_pair(std::string("c.k"), std::string("1,2"))));
+  EXPECT_EQ(split_param_assignment("c.k="), Split(std::make_pair(std::string("c.k"), std::string())));
+  for (const char* bad : {"c.k", "k=1", ".k=1", "c.=1", ""}) {
+    EXPECT_EQ(split_param_assignment(bad), std::nullopt) << bad;
+  }
+}
+
 TEST(Params, UnknownOverrideNamesOverrideFile) {
   FlatParams defaults{{"a", {"1", "defaults.yaml"}}};
   FlatParams overrides{{"typo", {"2", "scenario.yaml"}}};

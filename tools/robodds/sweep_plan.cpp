@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "common/json_writer.hpp"
+#include "runtime/params.hpp"
 
 namespace robodds::sweep {
 namespace {
@@ -65,14 +66,12 @@ std::vector<std::uint64_t> parse_seeds(const std::string& text) {
 }
 
 GridAxis parse_grid_axis(const std::string& text) {
-  const std::size_t equals = text.find('=');
-  const std::string key = text.substr(0, equals);
-  const std::size_t dot = key.find('.');
-  if (equals == std::string::npos || dot == std::string::npos || dot == 0 || dot + 1 == key.size()) {
+  const auto split = split_param_assignment(text);
+  if (!split) {
     throw std::invalid_argument("--set '" + text + "': expected component.parameter=value[,value...] (e.g. controller.epsilon_m=0.1,0.01)");
   }
-  GridAxis axis{key, {}};
-  const std::string list = text.substr(equals + 1);
+  GridAxis axis{split->first, {}};
+  const std::string& list = split->second;
   int depth = 0;
   std::string value;
   const auto push = [&] {
