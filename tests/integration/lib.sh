@@ -11,6 +11,10 @@ cleanup() {
     [[ -n "$pid" ]] && kill "$pid" 2>/dev/null || true
   done
   rm -rf "$WORK"
+  # A process killed by a test (dead peers, signals) leaves its Fast DDS shared-memory segment
+  # (2 MiB, deploy/qos/robodds_qos.xml) and port files in /dev/shm; this removes those whose
+  # owner is gone (segments in use by another test's processes are kept).
+  fastdds shm clean >/dev/null 2>&1 || true
 }
 trap cleanup EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
