@@ -86,11 +86,11 @@ class Bus {
   /// DDS EXCLUSIVE ownership, its writers with `writer_strength` (the highest alive strength owns
   /// each instance). Default: nothing (a bus without ownership, e.g. MemoryBus).
   virtual void set_exclusive_ownership(const std::string& /*topic*/, std::uint32_t /*writer_strength*/) {}
-  /// The most instances one keyed topic of this run has (its robots). A bus whose writers keep a
-  /// deep per-instance history may spread a topic's instances over several writers of that topic
+  /// How many robots this run has. A bus whose writers keep a deep per-instance history may spread
+  /// a robot-keyed topic's instances over several writers of that topic
   /// (runtime/instance_spread.hpp); readers see no difference but the writer GUIDs. Call before
   /// the first writer() call. Default: nothing.
-  virtual void expect_instances(std::size_t /*instances_per_topic*/) {}
+  virtual void expect_robots(std::size_t /*robots*/) {}
   /// KEEP_LAST depth of a writer with QoS profile `profile` (samples kept per instance), or
   /// nullopt when the bus keeps no such history (KEEP_ALL, or a bus without one, e.g. MemoryBus).
   virtual std::optional<std::size_t> writer_history_depth(const std::string& /*profile*/) const { return std::nullopt; }

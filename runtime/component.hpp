@@ -70,6 +70,7 @@ struct RunContext {
   bool single_process = false;  // every component of the run lives in this process (co-located)
   std::string deploy_label;     // how the run is deployed ("colocated", "processes"); empty: a host
                                 // started on its own, whose evaluator writes no "run" section
+  std::size_t lockstep_window = 1;  // lockstep: ticks the coordinator may have outstanding (1 = strict)
   RunFigures figures;           // filled by the host before on_finish()
   /// Topics whose readers and writers use DDS exclusive ownership because a hot standby writes
   /// them (exclusive_topics() of runtime/producer_check.hpp).
@@ -95,6 +96,8 @@ class ComponentContext {
   TimeMode mode() const { return run_.mode; }
   const std::string& output_dir() const { return run_.output_dir; }
   const std::string& deploy_label() const { return run_.deploy_label; }
+  /// Lockstep: ticks the coordinator may have outstanding at once (--lockstep-window; 1 = strict).
+  std::size_t lockstep_window() const { return run_.lockstep_window; }
   /// The run's figures; valid in on_finish().
   const RunFigures& run_figures() const { return run_.figures; }
   /// Asks for every host's health in run_figures().hosts (configure() only): across processes

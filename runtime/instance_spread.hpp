@@ -5,8 +5,8 @@
 // writer's whole history in one vector, dropping an instance's oldest sample by erasing it from
 // near the front: every write moves (depth x instances) pointers. With one writer for 200 robots
 // that was 77 kB per sample and ~14 % of the `sim` host's time; with 1,000 robots the cost per
-// robot-tick grew with the robots (docs/performance.md, "Across processes at scale"). Writers
-// holding at most kInstancesPerLockstepWriter instances each keep that cost flat. Readers see
+// robot-tick grew with the robots (docs/performance.md, "Across processes at scale"). One writer
+// per kRobotsPerLockstepWriter robots keeps that cost flat. Readers see
 // the same topic, type, keys and QoS: only the writer GUID of an instance differs, and each
 // instance keeps one writer for the run (one producer per instance still holds per writer).
 
@@ -17,13 +17,15 @@
 
 namespace robodds {
 
-/// At most this many instances per lockstep writer (a few dozen: the vector erase stays within
-/// the L1/L2 caches; more writers cost discovery endpoints and heartbeats, so not fewer).
-inline constexpr std::size_t kInstancesPerLockstepWriter = 32;
+/// One lockstep writer per this many robots of a robot-keyed topic (a few dozen instances per
+/// writer: the vector erase stays small; more writers cost discovery endpoints and heartbeats).
+/// A topic keyed by robot and peer has this many robots' pairs per writer.
+inline constexpr std::size_t kRobotsPerLockstepWriter = 32;
 
-/// Writers for a topic with `instances` instances: ceil(instances / per_writer), at least 1.
-constexpr std::size_t writers_for_instances(std::size_t instances, std::size_t per_writer = kInstancesPerLockstepWriter) {
-  return instances <= per_writer ? 1 : (instances + per_writer - 1) / per_writer;
+/// Writers for a robot-keyed topic of a run with `robots` robots: ceil(robots / per_writer), at
+/// least 1.
+constexpr std::size_t writers_for_robots(std::size_t robots, std::size_t per_writer = kRobotsPerLockstepWriter) {
+  return robots <= per_writer ? 1 : (robots + per_writer - 1) / per_writer;
 }
 
 /// Which writer publishes an instance: the n-th instance seen (n = 0, 1, ...) goes to writer
@@ -36,13 +38,12 @@ class InstanceSpread {
 
   std::size_t writers() const { return writers_; }
 
-  /// The writer (0 .. writers()-1) of the instance with this key hash (e.g. stable_hash of the
-  /// DDS instance handle's bytes). Two instances whose hashes collide share a writer: harmless.
-  std::size_t writer_of(std::uint64_t instance_hash) {
+  /// The writer (0 .. writers()-1) of the instance with this key (idl::instance_key).
+  std::size_t writer_of(std::uint64_t instance_key) {
     if (writers_ == 1) {
       return 0;
     }
-    return index_.insert(instance_hash).first % writers_;
+    return index_.insert(instance_key).first % writers_;
   }
 
  private:

@@ -10,6 +10,7 @@
 #include "robodds/idl/robodds_visit.hpp"
 #include "runtime/error.hpp"
 #include "runtime/qos_profiles.hpp"
+#include "runtime/sample_key.hpp"
 
 namespace robodds {
 namespace {
@@ -29,18 +30,13 @@ std::shared_ptr<const void> copy_sample(const void* sample) {
   return std::make_shared<const T>(*static_cast<const T*>(sample));
 }
 
-template <class T>
-std::uint64_t key_of(const void* sample) {
-  return idl::instance_key(*static_cast<const T*>(sample));
-}
-
 TypeOps type_ops(const std::string& topic, const std::string& type_name) {
   TypeOps ops;
   const bool known = idl::dispatch_type(type_name, [&ops](auto tag) {
     using T = typename decltype(tag)::type;
     ops.copy = &copy_sample<T>;
-    ops.key = &key_of<T>;
   });
+  ops.key = sample_key_function(type_name);
   if (!known) {
     throw ConfigError("topic " + topic + ": unknown type " + type_name);
   }

@@ -52,7 +52,10 @@ def run_once(robodds, scenario_file, deploy, duration_s, domain, out_dir, timeou
     if done.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} exited {done.returncode}: {done.stderr.strip()[-400:]}")
     with open(os.path.join(out_dir, "summary.json")) as f:
-        ticks_per_s = json.load(f)["run"]["ticks_per_s"]
+        run = json.load(f)["run"]
+    if deploy == "processes" and run.get("lockstep_window") != window:
+        raise RuntimeError(f"{' '.join(cmd)}: the run says lockstep_window {run.get('lockstep_window')}, asked {window}")
+    ticks_per_s = run["ticks_per_s"]
     # ru_maxrss of the children is the largest of any waited-for descendant so far (kB): exact for
     # the first run, a lower bound after a larger one, so each run is measured in a fresh process.
     return ticks_per_s, max(before, resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss) / 1024.0

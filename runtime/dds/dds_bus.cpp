@@ -17,18 +17,18 @@
 #include <mutex>
 #include <set>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "runtime/dds/listeners.hpp"
 #include "runtime/dds/match_report.hpp"
 #include "runtime/dds/participant.hpp"
 #include "runtime/dds/qos_files.hpp"
-#include "common/random.hpp"
 #include "runtime/error.hpp"
 #include "runtime/instance_spread.hpp"
 #include "runtime/log.hpp"
 #include "runtime/qos_profiles.hpp"
+#include "runtime/sample_key.hpp"
+#include "runtime/topic_catalog.hpp"
 #include "runtime/shutdown_watchdog.hpp"
 #include "runtime/dds/type_support.hpp"
 #include "runtime/dds/undecodable.hpp"
@@ -39,23 +39,18 @@ using eprosima::fastrtps::types::ReturnCode_t;
 
 namespace {
 
-/// One topic's writer. In lockstep with many instances, several DataWriters of the topic, each
+/// One topic's writer. In lockstep with many robots, several DataWriters of the topic, each
 /// publishing its share of the instances (runtime/instance_spread.hpp); the first one carries
 /// the listener (matches, incompatible QoS: the others have the same QoS and readers).
 class DdsWriter : public WriterHandle {
  public:
-  DdsWriter(std::vector<dds::DataWriter*> writers, std::string topic, const MatchState* match)
-      : writers_(std::move(writers)), type_(writers_.front()->get_type().get()), spread_(writers_.size()),
-        topic_(std::move(topic)), match_(match) {}
+  DdsWriter(std::vector<dds::DataWriter*> writers, SampleKeyFunction key, std::string topic, const MatchState* match)
+      : writers_(std::move(writers)), key_(key), spread_(writers_.size()), topic_(std::move(topic)), match_(match) {}
   void write(const void* sample) override {
     dds::DataWriter* writer = writers_.front();
     if (writers_.size() > 1) {
-      eprosima::fastrtps::rtps::InstanceHandle_t instance;
-      std::lock_guard<std::mutex> lock(spread_mutex_);  // type_'s key buffer and spread_
-      type_->getKey(const_cast<void*>(sample), &instance, false);
-      const eprosima::fastrtps::rtps::octet* key = instance.value;  // 16 bytes: the key or its MD5
-      const std::string_view bytes(reinterpret_cast<const char*>(key), 16);
-      writer = writers_[spread_.writer_of(stable_hash(bytes))];
+      std::lock_guard<std::mutex> lock(spread_mutex_);
+      writer = writers_[spread_.writer_of(key_(sample))];
     }
     if (!writer->write(const_cast<void*>(sample))) {
       throw RunError("DDS write failed on topic " + topic_);
@@ -78,8 +73,8 @@ class DdsWriter : public WriterHandle {
 
  private:
   std::vector<dds::DataWriter*> writers_;  // owned by the participant
-  dds::TopicDataType* type_;               // the registered type support, owned by the participant
-  std::mutex spread_mutex_;
+  SampleKeyFunction key_;                  // idl::instance_key of the topic's type (used with several writers)
+  std::mutex spread_mutex_;                // spread_ (a writer may be used from several threads)
   InstanceSpread spread_;
   std::string topic_;
   const MatchState* match_;  // the first writer's listener's: matched readers now
@@ -136,31 +131,36 @@ class FastDdsBus : public DdsBus {
         writer = publisher_->create_datawriter(dds_topic, qos, listener.get(), mask);
       }
     }
-    std::vector<dds::DataWriter*> writers{writer};
-    const std::size_t spread = writer == nullptr ? 1 : writers_per_topic(profile, type_name, owned != exclusive_.end());
-    while (writer != nullptr && writers.size() < spread) {
-      writer = publisher_->create_datawriter_with_profile(dds_topic, profile, nullptr, dds::StatusMask::none());
+    std::vector<dds::DataWriter*> writers;
+    const std::size_t spread = writers_per_topic(topic, profile, owned != exclusive_.end());
+    while (writer != nullptr) {
       writers.push_back(writer);
+      writer = writers.size() < spread
+                   ? publisher_->create_datawriter_with_profile(dds_topic, profile, nullptr, dds::StatusMask::none())
+                   : nullptr;
     }
-    if (writer == nullptr) {
+    if (writers.size() < spread) {
       const std::string reasons = take_dds_errors();  // e.g. DDS Security: not allowed by the permissions
+      for (dds::DataWriter* created : writers) {
+        publisher_->delete_datawriter(created);  // none may outlive `listener`
+      }
       throw ConfigError("cannot create a writer on " + topic + " with QoS profile '" + profile + "'" +
                         (reasons.empty() ? std::string() : ": Fast DDS: " + reasons));
     }
     if (spread > 1) {
       log::debug("dds", topic + ": " + std::to_string(spread) + " writers (profile '" + profile + "', " +
-                            std::to_string(expected_instances_) + " instances, at most " +
-                            std::to_string(kInstancesPerLockstepWriter) + " each)");
+                            std::to_string(expected_robots_) + " robots, at most " +
+                            std::to_string(kRobotsPerLockstepWriter) + " each)");
     }
-    auto handle = std::make_shared<DdsWriter>(std::move(writers), topic, &listener->match());
+    auto handle = std::make_shared<DdsWriter>(std::move(writers), sample_key_function(type_name), topic, &listener->match());
     writer_listeners_[key] = std::move(listener);
     writers_[key] = handle;
     return handle;
   }
 
-  void expect_instances(std::size_t instances_per_topic) override {
+  void expect_robots(std::size_t robots) override {
     std::lock_guard<std::mutex> lock(mutex_);
-    expected_instances_ = instances_per_topic;
+    expected_robots_ = robots;
   }
 
   std::optional<std::size_t> writer_history_depth(const std::string& profile) const override {
@@ -318,14 +318,13 @@ class FastDdsBus : public DdsBus {
     }
   }
 
-  /// How many DataWriters publish one topic: several only for a keyed type in the `lockstep`
-  /// profile (the deep history; runtime/instance_spread.hpp) and without exclusive ownership.
-  std::size_t writers_per_topic(const std::string& profile, const std::string& type_name, bool exclusive) const {
-    if (profile != kLockstepProfile || exclusive) {
-      return 1;
-    }
-    const dds::TypeSupport type = participant_->find_type(type_name);
-    return !type.empty() && type->m_isGetKeyDefined ? writers_for_instances(expected_instances_) : 1;
+  /// How many DataWriters publish one topic: several only for a topic keyed by robot (its first
+  /// key member is robot_id: one instance per robot, or per robot and peer) in the `lockstep`
+  /// profile (the deep history; runtime/instance_spread.hpp), without exclusive ownership.
+  std::size_t writers_per_topic(const std::string& topic, const std::string& profile, bool exclusive) const {
+    const TopicInfo* info = find_topic(topic);
+    const bool robot_keyed = info != nullptr && info->key.rfind("robot_id", 0) == 0;
+    return profile == kLockstepProfile && !exclusive && robot_keyed ? writers_for_robots(expected_robots_) : 1;
   }
 
   dds::Topic* ensure_topic(const std::string& topic, const std::string& type_name) {
@@ -366,7 +365,7 @@ class FastDdsBus : public DdsBus {
   dds::Publisher* publisher_ = nullptr;    // owned by participant_
   dds::Subscriber* subscriber_ = nullptr;  // owned by participant_
   bool started_ = false;
-  std::size_t expected_instances_ = 1;  // expect_instances()
+  std::size_t expected_robots_ = 1;  // expect_robots()
 };
 
 }  // namespace

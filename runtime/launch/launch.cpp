@@ -245,7 +245,7 @@ DdsOptions tools_dds(const DdsArgs& args, const std::string& participant_name) {
 RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scenario, const DdsOptions& dds,
                         HostOptions options, const InProcessRun& in_process) {
   auto bus = make_dds_bus(dds);
-  bus->expect_instances(scenario.robots.size());
+  bus->expect_robots(scenario.robots.size());
   // A co-located lockstep run: its components' samples stay in memory, DDS serves observers.
   std::unique_ptr<ColocatedBus> colocated;
   if (options.single_process && in_process.mode == TimeMode::kLockstep) {
@@ -260,6 +260,7 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   run.output_dir = in_process.out_dir;
   run.single_process = options.single_process;
   run.deploy_label = in_process.deploy_label;
+  run.lockstep_window = std::max<std::size_t>(1, options.lockstep_window);
   const bool has_standby = std::any_of(scenario.components.begin(), scenario.components.end(),
                                        [](const ComponentSpec& c) { return !c.standby_for.empty(); });
   if (has_standby) {  // hot standby: the topics it writes use exclusive ownership

@@ -9,14 +9,14 @@
 namespace robodds {
 namespace {
 
-TEST(WritersForInstances, OneWriterPerStartedGroupOf32) {
-  EXPECT_EQ(writers_for_instances(0), 1u);
-  EXPECT_EQ(writers_for_instances(1), 1u);
-  EXPECT_EQ(writers_for_instances(kInstancesPerLockstepWriter), 1u);
-  EXPECT_EQ(writers_for_instances(kInstancesPerLockstepWriter + 1), 2u);
-  EXPECT_EQ(writers_for_instances(200), 7u);
-  EXPECT_EQ(writers_for_instances(1000), 32u);
-  EXPECT_EQ(writers_for_instances(10, 4), 3u);
+TEST(WritersForRobots, OneWriterPerStartedGroupOf32) {
+  EXPECT_EQ(writers_for_robots(0), 1u);
+  EXPECT_EQ(writers_for_robots(1), 1u);
+  EXPECT_EQ(writers_for_robots(kRobotsPerLockstepWriter), 1u);
+  EXPECT_EQ(writers_for_robots(kRobotsPerLockstepWriter + 1), 2u);
+  EXPECT_EQ(writers_for_robots(200), 7u);
+  EXPECT_EQ(writers_for_robots(1000), 32u);
+  EXPECT_EQ(writers_for_robots(10, 4), 3u);
 }
 
 TEST(InstanceSpread, DealsNewInstancesInTurnAndKeepsEachOnItsWriter) {
@@ -36,13 +36,13 @@ TEST(InstanceSpread, DealsNewInstancesInTurnAndKeepsEachOnItsWriter) {
 }
 
 TEST(InstanceSpread, SharesAreEqualWithin1) {
-  InstanceSpread spread(writers_for_instances(200));
+  InstanceSpread spread(writers_for_robots(200));
   std::vector<std::size_t> load(spread.writers(), 0);
   for (std::uint64_t robot = 1; robot <= 200; ++robot) {
     ++load[spread.writer_of(robot * 0x9E3779B97F4A7C15ULL)];
   }
   EXPECT_LE(*std::max_element(load.begin(), load.end()) - *std::min_element(load.begin(), load.end()), 1u);
-  EXPECT_LE(*std::max_element(load.begin(), load.end()), kInstancesPerLockstepWriter);
+  EXPECT_LE(*std::max_element(load.begin(), load.end()), kRobotsPerLockstepWriter);
 }
 
 TEST(InstanceSpread, OneWriterTakesEverything) {

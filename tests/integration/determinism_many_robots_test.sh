@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # 70 robots (plant_smoke on a grid, the scenario scripts/scale_bench.py writes): across processes
-# each lockstep topic is published by 3 DataWriters of at most 32 instances (runtime/
+# each robot-keyed lockstep topic is published by 3 DataWriters, one per 32 robots (runtime/
 # instance_spread.hpp), and the outputs stay byte-identical to the co-located run, in strict
 # lockstep and with a pipelined window. The sim host must say it spread plant/state (a run with
 # one writer would pass the comparison and test nothing).
@@ -19,7 +19,9 @@ for window in 1 8; do
   timeout -k 5 300 "$ROBODDS" --log debug run "$SCENARIO" --duration 3 --out "$WORK/processes_$window" --domain "$DOMAIN" \
     --deploy processes --lockstep-window "$window" --no-plots >/dev/null 2>"$WORK/processes_$window.log" ||
     fail "window $window: $(grep -v '\[debug\]' "$WORK/processes_$window.log" | tail -5)"
-  grep -q "plant/state: 3 writers (profile 'lockstep', 70 instances" "$WORK/processes_$window.log" ||
+  ! grep -q "sim/step_done: [0-9]* writers" "$WORK/processes_$window.log" ||
+    fail "window $window: sim/step_done (keyed by host, not by robot) was spread"
+  grep -q "plant/state: 3 writers (profile 'lockstep', 70 robots" "$WORK/processes_$window.log" ||
     fail "window $window: the sim host did not spread plant/state over 3 writers: $(grep -c . "$WORK/processes_$window.log") log lines"
   same_outputs "$WORK/colocated" "$WORK/processes_$window"
 done

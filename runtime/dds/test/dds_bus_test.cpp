@@ -1,8 +1,9 @@
 // FastDdsBus::undecodable_samples(): the type support's per-type counts, credited to the topics
 // this bus reads. A real participant on domain 83 (the counters helper's test domain); no reader
 // is started, so nothing goes on the wire.
-// FastDdsBus::expect_instances(): a lockstep topic's instances spread over several writers,
-// seen by a reader of another participant on domain 85 (real DDS, in this process).
+// FastDdsBus::expect_robots(): a lockstep topic's instances spread over several writers, seen by
+// a reader of another participant (real DDS, in this process), each test case on its own domain
+// (ctest runs the cases as separate processes, possibly at the same time).
 #include "runtime/dds/dds_bus.hpp"
 
 #include <gtest/gtest.h>
@@ -55,18 +56,18 @@ struct WritersSeen {
   std::size_t samples = 0;
 };
 
-/// `robots` robots' RobotState written `rounds` times through a bus that expects `expected`
-/// instances per topic, on `profile`; returns what the reader saw (after all arrived, or 10 s).
-std::map<std::uint32_t, std::set<std::uint64_t>> writers_seen(std::size_t expected, std::uint32_t robots, int rounds,
-                                                              const char* profile) {
+/// `robots` robots' RobotState written `rounds` times on `topic` with `profile` through a bus on
+/// `domain` that expects `expected` robots; returns what the reader saw (after all arrived, or 10 s).
+std::map<std::uint32_t, std::set<std::uint64_t>> writers_seen(int domain, const char* topic, std::size_t expected,
+                                                              std::uint32_t robots, int rounds, const char* profile) {
   DdsOptions options;
-  options.domain_id = 85;
+  options.domain_id = domain;
   options.qos_files = {std::string(ROBODDS_SOURCE_DIR) + "/deploy/qos/robodds_qos.xml"};
   const std::string type_name = "robodds::idl::RobotState";
   auto seen = std::make_shared<WritersSeen>();
   options.participant_name = "spread_reader";
   auto reader_bus = make_dds_bus(options);
-  reader_bus->reader("plant/state", type_name, profile, [seen](const void* p, const SampleMeta& meta) {
+  reader_bus->reader(topic, type_name, profile, [seen](const void* p, const SampleMeta& meta) {
     const auto* sample = static_cast<const idl::RobotState*>(p);
     std::lock_guard<std::mutex> lock(seen->mutex);
     seen->by_robot[sample->robot_id()].insert(meta.writer_id);
@@ -76,8 +77,8 @@ std::map<std::uint32_t, std::set<std::uint64_t>> writers_seen(std::size_t expect
   reader_bus->start();
   options.participant_name = "spread_writer";
   auto writer_bus = make_dds_bus(options);
-  writer_bus->expect_instances(expected);
-  auto writer = writer_bus->writer("plant/state", type_name, profile);
+  writer_bus->expect_robots(expected);
+  auto writer = writer_bus->writer(topic, type_name, profile);
   for (int round = 0; round < rounds; ++round) {
     for (std::uint32_t robot = 1; robot <= robots; ++robot) {
       idl::RobotState sample;
@@ -104,17 +105,21 @@ std::set<std::uint64_t> all_writers(const std::map<std::uint32_t, std::set<std::
 }
 
 TEST(FastDdsBus, SpreadsALockstepTopicsInstancesOverWritersOf32AndKeepsEachOnOne) {
-  const auto by_robot = writers_seen(70, 70, 3, "lockstep");
+  const auto by_robot = writers_seen(85, "plant/state", 70, 70, 3, "lockstep");
   ASSERT_EQ(by_robot.size(), 70u);
   for (const auto& [robot, writers] : by_robot) {
     EXPECT_EQ(writers.size(), 1u) << "robot " << robot << ": one producer per instance, every round";
   }
-  EXPECT_EQ(all_writers(by_robot).size(), 3u) << "70 instances, at most 32 per writer";
+  EXPECT_EQ(all_writers(by_robot).size(), 3u) << "70 robots, one writer per 32";
 }
 
-TEST(FastDdsBus, KeepsOneWriterForFewInstancesAndForOtherProfiles) {
-  EXPECT_EQ(all_writers(writers_seen(3, 3, 2, "lockstep")).size(), 1u);
-  EXPECT_EQ(all_writers(writers_seen(70, 40, 1, "mission")).size(), 1u) << "only the deep lockstep history is spread";
+TEST(FastDdsBus, KeepsOneWriterForFewRobotsOtherProfilesAndTopicsNotKeyedByRobot) {
+  EXPECT_EQ(all_writers(writers_seen(89, "plant/state", 3, 3, 2, "lockstep")).size(), 1u);
+  EXPECT_EQ(all_writers(writers_seen(89, "estimate/pose", 70, 40, 1, "mission")).size(), 1u)
+      << "only the deep lockstep history is spread";
+  // A topic outside the catalog has no known key: one writer (sim/step_done, keyed by host member,
+  // is left alone the same way, by its catalog key).
+  EXPECT_EQ(all_writers(writers_seen(89, "test/not_in_catalog", 70, 40, 1, "lockstep")).size(), 1u);
 }
 
 }  // namespace

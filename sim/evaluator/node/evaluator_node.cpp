@@ -357,6 +357,9 @@ class EvaluatorNode : public Component {
     json.begin_object("run");
     json.value("deploy", context_->deploy_label());
     json.value("mode", context_->mode() == TimeMode::kRealtime ? "realtime" : "lockstep");
+    if (context_->mode() == TimeMode::kLockstep) {
+      json.value("lockstep_window", static_cast<std::int64_t>(context_->lockstep_window()));
+    }
     json.value("wall_time_s", std::round(run.wall_time_s * 1e6) / 1e6);  // us, like the runner's log
     json.value("ticks", static_cast<std::int64_t>(run.ticks));
     json.value("ticks_per_s", std::round(ticks_per_s * 10.0) / 10.0);
