@@ -14,9 +14,10 @@ function(robodds_generate_idl target idl_file)
   set(gen_typesupport ${out_dir}/${stem}PubSubTypes.cxx ${out_dir}/${stem}PubSubTypes.h)
   set(gen_visit ${out_dir}/${stem}_visit.hpp)
   # fastddsgen preprocesses the IDL into <temp dir>/<idl file name>.cc, by default /tmp/ for every
-  # build on the machine: two builds generating at once (fresh build dirs of two checkouts) could
-  # read each other's half-written file and fail ("mismatched input '<EOF>'", no file generated)
-  # or, with different IDLs, silently generate the other checkout's types. -t keeps it in our tree.
+  # build on the machine. Two builds generating at once (fresh build dirs) could read each other's
+  # file: half-written, fastddsgen fails ("mismatched input '<EOF>'", no file written); whole, from
+  # another checkout, it succeeds with a robodds.h without any type (the file's line markers name
+  # the other checkout's IDL) and every build fails until it is regenerated. -t: our own file.
   set(tmp_dir ${CMAKE_CURRENT_BINARY_DIR}/fastddsgen_tmp/${target})
   add_custom_command(
     OUTPUT ${gen_sources} ${gen_typesupport}
