@@ -17,7 +17,8 @@ function(robodds_generate_idl target idl_file)
   # build on the machine. Two builds generating at once (fresh build dirs) could read each other's
   # file: half-written, fastddsgen fails ("mismatched input '<EOF>'", no file written); whole, from
   # another checkout, it succeeds with a robodds.h without any type (the file's line markers name
-  # the other checkout's IDL) and every build fails until it is regenerated. -t: our own file.
+  # the other checkout's IDL) and no PubSubTypes files: the compiles fail ("'SampleHeader' does
+  # not name a type" in robodds_visit.hpp), the next build regenerates and passes. -t: our own file.
   set(tmp_dir ${CMAKE_CURRENT_BINARY_DIR}/fastddsgen_tmp/${target})
   add_custom_command(
     OUTPUT ${gen_sources} ${gen_typesupport}
