@@ -13,11 +13,18 @@ function(robodds_generate_idl target idl_file)
   set(gen_sources ${out_dir}/${stem}.cxx ${out_dir}/${stem}.h)
   set(gen_typesupport ${out_dir}/${stem}PubSubTypes.cxx ${out_dir}/${stem}PubSubTypes.h)
   set(gen_visit ${out_dir}/${stem}_visit.hpp)
+  # fastddsgen preprocesses the IDL into <temp dir>/<idl file name>.cc, by default /tmp/ for every
+  # build on the machine. Two builds generating at once (fresh build dirs) could read each other's
+  # file: half-written, fastddsgen fails ("mismatched input '<EOF>'", no file written); whole, from
+  # another checkout, it succeeds with a robodds.h without any type (the file's line markers name
+  # the other checkout's IDL) and no PubSubTypes files: the compiles fail ("'SampleHeader' does
+  # not name a type" in robodds_visit.hpp), the next build regenerates and passes. -t: our own file.
+  set(tmp_dir ${CMAKE_CURRENT_BINARY_DIR}/fastddsgen_tmp/${target})
   add_custom_command(
     OUTPUT ${gen_sources} ${gen_typesupport}
-    COMMAND ${CMAKE_COMMAND} -E make_directory ${out_dir}
+    COMMAND ${CMAKE_COMMAND} -E make_directory ${out_dir} ${tmp_dir}
     # No -typeobject: the type support announces no TypeObject (XCDR1 interop with other vendors).
-    COMMAND ${FASTDDSGEN_EXECUTABLE} -replace -d ${out_dir} ${idl_abs}
+    COMMAND ${FASTDDSGEN_EXECUTABLE} -replace -t ${tmp_dir} -d ${out_dir} ${idl_abs}
     DEPENDS ${idl_abs}
     COMMENT "fastddsgen ${stem}.idl"
     VERBATIM)
