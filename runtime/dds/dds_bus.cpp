@@ -267,7 +267,8 @@ class FastDdsBus : public DdsBus {
   std::string writer_name(std::uint64_t writer_id) const override { return peers_.writer_name(writer_id); }
 
   /// The type support counts per type (it does not know the topic); each of our topics is
-  /// credited with its type's count, exact while no two catalog topics share a type (true today).
+  /// credited with its type's count. A process reading several topics of one type (e.g. the
+  /// RelativePoseEstimate topics of paper 3) shows their sum on each of them.
   std::map<std::string, std::uint64_t> undecodable_samples() const override {
     std::lock_guard<std::mutex> lock(mutex_);
     std::map<std::string, std::uint64_t> counts;

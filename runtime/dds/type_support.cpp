@@ -38,7 +38,8 @@ UndecodableCounts& undecodable_counts() {
   return counts;
 }
 
-/// The catalog topics of a type, for the log line ("plant/cmd"; types are not shared today).
+/// The catalog topics of a type, for the log line ("plant/cmd"; a type may serve several topics,
+/// e.g. RelativePoseEstimate five: all are named).
 std::string topics_of(const std::string& type_name) {
   std::string names;
   for (const TopicInfo& topic : topic_catalog()) {
