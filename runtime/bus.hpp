@@ -86,7 +86,7 @@ class Bus {
   /// DDS EXCLUSIVE ownership, its writers with `writer_strength` (the highest alive strength owns
   /// each instance). Default: nothing (a bus without ownership, e.g. MemoryBus).
   virtual void set_exclusive_ownership(const std::string& /*topic*/, std::uint32_t /*writer_strength*/) {}
-  /// How many robots this run has. A bus whose writers keep a deep per-instance history may spread
+  /// How many robots this process's components serve. A bus whose writers keep a deep per-instance history may spread
   /// a robot-keyed topic's instances over several writers of that topic
   /// (runtime/instance_spread.hpp); readers see no difference but the writer GUIDs. Call before
   /// the first writer() call. Default: nothing.

@@ -401,6 +401,15 @@ const ComponentSpec& Scenario::component(const std::string& component_name) cons
   throw ConfigError(located(file, "components", "no component named '" + component_name + "'"));
 }
 
+std::size_t Scenario::robots_served_by(const std::vector<std::string>& component_names) const {
+  std::set<std::uint32_t> served;
+  for (const std::string& name : component_names) {
+    const ComponentSpec& spec = component(name);
+    served.insert(spec.robots.begin(), spec.robots.end());
+  }
+  return served.size();
+}
+
 const GroupSpec& Scenario::group(const std::string& group_name) const {
   std::string known;
   for (const GroupSpec& g : groups) {

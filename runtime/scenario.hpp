@@ -51,6 +51,9 @@ struct Scenario {
   /// Index of the last step: steps 0..last_step() run, at times step * step_s (checked_last_step()).
   std::uint64_t last_step() const;
   const ComponentSpec& component(const std::string& name) const;
+  /// How many distinct robots the named components serve together (e.g. one process's: the
+  /// instances its robot-keyed writers publish). ConfigError for an unknown name, as component().
+  std::size_t robots_served_by(const std::vector<std::string>& component_names) const;
   const GroupSpec& group(const std::string& name) const;
   const RobotSpec& robot(std::uint32_t id) const;
 };

@@ -245,7 +245,7 @@ DdsOptions tools_dds(const DdsArgs& args, const std::string& participant_name) {
 RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scenario, const DdsOptions& dds,
                         HostOptions options, const InProcessRun& in_process) {
   auto bus = make_dds_bus(dds);
-  bus->expect_robots(scenario.robots.size());
+  bus->expect_robots(scenario.robots_served_by(options.components));  // this process's writers' instances
   // A co-located lockstep run: its components' samples stay in memory, DDS serves observers.
   std::unique_ptr<ColocatedBus> colocated;
   if (options.single_process && in_process.mode == TimeMode::kLockstep) {

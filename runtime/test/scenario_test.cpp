@@ -48,6 +48,23 @@ TEST(Scenario, LoadsValidFile) {
   EXPECT_EQ(s.group("position_sensor").components.front(), "position_sensor");
 }
 
+TEST(Scenario, RobotsServedCountsDistinctRobotsOfTheNamedComponents) {
+  const Scenario s = load_scenario(write_test_file("served.yaml", R"(name: s
+step_s: 0.01
+duration_s: 1.0
+seed: 1
+robots: [{id: 1}, {id: 2}, {id: 3}]
+components:
+  - {name: plant}
+  - {name: control1, type: open_loop_commander, robots: [1]}
+  - {name: control2, type: open_loop_commander, robots: [1, 2]}
+)"));
+  EXPECT_EQ(s.robots_served_by({"plant"}), 3u) << "default: every robot";
+  EXPECT_EQ(s.robots_served_by({"control1", "control2"}), 2u);
+  EXPECT_EQ(s.robots_served_by({}), 0u);
+  EXPECT_THROW(s.robots_served_by({"nobody"}), ConfigError);
+}
+
 TEST(Scenario, UnknownRobotIsNamed) {
   std::string text = kValid;
   text.replace(text.find("robots: [1, 2]"), 14, "robots: [1, 7]");
