@@ -12,7 +12,7 @@ cleanup() {
   done
   rm -rf "$WORK"
   # A process killed by a test (dead peers, signals) leaves its Fast DDS shared-memory segment
-  # (2 MiB, deploy/qos/robodds_qos.xml) and port files in /dev/shm; this removes those whose
+  # (~1 MiB with its ports, deploy/qos/robodds_qos.xml) in /dev/shm; this removes those whose
   # owner is gone (segments in use by another test's processes are kept).
   fastdds shm clean >/dev/null 2>&1 || true
 }
