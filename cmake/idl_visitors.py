@@ -6,7 +6,7 @@ For every struct T it emits
 which calls v(name, value) for each leaf field, nested structs flattened with '.' and fixed
 arrays expanded as name[i]. Sequences are passed whole (the visitor recurses into struct
 elements with visit_fields). For every top-level topic type (a struct with a `header`) it also
-emits type_name<T>(), key_names<T>(), instance_key(const T&), instance_label(const T&) and dispatch_type(),
+emits type_name<T>(), key_names<T>(), instance_key(const T&), key_sample(const T&), instance_label(const T&) and dispatch_type(),
 which maps a registered type name to a TypeTag<T> call.
 
 Usage: idl_visitors.py INPUT.idl OUTPUT.hpp
@@ -112,6 +112,16 @@ def main():
             out.append(f"  return m.{keys[0]['name']}();")
         else:
             out.append(f"  return (uint64_t(m.{keys[0]['name']}()) << 32) | uint64_t(m.{keys[1]['name']}());")
+        out.append("}")
+        out.append(f"/// A {s['name']} with the @key members of `m` and defaults elsewhere: names the instance")
+        out.append("/// to the transport (e.g. to end it) without keeping a whole sample.")
+        out.append(f"inline {s['name']} key_sample(const {s['name']}& m) {{")
+        out.append(f"  {s['name']} k;")
+        if not keys:
+            out.append("  (void)m;")
+        for k in keys:
+            out.append(f"  k.{k['name']}(m.{k['name']}());")
+        out.append("  return k;")
         out.append("}")
         out.append(f"inline std::string instance_label(const {s['name']}& m) {{")
         if not keys:

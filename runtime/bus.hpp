@@ -28,6 +28,16 @@ class WriterHandle {
   /// False when no reader is matched now, so a volatile sample written now reaches nobody (a
   /// reader matched later gets only later samples either way). Default: true (unknown).
   virtual bool has_matched_readers() const { return true; }
+  /// This writer will not write the instance of `sample` (its key members; the rest is ignored)
+  /// again: the transport may forget what it keeps of it. Fast DDS unregisters the instance, and
+  /// once every matched reader has acknowledged it the instance's samples leave the writer
+  /// history. Without that, one ended instance's samples stay the oldest in a keyed history for
+  /// good, and a reliable writer announces every later sample of other instances as a hole after
+  /// them (GAP), at a cost per heartbeat that grows with the run (docs/deployment.md, "Long runs
+  /// and failures across machines"). A reader that matches later does not get the ended
+  /// instance's last sample; a later write() of the same key starts the instance again.
+  /// Default: nothing kept (in-memory delivery).
+  virtual void end_instance(const void* /*sample*/) {}
 };
 
 /// What the transport knows about a sample besides its contents: who wrote it (to tell two

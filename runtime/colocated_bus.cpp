@@ -22,6 +22,7 @@ class TeeWriter : public WriterHandle {
   }
   const std::string& topic() const override { return local_->topic(); }
   bool wait_acknowledged(std::chrono::milliseconds timeout) override { return network_->wait_acknowledged(timeout); }
+  void end_instance(const void* sample) override { network_->end_instance(sample); }
 
  private:
   std::shared_ptr<WriterHandle> local_;

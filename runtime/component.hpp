@@ -56,6 +56,10 @@ class Component {
 struct RunFigures {
   std::uint64_t ticks = 0;
   double wall_time_s = 0.0;
+  /// Lockstep: s since this host's run began when its first tick came and when the first and
+  /// the second third of the run's steps were done (summary.json run.ticks_per_s_by_third: does
+  /// a long run slow down?); fewer than 3 in real time or when the run failed early.
+  std::vector<double> thirds_done_at_s;
   std::vector<HostHealth> hosts;
   std::vector<std::string> hosts_not_heard;
 };
@@ -149,7 +153,10 @@ class ComponentContext {
   template <class Msg>
   Output<Msg>& advertise(const std::string& topic) {
     const TopicInfo& info = checked_topic<Msg>(topic);
-    auto output = std::make_unique<Output<Msg>>(run_.bus->writer(topic, info.type_name, qos_profile_for(info, run_.mode, run_.single_process)), state_);
+    // A mission's last sample stays for readers that join later; a stream's ended instances go.
+    const InstanceEnds ends = info.qos_class == QosClass::kMission ? InstanceEnds::kKept : InstanceEnds::kForgotten;
+    auto output = std::make_unique<Output<Msg>>(
+        run_.bus->writer(topic, info.type_name, qos_profile_for(info, run_.mode, run_.single_process)), state_, ends);
     Output<Msg>* raw = output.get();
     outputs_.push_back(std::shared_ptr<void>(output.release(), [](void* p) { delete static_cast<Output<Msg>*>(p); }));
     return *raw;

@@ -118,6 +118,9 @@ bool LockstepHost::take_tick() {
   tick_step_ = tick.header().step();
   tick_is_final_ = tick.final_tick();
   components_run_ = 0;
+  if (first_tick_ && run_.figures.thirds_done_at_s.empty()) {
+    run_.figures.thirds_done_at_s.push_back(seconds_since(start_));  // the thirds count from the first tick
+  }
   first_tick_ = false;
   for (auto& slot : slots_) {
     slot->pending = tick_step_ % slot->state.period_steps == 0;
@@ -175,8 +178,17 @@ bool LockstepHost::run_due_components() {
   publish_ack(tick_step_, components_run_, "");
   tick_active_ = false;
   steps_done_ = tick_step_ + 1;
+  note_thirds();
   waiting_since_ = Clock::now();
   return true;
+}
+
+void LockstepHost::note_thirds() {
+  const std::uint64_t steps = run_.scenario->last_step() + 1;
+  const std::size_t noted = run_.figures.thirds_done_at_s.size();  // 1: the first tick's time
+  if (steps >= 3 && noted >= 1 && noted < 3 && steps_done_ == steps * noted / 3) {
+    run_.figures.thirds_done_at_s.push_back(seconds_since(start_));
+  }
 }
 
 void LockstepHost::publish_failure(const std::string& error) {

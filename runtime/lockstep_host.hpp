@@ -46,6 +46,8 @@ class LockstepHost {
   bool take_tick();
   bool run_due_components();
   void publish_ack(std::uint64_t step, std::uint64_t components_run, const std::string& error);
+  /// Notes in run_.figures when a third of the run's steps is done (RunFigures::thirds_done_at_s).
+  void note_thirds();
 
   RunContext& run_;
   const HostOptions& options_;

@@ -44,17 +44,45 @@ namespace {
 /// the listener (matches, incompatible QoS: the others have the same QoS and readers).
 class DdsWriter : public WriterHandle {
  public:
-  DdsWriter(std::vector<dds::DataWriter*> writers, SampleKeyFunction key, std::string topic, const MatchState* match)
-      : writers_(std::move(writers)), key_(key), spread_(writers_.size()), topic_(std::move(topic)), match_(match) {}
+  /// `wait_to_forget`: lockstep (simulated time may wait): end_instance() waits for the
+  /// acknowledgements; real time never blocks a loop and retries at each later write instead.
+  DdsWriter(std::vector<dds::DataWriter*> writers, SampleKeyFunction key, std::string topic, const MatchState* match,
+            bool wait_to_forget)
+      : writers_(std::move(writers)),
+        key_(key),
+        spread_(writers_.size()),
+        forget_pending_(writers_.size(), false),
+        wait_to_forget_(wait_to_forget),
+        topic_(std::move(topic)),
+        match_(match) {}
   void write(const void* sample) override {
-    dds::DataWriter* writer = writers_.front();
-    if (writers_.size() > 1) {
-      std::lock_guard<std::mutex> lock(spread_mutex_);
-      writer = writers_[spread_.writer_of(key_(sample))];
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (any_forget_pending_) {
+      forget_acknowledged(std::chrono::milliseconds(0));
     }
-    if (!writer->write(const_cast<void*>(sample))) {
+    if (!writers_[writer_of(sample)]->write(const_cast<void*>(sample))) {
       throw RunError("DDS write failed on topic " + topic_);
     }
+  }
+  /// Fast DDS 2.9.1 cannot drop one instance's samples safely: unregister_instance() removes them
+  /// from inside StatefulWriter::check_acked_status()'s walk over the history, whose iterator the
+  /// removal invalidates (seen here: the writer's receive thread spinning there for good, the
+  /// participant silent). So the DataWriter that carried the ended instance empties its whole
+  /// history once every matched reader has acknowledged all of it: those readers lose nothing;
+  /// only a reader matching later misses the last samples (the live instances' next samples
+  /// come at their next step). Kept histories are what transient-local lockstep needs at the
+  /// start, when readers may match after the first samples; by the time an instance ends, every
+  /// reader of the run has matched.
+  void end_instance(const void* sample) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    forget_pending_[writer_of(sample)] = true;
+    any_forget_pending_ = true;
+    forget_acknowledged(wait_to_forget_ ? kForgetWait : std::chrono::milliseconds(0));
+  }
+  /// Histories emptied by end_instance() so far.
+  std::uint64_t histories_forgotten() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return forgotten_;
   }
   const std::string& topic() const override { return topic_; }
   /// Every DataWriter of the topic, within one `timeout` in all.
@@ -72,10 +100,46 @@ class DdsWriter : public WriterHandle {
   const std::vector<dds::DataWriter*>& writers() const { return writers_; }
 
  private:
+  /// How long a lockstep writer waits for the acknowledgements of an ended instance's samples
+  /// before it leaves the history for a later write to empty (a reader that does not answer).
+  static constexpr std::chrono::milliseconds kForgetWait{1000};
+
+  /// The number of the DataWriter that publishes the instance of `sample` (always the same one).
+  /// Call with mutex_ held.
+  std::size_t writer_of(const void* sample) { return writers_.size() == 1 ? 0 : spread_.writer_of(key_(sample)); }
+
+  /// Empties each DataWriter with an ended instance whose samples every matched reader has
+  /// acknowledged within `wait`. Call with mutex_ held (no write in between).
+  void forget_acknowledged(std::chrono::milliseconds wait) {
+    any_forget_pending_ = false;
+    for (std::size_t i = 0; i < writers_.size(); ++i) {
+      if (!forget_pending_[i]) {
+        continue;
+      }
+      const eprosima::fastrtps::Duration_t limit(std::chrono::duration<double>(wait).count());
+      if (writers_[i]->wait_for_acknowledgments(limit) == ReturnCode_t::RETCODE_OK) {
+        std::size_t removed = 0;
+        writers_[i]->clear_history(&removed);
+        forget_pending_[i] = false;
+        ++forgotten_;
+        log::debug("dds", topic_ + ": an instance ended; the writer's history (" + std::to_string(removed) +
+                              " acknowledged samples) emptied");
+      } else {
+        any_forget_pending_ = true;
+      }
+    }
+  }
+
   std::vector<dds::DataWriter*> writers_;  // owned by the participant
   SampleKeyFunction key_;                  // idl::instance_key of the topic's type (used with several writers)
-  std::mutex spread_mutex_;                // spread_ (a writer may be used from several threads)
+  // spread_ and the forgetting below: a writer may be used from several threads, and no sample
+  // may be written between a writer's acknowledgement check and the emptying of its history.
+  mutable std::mutex mutex_;
   InstanceSpread spread_;
+  std::vector<bool> forget_pending_;  // per DataWriter: an instance ended, the history not yet emptied
+  bool any_forget_pending_ = false;
+  bool wait_to_forget_;
+  std::uint64_t forgotten_ = 0;
   std::string topic_;
   const MatchState* match_;  // the first writer's listener's: matched readers now
 };
@@ -152,7 +216,8 @@ class FastDdsBus : public DdsBus {
                             std::to_string(expected_robots_) + " robots, at most " +
                             std::to_string(kRobotsPerLockstepWriter) + " each)");
     }
-    auto handle = std::make_shared<DdsWriter>(std::move(writers), sample_key_function(type_name), topic, &listener->match());
+    auto handle = std::make_shared<DdsWriter>(std::move(writers), sample_key_function(type_name), topic, &listener->match(),
+                                              profile == kLockstepProfile);
     writer_listeners_[key] = std::move(listener);
     writers_[key] = handle;
     return handle;

@@ -4,6 +4,8 @@
 // FastDdsBus::expect_robots(): a lockstep topic's instances spread over several writers, seen by
 // a reader of another participant (real DDS, in this process), each test case on its own domain
 // (ctest runs the cases as separate processes, possibly at the same time).
+// WriterHandle::end_instance(): once its samples are acknowledged the writer keeps nothing for
+// late joiners (the history whose oldest samples made every heartbeat walk a growing gap).
 #include "runtime/dds/dds_bus.hpp"
 
 #include <gtest/gtest.h>
@@ -120,6 +122,80 @@ TEST(FastDdsBus, KeepsOneWriterForFewRobotsOtherProfilesAndTopicsNotKeyedByRobot
   // A topic outside the catalog has no known key: one writer (sim/step_done, keyed by host member,
   // is left alone the same way, by its catalog key).
   EXPECT_EQ(all_writers(writers_seen(89, "test/not_in_catalog", 70, 40, 1, "lockstep")).size(), 1u);
+}
+
+/// Robot ids of the RobotState samples a transient-local reader that matches now gets from the
+/// writers' histories on `domain` (within `wait`).
+std::multiset<std::uint32_t> late_reader_gets(const DdsOptions& options, const char* profile, std::chrono::milliseconds wait) {
+  auto seen = std::make_shared<WritersSeen>();
+  auto bus = make_dds_bus(options);
+  bus->reader("plant/state", "robodds::idl::RobotState", profile, [seen](const void* p, const SampleMeta&) {
+    std::lock_guard<std::mutex> lock(seen->mutex);
+    seen->by_robot[static_cast<const idl::RobotState*>(p)->robot_id()].insert(seen->samples++);
+  }, nullptr);
+  bus->start();
+  std::this_thread::sleep_for(wait);
+  bus->close_readers();
+  std::lock_guard<std::mutex> lock(seen->mutex);
+  std::multiset<std::uint32_t> robots;
+  for (const auto& [robot, samples] : seen->by_robot) {
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      robots.insert(robot);
+    }
+  }
+  return robots;
+}
+
+TEST(FastDdsBus, AnEndedInstanceEmptiesTheWritersHistoryOnceEveryReaderHasIt) {
+  DdsOptions options;
+  options.domain_id = 139;
+  options.qos_files = {std::string(ROBODDS_SOURCE_DIR) + "/deploy/qos/robodds_qos.xml"};
+  const std::string type_name = "robodds::idl::RobotState";
+  // A matched reader first: the emptying must wait for its acknowledgements, and it loses nothing.
+  auto seen = std::make_shared<WritersSeen>();
+  options.participant_name = "forget_reader";
+  auto reader_bus = make_dds_bus(options);
+  reader_bus->reader("plant/state", type_name, "lockstep", [seen](const void*, const SampleMeta&) {
+    std::lock_guard<std::mutex> lock(seen->mutex);
+    ++seen->samples;
+    seen->changed.notify_all();
+  }, nullptr);
+  reader_bus->start();
+  options.participant_name = "forget_writer";
+  auto writer_bus = make_dds_bus(options);
+  auto writer = writer_bus->writer("plant/state", type_name, "lockstep");
+  const auto write = [&](std::uint32_t robot) {
+    idl::RobotState sample;
+    sample.robot_id(robot);
+    writer->write(&sample);
+  };
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!writer->has_matched_readers() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_TRUE(writer->has_matched_readers()) << "the reader did not match within 10 s";
+  for (int round = 0; round < 5; ++round) {
+    write(1);
+    write(2);
+  }
+  options.participant_name = "late_reader_before";
+  const auto before = late_reader_gets(options, "lockstep", std::chrono::milliseconds(1500));
+  EXPECT_EQ(before.count(1), 5u) << "transient local: a late reader gets the kept history";
+
+  idl::RobotState ended;
+  ended.robot_id(1);
+  writer->end_instance(&ended);  // robot 1 ends; robot 2 goes on
+  write(2);
+  {
+    std::unique_lock<std::mutex> lock(seen->mutex);
+    seen->changed.wait_for(lock, std::chrono::seconds(10), [&] { return seen->samples >= 11; });
+    EXPECT_EQ(seen->samples, 11u) << "the matched reader got every sample, also those written around the emptying";
+  }
+  options.participant_name = "late_reader_after";
+  const auto after = late_reader_gets(options, "lockstep", std::chrono::milliseconds(1500));
+  EXPECT_EQ(after.count(1), 0u) << "the ended instance's samples left the history";
+  EXPECT_EQ(after.count(2), 1u) << "only robot 2's sample written after the emptying is kept";
+  reader_bus->close_readers();
 }
 
 }  // namespace

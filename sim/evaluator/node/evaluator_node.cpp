@@ -363,8 +363,27 @@ class EvaluatorNode : public Component {
     json.value("wall_time_s", std::round(run.wall_time_s * 1e6) / 1e6);  // us, like the runner's log
     json.value("ticks", static_cast<std::int64_t>(run.ticks));
     json.value("ticks_per_s", std::round(ticks_per_s * 10.0) / 10.0);
+    write_thirds(json, run);
     write_timing_section(json, run);  // the components' compute times (timing_summary.hpp)
     json.end_object();
+  }
+
+  /// Lockstep: "ticks_per_s_by_third": [first, middle, last third of the run's steps] on this
+  /// host's wall clock from its first tick (start-up left out); a long run whose cost per step
+  /// grows shows a falling list.
+  void write_thirds(JsonWriter& json, const RunFigures& run) const {
+    if (run.thirds_done_at_s.size() != 3 || run.ticks < 3) {
+      return;
+    }
+    const double bounds[4] = {run.thirds_done_at_s[0], run.thirds_done_at_s[1], run.thirds_done_at_s[2], run.wall_time_s};
+    const double third_steps[3] = {static_cast<double>(run.ticks / 3), static_cast<double>(run.ticks * 2 / 3 - run.ticks / 3),
+                                   static_cast<double>(run.ticks - run.ticks * 2 / 3)};
+    std::vector<double> rates;
+    for (int i = 0; i < 3; ++i) {
+      const double wall_s = bounds[i + 1] - bounds[i];
+      rates.push_back(wall_s > 0 ? std::round(third_steps[i] / wall_s * 10.0) / 10.0 : 0.0);
+    }
+    json.value("ticks_per_s_by_third", rates);
   }
 
   /// Paper 2 (issue 10): "phase1", "phase2", ... {settle_time_s, radius_rmse_m, spacing_rmse_deg},
