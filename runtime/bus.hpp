@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace robodds {
 
@@ -108,6 +109,9 @@ class Bus {
   /// dropped (runtime/dds/undecodable.hpp), per topic; topics with none are left out. Default:
   /// none (a bus without decoding, e.g. MemoryBus). summary.json "hosts".<member>."undecodable".
   virtual std::map<std::string, std::uint64_t> undecodable_samples() const { return {}; }
+  /// The names of the DDS participants this process has discovered so far (PeerWatch), or
+  /// nullopt for a bus that discovers nothing (MemoryBus, a co-located run's in-memory bus).
+  virtual std::optional<std::vector<std::string>> discovered_participants() const { return std::nullopt; }
 };
 
 }  // namespace robodds

@@ -15,6 +15,7 @@ namespace {
 constexpr std::size_t kNameBound = 64;       // string<64> of the IDL
 constexpr std::size_t kStageBound = 32;      // StageTiming::stage, string<32>
 constexpr std::size_t kTimingBound = 256;    // HostReport::timing, sequence<StageTiming, 256>
+constexpr std::size_t kDegradedBound = 512;  // HostReport::degraded, string<512>
 
 std::string bounded(const std::string& text, std::size_t bound = kNameBound) { return text.substr(0, bound); }
 
@@ -59,6 +60,7 @@ idl::HostReport to_report(const HostHealth& health, std::uint64_t run_id) {
     }
   }
   report.undecodable(to_reasons(health.undecodable));
+  report.degraded(bounded(health.degraded, kDegradedBound));
   for (const StageTiming& timing : health.timing) {
     if (report.timing().size() == kTimingBound) {
       break;  // the IDL bound: a host with more stages reports its first 256
@@ -94,6 +96,7 @@ HostHealth from_report(const idl::HostReport& report) {
     health.components.back().inputs.push_back(InputHealth{r.topic().to_string(), counts});
   }
   health.undecodable = from_reasons(report.undecodable());
+  health.degraded = report.degraded().to_string();
   for (const idl::StageTiming& t : report.timing()) {
     health.timing.push_back(StageTiming{t.component_name().to_string(),
                                         ComputeTimes::Summary{t.stage().to_string(), t.count(), t.median_ms(), t.p99_ms(), t.max_ms()}});

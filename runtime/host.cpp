@@ -12,6 +12,7 @@
 #include "runtime/lockstep_host.hpp"
 #include "runtime/memory_bus.hpp"
 #include "runtime/overrun_counter.hpp"
+#include "runtime/peer_watch.hpp"
 
 namespace robodds {
 namespace {
@@ -46,6 +47,32 @@ struct Host::Impl {
       }
     }
     return others;
+  }
+
+  /// Real time across processes: the scenario's other groups, which this host must discover
+  /// within the start timeout (PeerWatch); none co-located, alone (a component executable) or on
+  /// a bus that discovers nothing.
+  PeerWatch peer_watch() const {
+    std::vector<std::string> others;
+    if (!run.single_process && run.bus->discovered_participants()) {
+      for (const GroupSpec& group : run.scenario->groups) {
+        if (group.name != options.member) {
+          others.push_back(group.name);
+        }
+      }
+    }
+    return PeerWatch(std::move(others), options.start_timeout_s);
+  }
+
+  /// Checks the peers at most every 0.5 s; logs a degraded run once.
+  void watch_peers(PeerWatch& watch, double elapsed_s, double& next_check_s) const {
+    if (elapsed_s < next_check_s) {
+      return;
+    }
+    next_check_s = elapsed_s + 0.5;
+    if (watch.check(elapsed_s, run.bus->discovered_participants().value_or(std::vector<std::string>{}))) {
+      log::warn(options.member, "degraded: " + watch.degraded() + "; the run goes on without them");
+    }
   }
 
   void check_stop() const {
@@ -148,6 +175,8 @@ struct Host::Impl {
     OverrunCounter overruns(step_s, options.max_missed_steps.value_or(default_max_missed_steps(last + 1)));
     std::uint64_t reported = 0;
     std::uint64_t last_run = 0;  // the last step the components ran at
+    PeerWatch peers = peer_watch();
+    double next_peer_check_s = 0.0;
     bool stopped = false;
     while (true) {
       if (options.stop_ends_run && options.stop != nullptr && options.stop->load()) {
@@ -171,6 +200,7 @@ struct Host::Impl {
         break;
       }
       last_run = current;
+      watch_peers(peers, seconds_since(start), next_peer_check_s);
       const std::uint64_t first_due = next_due.empty() ? current : *std::min_element(next_due.begin(), next_due.end());
       if (first_due <= current) {
         count_overrun(overruns, first_due, current, due_steps_between(periods, first_due, current), elapsed_s);
@@ -207,8 +237,12 @@ struct Host::Impl {
     if (overruns.figures().missed_steps > 0 || overruns.figures().late_steps > 0) {
       log::warn(options.member, "real-time overruns over the run: " + overruns.totals_text());
     }
-    host_detail::finish_run(run, options.member, overruns.figures(), slots, health.get(), last_run, seconds_since(start));
-    return RunStats{last_run + 1, seconds_since(start)};
+    if (!peers.checked()) {  // a run shorter than the start timeout: judged at its end
+      watch_peers(peers, std::max(seconds_since(start), options.start_timeout_s), next_peer_check_s);
+    }
+    host_detail::finish_run(run, options.member, overruns.figures(), slots, health.get(), last_run, seconds_since(start),
+                            peers.degraded());
+    return RunStats{last_run + 1, seconds_since(start), peers.degraded()};
   }
 
   /// Books one iteration of the real-time loop; warns (rate-limited) and fails past the limit.

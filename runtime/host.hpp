@@ -22,7 +22,8 @@ struct HostOptions {
   bool coordinator = false;                 // also publish ticks and collect acknowledgements
   std::vector<std::string> members;         // groups the coordinator waits for
   double input_timeout_s = 10.0;            // max wait for a component's inputs at one step
-  double start_timeout_s = 30.0;            // max wait for the first tick / first acknowledgements
+  double start_timeout_s = 30.0;            // max wait for the first tick / first acknowledgements; real time
+                                            // across processes: for the other groups to be discovered (PeerWatch)
   double tick_timeout_s = 30.0;             // max wait between ticks (host) or for acks (coordinator)
   std::int64_t realtime_epoch_ns = 0;       // real time: wall clock of step 0 (0 = now)
   std::size_t lockstep_window = 1;          // coordinator: ticks outstanding at once (1 = strict)
@@ -45,7 +46,13 @@ struct HostOptions {
 struct RunStats {
   std::uint64_t steps = 0;  // ticks completed
   double wall_s = 0.0;
+  /// Real time: why this host ran degraded (PeerWatch: groups it never discovered); empty: not.
+  std::string degraded;
 };
+
+/// Exit code of a host that ran to its end degraded (RunStats::degraded): not a failure, not a
+/// clean run either. `robodds run --deploy processes` takes it from a child as a degraded end.
+inline constexpr int kDegradedExitCode = 3;
 
 class Host {
  public:

@@ -36,6 +36,7 @@ struct HostHealth {
   std::vector<ComponentHealth> components;
   std::map<std::string, std::uint64_t> undecodable;  // topic -> samples dropped undecoded (Bus::undecodable_samples)
   std::vector<StageTiming> timing;   // per component (host order), its stages in first-added order
+  std::string degraded;              // real time: why the host ran degraded (PeerWatch); empty: it did not
 };
 
 /// The counts of every input in `inputs` (ComponentContext::inputs()), in subscription order.

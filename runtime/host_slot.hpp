@@ -98,12 +98,14 @@ inline HostHealth host_health(const std::string& member, const OverrunFigures& f
 /// The end of a run on this host, after its last step `last_step` (lockstep or real time): the
 /// run's figures and this host's health into run.figures, across processes the other hosts'
 /// health over run/health (`health`, may be null), then every component's on_finish().
+/// `degraded`: why this host ran degraded (real time, PeerWatch), or empty.
 inline void finish_run(RunContext& run, const std::string& member, const OverrunFigures& overruns,
                        std::vector<std::unique_ptr<ComponentSlot>>& slots, HealthExchange* health,
-                       std::uint64_t last_step, double wall_time_s) {
+                       std::uint64_t last_step, double wall_time_s, const std::string& degraded = "") {
   run.figures.ticks = last_step + 1;
   run.figures.wall_time_s = wall_time_s;
   run.figures.hosts = {host_health(member, overruns, slots, *run.bus)};
+  run.figures.hosts.front().degraded = degraded;
   if (health != nullptr) {
     health->exchange(run.figures, last_step);
   }

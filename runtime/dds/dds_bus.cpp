@@ -331,6 +331,8 @@ class FastDdsBus : public DdsBus {
 
   std::string writer_name(std::uint64_t writer_id) const override { return peers_.writer_name(writer_id); }
 
+  std::optional<std::vector<std::string>> discovered_participants() const override { return peers_.discovered_names(); }
+
   /// The type support counts per type (it does not know the topic); each of our topics is
   /// credited with its type's count. A process reading several topics of one type (e.g. the
   /// RelativePoseEstimate topics of paper 3) shows their sum on each of them.

@@ -10,6 +10,12 @@
 
 namespace robodds {
 
+/// A Fast DDS Discovery Server a participant is the client of (`--discovery-server`).
+struct DiscoveryServer {
+  std::string host;   // IPv4 address or host name (resolved when the participant is made)
+  int port = 11811;   // UDP port of the server's metatraffic locator
+};
+
 struct DdsOptions {
   int domain_id = 0;
   std::vector<std::string> qos_files;  // loaded in order; the first must define the data profiles
@@ -19,6 +25,10 @@ struct DdsOptions {
   // files of DIR/<security_identity>/ (runtime/dds/security_files.hpp), checked before it is made.
   std::string security_dir;
   std::string security_identity;
+  /// Non-empty: the participant is a Discovery Server CLIENT of these servers instead of what its
+  /// profile says; server i of the list has server id i (GUID prefix 44.53.<i>.5f...: start it
+  /// with `fast-discovery-server -i <i>`), the others are its backups.
+  std::vector<DiscoveryServer> discovery_servers;
 };
 
 class DdsBus : public Bus {

@@ -165,6 +165,16 @@ std::string PeerDirectory::remote_qos(const std::string& topic, bool of_writers,
   return out.empty() ? std::string("(not discovered yet)") : out;
 }
 
+std::vector<std::string> PeerDirectory::discovered_names() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<std::string> names;
+  for (const auto& [prefix, name] : names_) {
+    names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 std::size_t PeerDirectory::participants_alive() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return alive_.size();

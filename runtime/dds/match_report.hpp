@@ -41,6 +41,8 @@ class PeerDirectory : public dds::DomainParticipantListener {
   std::string remote_qos(const std::string& topic, bool of_writers, const std::string& local) const;
 
   std::size_t participants_alive() const;
+  /// The names of every participant discovered so far (also those dropped since), sorted.
+  std::vector<std::string> discovered_names() const;
 
   /// Secure runs: the discovered participants whose authentication has not succeeded (yet), as
   /// who() spells them, e.g. "'control', 'sim'"; empty when all did or the run is not secure (`secure`: this participant

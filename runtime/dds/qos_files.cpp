@@ -5,7 +5,10 @@
 #include <fastrtps/attributes/ParticipantAttributes.h>
 #include <fastrtps/attributes/PublisherAttributes.h>
 #include <fastrtps/attributes/SubscriberAttributes.h>
+#include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastrtps/utils/IPLocator.h>
+#include <netdb.h>
+#include <arpa/inet.h>
 #include <fastrtps/xmlparser/XMLProfileManager.h>
 
 #include <cstdio>
@@ -104,6 +107,44 @@ void check_discovery_servers(const dds::DomainParticipantQos& qos, const std::st
                                   "address " + address + " is not a server address (give the server's IP)"));
       }
     }
+  }
+}
+
+/// The IPv4 address of `host` (a dotted address or a name): ConfigError naming the option if it
+/// does not resolve.
+std::string ipv4_of(const DiscoveryServer& server) {
+  in_addr parsed{};
+  if (inet_pton(AF_INET, server.host.c_str(), &parsed) == 1) {
+    return server.host;
+  }
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_DGRAM;
+  addrinfo* found = nullptr;
+  const int rc = getaddrinfo(server.host.c_str(), nullptr, &hints, &found);
+  if (rc != 0 || found == nullptr) {
+    throw ConfigError("--discovery-server: cannot resolve '" + server.host + "' to an IPv4 address (" + gai_strerror(rc) + ")");
+  }
+  char text[INET_ADDRSTRLEN] = {};
+  inet_ntop(AF_INET, &reinterpret_cast<const sockaddr_in*>(found->ai_addr)->sin_addr, text, sizeof text);
+  freeaddrinfo(found);
+  return text;
+}
+
+/// Turns the participant into a Discovery Server CLIENT of `servers` (server id = position, the
+/// GUID prefix Fast DDS gives a server started with that id).
+void make_discovery_client(dds::DomainParticipantQos& qos, const std::vector<DiscoveryServer>& servers) {
+  auto& config = qos.wire_protocol().builtin.discovery_config;
+  config.discoveryProtocol = rtps::DiscoveryProtocol_t::CLIENT;
+  config.m_DiscoveryServers.clear();
+  for (std::size_t id = 0; id < servers.size(); ++id) {
+    rtps::RemoteServerAttributes server;
+    eprosima::fastdds::rtps::get_server_client_default_guidPrefix(static_cast<int>(id), server.guidPrefix);
+    rtps::Locator_t locator;
+    rtps::IPLocator::setIPv4(locator, ipv4_of(servers[id]));
+    locator.port = static_cast<std::uint32_t>(servers[id].port);
+    server.metatrafficUnicastLocatorList.push_back(locator);
+    config.m_DiscoveryServers.push_back(server);
   }
 }
 
@@ -223,6 +264,9 @@ dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
   if (dds::DomainParticipantFactory::get_instance()->get_participant_qos_from_profile(options.participant_profile, qos) !=
       ReturnCode_t::RETCODE_OK) {
     throw ConfigError(located(last, "participant profile '" + options.participant_profile + "'", "not found in the loaded QoS files"));
+  }
+  if (!options.discovery_servers.empty()) {
+    make_discovery_client(qos, options.discovery_servers);
   }
   check_discovery_servers(qos, options.participant_profile,
                           file_defining(options.qos_files, options.participant_profile, last));

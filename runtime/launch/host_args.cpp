@@ -6,6 +6,7 @@
 
 #include "common/number_parse.hpp"
 #include "common/number_text.hpp"
+#include "runtime/error.hpp"
 #include "runtime/overrun_counter.hpp"
 
 namespace robodds {
@@ -94,7 +95,7 @@ void add_max_missed_steps_option(CLI::App* app, std::optional<std::uint64_t>& ma
 
 bool DdsArgs::operator==(const DdsArgs& o) const {
   return domain == o.domain && qos_files == o.qos_files && participant_profile == o.participant_profile &&
-         security_dir == o.security_dir;
+         security_dir == o.security_dir && discovery_servers == o.discovery_servers;
 }
 
 bool LockstepArgs::operator==(const LockstepArgs& o) const {
@@ -145,6 +146,7 @@ std::vector<std::string> to_argv(const HostArgs& args, const ArgPlaceholders& pl
   ArgvWriter rest(placeholders);
   rest.option("--participant-profile", args.dds.participant_profile, args.dds.participant_profile.empty());
   rest.option("--security", args.dds.security_dir, args.dds.security_dir.empty());
+  rest.option("--discovery-server", args.dds.discovery_servers, args.dds.discovery_servers.empty());
   rest.option("--input-timeout", shortest_text(args.lockstep.input_timeout_s),
               args.lockstep.input_timeout_s == defaults.lockstep.input_timeout_s);
   rest.option("--start-timeout", shortest_text(args.lockstep.start_timeout_s),
@@ -166,6 +168,55 @@ void add_dds_options(CLI::App* app, DdsArgs& args) {
   app->add_option("--security", args.security_dir,
                   "DDS Security: directory made by `robodds security init` (authenticated, access-controlled, encrypted; "
                   "default: $ROBODDS_SECURITY_DIR or none)");
+  app->add_option("--discovery-server", args.discovery_servers,
+                  "ADDR[:PORT][,ADDR[:PORT]...]: discover through these Fast DDS Discovery Servers (port 11811 by default; "
+                  "the i-th has server id i, the others are backups: start them with `fast-discovery-server -i <i>`) "
+                  "instead of the participant profile's discovery");
+}
+
+std::string discovery_servers_text(const std::vector<DiscoveryServer>& servers) {
+  std::string text;
+  for (const DiscoveryServer& server : servers) {
+    text += (text.empty() ? "" : ",") + server.host + ":" + std::to_string(server.port);
+  }
+  return text;
+}
+
+std::vector<DiscoveryServer> parse_discovery_servers(const std::string& text) {
+  std::vector<DiscoveryServer> servers;
+  if (text.empty()) {
+    return servers;
+  }
+  const auto bad = [&text](const std::string& entry, const std::string& why) {
+    return ConfigError("--discovery-server '" + text + "': '" + entry + "' " + why + " (expected ADDR[:PORT][,ADDR[:PORT]...])");
+  };
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find_first_of(",;", begin), text.size());
+    const std::string entry = text.substr(begin, end - begin);
+    const std::size_t colon = entry.rfind(':');
+    DiscoveryServer server;
+    server.host = entry.substr(0, colon);
+    if (server.host.empty()) {
+      throw bad(entry, "has no address");
+    }
+    if (server.host.find_first_of(" \t") != std::string::npos) {
+      throw bad(entry, "has a space in its address");
+    }
+    if (colon != std::string::npos) {
+      const std::optional<std::uint64_t> port = parse_whole_number(entry.substr(colon + 1), 65535);
+      if (!port || *port == 0) {
+        throw bad(entry, "has no valid port (1-65535)");
+      }
+      server.port = static_cast<int>(*port);
+    }
+    servers.push_back(server);
+    if (servers.size() > 255) {
+      throw bad(entry, "is one server too many: at most 255 (a server id is one byte of the GUID prefix)");
+    }
+    begin = end + 1;
+  }
+  return servers;
 }
 
 void add_lockstep_options(CLI::App* app, LockstepArgs& args) {

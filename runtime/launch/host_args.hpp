@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "runtime/dds/dds_bus.hpp"
+
 namespace CLI {
 class App;
 class Option;
@@ -22,6 +24,7 @@ struct DdsArgs {
   std::vector<std::string> qos_files;   // empty: deploy/qos/robodds_qos.xml (+ $ROBODDS_QOS_FILE)
   std::string participant_profile;      // empty: $ROBODDS_PARTICIPANT_PROFILE or robodds.participant
   std::string security_dir;             // empty: $ROBODDS_SECURITY_DIR or no DDS Security (docs/security.md)
+  std::string discovery_servers;        // "ADDR[:PORT][,ADDR[:PORT]...]": Discovery Server client; empty: the profile's discovery
   bool operator==(const DdsArgs& other) const;
 };
 
@@ -101,6 +104,12 @@ void add_seed_option(CLI::App* app, std::optional<std::uint64_t>& seed, const st
 /// --max-missed-steps: real time, the run fails when a host skips more due steps than this
 /// (default: kDefaultMaxMissedFraction of the run's steps, runtime/overrun_counter.hpp).
 void add_max_missed_steps_option(CLI::App* app, std::optional<std::uint64_t>& max_missed_steps);
+/// The servers of --discovery-server (DdsArgs::discovery_servers), in order (server id = position):
+/// ConfigError naming the option and the entry for an empty address, a bad port or over 255.
+std::vector<DiscoveryServer> parse_discovery_servers(const std::string& text);
+/// The --discovery-server text of `servers` ("ADDR:PORT,..."), which parse_discovery_servers() reads back.
+std::string discovery_servers_text(const std::vector<DiscoveryServer>& servers);
+
 void add_dds_options(CLI::App* app, DdsArgs& args);
 void add_lockstep_options(CLI::App* app, LockstepArgs& args);
 

@@ -119,6 +119,7 @@ std::vector<std::string> child_argv(const Scenario& scenario, const LaunchOption
   args.dds.qos_files = launch.dds.qos_files;
   args.dds.participant_profile = launch.dds.participant_profile;
   args.dds.security_dir = launch.dds.security_dir;  // the child's identity is its group
+  args.dds.discovery_servers = discovery_servers_text(launch.dds.discovery_servers);
   args.lockstep.input_timeout_s = launch.lockstep.input_timeout_s;
   args.lockstep.start_timeout_s = launch.lockstep.start_timeout_s;
   args.lockstep.lockstep_window = launch.lockstep.lockstep_window;  // the hosts check their history bound with it
@@ -235,6 +236,7 @@ DdsOptions resolve_dds(const DdsArgs& args, const std::string& participant_name)
                               : env_or("ROBODDS_PARTICIPANT_PROFILE", kDefaultParticipantProfile);
   o.participant_name = participant_name;
   o.security_dir = !args.security_dir.empty() ? args.security_dir : env_or("ROBODDS_SECURITY_DIR", "");
+  o.discovery_servers = parse_discovery_servers(args.discovery_servers);
   return o;
 }
 
@@ -329,7 +331,7 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
 
 }  // namespace
 
-void run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop) {
+int run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop) {
   const Scenario scenario = host_scenario(registry, args);
   check_producers(registry, scenario, time_mode(args.realtime), false);
   if (!args.out.empty() && args.deploy != to_string(Deploy::kProcesses)) {
@@ -401,10 +403,16 @@ void run_host(const ComponentRegistry& registry, const HostArgs& args, const std
   }
   const RunStats stats = run_in_process(registry, scenario, with_identity(resolve_dds(args.dds, "robodds-" + options.member), identity),
                                         options, InProcessRun{time_mode(args.realtime), args.out, args.deploy});
-  if (standalone) {
-    log::info(options.member, run_name + " completed: " + std::to_string(stats.steps) + " steps in " +
-                                  shortest_text(std::round(stats.wall_s * 10.0) / 10.0) + " s");
+  const std::string figures = std::to_string(stats.steps) + " steps in " + shortest_text(std::round(stats.wall_s * 10.0) / 10.0) + " s";
+  if (!stats.degraded.empty()) {
+    log::error(options.member, run_name + " ended DEGRADED after " + figures + ": " + stats.degraded + " (exit code " +
+                                   std::to_string(kDegradedExitCode) + ")");
+    return kDegradedExitCode;
   }
+  if (standalone) {
+    log::info(options.member, run_name + " completed: " + figures);
+  }
+  return 0;
 }
 
 int draw_plots(const std::string& out_dir, double timeout_s) {

@@ -47,7 +47,9 @@ RunStats launch_run(const ComponentRegistry& registry, const Scenario& scenario,
 
 /// `robodds host`: runs what `args` selects (a group, components, and/or the coordinator) in
 /// this process until the run ends.
-void run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop);
+/// Returns the process's exit code: 0, or kDegradedExitCode when the host ran degraded (real time:
+/// groups it never discovered); failures throw.
+int run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop);
 
 /// Where this process runs components: the bus, the run's context and its host.
 struct InProcessRun {

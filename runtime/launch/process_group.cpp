@@ -10,6 +10,8 @@
 #include <unistd.h>
 
 #include "common/number_text.hpp"
+#include "runtime/host.hpp"
+#include "runtime/log.hpp"
 #include "runtime/error.hpp"
 
 namespace robodds {
@@ -78,7 +80,7 @@ void ProcessGroup::check_alive() {
     }
     if (waitpid(child.pid, &child.status, WNOHANG) == child.pid) {
       child.exited = true;
-      if (WIFEXITED(child.status) && WEXITSTATUS(child.status) == 0) {
+      if (WIFEXITED(child.status) && (WEXITSTATUS(child.status) == 0 || WEXITSTATUS(child.status) == kDegradedExitCode)) {
         // A host that ran its last step and sent its health may end before the coordinator has
         // finished with the other groups (nothing delays its exit). One that left early without
         // failing would miss its acknowledgements: the lockstep timeout names it.
@@ -95,7 +97,12 @@ std::size_t ProcessGroup::reap_finished() {
   for (Child& child : children_) {
     if (!child.exited && waitpid(child.pid, &child.status, WNOHANG) == child.pid) {
       child.exited = true;
-      if (!WIFEXITED(child.status) || WEXITSTATUS(child.status) != 0) {
+      if (WIFEXITED(child.status) && WEXITSTATUS(child.status) == kDegradedExitCode) {
+        // It ran to its end without some of its peers: its report (or its absence) makes
+        // summary.json "degraded"; the run goes on.
+        log::warn("run", "group '" + child.name + "' ended degraded (exit code " + std::to_string(kDegradedExitCode) +
+                             "; its log says why)");
+      } else if (!WIFEXITED(child.status) || WEXITSTATUS(child.status) != 0) {
         throw RunError("group '" + child.name + "' (pid " + std::to_string(child.pid) + ") " + describe_exit(child));
       }
     }

@@ -20,8 +20,7 @@ class HostCommand : public Command {
     if (!args_.log_level.empty()) {
       log::set_level(log::parse_level(args_.log_level));
     }
-    run_host(env_.registry, args_, &env_.stop);
-    return 0;
+    return run_host(env_.registry, args_, &env_.stop);
   }
 
  private:

@@ -7,6 +7,8 @@
 #include <functional>
 #include <limits>
 
+#include "runtime/error.hpp"
+
 namespace robodds {
 namespace {
 
@@ -46,6 +48,7 @@ HostArgs every_field_set() {
   a.dds.qos_files = {"a.xml", "b.xml"};
   a.dds.participant_profile = "robodds.participant.udp_only";
   a.dds.security_dir = "sec/plant_smoke";
+  a.dds.discovery_servers = "10.0.0.7:11811,backup.lan:11812";
   a.lockstep.input_timeout_s = 2.5;
   a.lockstep.start_timeout_s = 1.0 / 3.0;
   a.lockstep.lockstep_window = 8;
@@ -97,6 +100,7 @@ TEST(HostArgs, EachFieldAloneSurvivesTheRoundTrip) {
       [&](HostArgs& a) { a.lockstep.input_timeout_s = 3; }, [&](HostArgs& a) { a.lockstep.start_timeout_s = 4; },
       [&](HostArgs& a) { a.lockstep.lockstep_window = 2; }, [&](HostArgs& a) { a.max_missed_steps = 3; },
       [&](HostArgs& a) { a.dds.security_dir = full.dds.security_dir; },
+      [&](HostArgs& a) { a.dds.discovery_servers = full.dds.discovery_servers; },
   };
   for (std::size_t i = 0; i < set_one.size(); ++i) {
     HostArgs one;
@@ -181,6 +185,43 @@ TEST(HostArgs, MaxMissedStepsIsAWholeNumber) {
   for (const char* bad : {"-1", "nan", "1.5", ""}) {
     EXPECT_THROW(parse({"--max-missed-steps", bad}), CLI::ParseError) << bad;
   }
+}
+
+TEST(DiscoveryServers, ParsesAddressesPortsAndBackupsInOrder) {
+  const auto servers = parse_discovery_servers("10.0.0.7,discovery:11812;127.0.0.1:1");
+  ASSERT_EQ(servers.size(), 3u);
+  EXPECT_EQ(servers[0].host, "10.0.0.7");
+  EXPECT_EQ(servers[0].port, 11811) << "the default port";
+  EXPECT_EQ(servers[1].host, "discovery");
+  EXPECT_EQ(servers[1].port, 11812);
+  EXPECT_EQ(servers[2].port, 1);
+  EXPECT_TRUE(parse_discovery_servers("").empty()) << "none: the profile's discovery";
+  EXPECT_EQ(discovery_servers_text(servers), "10.0.0.7:11811,discovery:11812,127.0.0.1:1");
+  EXPECT_EQ(discovery_servers_text(parse_discovery_servers(discovery_servers_text(servers))), discovery_servers_text(servers));
+}
+
+TEST(DiscoveryServers, BadEntriesAreRefusedNamingTheOptionAndTheEntry) {
+  const auto error_of = [](const std::string& text) {
+    try {
+      parse_discovery_servers(text);
+    } catch (const ConfigError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of("10.0.0.7:0").find("--discovery-server '10.0.0.7:0': '10.0.0.7:0' has no valid port (1-65535)"), std::string::npos)
+      << error_of("10.0.0.7:0");
+  EXPECT_NE(error_of("10.0.0.7:65536").find("no valid port"), std::string::npos);
+  EXPECT_NE(error_of("10.0.0.7:x1").find("no valid port"), std::string::npos);
+  EXPECT_NE(error_of(":11811").find("has no address"), std::string::npos);
+  EXPECT_NE(error_of("a,,b").find("'' has no address"), std::string::npos) << error_of("a,,b");
+  EXPECT_NE(error_of("a,").find("has no address"), std::string::npos);
+  EXPECT_NE(error_of("my host:1").find("space"), std::string::npos);
+  std::string many;
+  for (int i = 0; i < 256; ++i) {
+    many += (i ? "," : "") + std::string("h");
+  }
+  EXPECT_NE(error_of(many).find("at most 255"), std::string::npos);
 }
 
 }  // namespace

@@ -34,6 +34,21 @@ namespace {
 
 constexpr double kDegPerRad = 180.0 / kPi;
 
+/// Why a run that reached its end is degraded: every host that ran without some of its peers
+/// (HostHealth::degraded) and every host whose report never came; empty: none.
+std::string degraded_reason(const RunFigures& figures) {
+  std::string reason;
+  for (const HostHealth& host : figures.hosts) {
+    if (!host.degraded.empty()) {
+      reason += (reason.empty() ? "" : "; ") + std::string("host '") + host.member + "' " + host.degraded;
+    }
+  }
+  for (const std::string& member : figures.hosts_not_heard) {
+    reason += (reason.empty() ? "" : "; ") + std::string("host '") + member + "' did not report (run/health): it may have run alone or not at all";
+  }
+  return reason;
+}
+
 /// How the run ended, for summary.json's "status" (and "reason" when it failed).
 struct RunEnd {
   bool completed = true;
@@ -267,11 +282,19 @@ class EvaluatorNode : public Component {
     json.end_object();
   }
 
-  /// "status": "completed", or "failed" with the error line that ended the run as "reason".
-  static void write_status_section(JsonWriter& json, const RunEnd& end) {
-    json.value("status", end.completed ? "completed" : "failed");
+  /// "status": "completed"; "degraded" when the run reached its end but a host ran without some of
+  /// its peers or did not report (the "reason" names each); "failed" with the error line that
+  /// ended the run as "reason".
+  void write_status_section(JsonWriter& json, const RunEnd& end) const {
     if (!end.completed) {
+      json.value("status", "failed");
       json.value("reason", end.reason);
+      return;
+    }
+    const std::string degraded = degraded_reason(context_->run_figures());
+    json.value("status", degraded.empty() ? "completed" : "degraded");
+    if (!degraded.empty()) {
+      json.value("reason", degraded);
     }
   }
 

@@ -24,6 +24,9 @@ void write_health_sections(JsonWriter& json, const RunFigures& figures) {
     json.value("late_steps", static_cast<std::int64_t>(host.figures.late_steps));
     json.value("worst_lateness_s", std::round(host.figures.worst_lateness_s * 1e6) / 1e6);
     write_reasons(json, "undecodable", host.undecodable);
+    if (!host.degraded.empty()) {
+      json.value("degraded", host.degraded);
+    }
     json.end_object();
   }
   for (const std::string& member : figures.hosts_not_heard) {

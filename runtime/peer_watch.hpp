@@ -1,0 +1,42 @@
+#pragma once
+// Real time across processes: does this host see the groups it runs with? A host whose peers
+// never appear on the domain (a discovery server that died before it started, multicast blocked)
+// would otherwise run alone, receive nothing and end "completed". After `deadline_s` on its own
+// clock the host compares the participants it discovered (the host names each "robodds-<group>",
+// DdsOptions::participant_name) with the scenario's other groups; those missing make the run
+// degraded: logged at once, in the host's health report (summary.json "status": "degraded") and
+// in its exit code (docs/deployment.md, "Long runs and failures across machines").
+
+#include <string>
+#include <vector>
+
+namespace robodds {
+
+/// The participant name a host of group `group` uses ("robodds-<group>").
+std::string participant_name_of_group(const std::string& group);
+
+class PeerWatch {
+ public:
+  /// `others`: the scenario's other groups (none: nothing to watch); `deadline_s`: s after the
+  /// run's start by which they must have been discovered.
+  PeerWatch(std::vector<std::string> others, double deadline_s);
+
+  /// Checks once, at the first call with `elapsed_s` >= the deadline, which of the other groups
+  /// have no participant in `discovered` (participant names). True when that made the run
+  /// degraded (then degraded() says why); later calls only note groups that turned up late.
+  bool check(double elapsed_s, const std::vector<std::string>& discovered);
+
+  /// Empty while nothing is missing; else e.g. "did not discover group(s) 'sim', 'control' within
+  /// 10 s of its start (discovered later: 'sim')".
+  std::string degraded() const;
+  bool checked() const { return checked_; }
+
+ private:
+  std::vector<std::string> others_;
+  double deadline_s_;
+  bool checked_ = false;
+  std::vector<std::string> missing_;
+  std::vector<std::string> late_;  // missing at the deadline, discovered since
+};
+
+}  // namespace robodds

@@ -1,0 +1,45 @@
+#include "runtime/peer_watch.hpp"
+
+#include <gtest/gtest.h>
+
+namespace robodds {
+namespace {
+
+TEST(PeerWatch, NothingIsJudgedBeforeTheDeadline) {
+  PeerWatch watch({"sim", "control"}, 10.0);
+  EXPECT_FALSE(watch.check(9.9, {}));
+  EXPECT_FALSE(watch.checked());
+  EXPECT_EQ(watch.degraded(), "");
+}
+
+TEST(PeerWatch, EveryGroupDiscoveredIsNotDegraded) {
+  PeerWatch watch({"sim", "control"}, 10.0);
+  EXPECT_FALSE(watch.check(10.0, {"robodds-control", "robodds-sim", "robodds-topics"}));
+  EXPECT_TRUE(watch.checked());
+  EXPECT_EQ(watch.degraded(), "");
+}
+
+TEST(PeerWatch, NoParticipantAtAllNamesEveryGroupAndSaysNoneWasSeen) {
+  PeerWatch watch({"sim", "control"}, 3.0);
+  EXPECT_TRUE(watch.check(3.5, {"someone-else"}));
+  const std::string why = watch.degraded();
+  EXPECT_NE(why.find("did not discover group(s) 'sim', 'control' within 3 s"), std::string::npos) << why;
+  EXPECT_NE(why.find("no participant of the run at all"), std::string::npos) << why;
+}
+
+TEST(PeerWatch, APartlyMissingRunNamesTheMissingAndThoseThatCameLate) {
+  PeerWatch watch({"sim", "control", "evaluation"}, 3.0);
+  EXPECT_TRUE(watch.check(3.0, {"robodds-evaluation"}));
+  EXPECT_EQ(watch.degraded().find("no participant of the run at all"), std::string::npos) << watch.degraded();
+  EXPECT_FALSE(watch.check(8.0, {"robodds-evaluation", "robodds-control"})) << "degraded once, not again";
+  EXPECT_EQ(watch.degraded(), "did not discover group(s) 'sim', 'control' within 3 s of its start (discovered later: 'control')");
+}
+
+TEST(PeerWatch, AHostWithoutOtherGroupsWatchesNothing) {
+  PeerWatch watch({}, 1.0);
+  EXPECT_FALSE(watch.check(5.0, {}));
+  EXPECT_EQ(watch.degraded(), "");
+}
+
+}  // namespace
+}  // namespace robodds
