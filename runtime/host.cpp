@@ -13,6 +13,7 @@
 #include "runtime/memory_bus.hpp"
 #include "runtime/overrun_counter.hpp"
 #include "runtime/peer_watch.hpp"
+#include "runtime/producer_check.hpp"
 
 namespace robodds {
 namespace {
@@ -49,16 +50,41 @@ struct Host::Impl {
     return others;
   }
 
-  /// Real time across processes: the scenario's other groups, which this host must discover
-  /// within the start timeout (PeerWatch); none co-located, alone (a component executable) or on
-  /// a bus that discovers nothing.
+  /// Real time across processes: the scenario's other groups this host exchanges a topic with
+  /// (one of them reads what it writes or writes what it reads, run/health included), which it
+  /// must discover within the start timeout (PeerWatch). Only those: a Discovery Server tells a
+  /// client about the participants it shares a topic with, no others. None co-located, alone (a
+  /// component executable) or on a bus that discovers nothing.
   PeerWatch peer_watch() const {
     std::vector<std::string> others;
-    if (!run.single_process && run.bus->discovered_participants()) {
-      for (const GroupSpec& group : run.scenario->groups) {
-        if (group.name != options.member) {
-          others.push_back(group.name);
+    if (run.single_process || !run.bus->discovered_participants() || run.scenario->groups.size() < 2) {
+      return PeerWatch(others, options.start_timeout_s);
+    }
+    const auto topics = scenario_component_topics(registry, *run.scenario, run.mode);
+    const auto topics_of = [&topics](const std::vector<std::string>& components) {
+      ComponentTopics all;
+      all.publishes.insert("run/health");  // every host reports its health (HealthExchange)
+      for (const std::string& name : components) {
+        const ComponentTopics& one = topics.at(name);
+        all.publishes.insert(one.publishes.begin(), one.publishes.end());
+        all.subscribes.insert(one.subscribes.begin(), one.subscribes.end());
+        if (one.wants_run_health) {
+          all.subscribes.insert("run/health");
         }
+      }
+      return all;
+    };
+    const auto shares = [](const std::set<std::string>& a, const std::set<std::string>& b) {
+      return std::any_of(a.begin(), a.end(), [&b](const std::string& topic) { return b.count(topic) != 0; });
+    };
+    const ComponentTopics mine = topics_of(options.components);
+    for (const GroupSpec& group : run.scenario->groups) {
+      if (group.name == options.member) {
+        continue;
+      }
+      const ComponentTopics theirs = topics_of(group.components);
+      if (shares(mine.subscribes, theirs.publishes) || shares(mine.publishes, theirs.subscribes)) {
+        others.push_back(group.name);
       }
     }
     return PeerWatch(std::move(others), options.start_timeout_s);

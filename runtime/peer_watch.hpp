@@ -3,7 +3,8 @@
 // never appear on the domain (a discovery server that died before it started, multicast blocked)
 // would otherwise run alone, receive nothing and end "completed". After `deadline_s` on its own
 // clock the host compares the participants it discovered (the host names each "robodds-<group>",
-// DdsOptions::participant_name) with the scenario's other groups; those missing make the run
+// DdsOptions::participant_name) with the scenario's other groups it exchanges a topic with (the
+// host works them out from the scenario: Host::Impl::peer_watch()); those missing make the run
 // degraded: logged at once, in the host's health report (summary.json "status": "degraded") and
 // in its exit code (docs/deployment.md, "Long runs and failures across machines").
 
