@@ -6,6 +6,12 @@
 #   netns_setup N [nomulticast]   hosts 1..N at $(netns_ip i) on a bridge; 'nomulticast' leaves
 #                                 out the multicast route, turns multicast off on the hosts'
 #                                 links and makes the bridge drop multicast
+#   netns_setup_wan N DELAY_MS [LOSS] [SEED]
+#                                 hosts 1..N joined by robodds-wan-switch (tests/wan): every frame
+#                                 from host to host takes DELAY_MS one way and is lost with
+#                                 probability LOSS (this kernel has no netem); the switch's
+#                                 per-host counters go to $WAN_STATS when it ends (wan_stop)
+#   netns_teardown                ends everything in our namespaces and deletes them
 #   netns_spawn I LOG CMD...      runs CMD in host I in the background (stdout+stderr -> LOG);
 #                                 its pid is appended to cleanup_pids and left in $SPAWNED
 #   netns_link I down|up          cuts / restores host I's cable at the bridge
@@ -122,6 +128,58 @@ netns_setup() {
   fail "bridge ports not forwarding: $(bridge -n "$NETNS_BRIDGE" link show)"
 }
 
+# netns_setup_wan N DELAY_MS [LOSS] [SEED]: needs $WAN_SWITCH (the robodds-wan-switch binary).
+netns_setup_wan() {
+  local n="$1" delay_ms="$2" loss="${3:-0}" seed="${4:-1}" i ns names=()
+  [[ -x "${WAN_SWITCH:-}" ]] || fail "netns_setup_wan: WAN_SWITCH ('${WAN_SWITCH:-}') is not the robodds-wan-switch program"
+  [[ -c /dev/net/tun ]] || skip "no /dev/net/tun: the WAN switch needs TAP devices"
+  netns_require
+  netns_reap_stale
+  for i in $(seq "$n"); do
+    ns="$(netns_name "$i")"
+    ip netns add "$ns"
+    ip -n "$ns" link set lo up
+    names+=("$ns")
+  done
+  WAN_STATS="$WORK/wan_switch.json"
+  local ready="$WORK/wan_switch.ready"
+  rm -f "$ready"
+  "$WAN_SWITCH" --delay-ms "$delay_ms" --loss "$loss" --seed "$seed" --ready "$ready" --stats "$WAN_STATS" \
+    "${names[@]}" 2>"$WORK/wan_switch.log" &
+  WAN_SWITCH_PID=$!
+  cleanup_pids+=("$WAN_SWITCH_PID")
+  for _ in $(seq 100); do
+    [[ -f "$ready" ]] && break
+    kill -0 "$WAN_SWITCH_PID" 2>/dev/null || fail "robodds-wan-switch ended: $(cat "$WORK/wan_switch.log")"
+    sleep 0.05
+  done
+  [[ -f "$ready" ]] || fail "robodds-wan-switch did not make its TAP devices within 5 s: $(cat "$WORK/wan_switch.log")"
+  for i in $(seq "$n"); do
+    ns="$(netns_name "$i")"
+    ip -n "$ns" addr add "$(netns_ip "$i")/24" dev eth0
+    ip -n "$ns" link set eth0 up
+    ip -n "$ns" route add 224.0.0.0/4 dev eth0
+  done
+}
+
+# wan_stop: ends the switch (its TAP devices go with it) and waits for its counters ($WAN_STATS).
+wan_stop() {
+  kill -TERM "$WAN_SWITCH_PID" 2>/dev/null || true
+  wait_pid "$WAN_SWITCH_PID" 10
+}
+
+# netns_teardown: kills what runs in our namespaces, ends the WAN switch if one runs, deletes the
+# namespaces (a test may then set up others).
+netns_teardown() {
+  local ns
+  for ns in $(ip netns list 2>/dev/null | awk '{print $1}' | grep -E "^${NETNS_PREFIX}-" || true); do
+    netns_delete "$ns"
+  done
+  if [[ -n "${WAN_SWITCH_PID:-}" ]] && kill -0 "$WAN_SWITCH_PID" 2>/dev/null; then
+    wan_stop
+  fi
+}
+
 # netns_spawn I LOG CMD...
 netns_spawn() {
   local i="$1" log="$2"
@@ -155,20 +213,28 @@ now_ns() { date +%s%N; }
 #   k, the coordinator (`robodds host --coordinate`, no component) in host COORD_HOST. HOST_ARGS
 #   go to every process (domain, QoS files, participant profile, duration, timeouts). Logs go to
 #   OUT.logs/<group>.log. Sets COORD_RC (the coordinator's exit code) and HOST_RCS (group=rc ...).
+#   A group written GROUP@H runs in host H instead (several groups may share a host). The
+#   coordinator must end within COORD_LIMIT_S (default 240 s).
 netns_lockstep_run() {
   local scenario="$1" out="$2" run_id="$3" coord_host="$4" groups="$5" i=0 g
   shift 6
   local common=(--scenario "$scenario" --run-id "$run_id" --out "$out" "$@")
   local -a pids=() names=()
   mkdir -p "$out.logs"
+  local host
   for g in $groups; do
     i=$((i + 1))
-    netns_spawn "$i" "$out.logs/$g.log" "$ROBODDS" host --group "$g" "${common[@]}"
+    host=$i
+    if [[ "$g" == *@* ]]; then
+      host="${g#*@}"
+      g="${g%@*}"
+    fi
+    netns_spawn "$host" "$out.logs/$g.log" "$ROBODDS" host --group "$g" "${common[@]}"
     pids+=("$SPAWNED")
     names+=("$g")
   done
   netns_spawn "$coord_host" "$out.logs/coordinator.log" "$ROBODDS" host --coordinate "${common[@]}"
-  wait_pid "$SPAWNED" 240
+  wait_pid "$SPAWNED" "${COORD_LIMIT_S:-240}"
   COORD_RC=$RC
   HOST_RCS=""
   local grace_end=$((SECONDS + ${HOST_GRACE_S:-0}))
