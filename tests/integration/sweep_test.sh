@@ -10,7 +10,8 @@
 #    error and the sweep goes on; the sweep exits 1. Runs past --run-timeout are killed and recorded
 #    as failed, also by --aggregate (which reads outcome.json, else summary.json's status).
 # 3. --plan, then the generated Slurm array script per task (--run-index K) in separate invocations,
-#    then --aggregate: the same tables; the generated Kubernetes Indexed Job parses and names the runs.
+#    then --aggregate: the same tables; the generated Kubernetes Indexed Job parses and names the runs
+#    and runs as the image's user with fsGroup; --domain-offset N puts task K on domain (N + K) % 233.
 # 4. Bad input: errors before anything runs.
 source "$(dirname "$0")/lib.sh"
 S="$SRC/sim/scenarios/plant_smoke.yaml"
@@ -108,8 +109,16 @@ pod = spec["template"]["spec"]
 c = pod["containers"][0]
 assert c["image"] == "robodds:test" and "--run-index \"$JOB_COMPLETION_INDEX\" --out /sweep" in c["args"][0], c
 assert c["volumeMounts"][0]["mountPath"] == "/sweep" and pod["volumes"][0]["persistentVolumeClaim"]["claimName"] == "robodds-sweep", pod
+assert pod["securityContext"] == {"runAsUser": 10001, "runAsGroup": 10001, "fsGroup": 10001}, pod  # the image's user may write the volume
 print("ok: k8s-job.yaml is an Indexed Job of the 6 runs")
 PY
+# --domain-offset N moves every task's domain to (N + K) % 233 (two sweeps sharing nodes).
+timeout -k 5 60 "$ROBODDS" sweep --emit slurm --out "$WORK/p" --domain-offset 230 >>"$WORK/p.log" 2>&1 || fail "--emit slurm --domain-offset failed"
+for k in 0 5; do
+  got="$(SLURM_ARRAY_TASK_ID=$k ROBODDS=echo bash "$WORK/p/slurm.sbatch")"
+  [[ "$got" == *" --domain $(( (230 + k) % 233 ))" ]] || fail "--domain-offset 230, task $k: $got"
+done
+echo "ok: --domain-offset 230 puts tasks 0 and 5 on domains 230 and 2"
 
 # 4. Bad input: an error naming what is wrong, nothing run.
 expect_error 2 "--seeds '5-3': the range '5-3' is empty" -- "$ROBODDS" sweep "$S" --seeds 5-3 --out "$WORK/b1"
@@ -123,6 +132,9 @@ expect_error 2 "--set plant.command_timeout_s: component 'plant' \(plant\) of .*
 expect_error 2 "--set position_sensor.rate_hz: .*: --set: rate_hz: expected a number, got 'ten'" -- \
   "$ROBODDS" sweep "$S" --seeds 1 --set position_sensor.rate_hz=ten --out "$WORK/b7"
 expect_error 2 "--out $WORK/a holds another sweep \(sweep.json\)" -- "$ROBODDS" sweep "$S" --seeds 1 --out "$WORK/a"
-for d in b1 b2 b3 b4 b5 b6 b7; do
+expect_error 2 "--domain-offset '233': must be 0 to 232" -- "$ROBODDS" sweep --emit slurm --out "$WORK/p" --domain-offset 233
+expect_error 2 "--domain-offset 'x': not an integer" -- "$ROBODDS" sweep --emit k8s --out "$WORK/p" --domain-offset x
+expect_error 2 "--domain-offset works only with --emit" -- "$ROBODDS" sweep "$S" --seeds 1 --domain-offset 3 --out "$WORK/b8"
+for d in b1 b2 b3 b4 b5 b6 b7 b8; do
   [[ ! -e "$WORK/$d/runs" ]] || fail "$d: a run started despite the error"
 done

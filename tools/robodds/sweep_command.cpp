@@ -72,21 +72,28 @@ class SweepCommand : public Command {
         ->check(CLI::IsMember({"slurm", "k8s"}));
     cmd_->add_option("--image", image_, "with --emit k8s: the container image (default robodds:latest, deploy/docker)");
     cmd_->add_option("--claim", claim_, "with --emit k8s: the persistent volume claim holding the sweep folder (default robodds-sweep)");
+    cmd_->add_option("--domain-offset", domain_offset_text_,
+                     "with --emit: array task K runs on DDS domain (N + K) % 233 (0-232, default 0); give sweeps that may "
+                     "share nodes different offsets (docs/scale.md)");
   }
 
   bool parsed() const override { return cmd_->parsed(); }
 
   int run() override {
+    if (domain_offset_text_ && emit_.empty()) {
+      throw ConfigError("robodds sweep: --domain-offset works only with --emit slurm|k8s (a sweep on this machine takes --domain)");
+    }
     const int planned_modes = (aggregate_ ? 1 : 0) + (run_index_ ? 1 : 0) + (emit_.empty() ? 0 : 1);
     if (planned_modes > 0) {
       if (!scenario_file_.empty() || !seeds_.empty() || !grid_.empty() || duration_s_ || plan_only_ || planned_modes > 1) {
         throw ConfigError("robodds sweep: --aggregate, --run-index and --emit work on the sweep planned in --out; they take no "
                           "scenario, --seeds, --set, --duration or --plan (and not each other)");
       }
-      const SweepSpec spec = read_planned_spec();
       if (!emit_.empty()) {
-        return emit(spec);
+        const int offset = domain_offset();  // before sweep.json: a bad option is named first
+        return emit(read_planned_spec(), offset);
       }
+      const SweepSpec spec = read_planned_spec();
       return aggregate_ ? write_tables(spec, collect_existing(spec)) : run_one(spec, *run_index_);
     }
     const SweepSpec spec = checked_spec();
@@ -213,11 +220,20 @@ class SweepCommand : public Command {
     write_file(out_dir_ + "/plan.txt", text);
   }
 
-  int emit(const SweepSpec& spec) const {
+  /// --domain-offset, checked (0 when not given).
+  int domain_offset() const {
+    try {
+      return domain_offset_text_ ? parse_domain_offset(*domain_offset_text_) : 0;
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError(std::string("robodds sweep: ") + e.what());
+    }
+  }
+
+  int emit(const SweepSpec& spec, int offset) const {
     const std::size_t runs = planned_runs(spec).size();
     const std::string dir = std::filesystem::absolute(out_dir_).lexically_normal().string();
     if (emit_ == "slurm") {
-      write_file(out_dir_ + "/slurm.sbatch", slurm_script(dir, runs));
+      write_file(out_dir_ + "/slurm.sbatch", slurm_script(dir, runs, offset));
       std::printf("wrote %s/slurm.sbatch (%zu array tasks): sbatch it where the nodes see %s\n", out_dir_.c_str(), runs, dir.c_str());
     } else {
       if (claim_.empty() || dns_label(claim_) != claim_) {
@@ -227,7 +243,7 @@ class SweepCommand : public Command {
         throw ConfigError("robodds sweep: --image '" + image_ + "': not an image reference");
       }
       const std::string name = dns_label("robodds-sweep-" + std::filesystem::path(dir).filename().string());
-      write_file(out_dir_ + "/k8s-job.yaml", k8s_job(name, runs, jobs_, image_, claim_));
+      write_file(out_dir_ + "/k8s-job.yaml", k8s_job(name, runs, jobs_, image_, claim_, offset));
       std::printf("wrote %s/k8s-job.yaml (Indexed Job %s, %zu completions, %u at a time): copy the folder to the claim %s, "
                   "then kubectl apply -f it\n", out_dir_.c_str(), name.c_str(), runs, jobs_, claim_.c_str());
     }
@@ -297,6 +313,7 @@ class SweepCommand : public Command {
   std::string emit_;
   std::string image_ = "robodds:latest";
   std::string claim_ = "robodds-sweep";
+  std::optional<std::string> domain_offset_text_;  // checked by parse_domain_offset (the error names it and the reason)
 };
 
 }  // namespace
