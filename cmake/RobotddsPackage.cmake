@@ -26,10 +26,14 @@ set(CPACK_DEBIAN_PACKAGE_SECTION science)
 # Depends: dpkg-shlibdeps reads the binary's shared libraries (Fast DDS, Fast-CDR, yaml-cpp, ...)
 # and names the Debian packages that own them, so the list cannot fall behind the link line.
 set(CPACK_DEBIAN_PACKAGE_SHLIBDEPS ON)
+# Plus what no library link shows: `robodds security init` runs the openssl program (keys,
+# certificates, signed documents; the runtime's own libcrypto comes through shlibdeps), and
+# without it a minimal install could not make a secure deployment at all. CPack (3.25,
+# Internal/CPack/CPackDeb.cmake) puts this list first and appends the shlibdeps result to it
+# with ", ": Depends: openssl, libc6 (>= ...), ...
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "openssl")
 # Plots (`robodds run` without --no-plots, `robodds report`) need python3 with matplotlib;
-# `robodds security init` drives the openssl tool (keys, certificates, signed documents; the
-# runtime's own libcrypto comes through shlibdeps); fastdds-tools gives `fastdds discovery` for
-# the Discovery Server deployments.
-set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3, python3-matplotlib, openssl")
+# fastdds-tools gives `fastdds discovery` for the Discovery Server deployments.
+set(CPACK_DEBIAN_PACKAGE_RECOMMENDS "python3, python3-matplotlib")
 set(CPACK_DEBIAN_PACKAGE_SUGGESTS "fastdds-tools")
 include(CPack)

@@ -25,8 +25,11 @@ struct SecurityFiles {
 SecurityFiles security_files(const std::string& dir, const std::string& identity);
 
 /// ConfigError naming the file and what is wrong: missing or unreadable, not PEM, certificate
-/// expired or not yet valid, not signed by the CA, key not the certificate's, a document not
-/// S/MIME signed by the CA (unsigned, tampered, or signed by another CA). Returns the files.
+/// expired or not yet valid, not signed by the CA, key not the certificate's; for the signed
+/// documents (governance, permissions), which kind of damage: not S/MIME at all, S/MIME structure
+/// damaged, content changed after signing, signature block corrupted, signed by another CA; and
+/// a permissions.xml review copy beside permissions.p7s that differs from what was signed
+/// (naming both files; no review copy is fine). Returns the files.
 SecurityFiles check_security_files(const std::string& dir, const std::string& identity);
 
 }  // namespace robodds

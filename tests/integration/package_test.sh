@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The Debian package works: `cpack -G DEB` from the build tree gives robodds_<version>_<arch>.deb
 # with bin/robodds, every component executable bin/robodds-<type> and share/robodds under /usr,
-# Depends on the Fast DDS runtime packages; unpacked into a temporary root (dpkg -x, no install
-# on this machine) its robodds, run outside the source tree without ROBODDS_SHARE_DIR, gives the
-# build-tree binary's results byte for byte, and a component executable lists its parameters.
+# Depends on the Fast DDS runtime packages and on openssl (`robodds security init` runs it);
+# unpacked into a temporary root (dpkg -x, no install on this machine) its robodds, run outside
+# the source tree without ROBODDS_SHARE_DIR, gives the build-tree binary's results byte for
+# byte, and a component executable lists its parameters.
 # Extra argument: the build directory.
 source "$(dirname "$0")/lib.sh"
 BUILD="$4"
@@ -30,8 +31,10 @@ fi
 depends="$(dpkg-deb -f "$DEB" Depends)"
 grep -q "libfastrtps" <<<"$depends" || fail "Depends does not name the Fast DDS library package: $depends"
 grep -q "libssl" <<<"$depends" || fail "Depends does not name libssl (the security start-up checks link libcrypto): $depends"
+grep -qE "(^|, )openssl(,|$)" <<<"$depends" || fail "Depends does not name openssl (robodds security init runs it): $depends"
 recommends="$(dpkg-deb -f "$DEB" Recommends)"
-grep -qE "(^|, )openssl(,|$)" <<<"$recommends" || fail "Recommends does not name openssl (robodds security init runs it): $recommends"
+grep -qE "(^|, )python3-matplotlib(,|$)" <<<"$recommends" || fail "Recommends does not name python3-matplotlib: $recommends"
+! grep -qE "(^|, )openssl(,|$)" <<<"$recommends" || fail "openssl is a Depends, not a Recommends: $recommends"
 echo "ok: $(basename "$DEB"): robodds, $(wc -w <<<"$types") component executables, share/robodds; Depends: $depends; Recommends: $recommends"
 
 # Unpacked, not installed: the binaries find /usr/share/robodds next to them (../share/robodds).
@@ -46,5 +49,5 @@ same_outputs "$WORK/reference" "$WORK/elsewhere/out"
 # The help is read whole first: `grep -q` leaves at its match and, under pipefail, a writer still
 # printing (the help passed one pipe buffer with the actuator limits) would fail the line on SIGPIPE.
 plant_help="$("$WORK/root/usr/bin/robodds-plant" --help)" || fail "packaged robodds-plant --help failed"
-grep -q "wheel_base_m" <<<"$plant_help" || fail "packaged robodds-plant --help lists no parameters"
+grep -q "command_timeout_s" <<<"$plant_help" || fail "packaged robodds-plant --help lists no parameters"
 echo "ok: the packaged robodds gives the build-tree results ($N_CSV CSVs); robodds-plant --help lists its parameters"

@@ -3,7 +3,9 @@
 # lockstep run across processes writes byte-identical results to an unsecured one; a participant
 # without credentials sees no topic and no sample of a secure run, one with the tools identity
 # does; a host whose group may not publish plant/cmd is refused its writer; missing, tampered,
-# foreign and expired files are refused at start-up with one error naming the file.
+# foreign and expired files are refused at start-up with one error naming the file and the kind
+# of damage, and an edited permissions.xml review copy naming it and the signed permissions;
+# `security init` without openssl on PATH names the program and its Debian package.
 # Uses DOMAIN and DOMAIN+1.
 source "$(dirname "$0")/lib.sh"
 SCENARIO="$SRC/sim/scenarios/plant_smoke.yaml"
@@ -15,6 +17,10 @@ for id in control sim sensing evaluation coordinator colocated tools; do
   done
 done
 [[ $(stat -c %a "$SEC/sim/key.pem") == 600 ]] || fail "private key is not 0600"
+mkdir -p "$WORK/no-openssl-bin"
+expect_error 1 "security init: the 'openssl' program was not found on PATH \(install the Debian package openssl\)" -- \
+  env PATH="$WORK/no-openssl-bin" "$ROBODDS" security init "$SCENARIO" --out "$WORK/no-openssl"
+[[ ! -e "$WORK/no-openssl/ca" ]] || fail "security init without openssl wrote $WORK/no-openssl/ca"
 grep -q "<topic>plant/cmd</topic>" "$SEC/control/permissions.xml" || fail "control may not publish plant/cmd"
 ! grep -q "<topic>plant/cmd</topic>" "$SEC/sensing/permissions.xml" || fail "sensing must not name plant/cmd"
 
@@ -75,10 +81,17 @@ bad; rm "$WORK/bad/sim/permissions.p7s"
 expect_error 2 "bad/sim/permissions.p7s: DDS Security: permissions not found" -- "${host_sim[@]}"
 bad; sed -i 's|<topic>plant/state</topic>|<topic>plant/cmd</topic>|' "$WORK/bad/sim/permissions.p7s"
 cmp -s "$SEC/sim/permissions.p7s" "$WORK/bad/sim/permissions.p7s" && fail "permissions not tampered"
-expect_error 2 "bad/sim/permissions.p7s: DDS Security: permissions signature does not verify with the CA" -- "${host_sim[@]}"
+expect_error 2 "bad/sim/permissions.p7s: DDS Security: permissions content was changed after signing" -- "${host_sim[@]}"
 bad; cp "$WORK/bad/sim/permissions.xml" "$WORK/bad/sim/permissions.p7s"
 expect_error 2 "bad/sim/permissions.p7s: DDS Security: permissions is not an S/MIME signed document" -- "${host_sim[@]}"
+bad; sed -i '0,/^MII/s//*II/' "$WORK/bad/sim/permissions.p7s"  # the first base64 line of the signature block
+cmp -s "$SEC/sim/permissions.p7s" "$WORK/bad/sim/permissions.p7s" && fail "signature block not tampered"
+expect_error 2 "bad/sim/permissions.p7s: DDS Security: permissions signature block is corrupted" -- "${host_sim[@]}"
+bad; sed -i 's|<topic>plant/state</topic>|<topic>plant/cmd</topic>|' "$WORK/bad/sim/permissions.xml"
+expect_error 2 "bad/sim/permissions.xml: DDS Security: differs from the signed permissions .*bad/sim/permissions.p7s" -- "${host_sim[@]}"
 "$ROBODDS" security init "$SCENARIO" --out "$WORK/other" >/dev/null 2>&1 || fail "second security init"
+bad; cp "$WORK/other/sim/permissions.p7s" "$WORK/bad/sim/"
+expect_error 2 "bad/sim/permissions.p7s: DDS Security: permissions is signed by another CA" -- "${host_sim[@]}"
 bad; cp "$WORK/other/sim/cert.pem" "$WORK/other/sim/key.pem" "$WORK/bad/sim/"
 expect_error 2 "bad/sim/cert.pem: DDS Security: identity certificate is not signed by the CA" -- "${host_sim[@]}"
 bad; openssl req -new -key "$SEC/sim/key.pem" -subj "/CN=sim@plant_smoke" -out "$WORK/x.csr" 2>/dev/null

@@ -1,6 +1,10 @@
 #include "tools/robodds/security_init.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -14,16 +18,49 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr double kOpensslTimeoutS = 60.0;
+constexpr int kCannotExecute = 127;  // run_to_exit: the program could not be executed
+
+/// True if `file` is a regular file this process may execute.
+bool executable(const fs::path& file) {
+  std::error_code error;
+  return fs::is_regular_file(file, error) && access(file.c_str(), X_OK) == 0;
+}
+
+/// Why the openssl program `program` cannot be run (as execvp would look for it), or "" if it can.
+std::string missing_openssl(const std::string& program) {
+  if (program.find('/') != std::string::npos) {
+    return executable(program) ? ""
+                               : "security init: the openssl program " + program +
+                                     " was not found or is not executable (install the Debian package openssl)";
+  }
+  const char* path = std::getenv("PATH");
+  const std::string dirs = path != nullptr ? path : "/bin:/usr/bin";  // execvp's default without PATH
+  for (std::size_t begin = 0; begin <= dirs.size();) {
+    const std::size_t end = std::min(dirs.find(':', begin), dirs.size());
+    const std::string dir = dirs.substr(begin, end - begin);
+    if (executable(fs::path(dir.empty() ? "." : dir) / program)) {
+      return "";
+    }
+    begin = end + 1;
+  }
+  return "security init: the '" + program + "' program was not found on PATH (install the Debian package openssl)";
+}
 
 void openssl(const SecurityInitOptions& options, const std::string& step, std::vector<std::string> args) {
   args.insert(args.begin(), options.openssl);
   const int code = run_to_exit("openssl (" + step + ")", args, kOpensslTimeoutS);
   if (code != 0) {
+    const std::string missing = code == kCannotExecute ? missing_openssl(options.openssl) : "";
+    if (!missing.empty()) {
+      throw RunError(missing);  // removed while we ran
+    }
     std::string line;
     for (const std::string& a : args) {
       line += (line.empty() ? "" : " ") + a;
     }
-    throw RunError("security init: " + step + " failed (openssl exit " + std::to_string(code) + "): " + line);
+    const std::string why = code == kCannotExecute ? "the openssl program could not be executed (exit 127)"
+                                                   : "openssl exit " + std::to_string(code);
+    throw RunError("security init: " + step + " failed (" + why + "): " + line);
   }
 }
 
@@ -61,6 +98,11 @@ void sign_document(const SecurityInitOptions& options, const fs::path& ca, const
 void security_init(const Scenario& scenario, const std::vector<SecurityIdentity>& identities, const SecurityInitOptions& options) {
   if (options.days < 1) {
     throw ConfigError("--days: expected a whole number of days >= 1, got " + std::to_string(options.days));
+  }
+  // Before anything is written: openssl is a dependency of the package, but a build tree or a
+  // stripped-down image may lack it (a bare "exit 127" said nothing).
+  if (const std::string missing = missing_openssl(options.openssl); !missing.empty()) {
+    throw RunError(missing);
   }
   const fs::path dir(options.out_dir);
   const fs::path ca = dir / kCaDir;

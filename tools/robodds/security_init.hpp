@@ -27,7 +27,9 @@ struct SecurityInitOptions {
 };
 
 /// Makes (or, when DIR/ca exists and !new_ca, re-issues under the same CA) every identity of
-/// `identities`. RunError naming the openssl step that failed; ConfigError on bad options.
+/// `identities`. RunError naming the openssl step that failed, or, before anything is written,
+/// saying that the openssl program is not found (on PATH) and which Debian package has it;
+/// ConfigError on bad options.
 void security_init(const Scenario& scenario, const std::vector<SecurityIdentity>& identities, const SecurityInitOptions& options);
 
 }  // namespace robodds

@@ -1,11 +1,14 @@
 // `robodds security init` (tools/robodds/security_init.hpp) with the real openssl tool, checked by
 // the start-up checks (runtime/dds/security_files.hpp): every identity it makes passes; a
 // tampered document, a certificate of another CA and a missing file are refused naming the file;
-// a second init keeps the CA (rotation), --new-ca replaces it (revocation).
+// a second init keeps the CA (rotation), --new-ca replaces it (revocation); its permissions.xml
+// review copy is what was signed (an edited one is refused); without the openssl program the
+// error names it and its Debian package.
 #include "tools/robodds/security_init.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -81,7 +84,8 @@ TEST(SecurityInit, TamperedMissingAndForeignFilesAreRefusedNamingTheFile) {
   write(permissions, tampered);
   {
     const std::string error = check_error(dir, "sim");
-    EXPECT_NE(error.find(permissions.string() + ": DDS Security: permissions signature does not verify"), std::string::npos) << error;
+    EXPECT_NE(error.find(permissions.string() + ": DDS Security: permissions content was changed after signing"), std::string::npos)
+        << error;
   }
   write(permissions, signed_text);
   EXPECT_EQ(check_error(dir, "sim"), "");
@@ -95,6 +99,63 @@ TEST(SecurityInit, TamperedMissingAndForeignFilesAreRefusedNamingTheFile) {
   fs::copy_file(other / "sim" / "cert.pem", dir / "sim" / "cert.pem", fs::copy_options::overwrite_existing);
   EXPECT_NE(check_error(dir, "sim").find("cert.pem: DDS Security: identity certificate is not signed by the CA"),
             std::string::npos);
+}
+
+TEST(SecurityInit, ItsPermissionsXmlIsTheSignedContentAndAnEditedOneIsRefused) {
+  const fs::path dir = case_dir();
+  init(dir);
+  const fs::path review = dir / "sim" / "permissions.xml";
+  std::string text = read(review);
+  text.replace(text.find("plant/cmd"), 9, "sim/clock");
+  write(review, text);
+  const std::string error = check_error(dir, "sim");
+  EXPECT_NE(error.find(review.string() + ": DDS Security: differs from the signed permissions " + (dir / "sim" / "permissions.p7s").string()),
+            std::string::npos)
+      << error;
+}
+
+/// Runs `body` with the environment variable PATH set to `path`, then restores it.
+template <typename Body>
+void with_path(const std::string& path, Body body) {
+  const char* old = std::getenv("PATH");
+  const std::string saved = old != nullptr ? old : "";
+  setenv("PATH", path.c_str(), 1);
+  try {
+    body();
+  } catch (...) {
+    setenv("PATH", saved.c_str(), 1);
+    throw;
+  }
+  setenv("PATH", saved.c_str(), 1);
+}
+
+/// The RunError text of security_init with `options` (out_dir set here), or "" if it succeeds.
+std::string init_error(const fs::path& dir, SecurityInitOptions options) {
+  options.out_dir = dir.string();
+  try {
+    security_init(tiny_scenario(), identities(), options);
+    return "";
+  } catch (const RunError& e) {
+    return e.what();
+  }
+}
+
+TEST(SecurityInit, WithoutTheOpensslProgramTheErrorNamesItAndItsDebianPackage) {
+  const fs::path dir = case_dir();
+  const fs::path empty_bin = dir.string() + ".bin";
+  fs::create_directories(empty_bin);
+  std::string error;
+  with_path(empty_bin.string(), [&] { error = init_error(dir, SecurityInitOptions{}); });
+  EXPECT_NE(error.find("security init: the 'openssl' program was not found on PATH (install the Debian package openssl)"),
+            std::string::npos)
+      << error;
+  EXPECT_FALSE(fs::exists(dir / "ca")) << "nothing is written before openssl is found";
+  SecurityInitOptions options;
+  options.openssl = (empty_bin / "openssl").string();
+  error = init_error(dir, options);
+  EXPECT_NE(error.find("security init: the openssl program " + options.openssl + " was not found or is not executable"),
+            std::string::npos)
+      << error;
 }
 
 TEST(SecurityInit, ASecondInitKeepsTheCaAndNewCaReplacesIt) {
