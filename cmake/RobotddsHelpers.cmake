@@ -159,5 +159,5 @@ function(robodds_registered_components_library name)
   endforeach()
   configure_file(${PROJECT_SOURCE_DIR}/cmake/registered_components.cpp.in
                  ${CMAKE_CURRENT_BINARY_DIR}/registered_components.cpp @ONLY)
-  robodds_library(${name} SOURCES ${CMAKE_CURRENT_BINARY_DIR}/registered_components.cpp DEPS ${libraries})
+  robodds_library(${name} SOURCES ${CMAKE_CURRENT_BINARY_DIR}/registered_components.cpp DEPS robodds_system ${libraries})
 endfunction()

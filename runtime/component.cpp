@@ -47,6 +47,16 @@ ParamReader scenario_component_params(const ComponentType& type, const Component
   return ParamReader(spec.name, merge_params(defaults, spec.overrides));
 }
 
+void ComponentRegistry::add_scenario_check(std::function<void(const Scenario&)> check) {
+  scenario_checks_.push_back(std::move(check));
+}
+
+void ComponentRegistry::check_scenario(const Scenario& scenario) const {
+  for (const auto& check : scenario_checks_) {
+    check(scenario);
+  }
+}
+
 void ComponentRegistry::add(ComponentType type) {
   if (type.name.empty() || !type.create || !type.params) {
     throw ConfigError("component type '" + type.name + "': a registration needs a name, a factory and a parameter table");

@@ -42,8 +42,16 @@ class ComponentRegistry {
   const ComponentType& get(const std::string& name) const;
   const std::vector<ComponentType>& types() const { return types_; }
 
+  /// A check of the whole scenario by the layer above the runtime (e.g. system/: its shared
+  /// facts' keys and values), which the runtime cannot read itself. Each check throws ConfigError
+  /// naming the file, the key and the reason.
+  void add_scenario_check(std::function<void(const Scenario&)> check);
+  /// Runs every scenario check, in the order they were added; before anything starts.
+  void check_scenario(const Scenario& scenario) const;
+
  private:
   std::vector<ComponentType> types_;
+  std::vector<std::function<void(const Scenario&)>> scenario_checks_;
 };
 
 /// Registers every component type built with robodds_component(), sorted by type name. Defined

@@ -14,7 +14,7 @@ namespace robodds {
 namespace {
 
 const std::set<std::string> kTopLevelKeys = {"name", "description", "step_s", "duration_s", "seed",
-                                             "robots", "components", "groups", "targets", "events"};
+                                             "robots", "components", "groups", "targets", "events", "facts"};
 
 class ScenarioParser {
  public:
@@ -52,7 +52,7 @@ class ScenarioParser {
       const std::string key = item.first.as<std::string>();
       if (kTopLevelKeys.count(key) == 0) {
         fail(key, "unknown key (known: name, description, step_s, duration_s, seed, robots, components, groups, targets, "
-                  "events)");
+                  "events, facts)");
       }
     }
     Scenario s;
@@ -77,6 +77,7 @@ class ScenarioParser {
     check_standbys(s);
     parse_targets(root["targets"], s);
     parse_events(root["events"], s);
+    s.facts = facts(root["facts"], "facts");
     return s;
   }
 
@@ -94,8 +95,8 @@ class ScenarioParser {
       }
       for (const auto& item : r) {
         const std::string k = item.first.as<std::string>();
-        if (k != "id" && k != "x" && k != "y" && k != "theta") {
-          fail(key + "." + k, "unknown key (known: id, x, y, theta)");
+        if (k != "id" && k != "x" && k != "y" && k != "theta" && k != "facts") {
+          fail(key + "." + k, "unknown key (known: id, x, y, theta, facts)");
         }
       }
       RobotSpec robot;
@@ -103,6 +104,7 @@ class ScenarioParser {
       robot.x = r["x"] ? finite(r["x"], key + ".x") : 0.0;
       robot.y = r["y"] ? finite(r["y"], key + ".y") : 0.0;
       robot.theta = r["theta"] ? finite(r["theta"], key + ".theta") : 0.0;
+      robot.facts = facts(r["facts"], key + ".facts");
       if (!ids.insert(robot.id).second) {
         fail(key + ".id", "duplicate robot id " + std::to_string(robot.id));
       }
@@ -163,6 +165,23 @@ class ScenarioParser {
       }
       s.components.push_back(std::move(spec));
     }
+  }
+
+  /// A `facts:` map (absent: none), flattened; each value remembers "<file>: <key>" as its origin,
+  /// so that the layer that reads it names where it came from.
+  FlatParams facts(const YAML::Node& node, const std::string& key) const {
+    FlatParams out;
+    if (!node) {
+      return out;
+    }
+    if (!node.IsMap()) {
+      fail(key, "expected a map of facts (e.g. robot_body: {wheel_base_m: 0.3})");
+    }
+    flatten_overrides(node, "", out);
+    for (auto& [name, entry] : out) {
+      entry.file = file_ + ": " + key;
+    }
+    return out;
   }
 
   void flatten_overrides(const YAML::Node& node, const std::string& prefix, FlatParams& out) const {
@@ -428,6 +447,14 @@ const RobotSpec& Scenario::robot(std::uint32_t id) const {
     }
   }
   throw ConfigError(located(file, "robots", "no robot with id " + std::to_string(id)));
+}
+
+FlatParams Scenario::facts_of(std::uint32_t id) const {
+  FlatParams merged = facts;
+  for (const auto& [key, entry] : robot(id).facts) {
+    merged[key] = entry;
+  }
+  return merged;
 }
 
 Scenario load_scenario(const std::string& path) {

@@ -18,6 +18,8 @@ struct RobotSpec {
   double x = 0.0;      // m, initial position (world)
   double y = 0.0;      // m
   double theta = 0.0;  // rad, initial heading
+  /// This robot's own `facts:` (flattened, e.g. "robot_body.wheel_base_m"), over the scenario's.
+  FlatParams facts;
 };
 
 struct ComponentSpec {
@@ -47,6 +49,10 @@ struct Scenario {
   std::vector<GroupSpec> groups;
   /// Paper 2's `targets:` and `events:` (empty in scenarios without them).
   model::TargetPlan mission;
+  /// The scenario's `facts:`, flattened ("robot_body.wheel_base_m" -> value and file): what
+  /// several components must agree on. The runtime stores them and reads none; the layer above
+  /// gives them types and checks them (system/, a ComponentRegistry scenario check).
+  FlatParams facts;
 
   /// Index of the last step: steps 0..last_step() run, at times step * step_s (checked_last_step()).
   std::uint64_t last_step() const;
@@ -56,6 +62,8 @@ struct Scenario {
   std::size_t robots_served_by(const std::vector<std::string>& component_names) const;
   const GroupSpec& group(const std::string& name) const;
   const RobotSpec& robot(std::uint32_t id) const;
+  /// The facts of robot `id`: the scenario's `facts:` with the robot's own `facts:` over them.
+  FlatParams facts_of(std::uint32_t id) const;
 };
 
 /// Most steps after step 0 a run may have: 2^40 (about 1.1e12: 35 years of simulated time at a

@@ -53,22 +53,26 @@ WHITE_ONLY = {"white_sigma_m": 0.13, "link_bias_sigma_m": 0.0, "common_sigma_m":
 EXP2_UNIFORM = {"white_sigma_m": 0.04, "link_bias_sigma_m": 0.07, "common_sigma_m": 0.30, "sigma_scale": 1.25}
 
 
-def variant(base, name, out_dir, component_params):
-    """Scenario `base` with parameter overrides {component name: {key: value}}, written to OUT."""
+def variant(base, name, out_dir, component_params, facts=None):
+    """Scenario `base` with parameter overrides {component name: {key: value}} and shared-fact
+    overrides {fact: {key: value}} (the scenario's `facts:`, system/robot_facts.hpp), written to OUT."""
     s = yaml.safe_load(open(os.path.join(SCENARIOS, base + ".yaml")))
     s["name"] = name
     for c in s["components"]:
         for key, value in component_params.get(c["name"], {}).items():
             c.setdefault("params", {})[key] = value
+    for fact, values in (facts or {}).items():
+        s.setdefault("facts", {}).setdefault(fact, {}).update(values)
     path = os.path.join(out_dir, name + ".yaml")
     yaml.safe_dump(s, open(path, "w"), sort_keys=False)
     return path
 
 
 def exp1a(name, out_dir, side=0.5, window=30, uwb=None, estimator=None):
-    uwb_params = dict({"array_side_m": side}, **(uwb or {}))
-    est_params = dict({"array_side_m": side, "window_epochs": window}, **(estimator or {}))
-    return variant("paper3_exp1a", name, out_dir, {"uwb": uwb_params, "estimator": est_params})
+    # The array side is the scenario's fact: the one array the sensor and the estimator both use.
+    est_params = dict({"window_epochs": window}, **(estimator or {}))
+    return variant("paper3_exp1a", name, out_dir, {"uwb": dict(uwb or {}), "estimator": est_params},
+                   {"uwb_array": {"array_side_m": side}})
 
 
 def run(job, out_dir, domain, reuse=False):

@@ -21,10 +21,10 @@ void advance_slip_wander(SlipWander& wander, double dt_s, const OdometryParams& 
   wander.right = gauss_markov_step(wander.right, dt_s, params.slip_wander_tau_s, sigma, unit_right);
 }
 
-OdometryReading measure_odometry(const model::Twist& true_twist, double dt_s,
+OdometryReading measure_odometry(const model::Twist& true_twist, double dt_s, double wheel_base_m,
                                  const OdometryParams& params, RandomEngine& engine,
                                  const SlipWander& wander) {
-  const model::WheelSpeeds truth = model::wheel_speeds_from_twist(true_twist, params.wheel_base_m);
+  const model::WheelSpeeds truth = model::wheel_speeds_from_twist(true_twist, wheel_base_m);
   // Named locals fix the draw order (left, then right) regardless of argument evaluation order.
   const double unit_noise_left = standard_normal(engine);
   const double unit_noise_right = standard_normal(engine);
@@ -34,7 +34,7 @@ OdometryReading measure_odometry(const model::Twist& true_twist, double dt_s,
       (1.0 + params.right_slip + wander.right) * truth.right + std_mps * unit_noise_right;
 
   const model::Twist measured =
-      model::twist_from_wheel_speeds(measured_left, measured_right, params.wheel_base_m);
+      model::twist_from_wheel_speeds(measured_left, measured_right, wheel_base_m);
   // v = (l + r)/2 and omega = (r - l)/D of two independent wheel errors of variance std^2.
   const double wheel_var = std_mps * std_mps;
   OdometryReading reading;
@@ -42,7 +42,7 @@ OdometryReading measure_odometry(const model::Twist& true_twist, double dt_s,
   reading.omega = measured.omega + params.turn_rate_bias_radps;
   reading.dt_s = dt_s;
   reading.var_v = 0.5 * wheel_var;
-  reading.var_omega = 2.0 * wheel_var / (params.wheel_base_m * params.wheel_base_m);
+  reading.var_omega = 2.0 * wheel_var / (wheel_base_m * wheel_base_m);
   return reading;
 }
 

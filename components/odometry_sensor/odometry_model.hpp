@@ -31,12 +31,13 @@ struct SlipWander {
 /// right), every later call one exact Gauss-Markov step (two normals, left then right).
 void advance_slip_wander(SlipWander& wander, double dt_s, const OdometryParams& params, RandomEngine& engine);
 
-/// Samples one reading of `true_twist`; each wheel reads (1 + slip + wander) x its true speed. The claimed variances describe the white wheel noise
+/// Samples one reading of `true_twist` of a robot whose wheels are wheel_base_m (m, > 0) apart (its
+/// body, a shared fact of the scenario); each wheel reads (1 + slip + wander) x its true speed. The claimed variances describe the white wheel noise
 /// only (v and omega errors from it are uncorrelated); the slip and turn-rate biases are deliberately
 /// not included, as a real odometry does not know its own calibration error. Always draws exactly
 /// two standard normals from `engine` (left wheel first, then right). `params` must have
 /// passed validate().
-OdometryReading measure_odometry(const model::Twist& true_twist, double dt_s,
+OdometryReading measure_odometry(const model::Twist& true_twist, double dt_s, double wheel_base_m,
                                  const OdometryParams& params, RandomEngine& engine,
                                  const SlipWander& wander = {});
 

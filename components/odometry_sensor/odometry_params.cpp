@@ -9,7 +9,6 @@ const params::ParamTable<OdometryParams>& odometry_sensor_param_table() {
           "Wheel odometry: mean wheel rim speeds over each interval (what encoders count), with a\n"
           "per-wheel scale error (slip, constant plus an optional Gauss-Markov wander) and white noise, converted to v and omega, plus an optional turn-rate bias.")
           .add("rate_hz", &OdometryParams::rate_hz, "Hz", params::positive(), "readings per second; must divide the simulation rate")
-          .add("wheel_base_m", &OdometryParams::wheel_base_m, "m", params::positive(), "distance between the wheels")
           .add("wheel_speed_noise_std_mps", &OdometryParams::wheel_speed_noise_std_mps, "m/s", params::non_negative(),
                "white noise on each wheel's measured speed")
           .add("left_slip", &OdometryParams::left_slip, "fraction", params::in_open_interval(-0.5, 0.5),

@@ -11,8 +11,6 @@ namespace robodds::odometry_sensor {
 struct OdometryParams {
   /// Used by the node's timer; the model itself is per reading.
   double rate_hz = 50.0;
-  /// Between the wheels' contact points; converts between twist and wheel speeds.
-  double wheel_base_m = 0.5;
   /// Zero-mean Gaussian, on each wheel's measured rim speed, drawn independently per wheel and
   /// per reading (not scaled with dt).
   double wheel_speed_noise_std_mps = 0.02;

@@ -16,7 +16,6 @@ const params::ParamTable<UwbSensorParams>& uwb_sensor_param_table() {
           "robot of the scenario, r = d + white + link bias (Gauss-Markov) + pair common mode (Gauss-Markov)\n"
           "+ NLOS excess, >= 0; calibration in components/uwb_sensor/README.md.")
           .add("rate_hz", &P::rate_hz, "Hz", params::positive(), "sampling rate; must divide the simulation rate")
-          .include(&P::array_params, model::uwb_array_param_table())
           .add("max_range_m", &P::max_range_m, "m", params::positive(),
                "no ranges for a pair whose largest node-to-node range exceeds this (paper: 100)")
           .add("nlos_walls_m", &P::nlos_walls_m, "m",
@@ -29,7 +28,6 @@ const params::ParamTable<UwbSensorParams>& uwb_sensor_param_table() {
 void UwbSensorParams::validate() const {
   uwb_sensor_param_table().check_ranges(*this);
   errors.validate();
-  array_params.validate();
   if (nlos_walls_m.size() % 2 != 0) {
     param_checks::reject("nlos_walls_m", "must list walls as pairs of end points (an even number of points)",
                          std::to_string(nlos_walls_m.size()) + " points");

@@ -1,12 +1,11 @@
 #pragma once
-// Parameters of the simulated UWB array sensor (issue 11, paper 3): the array every robot
-// carries, the rate and range of the sensor, and the error model (uwb_error_model.hpp).
+// Parameters of the simulated UWB array sensor (issue 11, paper 3): the rate and range of the
+// sensor, the walls, and the error model (uwb_error_model.hpp). The array every robot carries is
+// not among them: it is the scenario's shared fact `facts: uwb_array:` (system/robot_facts.hpp).
 
 #include <cstddef>
 #include <vector>
 
-#include "common/model/uwb_array.hpp"
-#include "common/model/uwb_array_params.hpp"
 #include "common/param_table.hpp"
 #include "components/uwb_sensor/uwb_error_model.hpp"
 #include "components/uwb_sensor/uwb_walls.hpp"
@@ -17,8 +16,6 @@ namespace robodds::uwb_sensor {
 // source (`robodds components --params uwb_sensor` prints it). Defaults: the initialisers.
 struct UwbSensorParams {
   double rate_hz = 50.0;
-  /// array_side_m, nodes_m (common/model/uwb_array_params.hpp: the estimator reads the same keys).
-  model::UwbArrayParams array_params;
   /// A pair whose largest node-to-node range exceeds this gets no ranges (an empty sample in
   /// lockstep).
   double max_range_m = 100.0;
@@ -28,12 +25,9 @@ struct UwbSensorParams {
   std::vector<params::Point2> nlos_walls_m;
   UwbErrorParams errors;
 
-  /// Throws std::invalid_argument "key: reason (got value)" for the first bad field, including
-  /// the array checks (model::check_array) under the key nodes_m or array_side_m.
+  /// Throws std::invalid_argument "key: reason (got value)" for the first bad field.
   void validate() const;
 
-  /// The array every robot carries: nodes_m, or the square of side array_side_m.
-  model::UwbArray array() const { return array_params.array(); }
   /// nlos_walls_m as walls (after validate(): an even count of finite points, no wall shorter than 1 mm).
   std::vector<Wall> walls() const;
 };

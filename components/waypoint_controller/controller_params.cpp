@@ -81,15 +81,6 @@ const params::ParamTable<ControllerParams>& controller_param_table() {
                "optional |v| limit (the paper: 0)")
           .add("max_turn_rate_radps", &C::max_turn_rate_radps, "rad/s", params::non_negative("0 = no limit"),
                "optional |omega| limit (the paper: 0)")
-          .add("wheel_base_m", &C::wheel_base_m, "m", params::positive(),
-               "distance between the wheels, for max_wheel_speed_mps (the plant's value)")
-          .add("max_wheel_speed_mps", &C::actuator, &model::ActuatorLimits::max_wheel_speed_mps, "m/s",
-               params::non_negative("0 = no limit"),
-               "scale v and omega together (same curvature) so that neither wheel exceeds this (the paper: 0)")
-          .add("max_accel_mps2", &C::actuator, &model::ActuatorLimits::max_accel_mps2, "m/s^2",
-               params::non_negative("0 = no limit"), "|dv/dt| of the command, per control period (the paper: 0)")
-          .add("max_angular_accel_radps2", &C::actuator, &model::ActuatorLimits::max_angular_accel_radps2, "rad/s^2",
-               params::non_negative("0 = no limit"), "|domega/dt| of the command, per control period (the paper: 0)")
           .add("confidence_switch_sigmas", &C::confidence_switch_sigmas, "", params::non_negative("0 = off"),
                "kappa: also switch once the way-point is inside the kappa-sigma ellipse of the estimate")
           .add("stop_when_done", &C::stop_when_done, "", params::any<bool>(),
@@ -99,6 +90,7 @@ const params::ParamTable<ControllerParams>& controller_param_table() {
 
 void ControllerParams::validate() const {
   controller_param_table().check_ranges(*this);
+  body.validate();
   check_forward_gains(forward_gains);
   check_backward_gains(backward_gains);
 }

@@ -2,7 +2,7 @@
 // Parameters of the way-point controller of paper 1, section 3 (control law eq. 10, gain
 // conditions eq. 11 and 16, switching eq. 19).
 
-#include "common/model/actuator.hpp"
+#include "common/model/robot_body.hpp"
 #include "common/param_table.hpp"
 
 namespace robodds::waypoint {
@@ -28,12 +28,12 @@ struct ControllerParams {
   double epsilon_m = 0.1;
   double max_speed_mps = 0.0;
   double max_turn_rate_radps = 0.0;
-  /// The robot's actuator limits (the plant's keys; 0 = unlimited): a command whose faster wheel
-  /// would exceed max_wheel_speed_mps is scaled down as a whole (v and omega by one factor, so the
-  /// curvature is kept), and the command changes by at most max_accel_mps2 and
+  /// The robot it drives (not a parameter of this controller: the scenario's shared fact
+  /// robot_body, which the node sets; 0 = unlimited): a command whose faster wheel would exceed
+  /// body.actuator.max_wheel_speed_mps is scaled down as a whole (v and omega by one factor, so
+  /// the curvature is kept), and the command changes by at most max_accel_mps2 and
   /// max_angular_accel_radps2 per second (WaypointTracker, with its control period).
-  double wheel_base_m = 0.5;
-  model::ActuatorLimits actuator;
+  model::RobotBody body;
   /// Extension. The rule: (W - p)^T P^-1 (W - p) <= kappa^2, P the estimate's position
   /// covariance. Why: with an estimated pose the true distance at a switch is bounded by the
   /// estimator's error, not by epsilon; an epsilon far below that error may never trigger (the

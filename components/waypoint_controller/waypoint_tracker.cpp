@@ -38,7 +38,7 @@ void require_finite_pose(double x_m, double y_m, double theta_rad) {
 
 WaypointTracker::WaypointTracker(const ControllerParams& params, double period_s) : params_(params), period_s_(period_s) {
   params_.validate();
-  const bool accel_limited = params_.actuator.max_accel_mps2 > 0.0 || params_.actuator.max_angular_accel_radps2 > 0.0;
+  const bool accel_limited = params_.body.actuator.max_accel_mps2 > 0.0 || params_.body.actuator.max_angular_accel_radps2 > 0.0;
   if (accel_limited && !(period_s_ > 0.0 && std::isfinite(period_s_))) {
     throw std::invalid_argument("period_s: must be > 0 and finite with max_accel_mps2 or max_angular_accel_radps2 set (got " +
                                 shortest_text(period_s_) + ")");
@@ -57,7 +57,7 @@ void WaypointTracker::set_mission(std::vector<Eigen::Vector2d> waypoints_m) {
 Command WaypointTracker::ramp(const Command& wanted) {
   const model::Twist reachable = model::limit_acceleration(model::Twist{wanted.v, wanted.omega},
                                                            model::Twist{last_command_.v, last_command_.omega}, period_s_,
-                                                           params_.actuator);
+                                                           params_.body.actuator);
   last_command_ = period_s_ > 0.0 ? Command{reachable.v, reachable.omega} : wanted;
   return last_command_;
 }
@@ -65,7 +65,7 @@ Command WaypointTracker::ramp(const Command& wanted) {
 Command WaypointTracker::hold(const Command& wanted) {
   const model::Twist limited = model::scale_to_wheel_limit(
       model::saturate(model::Twist{wanted.v, wanted.omega}, model::TwistLimits{params_.max_speed_mps, params_.max_turn_rate_radps}),
-      params_.wheel_base_m, params_.actuator.max_wheel_speed_mps);
+      params_.body.wheel_base_m, params_.body.actuator.max_wheel_speed_mps);
   return ramp(Command{limited.v, limited.omega});
 }
 

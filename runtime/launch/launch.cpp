@@ -283,8 +283,10 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   return stats;
 }
 
-/// One producer per topic instance and where standbys may run, before anything starts.
+/// The registered scenario checks (shared facts), one producer per topic instance and where
+/// standbys may run, before anything starts.
 static void check_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode, bool single_process) {
+  registry.check_scenario(scenario);
   check_standby_deployment(scenario, mode, single_process);
   check_one_producer_per_instance(scenario, scenario_producers(registry, scenario, mode));
 }

@@ -79,7 +79,16 @@ Scenario standalone_scenario(const HostArgs& args) {
     component.robots.push_back(robot.id);
   }
   if (!args.params.empty()) {
-    component.overrides = load_param_file(args.params);
+    // Its `facts:` (e.g. robot_body: the robot's physical description) are the scenario's shared
+    // facts; every other key is a parameter of the component.
+    const std::string facts_prefix = "facts.";
+    for (auto& [key, entry] : load_param_file(args.params)) {
+      if (key.compare(0, facts_prefix.size(), facts_prefix) == 0) {
+        scenario.facts[key.substr(facts_prefix.size())] = ParamEntry{entry.yaml, entry.file + ": facts"};
+      } else {
+        component.overrides[key] = entry;
+      }
+    }
   }
   scenario.components.push_back(component);
   scenario.groups.push_back(GroupSpec{args.member.empty() ? component.name : args.member, {component.name}});

@@ -1,7 +1,7 @@
 #pragma once
-// Parameters of the differential-drive plant model.
-#include "common/model/actuator.hpp"
-#include "common/model/twist.hpp"
+// Parameters of the differential-drive plant model. The robot's physical description (wheel base,
+// speed and actuator limits) is not among them: it is the scenario's shared fact robot_body
+// (common/model/robot_body.hpp, system/robot_facts.hpp), which the plant simulates per robot.
 #include "common/param_table.hpp"
 #include "sim/plant/disturbance.hpp"
 
@@ -11,9 +11,6 @@ namespace robodds::plant {
 // plant_params.cpp (the one source; `robodds components --params plant` prints it). Defaults: the
 // member initialisers.
 struct PlantParams {
-  double wheel_base_m = 0.5;
-  model::TwistLimits limits;  // flat keys max_speed_mps, max_turn_rate_radps (not nested)
-  model::ActuatorLimits actuator;  // flat keys max_wheel_speed_mps, max_accel_mps2, max_angular_accel_radps2
   double command_timeout_s = 0.5;
   PoseDisturbance disturbance;  // flat keys disturbance_at_s, disturbance_dx_m, ... (not nested)
 

@@ -14,10 +14,17 @@ expect_error 2 "components\[1\]\.robots\[0\]: unknown robot 9" -- \
   "${R[@]}" "$(scenario_with t2 's/{name: plant, type: plant}/{name: plant, type: plant, robots: [9]}/')"
 expect_error 2 "t3\.yaml: wheel_base_mm: unknown parameter" -- \
   "${R[@]}" "$(scenario_with t3 's/{name: plant, type: plant}/{name: plant, type: plant, params: {wheel_base_mm: 1}}/')"
-expect_error 2 "t4\.yaml: wheel_base_m: must be > 0" -- \
-  "${R[@]}" "$(scenario_with t4 's/{name: plant, type: plant}/{name: plant, type: plant, params: {wheel_base_m: -1}}/')"
-expect_error 2 "t5\.yaml: wheel_base_m: expected a number, got 'wide'" -- \
-  "${R[@]}" "$(scenario_with t5 's/{name: plant, type: plant}/{name: plant, type: plant, params: {wheel_base_m: wide}}/')"
+# The robot's body is a shared fact of the scenario (system/robot_facts.hpp), not a plant parameter.
+expect_error 2 "t4\.yaml: facts\.robot_body: wheel_base_m: must be > 0" -- \
+  "${R[@]}" "$(scenario_with t4 's/^robots:/facts: {robot_body: {wheel_base_m: -1}}\nrobots:/')"
+expect_error 2 "t5\.yaml: robots\[1\]\.facts\.robot_body: wheel_base_m: expected a number, got 'wide'" -- \
+  "${R[@]}" "$(scenario_with t5 's/- {id: 2, x: 5.0/- {id: 2, facts: {robot_body: {wheel_base_m: wide}}, x: 5.0/')"
+expect_error 2 "t4b\.yaml: facts\.robot_body: wheelbase_m: unknown parameter" -- \
+  "${R[@]}" "$(scenario_with t4b 's/^robots:/facts: {robot_body: {wheelbase_m: 0.3}}\nrobots:/')"
+expect_error 2 "t4c\.yaml: facts: robot_color: unknown fact \(known: robot_body\)" -- \
+  "${R[@]}" "$(scenario_with t4c 's/^robots:/facts: {robot_color: red}\nrobots:/')"
+expect_error 2 "t4d\.yaml: wheel_base_m: unknown parameter" -- \
+  "${R[@]}" "$(scenario_with t4d 's/{name: plant, type: plant}/{name: plant, type: plant, params: {wheel_base_m: 0.3}}/')"
 expect_error 2 "rate_hz: 7\.000000 Hz is not the simulation rate" -- \
   "${R[@]}" "$(scenario_with t6 's/{name: position_sensor, type: position_sensor}/{name: position_sensor, type: position_sensor, params: {rate_hz: 7}}/')"
 expect_error 2 "groups\.sim: unknown component 'plnt'" -- "${R[@]}" "$(scenario_with t7 's/sim: \[plant\]/sim: [plnt]/')"

@@ -36,8 +36,8 @@ done
 python3 - "$WORK/out" "$kill_ns" "$LIMIT" "$MARGIN" "$SCENARIO" <<'PY' || fail "freshness check failed"
 import csv, re, sys
 out, kill_s, limit, margin = sys.argv[1], int(sys.argv[2]) * 1e-9, float(sys.argv[3]), float(sys.argv[4])
-plant = next((line for line in open(sys.argv[5]) if "{name: plant, type: plant" in line), "")
-accel = re.search(r"max_accel_mps2: ([0-9.eE+-]+)", plant)
+body = next((line for line in open(sys.argv[5]) if "robot_body:" in line), "")  # the robots' shared fact
+accel = re.search(r"max_accel_mps2: ([0-9.eE+-]+)", body)
 def rows(name):
     with open(f"{out}/{name}") as f:
         return list(csv.DictReader(f))

@@ -3,6 +3,10 @@
 #   1. Nothing under components/ includes sim/ or links a sim/ target: the robot and geometry
 #      model the components share with the simulator lives below both, in common/model/.
 #   2. Only the DDS runtime includes Fast DDS headers (fastdds/, fastrtps/).
+#   3. No component (components/, sim/: their code outside test/) reads another component's
+#      parameters or finds one by its type in the scenario: what several components must agree on
+#      is a shared fact of the scenario (system/robot_facts.hpp).
+#   4. No component's CMakeLists.txt names another component's node library.
 # Usage: check_layering.sh SOURCE_ROOT. Exit 0 when clean, else 1 with one line per violation.
 set -euo pipefail
 
@@ -79,6 +83,36 @@ done
 while IFS= read -r hit; do
   [[ -n $hit ]] && violation "$hit: only $FASTDDS_ALLOWED_DIR includes Fast DDS headers"
 done < <(include_of 'fastdds/|fastrtps/' "${outside[@]}")
+
+# Rule 3: no ComponentSpec type or overrides read from a component (tests aside: they build scenarios).
+component_code=()
+for f in "${sources[@]}"; do
+  [[ ($f == components/* || $f == sim/*) && $f != */test/* ]] && component_code+=("$f")
+done
+if ((${#component_code[@]})); then
+  while IFS= read -r hit; do
+    [[ -n $hit ]] && violation "$hit: a component must not read another component's type or parameters (use a shared fact: system/robot_facts.hpp)"
+  done < <(grep -nHE '\.overrides\b|\bspec\.type\b|\.type[[:space:]]*[!=]=[[:space:]]*"' -- "${component_code[@]}" || true)
+fi
+
+# Rule 4: a component folder's CMakeLists.txt names no node library but its own.
+declare -A node_library_of=()  # CMakeLists.txt -> its node library
+for f in "${cmake_lists[@]}"; do
+  [[ $f == components/* || $f == sim/* ]] || continue
+  while IFS= read -r call; do
+    name=$(grep -oE '[[:space:](]NAME[[:space:]]+[A-Za-z0-9_]+' <<<"$call" | awk '{print $NF}' || true)
+    library=$(grep -oE '[[:space:]]LIBRARY[[:space:]]+[A-Za-z0-9_]+' <<<"$call" | awk '{print $NF}' || true)
+    [[ -n $name ]] && node_library_of[$f]="${library:-robodds_${name}_node}"
+  done < <(sed 's/#.*//' "$f" | tr '\n' ' ' | grep -oE 'robodds_component\([^)]*\)')
+done
+for f in "${!node_library_of[@]}"; do
+  for other in "${!node_library_of[@]}"; do
+    [[ $other == "$f" ]] && continue
+    while IFS= read -r hit; do
+      [[ -n $hit ]] && violation "$f:$hit: a component must not link another component's node library (${node_library_of[$other]})"
+    done < <(sed 's/#.*//' "$f" | grep -nowF -e "${node_library_of[$other]}" || true)
+  done
+done
 
 if ((failed == 0)); then
   echo "layering: ok (${#sources[@]} source files, ${#sim_targets[@]} sim targets)"

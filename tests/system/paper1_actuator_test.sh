@@ -6,7 +6,7 @@
 # with a U-turn, a way-point at the start, a 500 m leg), every way-point is reached, and what the
 # plant applied (plant/state) and what the controller commanded (plant/cmd) never exceed the
 # limits: |v|, |omega|, each wheel's speed, |dv/dt| and |domega/dt| from summary.json. The limits
-# are read from each scenario's plant line. Each scenario over seeds 1-10 (a robodds sweep).
+# are read from each scenario's robot_body fact. Each scenario over seeds 1-10 (a robodds sweep).
 source "$(dirname "$0")/../integration/lib.sh"
 check_sweep() {  # check_sweep SCENARIO_FILE OUT_DIR: 10 seeds (robodds sweep, 2 workers on DOMAIN, DOMAIN + 1), every run checked
   local scenario="$1" out="$2" k
@@ -21,8 +21,8 @@ check_summary() {  # check_summary SCENARIO_FILE SUMMARY_JSON LABEL
   python3 - "$scenario" "$summary" "$label" <<'PY' || fail "$label: check failed"
 import json, re, sys
 scenario, summary, label = sys.argv[1], sys.argv[2], sys.argv[3]
-plant = next(line for line in open(scenario) if re.search(r"\{name: plant, type: plant, params: \{", line))
-param = lambda key: float(re.search(key + r": ([0-9.eE+-]+)", plant).group(1))
+body = next(line for line in open(scenario) if re.search(r"^\s*robot_body: \{", line))  # the shared fact
+param = lambda key: float(re.search(key + r": ([0-9.eE+-]+)", body).group(1))
 track, wheel, accel, angular = (param(k) for k in ("wheel_base_m", "max_wheel_speed_mps", "max_accel_mps2", "max_angular_accel_radps2"))
 m = json.load(open(summary))["metrics"]
 def check(ok, what):

@@ -7,46 +7,27 @@
 
 #include "components/circumnavigation_controller/guidance_law.hpp"
 #include "components/circumnavigation_controller/node/circumnavigation_controller_params.hpp"
-#include "components/range_rate_observer/node/scenario_observer_bound.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "system/robot_facts.hpp"
 
 namespace robodds::guidance {
 namespace {
 
-/// The b the observer bound is checked against, and the key it comes from.
-struct ObserverB {
-  double b_mps2 = 0.0;
-  std::string key;
-};
-
-/// The super-twisting gain b of the scenario's range_rate_observer component (its `sta.b`, else the
-/// observer's default). Without such a component (a test feeding the observer topic, or a scenario
-/// whose observer runs elsewhere): this component's observer_accel_bound_mps2.
-ObserverB observer_b(const Scenario& scenario, double fallback_mps2) {
-  if (const auto bound = range_rate::scenario_observer_bound(scenario)) {
-    return {bound->b_mps2, bound->key};
-  }
-  return {fallback_mps2, "observer_accel_bound_mps2"};
-}
-
-/// Plant limits of the scenario's plant component that are lower than what the law commands: the
+/// Robots whose body (the scenario's shared fact robot_body) cannot do what the law commands: the
 /// plant then saturates the commands (the bound still holds; the spacing has less room). Warns.
-void warn_about_lower_plant_limits(const ComponentContext& ctx, const GuidanceParams& law) {
-  for (const ComponentSpec& spec : ctx.scenario().components) {
-    if (spec.type != "plant") {
-      continue;
-    }
-    ParamReader overrides(spec.name, spec.overrides);
-    const double v = overrides.has("max_speed_mps") ? overrides.get_double("max_speed_mps") : 0.0;
-    const double w = overrides.has("max_turn_rate_radps") ? overrides.get_double("max_turn_rate_radps") : 0.0;
+void warn_about_lower_body_limits(const ComponentContext& ctx, const GuidanceParams& law) {
+  for (const RobotSpec& robot : ctx.robots()) {
+    const model::RobotBody body = system::robot_body(ctx.scenario(), robot.id);
+    const double v = body.limits.max_speed_mps;
+    const double w = body.limits.max_turn_rate_radps;
     if ((v > 0.0 && v < max_commanded_speed(law)) || (w > 0.0 && w < law.max_turn_rate_radps)) {
-      log::warn(ctx.name(), "plant " + spec.name + " limits (max_speed_mps " + std::to_string(v) + ", max_turn_rate_radps " +
-                                std::to_string(w) + ") are below the law's V_max " + std::to_string(max_commanded_speed(law)) +
-                                " m/s / max_turn_rate_radps " + std::to_string(law.max_turn_rate_radps) +
-                                " rad/s: the plant saturates the commands");
+      log::warn(ctx.name(), "robot " + std::to_string(robot.id) + ": its robot_body limits (max_speed_mps " + std::to_string(v) +
+                                ", max_turn_rate_radps " + std::to_string(w) + ") are below the law's V_max " +
+                                std::to_string(max_commanded_speed(law)) + " m/s / max_turn_rate_radps " +
+                                std::to_string(law.max_turn_rate_radps) + " rad/s: the plant saturates the commands");
     }
   }
 }
@@ -60,9 +41,9 @@ class CircumnavigationControllerNode : public Component {
     ctx.set_rate_hz(params.rate_hz, "rate_hz");
     ctx.require_longer_than_period("estimate_timeout_s", params.estimate_timeout_s);
     ctx.require_longer_than_period("peer_timeout_s", params.peer_timeout_s);
-    const ObserverB b = observer_b(ctx.scenario(), params.observer_accel_bound_mps2);
-    p.check([&] { check_observer_bound(params.guidance, b.b_mps2, b.key); });
-    warn_about_lower_plant_limits(ctx, params.guidance);
+    const system::RangeAccelBound bound = system::range_accel_bound(ctx.scenario());  // the shared fact
+    p.check([&] { check_observer_bound(params.guidance, bound.mps2, bound.key); });
+    warn_about_lower_body_limits(ctx, params.guidance);
     estimate_timeout_s_ = params.estimate_timeout_s;
     peer_timeout_s_ = params.peer_timeout_s;
     dt_s_ = static_cast<double>(ctx.period_steps()) * ctx.step_s();

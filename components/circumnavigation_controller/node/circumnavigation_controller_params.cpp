@@ -34,9 +34,7 @@ const params::ParamTable<CircumnavigationControllerParams>& circumnavigation_con
           .add("estimate_timeout_s", &P::estimate_timeout_s, "s", params::positive(),
                "real time only: an observer estimate received longer ago than this stops the robot; > the control period")
           .add("peer_timeout_s", &P::peer_timeout_s, "s", params::positive(),
-               "real time only: a team mate whose pose was received longer ago than this drops out of the spacing")
-          .add("observer_accel_bound_mps2", &P::observer_accel_bound_mps2, "m/s^2", params::positive(),
-               "the observer's b for the start-up bound check when the scenario has no range_rate_observer");
+               "real time only: a team mate whose pose was received longer ago than this drops out of the spacing");
   return table;
 }
 

@@ -28,8 +28,6 @@ struct CircumnavigationControllerParams {
   ObserverTopic observer_topic = ObserverTopic::kSuperTwisting;
   double estimate_timeout_s = 0.5;
   double peer_timeout_s = 1.0;
-  /// The observer's b when the scenario has no range_rate_observer component to read it from.
-  double observer_accel_bound_mps2 = 2.2;
 };
 
 const params::ParamTable<CircumnavigationControllerParams>& circumnavigation_controller_param_table();

@@ -238,14 +238,15 @@ std::string configure_error(const std::string& controller_params, const std::str
 bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 TEST(CircumnavigationControllerNode, ABrokenObserverBoundIsAConfigureErrorNamingTheKeys) {
-  // No observer component in the scenario: b is observer_accel_bound_mps2 (2.2).
+  // The scenario declares no bound: the shared fact's default (2.2), said as such.
   const std::string turn = configure_error("max_turn_rate_radps: 0.2");
   EXPECT_TRUE(contains(turn, "max_turn_rate_radps")) << turn;
-  EXPECT_TRUE(contains(turn, "13 m/s x 0.2 rad/s = 2.6 m/s^2 > observer_accel_bound_mps2 = 2.2")) << turn;
-  // The scenario's range_rate_observer's sta.b when there is one.
-  const std::string observer_b =
-      configure_error("", "  - {name: observer, type: range_rate_observer, params: {sta: {b: 1.5}}}\n");
-  EXPECT_TRUE(contains(observer_b, "> observer.sta.b = 1.5")) << observer_b;
+  EXPECT_TRUE(contains(turn, "13 m/s x 0.2 rad/s = 2.6 m/s^2 > facts.range_accel_bound_mps2 (default) = 2.2")) << turn;
+  // The bound the scenario declares (a shared fact), named by its file and key.
+  const std::string declared = configure_error("", "facts:\n  range_accel_bound_mps2: 1.5\n");
+  EXPECT_TRUE(contains(declared, ": facts.range_accel_bound_mps2 = 1.5")) << declared;
+  // Another component's parameters are not read: an observer's sta.b changes nothing here.
+  EXPECT_EQ(configure_error("", "  - {name: observer, type: range_rate_observer, params: {sta: {b: 1.5}}}\n"), "");
   EXPECT_EQ(configure_error(""), "");
 }
 

@@ -8,6 +8,7 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "system/robot_facts.hpp"
 
 namespace robodds::odometry_sensor {
 namespace {
@@ -20,7 +21,8 @@ class OdometrySensorNode : public Component {
     p.validate(params_);
     ctx.set_rate_hz(params_.rate_hz, "rate_hz");
     for (const RobotSpec& robot : ctx.robots()) {
-      robots_.emplace(robot.id, Robot{RandomEngine(ctx.seed_for("robot" + std::to_string(robot.id))), TwistAccumulator{}, SlipWander{}});
+      robots_.emplace(robot.id, Robot{RandomEngine(ctx.seed_for("robot" + std::to_string(robot.id))), TwistAccumulator{}, SlipWander{},
+                                      system::robot_body(ctx.scenario(), robot.id).wheel_base_m});
     }
     truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(ctx.robot_keys()));
     out_ = &ctx.advertise<idl::Odometry>("sensor/odometry");
@@ -38,7 +40,7 @@ class OdometrySensorNode : public Component {
       // Draw order per reading: the wander's step over this interval, then the wheel noise (inside
       // measure_odometry); with the wander off it draws nothing, so the stream is what it was.
       advance_slip_wander(robot.wander, covered_s, params_, robot.engine);
-      const OdometryReading reading = measure_odometry(robot.travel.mean(), covered_s, params_, robot.engine, robot.wander);
+      const OdometryReading reading = measure_odometry(robot.travel.mean(), covered_s, robot.wheel_base_m, params_, robot.engine, robot.wander);
       robot.travel.reset();
       idl::Odometry m;
       m.robot_id(id);
@@ -56,6 +58,7 @@ class OdometrySensorNode : public Component {
     RandomEngine engine;
     TwistAccumulator travel;  // true twist since the last reading
     SlipWander wander;        // the wandering part of the slips (uneven floor)
+    double wheel_base_m;      // m, the robot's body (shared fact robot_body)
   };
 
   OdometryParams params_;

@@ -8,6 +8,7 @@ namespace robodds::odometry_sensor {
 namespace {
 
 constexpr int kSamples = 100000;
+constexpr double kWheelBaseM = 0.5;  // m, the robot body of these readings
 
 /// Sample moments of the reading error (reading - truth) over many readings of one twist.
 struct ErrorMoments {
@@ -22,7 +23,7 @@ ErrorMoments error_moments(const model::Twist& truth, const OdometryParams& para
                            RandomEngine& engine, int samples) {
   double sum_v = 0.0, sum_w = 0.0, sum_vv = 0.0, sum_ww = 0.0, sum_vw = 0.0;
   for (int i = 0; i < samples; ++i) {
-    const OdometryReading reading = measure_odometry(truth, 0.02, params, engine);
+    const OdometryReading reading = measure_odometry(truth, 0.02, kWheelBaseM, params, engine);
     const double ev = reading.v - truth.v;
     const double ew = reading.omega - truth.omega;
     sum_v += ev;
@@ -49,9 +50,8 @@ OdometryParams noiseless() {
 TEST(OdometryModel, ClaimedVariancesFollowFromWheelNoise) {
   OdometryParams params;
   params.wheel_speed_noise_std_mps = 0.04;
-  params.wheel_base_m = 0.4;
   RandomEngine engine(1);
-  const OdometryReading reading = measure_odometry(model::Twist{1.0, 0.5}, 0.02, params, engine);
+  const OdometryReading reading = measure_odometry(model::Twist{1.0, 0.5}, 0.02, 0.4, params, engine);
   EXPECT_DOUBLE_EQ(reading.var_v, 0.04 * 0.04 / 2.0);
   EXPECT_DOUBLE_EQ(reading.var_omega, 2.0 * 0.04 * 0.04 / (0.4 * 0.4));
   EXPECT_EQ(reading.dt_s, 0.02);
@@ -60,13 +60,12 @@ TEST(OdometryModel, ClaimedVariancesFollowFromWheelNoise) {
 TEST(OdometryModel, EmpiricalNoiseMatchesClaimedVariancesWithZeroMean) {
   OdometryParams params;
   params.wheel_speed_noise_std_mps = 0.05;
-  params.wheel_base_m = 0.5;
   RandomEngine engine(derive_seed(1, "odometry_sensor/statistics"));
   const model::Twist truth{0.8, -0.6};
   const ErrorMoments m = error_moments(truth, params, engine, kSamples);
 
   RandomEngine claim_engine(0);
-  const OdometryReading claim = measure_odometry(truth, 0.02, params, claim_engine);
+  const OdometryReading claim = measure_odometry(truth, 0.02, kWheelBaseM, params, claim_engine);
   // Tolerances: 5 standard errors. Mean: sigma/sqrt(n). Variance: var*sqrt(2/n).
   // Correlation: 1/sqrt(n) (the v and omega errors of independent wheels are uncorrelated).
   const double n = kSamples;
@@ -82,7 +81,7 @@ TEST(OdometryModel, ZeroNoiseAndSlipGiveTruth) {
   RandomEngine engine(derive_seed(2, "odometry_sensor/zero_noise"));
   for (const model::Twist truth : {model::Twist{0.0, 0.0}, model::Twist{1.0, 0.0},
                                    model::Twist{0.0, -1.0}, model::Twist{0.37, 0.91}}) {
-    const OdometryReading reading = measure_odometry(truth, 0.02, params, engine);
+    const OdometryReading reading = measure_odometry(truth, 0.02, kWheelBaseM, params, engine);
     // Exact up to the rounding of the wheel-speed round trip.
     EXPECT_NEAR(reading.v, truth.v, 1e-15);
     EXPECT_NEAR(reading.omega, truth.omega, 1e-14);
@@ -97,8 +96,8 @@ TEST(OdometryModel, SameSeedGivesIdenticalSequence) {
   RandomEngine b(derive_seed(42, "odometry_sensor/robot1"));
   const model::Twist truth{0.5, 0.2};
   for (int i = 0; i < 1000; ++i) {
-    const OdometryReading ra = measure_odometry(truth, 0.02, params, a);
-    const OdometryReading rb = measure_odometry(truth, 0.02, params, b);
+    const OdometryReading ra = measure_odometry(truth, 0.02, kWheelBaseM, params, a);
+    const OdometryReading rb = measure_odometry(truth, 0.02, kWheelBaseM, params, b);
     ASSERT_EQ(ra.v, rb.v);
     ASSERT_EQ(ra.omega, rb.omega);
   }
@@ -108,8 +107,8 @@ TEST(OdometryModel, DifferentSeedGivesDifferentReadings) {
   const OdometryParams params;
   RandomEngine a(derive_seed(42, "odometry_sensor/robot1"));
   RandomEngine b(derive_seed(42, "odometry_sensor/robot2"));
-  const OdometryReading ra = measure_odometry(model::Twist{}, 0.02, params, a);
-  const OdometryReading rb = measure_odometry(model::Twist{}, 0.02, params, b);
+  const OdometryReading ra = measure_odometry(model::Twist{}, 0.02, kWheelBaseM, params, a);
+  const OdometryReading rb = measure_odometry(model::Twist{}, 0.02, kWheelBaseM, params, b);
   EXPECT_NE(ra.v, rb.v);
   EXPECT_NE(ra.omega, rb.omega);
 }
@@ -117,8 +116,8 @@ TEST(OdometryModel, DifferentSeedGivesDifferentReadings) {
 TEST(OdometryModel, DrawsTwoNormalsPerReadingWhateverTheNoise) {
   RandomEngine a(9);
   RandomEngine b(9);
-  measure_odometry(model::Twist{}, 0.02, OdometryParams{}, a);
-  measure_odometry(model::Twist{}, 0.02, noiseless(), b);
+  measure_odometry(model::Twist{}, 0.02, kWheelBaseM, OdometryParams{}, a);
+  measure_odometry(model::Twist{}, 0.02, kWheelBaseM, noiseless(), b);
   EXPECT_EQ(a, b);
 }
 
@@ -129,7 +128,7 @@ TEST(OdometryModel, FastRightWheelReadsFasterAndTurningLeft) {
   OdometryParams params = noiseless();
   params.right_slip = 0.01;
   RandomEngine engine(3);
-  const OdometryReading reading = measure_odometry(model::Twist{1.0, 0.0}, 0.02, params, engine);
+  const OdometryReading reading = measure_odometry(model::Twist{1.0, 0.0}, 0.02, kWheelBaseM, params, engine);
   EXPECT_NEAR(reading.v, 1.005, 1e-12);
   EXPECT_NEAR(reading.omega, 0.02, 1e-12);  // counter-clockwise
 }
@@ -138,7 +137,7 @@ TEST(OdometryModel, FastLeftWheelReadsFasterAndTurningRight) {
   OdometryParams params = noiseless();
   params.left_slip = 0.01;
   RandomEngine engine(3);
-  const OdometryReading reading = measure_odometry(model::Twist{1.0, 0.0}, 0.02, params, engine);
+  const OdometryReading reading = measure_odometry(model::Twist{1.0, 0.0}, 0.02, kWheelBaseM, params, engine);
   EXPECT_NEAR(reading.v, 1.005, 1e-12);
   EXPECT_NEAR(reading.omega, -0.02, 1e-12);  // clockwise
 }
@@ -148,7 +147,7 @@ TEST(OdometryModel, EqualSlipScalesTheWholeTwist) {
   params.left_slip = -0.03;
   params.right_slip = -0.03;
   RandomEngine engine(3);
-  const OdometryReading reading = measure_odometry(model::Twist{0.8, -0.4}, 0.02, params, engine);
+  const OdometryReading reading = measure_odometry(model::Twist{0.8, -0.4}, 0.02, kWheelBaseM, params, engine);
   EXPECT_NEAR(reading.v, 0.97 * 0.8, 1e-12);
   EXPECT_NEAR(reading.omega, 0.97 * -0.4, 1e-12);
 }
@@ -159,11 +158,11 @@ TEST(OdometryModel, SlipBiasMatchesPredictionUnderNoise) {
   params.left_slip = -0.02;
   params.right_slip = 0.015;
   const model::Twist truth{0.6, 0.8};
-  const double v_left = truth.v - 0.5 * truth.omega * params.wheel_base_m;
-  const double v_right = truth.v + 0.5 * truth.omega * params.wheel_base_m;
+  const double v_left = truth.v - 0.5 * truth.omega * kWheelBaseM;
+  const double v_right = truth.v + 0.5 * truth.omega * kWheelBaseM;
   const double predicted_v_bias = 0.5 * (params.left_slip * v_left + params.right_slip * v_right);
   const double predicted_omega_bias =
-      (params.right_slip * v_right - params.left_slip * v_left) / params.wheel_base_m;
+      (params.right_slip * v_right - params.left_slip * v_left) / kWheelBaseM;
 
   RandomEngine engine(derive_seed(4, "odometry_sensor/slip"));
   const ErrorMoments m = error_moments(truth, params, engine, kSamples);
@@ -171,7 +170,7 @@ TEST(OdometryModel, SlipBiasMatchesPredictionUnderNoise) {
   const double noise_std = params.wheel_speed_noise_std_mps;
   const double var_v = noise_std * noise_std / 2.0;
   const double var_omega =
-      2.0 * noise_std * noise_std / (params.wheel_base_m * params.wheel_base_m);
+      2.0 * noise_std * noise_std / (kWheelBaseM * kWheelBaseM);
   const double n = kSamples;
   EXPECT_NEAR(m.mean_v, predicted_v_bias, 5.0 * std::sqrt(var_v / n));
   EXPECT_NEAR(m.mean_omega, predicted_omega_bias, 5.0 * std::sqrt(var_omega / n));
@@ -188,7 +187,7 @@ TEST(OdometryModel, TurnRateBiasShiftsOmegaOnlyWhateverTheMotion) {
   params.turn_rate_bias_radps = 0.0175;  // 1 deg/s
   RandomEngine engine(6);
   for (const model::Twist truth : {model::Twist{0.0, 0.0}, model::Twist{1.0, 0.0}, model::Twist{0.4, -0.7}}) {
-    const OdometryReading reading = measure_odometry(truth, 0.02, params, engine);
+    const OdometryReading reading = measure_odometry(truth, 0.02, kWheelBaseM, params, engine);
     EXPECT_NEAR(reading.v, truth.v, 1e-15);
     EXPECT_NEAR(reading.omega, truth.omega + 0.0175, 1e-14);  // also at standstill, like a gyro
     EXPECT_EQ(reading.var_omega, 0.0);                         // the bias is not claimed
@@ -200,8 +199,8 @@ TEST(OdometryModel, TurnRateBiasDrawsNothingExtra) {
   biased.turn_rate_bias_radps = -0.1;
   RandomEngine a(9);
   RandomEngine b(9);
-  measure_odometry(model::Twist{}, 0.02, OdometryParams{}, a);
-  measure_odometry(model::Twist{}, 0.02, biased, b);
+  measure_odometry(model::Twist{}, 0.02, kWheelBaseM, OdometryParams{}, a);
+  measure_odometry(model::Twist{}, 0.02, kWheelBaseM, biased, b);
   EXPECT_EQ(a, b);
 }
 
@@ -248,10 +247,10 @@ TEST(SlipWander, ScalesTheWheelSpeedsLikeTheSlip) {
   params.left_slip = 0.001;
   RandomEngine engine(3);
   const OdometryReading reading =
-      measure_odometry(model::Twist{1.0, 0.0}, 0.02, params, engine, SlipWander{0.002, -0.003, true});
+      measure_odometry(model::Twist{1.0, 0.0}, 0.02, kWheelBaseM, params, engine, SlipWander{0.002, -0.003, true});
   // Left reads 1.003, right 0.997: v = 1.0, omega = (0.997 - 1.003) / 0.5.
   EXPECT_NEAR(reading.v, 1.0, 1e-12);
-  EXPECT_NEAR(reading.omega, -0.006 / params.wheel_base_m, 1e-12);
+  EXPECT_NEAR(reading.omega, -0.006 / kWheelBaseM, 1e-12);
 }
 
 }  // namespace

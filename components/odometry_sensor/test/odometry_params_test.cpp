@@ -24,7 +24,6 @@ TEST(OdometryParams, DefaultsAreValid) {
   const OdometryParams params;
   EXPECT_NO_THROW(params.validate());
   EXPECT_EQ(params.rate_hz, 50.0);
-  EXPECT_EQ(params.wheel_base_m, 0.5);
   EXPECT_EQ(params.wheel_speed_noise_std_mps, 0.02);
   EXPECT_EQ(params.left_slip, 0.0);
   EXPECT_EQ(params.right_slip, 0.0);
@@ -50,15 +49,6 @@ TEST(OdometryParams, RejectsBadRate) {
   OdometryParams params;
   params.rate_hz = -1.0;
   EXPECT_EQ(validation_error(params), "rate_hz: must be > 0 and finite (got -1)");
-}
-
-TEST(OdometryParams, RejectsBadWheelBase) {
-  for (double bad : {0.0, -0.5, kNan, kInf}) {
-    OdometryParams params;
-    params.wheel_base_m = bad;
-    const std::string message = validation_error(params);
-    EXPECT_TRUE(starts_with(message, "wheel_base_m: must be > 0 and finite (got ")) << message;
-  }
 }
 
 TEST(OdometryParams, RejectsBadNoiseStd) {

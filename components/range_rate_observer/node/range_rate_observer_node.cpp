@@ -3,12 +3,15 @@
 #include <map>
 #include <stdexcept>
 
+#include "common/number_text.hpp"
+
 #include "components/range_rate_observer/node/observer_node_params.hpp"
 #include "components/range_rate_observer/range_rate_observer.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "system/robot_facts.hpp"
 
 namespace robodds::range_rate {
 namespace {
@@ -28,6 +31,14 @@ class RangeRateObserverNode : public Component {
     auto& p = ctx.params();
     params_ = read_params(p, observer_node_param_table());
     p.validate(params_);
+    // The gain b must cover the range accelerations the mission allows (the scenario's shared
+    // fact): below them the estimate is no longer exact (paper 2, b > 3/4 mu1).
+    const system::RangeAccelBound bound = system::range_accel_bound(ctx.scenario());
+    if (params_.sta.b < bound.mps2) {
+      p.fail("sta.b: " + shortest_text(params_.sta.b) + " m/s^2 is below the range acceleration bound " +
+             shortest_text(bound.mps2) + " m/s^2 of " + bound.key +
+             ": the observer would not follow the accelerations the guidance allows (raise sta.b or declare the bound)");
+    }
     ctx.set_rate_hz(params_.rate_hz, "rate_hz");
     name_ = ctx.name();
     for (const RobotSpec& robot : ctx.robots()) {

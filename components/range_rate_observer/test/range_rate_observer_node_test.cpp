@@ -134,5 +134,28 @@ TEST(RangeRateObserverNode, GainsOutsideThePapersConditionsAreConfigErrorsNaming
   }
 }
 
+// b must cover the range accelerations the mission allows: the scenario's shared fact
+// range_accel_bound_mps2 (default 2.2), never another component's parameter.
+TEST(RangeRateObserverNode, AGainBBelowTheScenariosRangeAccelerationBoundIsAConfigError) {
+  {
+    NodeHarness h(scenario("sta: {b: 2.0}"));  // below the default bound
+    robodds::component_registration::register_range_rate_observer(h.registry());
+    const std::string error = h.run_error<ConfigError>({"observer"});
+    EXPECT_NE(error.find("sta.b: 2 m/s^2 is below the range acceleration bound 2.2 m/s^2 of facts.range_accel_bound_mps2 (default)"),
+              std::string::npos)
+        << error;
+  }
+  {
+    NodeHarness h("facts: {range_accel_bound_mps2: 3.0}\n" + scenario("sta: {b: 2.5}"));  // a declared bound above b
+    robodds::component_registration::register_range_rate_observer(h.registry());
+    const std::string error = h.run_error<ConfigError>({"observer"});
+    EXPECT_NE(error.find(": facts.range_accel_bound_mps2: the observer would not follow"), std::string::npos) << error;
+  }
+  NodeHarness h("facts: {range_accel_bound_mps2: 1.5}\n" + scenario("sta: {b: 2.0}"));  // b covers it: runs
+  robodds::component_registration::register_range_rate_observer(h.registry());
+  feed(h);
+  h.run({"observer"});
+}
+
 }  // namespace
 }  // namespace robodds::range_rate

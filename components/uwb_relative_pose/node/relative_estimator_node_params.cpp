@@ -18,7 +18,6 @@ const params::ParamTable<RelativeEstimatorNodeParams>& relative_estimator_node_p
           .add("rate_hz", &P::rate_hz, "Hz", params::positive(), "epoch rate (paper: 10); must divide the simulation rate")
           .add("peers", &P::peers, "robot ids", params::shown_as(params::any<std::vector<double>>(), "[] or scenario robot ids"),
                "peers each served robot estimates (a served robot in the list is skipped for itself); [] = every other robot")
-          .include(&P::array_params, model::uwb_array_param_table())
           .add("odometry_known_start", &P::odometry_known_start, "", params::any<bool>(),
                "odometry stage: start from the scenario's initial poses (true) or from the first valid eq. (1) solve")
           .add("peer_links", &P::peer_links, "", params::any<bool>(),
@@ -38,7 +37,6 @@ void RelativeEstimatorNodeParams::validate() const {
       param_checks::reject("peers", "each entry must be a robot id (a whole number >= 0)", id);
     }
   }
-  array_params.validate();
   estimator.validate();
 }
 

@@ -1,10 +1,10 @@
 #pragma once
 // Every parameter of the uwb_relative_estimator component (config/uwb_relative_estimator.params.yaml
-// is generated from the table): rate, peers, the array (the same keys as the UWB sensor's), the
-// node's freshness rules and the estimator's stages (relative_estimator_params.hpp).
+// is generated from the table): rate, peers, the node's freshness rules and the estimator's stages
+// (relative_estimator_params.hpp). The array every robot carries is not among them: it is the
+// scenario's shared fact `facts: uwb_array:` (system/robot_facts.hpp), which the sensor reads too.
 #include <vector>
 
-#include "common/model/uwb_array_params.hpp"
 #include "common/param_table.hpp"
 #include "components/uwb_relative_pose/relative_estimator_params.hpp"
 
@@ -16,7 +16,6 @@ struct RelativeEstimatorNodeParams {
   double rate_hz = 10.0;
   /// Robot ids of the peers each served robot estimates; [] = every other robot of the scenario.
   std::vector<double> peers;
-  model::UwbArrayParams array_params;  // keys array_side_m, nodes_m (the UWB sensor's keys)
   /// The odometry stage starts from the scenario's initial poses (the paper's robots start at known
   /// places); false: from the first valid eq. (1) solve.
   bool odometry_known_start = true;

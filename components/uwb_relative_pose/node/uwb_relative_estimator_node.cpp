@@ -12,12 +12,12 @@
 
 #include "common/model/diff_drive_kinematics.hpp"
 #include "components/uwb_relative_pose/node/relative_estimator_node_params.hpp"
-#include "components/uwb_relative_pose/node/scenario_uwb_array.hpp"
 #include "components/uwb_relative_pose/relative_estimator.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "system/robot_facts.hpp"
 
 namespace robodds::uwb {
 namespace {
@@ -43,10 +43,7 @@ class UwbRelativeEstimatorNode : public Component {
     ctx.require_longer_than_period("odometry_timeout_s", params_.odometry_timeout_s);
     name_ = ctx.name();
     realtime_ = ctx.mode() == TimeMode::kRealtime;
-    const model::UwbArray array = params_.array_params.array();
-    if (const std::optional<std::string> mismatch = scenario_array_mismatch(ctx.scenario(), array)) {
-      p.fail("array_side_m/nodes_m: " + *mismatch);
-    }
+    const model::UwbArray array = system::uwb_array(ctx.scenario());  // the one the sensor measures with
     const Scenario& scenario = ctx.scenario();
     std::vector<std::uint64_t> uwb_keys;
     std::set<std::uint64_t> odometry_ids;

@@ -44,6 +44,14 @@ robots:
          params + "}}\n" + extra_components;
 }
 
+/// `yaml` with the top-level `facts:` map `facts` (e.g. the array every robot carries).
+std::string with_facts(const std::string& facts, const std::string& yaml) {
+  const std::string after = "seed: 1\n";
+  std::string out = yaml;
+  out.insert(out.find(after) + after.size(), "facts:\n  " + facts + "\n");
+  return out;
+}
+
 model::Pose2 world(std::uint32_t robot) {
   if (robot == 2) {
     return {3.0, 4.0, 3.14159265358979};
@@ -75,10 +83,10 @@ idl::UwbRanges ranges_sample(std::uint32_t robot, std::uint32_t peer, const Eige
 
 /// Feeds odometry of standing robots every 5 steps (10 Hz) and exact ranges from robot 1 to its
 /// peers, and from robot 2 to robot 3 (the peers' link), every step (50 Hz) while `frames(step)`
-/// says so.
+/// says so; every robot carries the square array of side `array_side_m`.
 void feed(NodeHarness& h, std::function<bool(std::uint64_t)> frames, std::function<idl::UwbRanges(idl::UwbRanges, std::uint64_t)> edit = nullptr,
-          bool with_link = true) {
-  h.feed([&h, frames, edit, with_link](std::uint64_t step) {
+          bool with_link = true, double array_side_m = 0.5) {
+  h.feed([&h, frames, edit, with_link, array_side_m](std::uint64_t step) {
     if (step % 5 == 0) {
       for (std::uint32_t robot : {1u, 2u, 3u}) {
         idl::Odometry o;
@@ -95,7 +103,7 @@ void feed(NodeHarness& h, std::function<bool(std::uint64_t)> frames, std::functi
       m.robot_id(robot);
       m.peer_id(peer);
       if (frames(step)) {
-        const model::UwbArray a = model::square_array(0.5);
+        const model::UwbArray a = model::square_array(array_side_m);
         m = ranges_sample(robot, peer, model::array_ranges(a, world(robot), a, world(peer)));
         if (edit) {
           m = edit(m, step);
@@ -139,6 +147,23 @@ TEST(UwbRelativeEstimatorNode, EveryStageOnItsTopicForEachPeerAtEveryEpoch) {
   const auto odometry = robodds::testing::of_instance(*out[4], key(1, 2));
   EXPECT_TRUE(odometry.front().valid()) << "the odometry stage starts from the scenario's poses";
   EXPECT_NEAR(odometry.front().x(), truth2.x, 1e-9);
+}
+
+// The estimator models the scenario's array (facts: uwb_array:), the one the sensor measures with:
+// exact ranges of 0.8 m squares give an exact single-epoch solve.
+TEST(UwbRelativeEstimatorNode, ModelsTheScenariosArray) {
+  NodeHarness h(with_facts("uwb_array: {array_side_m: 0.8}", scenario("")));
+  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  feed(h, [](std::uint64_t) { return true; }, nullptr, true, 0.8);
+  const auto& uwb = h.record<idl::RelativePoseEstimate>("estimate/relative_pose_uwb");
+  h.run({"estimator"});
+  const model::Pose2 truth2 = model::between(world(1), world(2));
+  const auto to2 = robodds::testing::of_instance(uwb, key(1, 2));
+  ASSERT_EQ(to2.size(), 21u);
+  ASSERT_TRUE(to2.back().valid());
+  EXPECT_NEAR(to2.back().x(), truth2.x, 1e-4) << "a 0.5 m array model would not fit these ranges";
+  EXPECT_NEAR(to2.back().y(), truth2.y, 1e-4);
+  EXPECT_NEAR(to2.back().theta(), truth2.theta, 1e-4);
 }
 
 TEST(UwbRelativeEstimatorNode, AFrameThatDoesNotFitTheArraysIsRejectedAndCountedNeverAnEstimate) {
@@ -296,12 +321,13 @@ TEST(UwbRelativeEstimatorNode, BadSetUpsAreStartUpErrorsNamingTheKey) {
   EXPECT_NE(start_error(scenario("window_epochs: 1")).find("window_epochs"), std::string::npos);
   EXPECT_NE(start_error(scenario("pf.num_particles: 0")).find("pf.num_particles"), std::string::npos);
   EXPECT_NE(start_error(scenario("peers: [2, 2]")).find("robot 2 is listed twice"), std::string::npos);
-  EXPECT_NE(start_error(scenario("nodes_m: [[0.3, 0], [-0.3, 0]]")).find("nodes_m"), std::string::npos);
-  EXPECT_NE(start_error(scenario("nodes_m: [[0.3, 0], [-0.3, 0], [0.3, 0]]")).find("nodes_m"), std::string::npos);
-  const std::string mismatch =
-      start_error(scenario("array_side_m: 0.5", "  - {id: 2, x: 3, y: 4}\n",
-                           "  - {name: uwb, type: uwb_sensor, robots: [1], params: {array_side_m: 0.7}}\n"));
-  EXPECT_NE(mismatch.find("UWB sensor 'uwb'"), std::string::npos) << mismatch;
+  // The array is the scenario's fact (facts: uwb_array:), read and checked by the estimator at configure.
+  std::string error = start_error(with_facts("uwb_array: {nodes_m: [[0.3, 0], [-0.3, 0]]}", scenario("")));
+  EXPECT_NE(error.find("facts.uwb_array: nodes_m: needs at least 3 nodes"), std::string::npos) << error;
+  error = start_error(with_facts("uwb_array: {nodes_m: [[0.3, 0], [-0.3, 0], [0.3, 0]]}", scenario("")));
+  EXPECT_NE(error.find("facts.uwb_array: nodes_m: nodes 0 and 2 coincide"), std::string::npos) << error;
+  error = start_error(scenario("array_side_m: 0.5"));
+  EXPECT_NE(error.find("array_side_m"), std::string::npos) << "no longer a parameter of the estimator: " << error;
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "system/robot_facts.hpp"
 
 namespace robodds::uwb_sensor {
 namespace {
@@ -29,7 +30,7 @@ class UwbSensorNode : public Component {
     p.validate(params_);
     ctx.set_rate_hz(params_.rate_hz, "rate_hz");
     lockstep_ = ctx.mode() == TimeMode::kLockstep;
-    array_ = params_.array();
+    array_ = system::uwb_array(ctx.scenario());  // the array every robot carries: the scenario's fact
     walls_ = params_.walls();
     const auto nodes = static_cast<Eigen::Index>(array_.nodes_m.size());
     std::vector<std::uint64_t> everyone;

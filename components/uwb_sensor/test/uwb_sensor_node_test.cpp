@@ -30,13 +30,14 @@ using robodds::testing::NodeHarness;
 constexpr const char* kNoiseOff = "white_sigma_m: 0, link_bias_sigma_m: 0, common_sigma_m: 0, max_range_m: 20";
 
 // Steps 0..10 at 10 Hz; the sensor runs at 5 Hz (every 2 steps) for robots 1 and 2; robot 3 is
-// only a peer.
-std::string scenario(const std::string& params) {
+// only a peer. `facts`: the scenario's facts: map (e.g. the array every robot carries).
+std::string scenario(const std::string& params, const std::string& facts = "") {
   return R"(name: uwb_sensor_node
 step_s: 0.1
 duration_s: 1.0
 seed: 1
-robots:
+)" + (facts.empty() ? std::string() : "facts:\n  " + facts + "\n") +
+         R"(robots:
   - {id: 1}
   - {id: 2}
   - {id: 3}
@@ -231,11 +232,31 @@ TEST(UwbSensorNode, RealTimeSendsNothingForFarPairsAndLostFrames) {
   }
 }
 
+// The array is the scenario's fact (facts: uwb_array:), read and checked by the sensor at configure.
 TEST(UwbSensorNode, TooFewNodesIsAConfigErrorNamingTheKey) {
-  NodeHarness h(scenario("nodes_m: [[0.3, 0], [-0.3, 0]]"));
+  NodeHarness h(scenario(kNoiseOff, "uwb_array: {nodes_m: [[0.3, 0], [-0.3, 0]]}"));
   robodds::component_registration::register_uwb_sensor(h.registry());
   const std::string error = h.run_error<ConfigError>({"uwb"});
-  EXPECT_NE(error.find("nodes_m: needs at least 3 nodes"), std::string::npos) << "expected a ConfigError, got: " << error;
+  EXPECT_NE(error.find("facts.uwb_array: nodes_m: needs at least 3 nodes"), std::string::npos)
+      << "expected a ConfigError, got: " << error;
+}
+
+// Every robot carries the scenario's array: a 0.8 m square moves every node to (+-0.4, +-0.4).
+TEST(UwbSensorNode, MeasuresWithTheScenariosArray) {
+  NodeHarness h(scenario(kNoiseOff, "uwb_array: {array_side_m: 0.8}"));
+  const std::vector<idl::UwbRanges> out = run(h);
+  std::size_t checked = 0;
+  for (const idl::UwbRanges& m : out) {
+    if (idl::instance_key(m) != key(1, 2)) {
+      continue;
+    }
+    ASSERT_EQ(m.ranges().size(), 16u);
+    // Node 0 of robot 1 at (0.4, 0.4) (front-left, facing +x); node 0 of robot 2 (facing +y) at
+    // (3, 4) + R(90 deg) (0.4, 0.4) = (2.6, 4.4).
+    EXPECT_NEAR(m.ranges()[0], std::hypot(2.2, 4.0), 1e-12);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 6u);
 }
 
 }  // namespace

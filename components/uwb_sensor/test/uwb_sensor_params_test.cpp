@@ -1,5 +1,6 @@
 // Validation of the UWB sensor's parameters: ranges from the table, the error model's cross-field
-// rule, and the array (explicit nodes: 3 to 8, none coincident), each naming its key.
+// rule and the walls, each naming its key. (The array is the scenario's fact `facts: uwb_array:`:
+// its checks are tested in common/model/test and system/test.)
 #include "components/uwb_sensor/uwb_sensor_params.hpp"
 
 #include <gtest/gtest.h>
@@ -34,17 +35,10 @@ TEST(UwbSensorParams, DefaultsAreIssue11s) {
   EXPECT_EQ(p.errors.nlos_probability, 0.0);
   EXPECT_EQ(p.errors.sigma_scale, 1.0);
   EXPECT_EQ(p.errors.frame_loss_probability, 0.0);
-  const model::UwbArray a = p.array();
-  ASSERT_EQ(a.nodes_m.size(), 4u);
-  EXPECT_EQ(a.nodes_m[0], Eigen::Vector2d(0.25, 0.25)) << "model::square_array: front-left first, counter-clockwise";
-  EXPECT_EQ(a.nodes_m[1], Eigen::Vector2d(-0.25, 0.25));
 }
 
 TEST(UwbSensorParams, BadValuesNameTheKey) {
   UwbSensorParams p;
-  p.array_params.array_side_m = 0.0;
-  EXPECT_EQ(message_of(p), "array_side_m: must be > 0 and finite (got 0)");
-  p = UwbSensorParams{};
   p.max_range_m = -1.0;
   EXPECT_EQ(message_of(p), "max_range_m: must be > 0 and finite (got -1)");
   p = UwbSensorParams{};
@@ -53,22 +47,6 @@ TEST(UwbSensorParams, BadValuesNameTheKey) {
   p = UwbSensorParams{};
   p.errors.nlos_max_m = 0.1;
   EXPECT_EQ(message_of(p), "nlos_min_m: must be <= nlos_max_m (0.1) (got 0.2)");
-}
-
-TEST(UwbSensorParams, ExplicitNodesNeedThreeToEightDistinctNodes) {
-  UwbSensorParams p;
-  p.array_params.nodes_m = {{0.3, 0.0}, {-0.3, 0.0}};
-  EXPECT_EQ(message_of(p), "nodes_m: needs at least 3 nodes (a relative heading needs them) (got 2 nodes)");
-  p.array_params.nodes_m = {{0.3, 0.0}, {-0.3, 0.0}, {0.3, 0.0005}};
-  EXPECT_EQ(message_of(p), "nodes_m: nodes 0 and 2 coincide (closer than 0.001 m) (got 5e-04 m apart)");
-  p.array_params.nodes_m = {{0.3, 0.0}, {-0.3, 0.0}, {0.0, 0.3}};
-  EXPECT_EQ(message_of(p), "ok");
-  EXPECT_EQ(p.array().nodes_m[2], Eigen::Vector2d(0.0, 0.3)) << "explicit nodes replace the square";
-  p.array_params.nodes_m.clear();
-  for (int k = 0; k < 9; ++k) {
-    p.array_params.nodes_m.push_back({std::cos(k * 0.6), std::sin(k * 0.6)});
-  }
-  EXPECT_EQ(message_of(p), "nodes_m: must have at most 8 nodes (K x L ranges per sample, at most 64) (got 9 nodes)");
 }
 
 TEST(UwbSensorParams, WallsArePairsOfFinitePointsAndNotPoints) {

@@ -43,8 +43,8 @@ BENCHMARK(BM_TrackerStep);
 // With paper1_waypoints' actuator limits (issue 12): braking bound, wheel scaling, ramp.
 void BM_TrackerStepActuatorLimits(benchmark::State& state) {
   ControllerParams params;
-  params.wheel_base_m = 0.3;
-  params.actuator = robodds::model::ActuatorLimits{1.5, 1.0, 5.0};
+  params.body.wheel_base_m = 0.3;
+  params.body.actuator = robodds::model::ActuatorLimits{1.5, 1.0, 5.0};
   WaypointTracker tracker(params, 0.01);
   tracker.set_mission(paper_mission());
   step_from_mission_start(state, tracker);

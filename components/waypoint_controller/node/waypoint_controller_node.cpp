@@ -11,6 +11,7 @@
 #include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "system/robot_facts.hpp"
 
 namespace robodds::waypoint {
 namespace {
@@ -26,12 +27,14 @@ class WaypointControllerNode : public Component {
     invalid_estimate_speed_mps_ = node_params.invalid_estimate_speed_mps;
     invalid_estimate_creep_limit_s_ = node_params.invalid_estimate_creep_limit_s;
     estimate_timeout_s_ = node_params.estimate_timeout_s;
-    p.validate(params_);
+    p.validate(params_);  // the body is checked where it is declared (system::check_facts)
     ctx.set_rate_hz(rate_hz, "rate_hz");
     ctx.require_longer_than_period("estimate_timeout_s", estimate_timeout_s_);
     realtime_ = ctx.mode() == TimeMode::kRealtime;
     for (const RobotSpec& robot : ctx.robots()) {
-      trackers_.emplace(robot.id, WaypointTracker(params_, 1.0 / rate_hz));
+      ControllerParams robot_params = params_;
+      robot_params.body = system::robot_body(ctx.scenario(), robot.id);  // the robot it drives
+      trackers_.emplace(robot.id, WaypointTracker(robot_params, 1.0 / rate_hz));
     }
     const auto keys = ctx.robot_keys();
     estimates_ = &ctx.subscribe<idl::PoseEstimate>("estimate/pose", Subscription::instances(keys));

@@ -192,8 +192,8 @@ void print_limited(const char* label, const RunResult& run) {
 // commands, so the robot follows them exactly and still reaches every way-point.
 TEST(WaypointClosedLoopActuator, ReachesAllWaypointsWhenTheControllerKnowsTheLimits) {
   ControllerParams params;
-  params.wheel_base_m = 0.3;
-  params.actuator = realistic_limits();
+  params.body.wheel_base_m = 0.3;
+  params.body.actuator = realistic_limits();
   const Robot robot{0.3, realistic_limits()};
   const RunResult run = run_paper_mission(params, 600.0, robot);
   print_limited("controller aware", run);

@@ -113,8 +113,8 @@ TEST(WaypointControlLaw, LimitsClampSpeedAndTurnRateIndependently) {
 // Issue 12: the faster wheel at its limit, v and omega scaled by one factor (same curvature).
 TEST(WaypointControlLaw, WheelLimitScalesSpeedAndTurnRateTogether) {
   ControllerParams params;
-  params.wheel_base_m = 0.3;
-  params.actuator.max_wheel_speed_mps = 1.5;
+  params.body.wheel_base_m = 0.3;
+  params.body.actuator.max_wheel_speed_mps = 1.5;
   const PolarError error = error_of(18.0, 1.5, 1.0);
   const Command raw = control_law(error, params.forward_gains);
   const Command command = waypoint_command(error, params);

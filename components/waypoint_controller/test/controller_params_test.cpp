@@ -140,18 +140,18 @@ TEST(WaypointControllerParams, LimitsMustBeNonNegativeAndFinite) {
     turn.max_turn_rate_radps = bad;
     EXPECT_TRUE(starts_with(validation_error(turn), "max_turn_rate_radps: must be >= 0")) << bad;
     ControllerParams wheel;
-    wheel.actuator.max_wheel_speed_mps = bad;
+    wheel.body.actuator.max_wheel_speed_mps = bad;
     EXPECT_TRUE(starts_with(validation_error(wheel), "max_wheel_speed_mps: must be >= 0")) << bad;
     ControllerParams accel;
-    accel.actuator.max_accel_mps2 = bad;
+    accel.body.actuator.max_accel_mps2 = bad;
     EXPECT_TRUE(starts_with(validation_error(accel), "max_accel_mps2: must be >= 0")) << bad;
     ControllerParams angular;
-    angular.actuator.max_angular_accel_radps2 = bad;
+    angular.body.actuator.max_angular_accel_radps2 = bad;
     EXPECT_TRUE(starts_with(validation_error(angular), "max_angular_accel_radps2: must be >= 0")) << bad;
   }
   for (const double bad : {0.0, -0.3, kNan}) {
     ControllerParams track;
-    track.wheel_base_m = bad;
+    track.body.wheel_base_m = bad;
     EXPECT_TRUE(starts_with(validation_error(track), "wheel_base_m: must be > 0")) << bad;
   }
 }

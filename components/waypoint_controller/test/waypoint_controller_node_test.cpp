@@ -82,18 +82,19 @@ TEST(WaypointControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
   }
 }
 
-// Issue 12: the limits in the controller's parameters, the control period from its rate
+// Issue 12: the limits of the robot's body (the scenario's shared fact), the control period from its rate
 // (50 Hz: 0.02 s): the command ramps at 1 m/s^2 and the wheel limit scales v and omega together.
 TEST(WaypointControllerNode, RampsAndScalesItsCommandsToTheActuatorLimits) {
   NodeHarness h(R"(name: waypoint_controller_limits
 step_s: 0.01
 duration_s: 0.1
 seed: 1
+facts:
+  robot_body: {wheel_base_m: 0.3, max_wheel_speed_mps: 1.5, max_accel_mps2: 1.0, max_angular_accel_radps2: 5.0}
 robots:
   - {id: 1}
 components:
-  - {name: controller, type: waypoint_controller,
-     params: {rate_hz: 50, wheel_base_m: 0.3, max_wheel_speed_mps: 1.5, max_accel_mps2: 1.0, max_angular_accel_radps2: 5.0}}
+  - {name: controller, type: waypoint_controller, params: {rate_hz: 50}}
 )");
   add_controller(h);
   h.feed([&h](std::uint64_t step) {
@@ -120,11 +121,13 @@ TEST(WaypointControllerNode, CreepsAheadWhileTheEstimateIsNotValid) {
 step_s: 0.01
 duration_s: 0.1
 seed: 1
+facts:
+  robot_body: {max_accel_mps2: 10.0}
 robots:
   - {id: 1}
 components:
   - {name: controller, type: waypoint_controller,
-     params: {invalid_estimate_speed_mps: 0.3, max_accel_mps2: 10.0}}
+     params: {invalid_estimate_speed_mps: 0.3}}
 )");
   add_controller(h);
   h.feed([&h](std::uint64_t step) {
@@ -152,11 +155,13 @@ TEST(WaypointControllerNode, CreepingStopsAfterItsLimitWithoutAValidEstimate) {
 step_s: 0.01
 duration_s: 0.3
 seed: 1
+facts:
+  robot_body: {max_accel_mps2: 100.0}
 robots:
   - {id: 1}
 components:
   - {name: controller, type: waypoint_controller,
-     params: {invalid_estimate_speed_mps: 0.3, invalid_estimate_creep_limit_s: 0.1, max_accel_mps2: 100.0}}
+     params: {invalid_estimate_speed_mps: 0.3, invalid_estimate_creep_limit_s: 0.1}}
 )");
   add_controller(h);
   h.feed([&h](std::uint64_t step) {

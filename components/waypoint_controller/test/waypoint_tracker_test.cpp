@@ -183,8 +183,8 @@ TEST(WaypointTracker, AppliesTheConfiguredLimits) {
 // max_accel * period (v) and max_angular_accel * period (omega), the stop included.
 TEST(WaypointTracker, RampsItsCommandsAtTheAccelerationLimits) {
   ControllerParams params = paper_params();
-  params.actuator.max_accel_mps2 = 1.0;
-  params.actuator.max_angular_accel_radps2 = 5.0;
+  params.body.actuator.max_accel_mps2 = 1.0;
+  params.body.actuator.max_angular_accel_radps2 = 5.0;
   params.stop_when_done = true;
   WaypointTracker tracker(params, 0.1);
   tracker.set_mission({Eigen::Vector2d(10.0, 0.0)});
@@ -206,7 +206,7 @@ TEST(WaypointTracker, RampsItsCommandsAtTheAccelerationLimits) {
 
 TEST(WaypointTracker, AccelerationLimitsNeedAControlPeriod) {
   ControllerParams params;
-  params.actuator.max_accel_mps2 = 1.0;
+  params.body.actuator.max_accel_mps2 = 1.0;
   try {
     WaypointTracker tracker(params);
     FAIL() << "no period accepted";

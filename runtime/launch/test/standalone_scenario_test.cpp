@@ -64,6 +64,19 @@ TEST(StandaloneScenario, NameMemberStepSeedDurationAndParamsFromTheCommandLine) 
   EXPECT_EQ(s.components[0].overrides.at("num_particles").file, args.params);
 }
 
+// A component without a scenario takes the shared facts (the robot's body) from its --params
+// file's `facts:`; they are not parameters of the component.
+TEST(StandaloneScenario, TheParamsFilesFactsAreTheScenariosFacts) {
+  HostArgs args = pf_args();
+  args.params = test_support::write_test_file("plant.yaml", "command_timeout_s: 0.3\nfacts:\n  robot_body: {wheel_base_m: 0.3}\n");
+  const Scenario s = standalone_scenario(args);
+  ASSERT_EQ(s.facts.count("robot_body.wheel_base_m"), 1u);
+  EXPECT_EQ(s.facts.at("robot_body.wheel_base_m").yaml, "0.3");
+  EXPECT_EQ(s.facts.at("robot_body.wheel_base_m").file, args.params + ": facts");
+  EXPECT_EQ(s.components[0].overrides.count("command_timeout_s"), 1u);
+  EXPECT_EQ(s.components[0].overrides.size(), 1u);
+}
+
 TEST(StandaloneScenario, BadRobotsAreConfigErrorsNamingTheValue) {
   for (const char* bad : {"", "x", "-1", "1:", "1:2,3", "1:2,3,4,", "1:a,0,0", "1:0,0,nan", "99999999999"}) {
     HostArgs args = pf_args();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 #include <optional>
 #include <type_traits>
 #include <sys/stat.h>
@@ -16,8 +17,6 @@
 #include "runtime/param_table_reader.hpp"
 #include "runtime/params.hpp"
 #include "runtime/registry.hpp"
-#include "components/range_rate_observer/node/scenario_observer_bound.hpp"
-#include "components/range_rate_observer/observer_params.hpp"
 #include "sim/evaluator/node/csv_recorder.hpp"
 #include "sim/evaluator/node/evaluator_params.hpp"
 #include "sim/evaluator/node/sample_metrics.hpp"
@@ -27,7 +26,7 @@
 #include "sim/evaluator/motion_extremes.hpp"
 #include "sim/evaluator/track.hpp"
 #include "sim/evaluator/waypoint_metrics.hpp"
-#include "sim/plant/plant_params.hpp"
+#include "system/robot_facts.hpp"
 
 namespace robodds::evaluator {
 namespace {
@@ -93,7 +92,11 @@ class EvaluatorNode : public Component {
     }
     const auto from_step = static_cast<std::uint64_t>(std::llround(params.metrics_after_s / ctx.step_s()));
     metrics_ = std::make_unique<Metrics>(from_step, consumers);
-    metrics_->set_motion(ctx.step_s(), plant_wheel_base_m(ctx.scenario()));
+    std::map<std::uint32_t, double> wheel_base_m;
+    for (const RobotSpec& robot : ctx.scenario().robots) {
+      wheel_base_m[robot.id] = system::robot_body(ctx.scenario(), robot.id).wheel_base_m;
+    }
+    metrics_->set_motion(ctx.step_s(), std::move(wheel_base_m), model::RobotBody{}.wheel_base_m);
     if (!stages.empty()) {
       metrics_->enable_relative(params.metrics_after_s);
       for (const std::string& stage : stages) {
@@ -138,8 +141,8 @@ class EvaluatorNode : public Component {
     settle(true);
     metrics_->finish();
     if (b_is_default_ && metrics_->circumnavigation() != nullptr) {  // once a run (configure may run twice)
-      log::info(context_->name(), "range_accel_over_b_fraction: no range_rate_observer with sta.b in the scenario, b = " +
-                                      shortest_text(metrics_->circumnavigation()->b()) + " (the observer's default)");
+      log::info(context_->name(), "range_accel_over_b_fraction: the scenario declares no facts.range_accel_bound_mps2, b = " +
+                                      shortest_text(metrics_->circumnavigation()->b()) + " (its default)");
     }
     if (context_->output_dir().empty()) {
       return;
@@ -220,9 +223,9 @@ class EvaluatorNode : public Component {
     metrics_->relative_truth().drop_before(needed);
   }
 
-  /// The paper-2 metrics, when plant/state and mission/target are recorded: b (the observer's
-  /// bound on |r''|) is the sta.b the scenario gives its range_rate_observer, else the
-  /// observer's default.
+  /// The paper-2 metrics, when plant/state and mission/target are recorded: b is the scenario's
+  /// shared fact range_accel_bound_mps2 (the bound on |r''| the mission is designed for), else
+  /// its default.
   void configure_paper2(const std::vector<std::string>& topics) {
     const auto recorded = [&topics](const char* topic) {
       return std::find(topics.begin(), topics.end(), topic) != topics.end();
@@ -230,9 +233,9 @@ class EvaluatorNode : public Component {
     if (!recorded("plant/state") || !recorded("mission/target")) {
       return;
     }
-    const auto bound = range_rate::scenario_observer_bound(context_->scenario());
-    const double b = bound ? bound->b_mps2 : range_rate::SuperTwistingParams{}.b;
-    b_is_default_ = !bound || bound->is_default;
+    const system::RangeAccelBound bound = system::range_accel_bound(context_->scenario());
+    const double b = bound.mps2;
+    b_is_default_ = !bound.declared;
     metrics_->enable_circumnavigation(context_->step_s(), b, recorded("observer/range_rate"),
                                       recorded("observer/range_rate_linear"));
   }
@@ -520,18 +523,6 @@ class EvaluatorNode : public Component {
     }
   }
 
-  /// The wheel base of the scenario's plant (its wheel_base_m override, else the plant's
-  /// default), for the wheel speeds of plant/state and plant/cmd.
-  static double plant_wheel_base_m(const Scenario& scenario) {
-    for (const ComponentSpec& spec : scenario.components) {
-      if (spec.type == "plant") {
-        ParamReader overrides(spec.name, spec.overrides);
-        return overrides.has("wheel_base_m") ? overrides.get_double("wheel_base_m") : plant::PlantParams{}.wheel_base_m;
-      }
-    }
-    return plant::PlantParams{}.wheel_base_m;
-  }
-
   std::vector<std::uint64_t> keys_;
   std::vector<std::unique_ptr<RecorderBase>> recorders_;
   std::unique_ptr<Metrics> metrics_;
@@ -542,7 +533,7 @@ class EvaluatorNode : public Component {
   bool standby_ = false;         // the scenario has a hot standby: write "standby"
   double start_s_ = 0.0;         // the run's start as a stamp (s)
   double metrics_after_s_ = 0.0;
-  bool b_is_default_ = false;    // paper 2: no sta.b in the scenario, b is the observer's default
+  bool b_is_default_ = false;    // paper 2: the scenario declares no range_accel_bound_mps2, b is its default
 };
 
 }  // namespace

@@ -32,7 +32,7 @@ struct RobotMetrics {
   RobotMetrics(std::uint64_t from_step, double gaps_after_s, double step_s, double wheel_base_m)
       : fixes(position_distance, from_step), position(position_distance, from_step),
         heading(heading_difference, from_step), applied(step_s, wheel_base_m), commanded(step_s, wheel_base_m),
-        estimate_gaps(gaps_after_s) {}
+        estimate_gaps(gaps_after_s), wheel_base_m(wheel_base_m) {}
   TrackSummary truth;
   TruthWindow recent_truth;
   MatchedError fixes;     // sensor/position against truth
@@ -43,6 +43,7 @@ struct RobotMetrics {
   MotionExtremesTracker commanded;  // plant/cmd: what the controller asked for
   std::optional<std::uint64_t> first_valid_step;  // of estimate/pose
   GapTracker estimate_gaps;  // estimate/pose stamps (s): a hot standby's hand-over time
+  double wheel_base_m;       // m, the robot's body (shared fact robot_body): its WHEEL_SPEEDS commands
 };
 
 /// Which metrics consume truth samples: those whose topics are recorded.
@@ -150,10 +151,11 @@ class Metrics {
     }
   }
   void observe(const idl::VelocityCommand& m) {
+    RobotMetrics& r = robot(m.robot_id());
     const model::Twist twist = m.mode() == idl::WHEEL_SPEEDS
-                                   ? model::twist_from_wheel_speeds(m.v_left(), m.v_right(), wheel_base_m_)
+                                   ? model::twist_from_wheel_speeds(m.v_left(), m.v_right(), r.wheel_base_m)
                                    : model::Twist{m.v(), m.omega()};
-    robot(m.robot_id()).commanded.add({m.header().step(), twist.v, twist.omega});
+    r.commanded.add({m.header().step(), twist.v, twist.omega});
   }
   void observe(const idl::ControllerStatus& m) {
     robot(m.robot_id()).waypoints.add_status({m.header().step(), m.waypoints_reached(), m.waypoints_total(), m.done(),
@@ -200,11 +202,13 @@ class Metrics {
 
   /// Gaps between estimate/pose samples count from this stamp (s) on; set before the first sample.
   void set_gaps_after_s(double after_s) { gaps_after_s_ = after_s; }
-  /// The simulation step (s) and the plant's wheel base (m), for the wheel speeds and
-  /// accelerations of plant/state and plant/cmd; set before the first sample.
-  void set_motion(double step_s, double wheel_base_m) {
+  /// The simulation step (s) and each robot's wheel base (m; its body), for the wheel speeds and
+  /// accelerations of plant/state and plant/cmd; set before the first sample. A robot not named
+  /// has `default_wheel_base_m`.
+  void set_motion(double step_s, std::map<std::uint32_t, double> wheel_base_m, double default_wheel_base_m) {
     step_s_ = step_s;
-    wheel_base_m_ = wheel_base_m;
+    wheel_base_m_ = std::move(wheel_base_m);
+    default_wheel_base_m_ = default_wheel_base_m;
   }
 
   const RobotMetrics* find(std::uint32_t id) const {
@@ -218,7 +222,9 @@ class Metrics {
   RobotMetrics& robot(std::uint32_t id) {
     const auto [number, added] = robot_numbers_.insert(id);
     if (added) {
-      by_number_.push_back(&robots_.try_emplace(id, from_step_, gaps_after_s_, step_s_, wheel_base_m_).first->second);
+      const auto base = wheel_base_m_.find(id);
+      const double wheel_base_m = base != wheel_base_m_.end() ? base->second : default_wheel_base_m_;
+      by_number_.push_back(&robots_.try_emplace(id, from_step_, gaps_after_s_, step_s_, wheel_base_m).first->second);
     }
     return *by_number_[number];
   }
@@ -226,7 +232,8 @@ class Metrics {
   std::uint64_t from_step_;
   double gaps_after_s_ = 0.0;
   double step_s_ = 0.01;
-  double wheel_base_m_ = 0.5;
+  std::map<std::uint32_t, double> wheel_base_m_;  // robot -> m
+  double default_wheel_base_m_ = 0.5;
   TruthConsumers consumers_;
   std::map<std::uint32_t, RobotMetrics> robots_;
   KeyIndex robot_numbers_;                // robot id -> index in by_number_

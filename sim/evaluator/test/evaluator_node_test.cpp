@@ -161,17 +161,19 @@ double summary_value(const std::string& summary, const std::string& key) {
 }
 
 // Issue 12: the extremes of what the plant applied (plant/state) and of what the controller
-// commanded (plant/cmd) apart, wheel speeds with the plant's wheel_base_m (0.3 m here), and the
+// commanded (plant/cmd) apart, wheel speeds with the robot body's wheel_base_m (0.3 m here), and the
 // time of the first valid estimate.
 TEST(EvaluatorNode, AppliedAndCommandedExtremesApartAndTheTimeToValid) {
   NodeHarness h(R"(name: evaluator_motion
 step_s: 0.01
 duration_s: 0.1
 seed: 1
+facts:
+  robot_body: {wheel_base_m: 0.3}
 robots:
   - {id: 1}
 components:
-  - {name: plant, type: plant, params: {wheel_base_m: 0.3}}
+  - {name: plant, type: plant}
   - {name: evaluator, type: evaluator, params: {topics: [plant/state, plant/cmd, estimate/pose], metrics_after_s: 0.0}}
 )");
   add_evaluator(h);
@@ -264,11 +266,13 @@ const char* kPaper2Scenario = R"(name: evaluator_paper2
 step_s: 0.01
 duration_s: 0.1
 seed: 1
+facts:
+  range_accel_bound_mps2: 3.5
 robots:
   - {id: 1}
   - {id: 2}
 components:
-  - {name: observer, type: range_rate_observer, params: {sta: {b: 3.5}}}
+  - {name: observer, type: range_rate_observer, params: {sta: {b: 4.0}}}  # not what the evaluator reads
   - {name: evaluator, type: evaluator, params: {topics: [plant/state, mission/target, sensor/range, observer/range_rate,
      observer/range_rate_linear], metrics_after_s: 0.0}}
 )";

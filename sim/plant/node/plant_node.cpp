@@ -8,12 +8,14 @@
 
 #include "common/model/actuator.hpp"
 #include "common/model/diff_drive_kinematics.hpp"
+#include "common/model/robot_body.hpp"
 #include "sim/plant/disturbance.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
 #include "sim/plant/node/plant_node_params.hpp"
 #include "sim/plant/plant_params.hpp"
+#include "system/robot_facts.hpp"
 
 namespace robodds::plant {
 namespace {
@@ -29,7 +31,8 @@ class PlantNode : public Component {
     ctx.set_rate_hz(rate_hz, "rate_hz");
     ctx.require_longer_than_period("command_timeout_s", params_.command_timeout_s);
     for (const RobotSpec& robot : ctx.robots()) {
-      robots_[robot.id] = Robot{model::Pose2{robot.x, robot.y, robot.theta}, model::Twist{}, false};
+      robots_[robot.id] = Robot{model::Pose2{robot.x, robot.y, robot.theta}, model::Twist{}, false,
+                                system::robot_body(ctx.scenario(), robot.id)};
     }
     // delayed(1) closes the loop: integrate the command of the previous step.
     commands_ = &ctx.subscribe<idl::VelocityCommand>("plant/cmd", Subscription::instances(ctx.robot_keys()).delayed(1));
@@ -40,12 +43,12 @@ class PlantNode : public Component {
   void on_step(const StepInfo& info) override {
     for (auto& [id, robot] : robots_) {
       // What the wheels can do (|v|, |omega| and wheel-speed limits), then how fast they get there.
-      const Target target = command_for(id, info.stamp_ns);
+      const Target target = command_for(id, robot.body, info.stamp_ns);
       const bool moves = info.dt_s > 0.0;  // not on the first step
       // A command is reached within the acceleration limits; a safe stop (no command yet, a stale
       // or non-finite one) is immediate, as a motor driver's watchdog stops the wheels.
       const model::Twist twist = moves && target.step
-                                     ? model::limit_acceleration(target.twist, robot.applied, info.dt_s, params_.actuator)
+                                     ? model::limit_acceleration(target.twist, robot.applied, info.dt_s, robot.body.actuator)
                                      : model::Twist{};
       if (moves && target.step && (twist.v != target.twist.v || twist.omega != target.twist.omega)) {
         count_once(counted_acceleration_, id, *target.step, "acceleration_limited");
@@ -74,6 +77,7 @@ class PlantNode : public Component {
     model::Pose2 pose;
     model::Twist applied;
     bool disturbed = false;  // the pose jump (PlantParams::disturbance) was applied
+    model::RobotBody body;   // the scenario's shared fact robot_body for this robot
   };
 
   /// How long `cmd` was held up on its way, beyond the fastest command of this robot so far.
@@ -108,7 +112,7 @@ class PlantNode : public Component {
     }
   }
 
-  Target command_for(std::uint32_t id, std::int64_t now_wall_ns) {
+  Target command_for(std::uint32_t id, const model::RobotBody& body, std::int64_t now_wall_ns) {
     const idl::VelocityCommand* cmd = commands_->latest(id);
     if (cmd == nullptr) {
       return {};  // no command yet: stand still
@@ -122,15 +126,15 @@ class PlantNode : public Component {
       }
     }
     // The input has refused commands beyond the gross bounds (runtime/sample_checks.hpp) and
-    // bad modes; what is left is saturated to this plant's limits and counted.
+    // bad modes; what is left is saturated to this robot's limits (its body) and counted.
     const model::Twist requested = cmd->mode() == idl::WHEEL_SPEEDS
-                                       ? model::twist_from_wheel_speeds(cmd->v_left(), cmd->v_right(), params_.wheel_base_m)
+                                       ? model::twist_from_wheel_speeds(cmd->v_left(), cmd->v_right(), body.wheel_base_m)
                                        : model::Twist{cmd->v(), cmd->omega()};
     if (!std::isfinite(requested.v) || !std::isfinite(requested.omega)) {
       return {};  // never integrate a non-finite command
     }
-    const model::Twist applied = model::clamp_wheel_speeds(model::saturate(requested, params_.limits), params_.wheel_base_m,
-                                                           params_.actuator.max_wheel_speed_mps);
+    const model::Twist applied = model::clamp_wheel_speeds(model::saturate(requested, body.limits), body.wheel_base_m,
+                                                           body.actuator.max_wheel_speed_mps);
     if (applied.v != requested.v || applied.omega != requested.omega) {
       count_once(counted_saturation_, id, cmd->header().step(), "saturated");
     }

@@ -152,18 +152,29 @@ TEST(PlantNode, CommandsBeyondTheLimitsAreSaturated) {
 step_s: 0.01
 duration_s: 0.05
 seed: 1
+facts:
+  robot_body: {max_speed_mps: 1.0, max_turn_rate_radps: 0.5}
 robots:
   - {id: 1}
+  - {id: 2, facts: {robot_body: {max_speed_mps: 2.0}}}
 components:
-  - {name: plant, type: plant, params: {max_speed_mps: 1.0, max_turn_rate_radps: 0.5}}
+  - {name: plant, type: plant}
 )");
   add_plant(h);
-  h.feed([&h](std::uint64_t step) { h.publish("plant/cmd", velocity(1, -5.0, 2.0), step, step + 1); });
+  h.feed([&h](std::uint64_t step) {
+    h.publish("plant/cmd", velocity(1, -5.0, 2.0), step, step + 1);
+    h.publish("plant/cmd", velocity(2, -5.0, 2.0), step, step + 1);
+  });
   const auto& states = h.record<idl::RobotState>("plant/state");
   h.run({"plant"});
-  ASSERT_EQ(states.size(), 6u);
-  EXPECT_DOUBLE_EQ(states[3].v(), -1.0);
-  EXPECT_DOUBLE_EQ(states[3].omega(), 0.5);
+  const auto robot1 = of_instance(states, 1);
+  ASSERT_EQ(robot1.size(), 6u);
+  EXPECT_DOUBLE_EQ(robot1[3].v(), -1.0);
+  EXPECT_DOUBLE_EQ(robot1[3].omega(), 0.5);
+  const auto robot2 = of_instance(states, 2);  // its own body: 2 m/s, the scenario's 0.5 rad/s
+  ASSERT_EQ(robot2.size(), 6u);
+  EXPECT_DOUBLE_EQ(robot2[3].v(), -2.0);
+  EXPECT_DOUBLE_EQ(robot2[3].omega(), 0.5);
 }
 
 // Actuator model: wheel base 0.3 m, wheels at most 1.5 m/s each (clamped one by one), 1 m/s^2,
@@ -174,11 +185,12 @@ TEST(PlantNode, WheelSpeedsAreClampedAndTheTwistRampsAtTheAccelerationLimits) {
 step_s: 0.01
 duration_s: 2.0
 seed: 1
+facts:
+  robot_body: {wheel_base_m: 0.3, max_wheel_speed_mps: 1.5, max_accel_mps2: 1.0, max_angular_accel_radps2: 5.0}
 robots:
   - {id: 1}
 components:
-  - {name: plant, type: plant, params: {wheel_base_m: 0.3, max_wheel_speed_mps: 1.5, max_accel_mps2: 1.0,
-                                        max_angular_accel_radps2: 5.0}}
+  - {name: plant, type: plant}
 )");
   add_plant(h);
   h.feed([&h](std::uint64_t step) {
@@ -310,10 +322,12 @@ TEST(PlantNode, RealTimeStaleCommandStopsAtOnceDespiteAccelerationLimits) {
 step_s: 0.01
 duration_s: 0.6
 seed: 1
+facts:
+  robot_body: {max_accel_mps2: 0.5, max_angular_accel_radps2: 0.5}
 robots:
   - {id: 1}
 components:
-  - {name: plant, type: plant, params: {command_timeout_s: 0.2, max_accel_mps2: 0.5, max_angular_accel_radps2: 0.5}}
+  - {name: plant, type: plant, params: {command_timeout_s: 0.2}}
 )");
   add_plant(h);
   h.set_mode(TimeMode::kRealtime);

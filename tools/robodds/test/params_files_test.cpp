@@ -77,7 +77,7 @@ TEST(ParamsFileDiff, ShowsRemovedAndAddedLines) {
 TEST(ComponentParamsText, TableAndYamlOfOneComponent) {
   const std::string table = component_params_text(registry(), "plant", false);
   EXPECT_NE(table.find("KEY "), std::string::npos) << table;
-  EXPECT_NE(table.find("\nwheel_base_m              double  0.5      m        > 0  "), std::string::npos) << table;
+  EXPECT_NE(table.find("\ncommand_timeout_s       double  0.5      s     > 0  "), std::string::npos) << table;
   EXPECT_EQ(component_params_text(registry(), "plant", true), expected_params_file(registry().get("plant")));
   EXPECT_THROW(component_params_text(registry(), "plantt", false), ConfigError);
 }
