@@ -21,7 +21,7 @@ expect_error 2 "t5\.yaml: robots\[1\]\.facts\.robot_body: wheel_base_m: expected
   "${R[@]}" "$(scenario_with t5 's/- {id: 2, x: 5.0/- {id: 2, facts: {robot_body: {wheel_base_m: wide}}, x: 5.0/')"
 expect_error 2 "t4b\.yaml: facts\.robot_body: wheelbase_m: unknown parameter" -- \
   "${R[@]}" "$(scenario_with t4b 's/^robots:/facts: {robot_body: {wheelbase_m: 0.3}}\nrobots:/')"
-expect_error 2 "t4c\.yaml: facts: robot_color: unknown fact \(known: robot_body\)" -- \
+expect_error 2 "t4c\.yaml: facts: robot_color: unknown fact \(known: robot_body, uwb_array, range_accel_bound_mps2\)" -- \
   "${R[@]}" "$(scenario_with t4c 's/^robots:/facts: {robot_color: red}\nrobots:/')"
 expect_error 2 "t4d\.yaml: wheel_base_m: unknown parameter" -- \
   "${R[@]}" "$(scenario_with t4d 's/{name: plant, type: plant}/{name: plant, type: plant, params: {wheel_base_m: 0.3}}/')"
