@@ -263,8 +263,9 @@ struct Host::Impl {
     if (overruns.figures().missed_steps > 0 || overruns.figures().late_steps > 0) {
       log::warn(options.member, "real-time overruns over the run: " + overruns.totals_text());
     }
-    if (!peers.checked()) {  // a run shorter than the start timeout: judged at its end
-      watch_peers(peers, std::max(seconds_since(start), options.start_timeout_s), next_peer_check_s);
+    if (!peers.checked() &&  // a run shorter than the start timeout: judged at its end
+        peers.check(seconds_since(start), run.bus->discovered_participants().value_or(std::vector<std::string>{}), true)) {
+      log::warn(options.member, "degraded: " + peers.degraded());
     }
     host_detail::finish_run(run, options.member, overruns.figures(), slots, health.get(), last_run, seconds_since(start),
                             peers.degraded());

@@ -22,13 +22,15 @@ class PeerWatch {
   /// run's start by which they must have been discovered.
   PeerWatch(std::vector<std::string> others, double deadline_s);
 
-  /// Checks once, at the first call with `elapsed_s` >= the deadline, which of the other groups
-  /// have no participant in `discovered` (participant names). True when that made the run
-  /// degraded (then degraded() says why); later calls only note groups that turned up late.
-  bool check(double elapsed_s, const std::vector<std::string>& discovered);
+  /// Checks once, at the first call with `elapsed_s` >= the deadline (or with `run_ended`: a run
+  /// shorter than the deadline is judged at its end), which of the other groups have no
+  /// participant in `discovered` (participant names). True when that made the run degraded (then
+  /// degraded() says why); later calls only note groups that turned up late.
+  bool check(double elapsed_s, const std::vector<std::string>& discovered, bool run_ended = false);
 
   /// Empty while nothing is missing; else e.g. "did not discover group(s) 'sim', 'control' within
-  /// 10 s of its start (discovered later: 'sim')".
+  /// 10 s of its start (discovered later: 'sim')", or for a run that ended before the deadline
+  /// "... during its run (6 s, shorter than the start timeout of 30 s)".
   std::string degraded() const;
   bool checked() const { return checked_; }
 
@@ -36,6 +38,7 @@ class PeerWatch {
   std::vector<std::string> others_;
   double deadline_s_;
   bool checked_ = false;
+  double judged_s_ = 0.0;  // s after the start when it was checked
   std::vector<std::string> missing_;
   std::vector<std::string> late_;  // missing at the deadline, discovered since
 };

@@ -35,6 +35,17 @@ TEST(PeerWatch, APartlyMissingRunNamesTheMissingAndThoseThatCameLate) {
   EXPECT_EQ(watch.degraded(), "did not discover group(s) 'sim', 'control' within 3 s of its start (discovered later: 'control')");
 }
 
+// A run shorter than the start timeout is judged at its end, and says so (it did not wait 30 s).
+TEST(PeerWatch, ARunShorterThanTheDeadlineIsJudgedAtItsEnd) {
+  PeerWatch watch({"sim", "control"}, 30.0);
+  EXPECT_FALSE(watch.check(6.04, {"robodds-sim"})) << "not at the deadline yet";
+  EXPECT_TRUE(watch.check(6.04, {"robodds-sim"}, true));
+  EXPECT_EQ(watch.degraded(), "did not discover group(s) 'control' during its run (6 s, shorter than the start timeout of 30 s)");
+  PeerWatch everyone({"sim"}, 30.0);
+  EXPECT_FALSE(everyone.check(2.0, {"robodds-sim"}, true));
+  EXPECT_EQ(everyone.degraded(), "");
+}
+
 TEST(PeerWatch, AHostWithoutOtherGroupsWatchesNothing) {
   PeerWatch watch({}, 1.0);
   EXPECT_FALSE(watch.check(5.0, {}));

@@ -32,17 +32,24 @@ timeout -k 5 60 "$ROBODDS" run "$SCENARIO" --deploy processes --realtime --durat
   fail "real-time processes run failed: $(tail -5 "$WORK/realtime.log")"
 check_summary "$WORK/realtime" realtime
 
-# The evaluation group alone, in real time: nobody else reports. It waits (bounded), names them.
+# The evaluation group alone, in real time: nobody else reports. It waits (bounded), names them,
+# and ends degraded (exit 3: it discovered none of the groups it exchanges topics with).
 start=$(date +%s)
+rc=0
 timeout -k 5 40 "$ROBODDS" host --scenario "$SCENARIO" --group evaluation --realtime --duration 1 --out "$WORK/alone" --max-missed-steps 1000000 \
-  --domain "$DOMAIN" --run-id 4242 >"$WORK/alone.log" 2>&1 || fail "evaluation host alone failed: $(tail -5 "$WORK/alone.log")"
+  --domain "$DOMAIN" --run-id 4242 >"$WORK/alone.log" 2>&1 || rc=$?
+[[ $rc -eq 3 ]] || fail "evaluation host alone: exit $rc, expected 3 (degraded): $(tail -5 "$WORK/alone.log")"
+grep -qE "did not discover group\(s\) 'control', 'sim', 'sensing' during its run" "$WORK/alone.log" ||
+  fail "the lone host did not say which groups it never discovered: $(tail -5 "$WORK/alone.log")"
 took=$(($(date +%s) - start))
 [[ $took -le 20 ]] || fail "the host alone took $took s"
 grep -qE "\[warn\] evaluation: no run/health report within 5 s from host\(s\) control, sim, sensing" "$WORK/alone.log" ||
   fail "no warning naming the silent hosts: $(cat "$WORK/alone.log")"
 python3 - "$WORK/alone/summary.json" <<'PY' || fail "summary.json of the lone host does not list the silent hosts"
 import json, sys
-hosts = json.load(open(sys.argv[1]))["hosts"]
+summary = json.load(open(sys.argv[1]))
+assert summary["status"] == "degraded", summary.get("status")
+hosts = summary["hosts"]
 assert hosts["evaluation"]["ticks"] > 0, hosts
 assert all(hosts[m] == {"reported": False} for m in ("control", "sim", "sensing")), hosts
 PY
