@@ -1,7 +1,7 @@
 #pragma once
 // Component types by name. A component registers itself in its own folder: its node .cpp says
 // ROBODDS_REGISTER_COMPONENT(...) and its CMakeLists.txt calls robodds_component(NAME ...)
-// (cmake/RobotddsHelpers.cmake). Registration is explicit rather than by static initialisers,
+// (cmake/RoboddsHelpers.cmake). Registration is explicit rather than by static initialisers,
 // which static linking drops: CMake generates registered_components.cpp (build tree), which
 // calls each component's registration function in name order from register_builtin_components().
 

@@ -10,7 +10,7 @@ namespace robodds {
 
 /// The installed share dir relative to the directory of the installed executable: install()
 /// puts the binary into <prefix>/bin and the data into <prefix>/share/robodds
-/// (cmake/RobotddsHelpers.cmake, ROBODDS_INSTALL_SHARE_DIR); the two must agree.
+/// (cmake/RoboddsHelpers.cmake, ROBODDS_INSTALL_SHARE_DIR); the two must agree.
 inline constexpr const char* kInstalledShareDirFromExecutable = "../share/robodds";
 
 /// The file whose presence marks a share dir as complete enough to use.

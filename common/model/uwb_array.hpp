@@ -2,7 +2,7 @@
 // UWB antenna arrays of paper 3 (Liu et al. 2022): each robot carries K nodes at known positions
 // in its body frame (x forward, y left, metres, origin at the robot centre). One definition for
 // the UWB sensor (components/uwb_sensor) and the relative-pose estimator
-// (components/uwb_relative_pose): both must agree on the node labels.
+// (components/uwb_relative_estimator): both must agree on the node labels.
 
 #include <string_view>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
 // The UWB array a robot carries, as parameters: one definition of the keys array_side_m and
 // nodes_m for the UWB sensor (components/uwb_sensor) and the relative-pose estimator
-// (components/uwb_relative_pose/node): both must describe the same array, or every estimate
+// (components/uwb_relative_estimator/node): both must describe the same array, or every estimate
 // is biased without the cost showing it.
 #include <cstddef>
 #include <vector>

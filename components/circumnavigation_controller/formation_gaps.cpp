@@ -6,7 +6,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 namespace {
 
 constexpr double kTwoPi = 2.0 * kPi;
@@ -57,4 +57,4 @@ Gaps formation_gaps(const TeamBearing& own, const std::vector<TeamBearing>& peer
   return gaps;
 }
 
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 
 /// A team robot's bearing seen from the target, atan2(y - Ty, x - Tx).
 struct TeamBearing {
@@ -31,4 +31,4 @@ double bearing_from_target(double x, double y, double target_x, double target_y)
 /// non-finite bearing.
 Gaps formation_gaps(const TeamBearing& own, const std::vector<TeamBearing>& peers);
 
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

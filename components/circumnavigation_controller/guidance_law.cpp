@@ -9,7 +9,7 @@
 #include "common/number_text.hpp"
 #include "common/param_checks.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 
 double saturate(double value, double limit) { return std::clamp(value, -limit, limit); }
 
@@ -77,4 +77,4 @@ model::Twist GuidanceLaw::step(double range_m, double range_rate_mps, double rad
 
 void GuidanceLaw::reset() { speed_mps_ = 0.0; }
 
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

@@ -10,7 +10,7 @@
 #include "components/circumnavigation_controller/formation_gaps.hpp"
 #include "components/circumnavigation_controller/guidance_params.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 
 /// value clamped to [-limit, limit] (limit >= 0).
 double saturate(double value, double limit);
@@ -70,4 +70,4 @@ class GuidanceLaw {
   double speed_mps_;
 };
 
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

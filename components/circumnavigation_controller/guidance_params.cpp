@@ -2,7 +2,7 @@
 
 #include "common/param_checks.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 
 const params::ParamTable<GuidanceParams>& guidance_param_table() {
   using P = GuidanceParams;
@@ -42,4 +42,4 @@ double max_commanded_speed(const GuidanceParams& params) {
   return params.cruise_speed_mps * (1.0 + params.spacing_saturation);
 }
 
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

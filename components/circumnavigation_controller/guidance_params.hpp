@@ -5,7 +5,7 @@
 
 #include "common/param_table.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 
 // Units, ranges and one-line descriptions of these fields: guidance_param_table() in
 // guidance_params.cpp (the one source). Defaults: the member initialisers, the values the
@@ -33,4 +33,4 @@ const params::ParamTable<GuidanceParams>& guidance_param_table();
 /// The largest speed the law commands: V0 (1 + spacing_saturation).
 double max_commanded_speed(const GuidanceParams& params);
 
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 double FixInnovation::normalized_square(double vx, double vy) const {
   // v^T S^-1 v with the closed-form inverse of the 2 x 2 S.
@@ -77,4 +77,4 @@ void InconsistencyMonitor::reset() {
   bias_nis_ = 0.0;
 }
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

@@ -12,7 +12,7 @@
 
 #include "components/pf_estimator/particle_set.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 /// The innovation e of a fix and its covariance S (m, m^2).
 struct FixInnovation {
@@ -80,4 +80,4 @@ class InconsistencyMonitor {
   double bias_nis_ = 0.0;
 };
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 void add_position_log_likelihood(const ParticleSet& particles, double z_x_m, double z_y_m,
                                  double measurement_std_m, Eigen::ArrayXd& log_weights) {
@@ -36,4 +36,4 @@ bool normalize_log_weights(Eigen::ArrayXd& log_weights, Eigen::ArrayXd& weights)
   return true;
 }
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

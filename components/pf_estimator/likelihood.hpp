@@ -11,7 +11,7 @@
 
 #include "components/pf_estimator/particle_set.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 /// log_weights[i] += -((z_x - x_i)^2 + (z_y - y_i)^2) / (2 s^2). z in m (world frame), s in m.
 void add_position_log_likelihood(const ParticleSet& particles, double z_x_m, double z_y_m,
@@ -25,4 +25,4 @@ void add_position_log_likelihood(const ParticleSet& particles, double z_x_m, dou
 /// log-weight -inf or NaN, or a non-finite sum); the caller then resets them.
 bool normalize_log_weights(Eigen::ArrayXd& log_weights, Eigen::ArrayXd& weights);
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

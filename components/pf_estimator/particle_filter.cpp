@@ -12,7 +12,7 @@
 #include "components/pf_estimator/regularization.hpp"
 #include "components/pf_estimator/resampling.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 void require_finite_input(const char* function, const char* name, double value) {
@@ -189,7 +189,7 @@ void ParticleFilter::update(double z_x_m, double z_y_m) {
   }
   if (last_update_rejected_) {
     ++rejected_count_;
-    last_update_ess_ = pf::effective_sample_size(weights_);
+    last_update_ess_ = pf_estimator::effective_sample_size(weights_);
     last_update_resampled_ = false;
     return;
   }
@@ -197,7 +197,7 @@ void ParticleFilter::update(double z_x_m, double z_y_m) {
   if (!normalize_log_weights(log_weights_, weights_)) {
     reset_weights_to_uniform();
   }
-  last_update_ess_ = pf::effective_sample_size(weights_);
+  last_update_ess_ = pf_estimator::effective_sample_size(weights_);
   last_update_resampled_ = last_update_ess_ < params_.resample_threshold;
   if (last_update_resampled_) {
     resample();
@@ -257,7 +257,7 @@ void ParticleFilter::resample() {
 }
 
 double ParticleFilter::effective_sample_size() const {
-  return pf::effective_sample_size(weights_);
+  return pf_estimator::effective_sample_size(weights_);
 }
 
 PoseEstimate ParticleFilter::estimate() const {
@@ -292,4 +292,4 @@ void ParticleFilter::set_particles(const ParticleSet& particles, const Eigen::Ar
   initialized_ = true;
 }
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

@@ -28,11 +28,11 @@
 #include "components/pf_estimator/pf_params.hpp"
 #include "components/pf_estimator/pose_estimate.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 class ParticleFilter {
  public:
-  using PoseEstimate = pf::PoseEstimate;
+  using PoseEstimate = pf_estimator::PoseEstimate;
 
   /// Validates `params` (std::invalid_argument on a bad value). In kUniformArea mode the cloud is
   /// created here (the paper's k = 0 step); in kFirstFix mode it waits for the first update().
@@ -148,4 +148,4 @@ class ParticleFilter {
   std::size_t recent_count_ = 0;
 };
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 struct ParticleSet {
   Eigen::ArrayXd x;      // m, world frame
@@ -20,4 +20,4 @@ struct ParticleSet {
   }
 };
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

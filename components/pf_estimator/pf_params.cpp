@@ -7,7 +7,7 @@
 #include "common/param_checks.hpp"
 #include "components/pf_estimator/consistency.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 using param_checks::reject;
@@ -147,4 +147,4 @@ void PfParams::validate() const {
   require_ordered("init_area_min_y", init_area_min_y, "init_area_max_y", init_area_max_y);
 }
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

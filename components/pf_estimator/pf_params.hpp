@@ -13,7 +13,7 @@
 
 #include "common/param_table.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 /// How a degenerate particle set is redrawn (see resampling.hpp).
 enum class ResamplingScheme {
@@ -113,4 +113,4 @@ struct PfParams {
 /// Keys (= field names), units, ranges and descriptions of PfParams.
 const params::ParamTable<PfParams>& pf_param_table();
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

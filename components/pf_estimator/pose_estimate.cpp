@@ -4,7 +4,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 PoseEstimate weighted_pose_estimate(const ParticleSet& particles,
                                     const Eigen::ArrayXd& normalized_weights) {
@@ -47,4 +47,4 @@ bool is_valid(const PoseEstimate& estimate, double max_position_std_m, double ma
   return position_ok && heading_ok;
 }
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

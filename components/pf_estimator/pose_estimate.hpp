@@ -5,7 +5,7 @@
 
 #include "components/pf_estimator/particle_set.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 struct PoseEstimate {
   /// [x (m), y (m), theta (rad, (-pi, pi])], world frame.
@@ -25,4 +25,4 @@ PoseEstimate weighted_pose_estimate(const ParticleSet& particles,
 /// sqrt(var theta) < max_heading_std_rad (a position alone does not steer a robot: issue 12).
 bool is_valid(const PoseEstimate& estimate, double max_position_std_m, double max_heading_std_rad);
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

@@ -4,7 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 double optimal_kernel_bandwidth(Eigen::Index num_particles) {
   constexpr double kStateDimension = 3.0;
@@ -22,4 +22,4 @@ double kernel_shrinkage(double bandwidth) {
   return bandwidth >= 1.0 ? 0.0 : std::sqrt(1.0 - bandwidth * bandwidth);
 }
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

@@ -17,7 +17,7 @@
 
 #include <Eigen/Core>
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 /// Optimal Gaussian-kernel bandwidth for M particles in d = 3 dimensions ([x, y, theta]):
 /// h_opt = (4 / (M (d + 2)))^(1 / (d + 4)). 0.361 for M = 1000. Requires M >= 1.
@@ -32,4 +32,4 @@ Eigen::Matrix3d kernel_square_root(const Eigen::Matrix3d& covariance, double ban
 /// covariance (see above). Bandwidths >= 1 give 0 (the copies are redrawn around the mean).
 double kernel_shrinkage(double bandwidth);
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

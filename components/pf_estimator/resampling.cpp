@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 // Checks the common preconditions and returns the weight sum.
@@ -158,4 +158,4 @@ std::vector<std::size_t> residual_resample(const Eigen::ArrayXd& w, RandomEngine
   return indices;
 }
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

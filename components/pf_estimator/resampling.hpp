@@ -15,7 +15,7 @@
 
 #include "common/random.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 /// N_eff of eq. (6), read with normalised weights: 1 / sum_i w_i^2. Computed as
 /// (sum w)^2 / sum w^2, which equals it for normalised weights and is insensitive to a last-bit
@@ -39,4 +39,4 @@ std::vector<std::size_t> residual_resample(const Eigen::ArrayXd& w, RandomEngine
 void residual_resample_into(const Eigen::ArrayXd& w, RandomEngine& engine,
                             std::vector<std::size_t>& indices);
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

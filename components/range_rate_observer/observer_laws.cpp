@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace robodds::range_rate {
+namespace robodds::range_rate_observer {
 namespace {
 
 double sign(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
@@ -21,4 +21,4 @@ ObserverDerivative linear_derivative(const LinearObserverParams& params, double 
   return {rate_estimate_mps + params.k1 * range_error_m, params.k2 * range_error_m};
 }
 
-}  // namespace robodds::range_rate
+}  // namespace robodds::range_rate_observer

@@ -4,7 +4,7 @@
 
 #include "components/range_rate_observer/observer_params.hpp"
 
-namespace robodds::range_rate {
+namespace robodds::range_rate_observer {
 
 struct ObserverDerivative {
   double range_mps = 0.0;   // d s_hat / dt
@@ -21,4 +21,4 @@ ObserverDerivative super_twisting_derivative(const SuperTwistingParams& params, 
 ObserverDerivative linear_derivative(const LinearObserverParams& params, double rate_estimate_mps,
                                      double range_error_m);
 
-}  // namespace robodds::range_rate
+}  // namespace robodds::range_rate_observer

@@ -1,7 +1,7 @@
 #include "components/range_rate_observer/observer_params.hpp"
 
 
-namespace robodds::range_rate {
+namespace robodds::range_rate_observer {
 
 const params::ParamTable<SuperTwistingParams>& super_twisting_param_table() {
   using P = SuperTwistingParams;
@@ -37,4 +37,4 @@ void SuperTwistingParams::validate() const { super_twisting_param_table().check_
 
 void LinearObserverParams::validate() const { linear_observer_param_table().check_ranges(*this); }
 
-}  // namespace robodds::range_rate
+}  // namespace robodds::range_rate_observer

@@ -9,7 +9,7 @@
 
 #include "common/param_table.hpp"
 
-namespace robodds::range_rate {
+namespace robodds::range_rate_observer {
 
 /// Sliding-mode (generalised super-twisting) observer, eq. (1) as read in README.md:
 ///   s_hat' = v_hat + a |e|^(1/2) sgn(e) + d e,   v_hat' = b sgn(e) + c e,   e = s - s_hat.
@@ -53,4 +53,4 @@ struct LinearObserverParams {
 const params::ParamTable<SuperTwistingParams>& super_twisting_param_table();
 const params::ParamTable<LinearObserverParams>& linear_observer_param_table();
 
-}  // namespace robodds::range_rate
+}  // namespace robodds::range_rate_observer

@@ -11,7 +11,7 @@
 #include "common/number_text.hpp"
 #include "components/range_rate_observer/observer_laws.hpp"
 
-namespace robodds::range_rate {
+namespace robodds::range_rate_observer {
 
 struct RangeRateEstimate {
   double time_s = 0.0;
@@ -180,4 +180,4 @@ class RangeRateObserver {
 using SuperTwistingObserver = RangeRateObserver<SuperTwistingParams, &super_twisting_derivative>;
 using LinearRangeRateObserver = RangeRateObserver<LinearObserverParams, &linear_derivative>;
 
-}  // namespace robodds::range_rate
+}  // namespace robodds::range_rate_observer

@@ -8,7 +8,7 @@
 #include "common/number_text.hpp"
 #include "components/route_follower/route_law.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 
 RouteFollower::RouteFollower(const RouteParams& params) : params_(params) {
   params_.validate();
@@ -83,4 +83,4 @@ FollowerOutput RouteFollower::step(const model::Pose2& pose, double dt_s) {
   return out;
 }
 
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

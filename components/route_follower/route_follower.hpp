@@ -14,7 +14,7 @@
 #include "common/model/twist.hpp"
 #include "components/route_follower/route_params.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 
 enum class Phase {
   kTurning,  // v = 0, turning in place towards the target vertex
@@ -74,4 +74,4 @@ class RouteFollower {
   Eigen::Vector2d segment_start_ = Eigen::Vector2d::Zero();
 };
 
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

@@ -5,7 +5,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 
 double turn_in_place_rate(double error_rad, double turn_rate_radps, double dt_s) {
   const double magnitude = std::min(turn_rate_radps, std::abs(error_rad) / dt_s);
@@ -38,4 +38,4 @@ double line_following_rate(double desired_heading_rad, double heading_rad, const
   return std::clamp(params.heading_gain * error, -params.max_correction_radps, params.max_correction_radps);
 }
 
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

@@ -9,7 +9,7 @@
 #include "common/model/pose2.hpp"
 #include "components/route_follower/route_params.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 
 /// Turn rate of a turn in place for the heading error `error_rad` (desired - heading, wrapped):
 /// +-turn_rate towards the desired heading, reduced on the last step so that it lands on it
@@ -32,4 +32,4 @@ double line_following_heading(const SegmentError& error, double lookahead_m);
 /// omega = heading_gain * wrap(desired - heading), clamped to +-max_correction_radps.
 double line_following_rate(double desired_heading_rad, double heading_rad, const RouteParams& params);
 
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

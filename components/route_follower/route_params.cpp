@@ -7,7 +7,7 @@
 #include "common/number_text.hpp"
 #include "common/param_checks.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 namespace {
 
 std::string point_text(std::size_t index, const params::Point2& p) {
@@ -91,4 +91,4 @@ void RouteParams::validate() const {
   }
 }
 
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

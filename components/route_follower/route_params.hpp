@@ -19,7 +19,7 @@
 
 #include "common/param_table.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 
 // Units, ranges and one-line descriptions of these fields: route_param_table() in
 // route_params.cpp (the one source; `robodds components --params route_follower` prints it).
@@ -55,4 +55,4 @@ struct RouteParams {
 
 const params::ParamTable<RouteParams>& route_param_table();
 
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

@@ -6,7 +6,7 @@
 #include "common/model/actuator.hpp"
 #include "common/model/twist.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 namespace {
 constexpr double kHalfPi = 0.5 * kPi;
 }  // namespace
@@ -60,4 +60,4 @@ Command waypoint_command(const PolarError& error, const ControllerParams& params
   return Command{within_wheels.v, within_wheels.omega};
 }
 
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

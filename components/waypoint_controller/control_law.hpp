@@ -6,7 +6,7 @@
 #include "components/waypoint_controller/controller_params.hpp"
 #include "components/waypoint_controller/polar.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 
 /// Velocity command for a differential-drive robot (body frame).
 struct Command {
@@ -40,4 +40,4 @@ Command brakeable(const Command& command, const GainSet& gains, const model::Act
 /// The acceleration limits need the previous command: WaypointTracker applies them.
 Command waypoint_command(const PolarError& error, const ControllerParams& params);
 
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

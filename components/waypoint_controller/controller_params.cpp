@@ -7,7 +7,7 @@
 #include "common/number_text.hpp"
 #include "common/param_checks.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 namespace {
 
 std::string format_gains(const GainSet& gains) {
@@ -95,4 +95,4 @@ void ControllerParams::validate() const {
   check_backward_gains(backward_gains);
 }
 
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

@@ -5,7 +5,7 @@
 #include "common/model/robot_body.hpp"
 #include "common/param_table.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 
 /// One set of gains of eq. (10): v = kd·d, omega = ka·alpha + sgn*·ksigma·sigma.
 /// Units, ranges, descriptions: the forward_gains.* and backward_gains.* entries of
@@ -53,4 +53,4 @@ struct ControllerParams {
 
 const params::ParamTable<ControllerParams>& controller_param_table();
 
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

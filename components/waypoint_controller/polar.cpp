@@ -4,7 +4,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 
 PolarError polar_error(const Eigen::Vector2d& position_m, double theta_rad, const Eigen::Vector2d& waypoint_m) {
   const Eigen::Vector2d to_waypoint = waypoint_m - position_m;
@@ -18,4 +18,4 @@ PolarError polar_error(const Eigen::Vector2d& position_m, double theta_rad, cons
   return error;
 }
 
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 
 struct PolarError {
   /// d: Euclidean distance robot -> way-point (m), >= 0.
@@ -21,4 +21,4 @@ struct PolarError {
 /// paper points away from it; see README.md). No division: d = 0 gives alpha = 0.
 PolarError polar_error(const Eigen::Vector2d& position_m, double theta_rad, const Eigen::Vector2d& waypoint_m);
 
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

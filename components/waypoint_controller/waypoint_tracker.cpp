@@ -11,7 +11,7 @@
 #include "common/number_text.hpp"
 #include "components/waypoint_controller/polar.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 namespace {
 
 void require_valid_mission(const std::vector<Eigen::Vector2d>& waypoints_m) {
@@ -126,4 +126,4 @@ TrackerOutput WaypointTracker::step_impl(double x_m, double y_m, double theta_ra
   return output;
 }
 
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

@@ -11,7 +11,7 @@
 #include "components/waypoint_controller/control_law.hpp"
 #include "components/waypoint_controller/controller_params.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 
 /// What the tracker did on one step, for telemetry and tests.
 struct TrackerStatus {
@@ -99,4 +99,4 @@ class WaypointTracker {
   std::vector<double> reach_distances_m_;
 };
 
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

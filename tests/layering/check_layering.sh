@@ -7,6 +7,8 @@
 #      parameters or finds one by its type in the scenario: what several components must agree on
 #      is a shared fact of the scenario (system/robot_facts.hpp).
 #   4. No component's CMakeLists.txt names another component's node library.
+#   5. One name per component: its folder, its namespace (robodds::<type>) and its registered type
+#      agree, its node is node/<type>_node.cpp, and one folder registers one type.
 # Usage: check_layering.sh SOURCE_ROOT. Exit 0 when clean, else 1 with one line per violation.
 set -euo pipefail
 
@@ -112,6 +114,23 @@ for f in "${!node_library_of[@]}"; do
       [[ -n $hit ]] && violation "$f:$hit: a component must not link another component's node library (${node_library_of[$other]})"
     done < <(sed 's/#.*//' "$f" | grep -nowF -e "${node_library_of[$other]}" || true)
   done
+done
+
+# Rule 5: folder = namespace = registered type.
+for f in "${cmake_lists[@]}"; do
+  [[ $f == components/*/CMakeLists.txt || $f == sim/*/CMakeLists.txt ]] || continue
+  folder=$(dirname "$f")
+  mapfile -t names < <(sed 's/#.*//' "$f" | tr '\n' ' ' | grep -oE 'robodds_component\([[:space:]]*NAME[[:space:]]+[A-Za-z0-9_]+' |
+    awk '{print $NF}')
+  ((${#names[@]} == 0)) && continue
+  ((${#names[@]} == 1)) || violation "$f: registers ${#names[@]} types (${names[*]}): one folder, one component"
+  type=${names[0]}
+  [[ $(basename "$folder") == "$type" ]] || violation "$f: the folder is '$(basename "$folder")', the registered type '$type'"
+  [[ -f $folder/node/${type}_node.cpp ]] || violation "$folder: no node/${type}_node.cpp (the node file is named after the type)"
+  while IFS= read -r hit; do
+    [[ -n $hit ]] && violation "$hit: component '$type' declares another namespace than robodds::$type"
+  done < <(grep -nHE '^[[:space:]]*namespace robodds::[a-z_]+' -- "$folder"/*.hpp "$folder"/*.cpp "$folder"/node/*.hpp "$folder"/node/*.cpp 2>/dev/null |
+    grep -vE "namespace robodds::${type}([^a-z_]|$)" || true)
 done
 
 if ((failed == 0)); then

@@ -1,7 +1,7 @@
 #pragma once
 // The main of a component executable robodds-<type>: the generic host with that one component,
 // for a robot without a scenario file. CMake generates one tiny main per component type
-// (robodds_component() in cmake/RobotddsHelpers.cmake) that calls this with the type's
+// (robodds_component() in cmake/RoboddsHelpers.cmake) that calls this with the type's
 // registration function.
 
 #include "runtime/registry.hpp"

@@ -13,7 +13,7 @@
 #include "runtime/registry.hpp"
 #include "system/robot_facts.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 namespace {
 
 /// Robots whose body (the scenario's shared fact robot_body) cannot do what the law commands: the
@@ -188,9 +188,9 @@ std::unique_ptr<Component> make_circumnavigation_controller_node() {
   return std::make_unique<CircumnavigationControllerNode>();
 }
 
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller
 
 ROBODDS_REGISTER_COMPONENT(circumnavigation_controller,
                            "paper 2 circumnavigation guidance: observer/range_rate + mission/target + estimate/pose -> plant/cmd",
-                           robodds::guidance::make_circumnavigation_controller_node,
-                           robodds::guidance::circumnavigation_controller_param_table);
+                           robodds::circumnavigation_controller::make_circumnavigation_controller_node,
+                           robodds::circumnavigation_controller::circumnavigation_controller_param_table);

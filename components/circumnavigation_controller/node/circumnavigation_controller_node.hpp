@@ -3,7 +3,7 @@
 
 #include "runtime/component.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 /// observer/range_rate (or _linear) + mission/target + estimate/pose (all robots) in; plant/cmd out.
 std::unique_ptr<Component> make_circumnavigation_controller_node();
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

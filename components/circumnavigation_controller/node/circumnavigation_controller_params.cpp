@@ -2,7 +2,7 @@
 
 #include <stdexcept>
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 
 ObserverTopic observer_topic_from_string(std::string_view text) {
   if (text == "observer/range_rate") {
@@ -38,4 +38,4 @@ const params::ParamTable<CircumnavigationControllerParams>& circumnavigation_con
   return table;
 }
 
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

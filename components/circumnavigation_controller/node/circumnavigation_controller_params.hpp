@@ -8,7 +8,7 @@
 #include "common/param_table.hpp"
 #include "components/circumnavigation_controller/guidance_params.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 
 /// Which range-rate estimate the law uses: the super-twisting observer's (the paper's) or the
 /// linear baseline's.
@@ -32,4 +32,4 @@ struct CircumnavigationControllerParams {
 
 const params::ParamTable<CircumnavigationControllerParams>& circumnavigation_controller_param_table();
 
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

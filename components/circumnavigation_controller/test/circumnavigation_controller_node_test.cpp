@@ -16,7 +16,7 @@
 
 ROBODDS_DECLARE_COMPONENT(circumnavigation_controller);
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 namespace {
 
 using robodds::testing::NodeHarness;
@@ -256,4 +256,4 @@ TEST(CircumnavigationControllerNode, BadParamsNameTheKey) {
 }
 
 }  // namespace
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

@@ -11,7 +11,7 @@
 #include "common/model/diff_drive_kinematics.hpp"
 #include "components/circumnavigation_controller/guidance_law.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 namespace {
 
 constexpr double kDeg = kPi / 180.0;
@@ -156,4 +156,4 @@ TEST(CircumnavigationClosedLoop, RandomFourRobotStartsSpreadEvenly) {
 }
 
 }  // namespace
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

@@ -8,7 +8,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 namespace {
 
 constexpr double kDeg = kPi / 180.0;
@@ -99,4 +99,4 @@ TEST(FormationGaps, NonFiniteBearingThrows) {
 }
 
 }  // namespace
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

@@ -8,7 +8,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 namespace {
 
 constexpr double kR = 200.0;
@@ -157,4 +157,4 @@ TEST(ObserverBound, ATurnLimitOf0p2FailsNamingKeysNumbersAndTheFix) {
 }
 
 }  // namespace
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

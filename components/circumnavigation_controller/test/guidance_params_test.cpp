@@ -8,7 +8,7 @@
 
 #include "tests/support/validation_error.hpp"
 
-namespace robodds::guidance {
+namespace robodds::circumnavigation_controller {
 namespace {
 
 using test_support::validation_error;
@@ -77,4 +77,4 @@ TEST(GuidanceParams, TableListsEveryKeyOnce) {
 }
 
 }  // namespace
-}  // namespace robodds::guidance
+}  // namespace robodds::circumnavigation_controller

@@ -13,8 +13,8 @@
 namespace {
 
 using robodds::RandomEngine;
-using robodds::pf::ParticleFilter;
-using robodds::pf::PfParams;
+using robodds::pf_estimator::ParticleFilter;
+using robodds::pf_estimator::PfParams;
 
 constexpr double kDt = 0.02;
 
@@ -22,7 +22,7 @@ PfParams params_for(benchmark::State& state) {
   PfParams params;
   params.num_particles = static_cast<int>(state.range(0));
   params.resample_threshold = 0.5 * params.num_particles;
-  params.init_mode = robodds::pf::InitMode::kFirstFix;
+  params.init_mode = robodds::pf_estimator::InitMode::kFirstFix;
   params.init_theta_known = true;
   return params;
 }

@@ -11,7 +11,7 @@
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 class PfEstimatorNode : public Component {
@@ -121,8 +121,8 @@ class PfEstimatorNode : public Component {
 
 std::unique_ptr<Component> make_pf_estimator_node() { return std::make_unique<PfEstimatorNode>(); }
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator
 
 ROBODDS_REGISTER_COMPONENT(pf_estimator, "paper 1 particle filter, full pose: sensor/odometry + sensor/position -> estimate/pose",
-                           robodds::pf::make_pf_estimator_node,
-                           robodds::pf::pf_estimator_param_table);
+                           robodds::pf_estimator::make_pf_estimator_node,
+                           robodds::pf_estimator::pf_estimator_param_table);

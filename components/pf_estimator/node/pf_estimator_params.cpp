@@ -1,6 +1,6 @@
 #include "components/pf_estimator/node/pf_estimator_params.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table() {
   static const params::ParamTable<PfEstimatorNodeParams> table =
@@ -20,4 +20,4 @@ const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table() {
   return table;
 }
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

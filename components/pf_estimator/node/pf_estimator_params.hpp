@@ -5,7 +5,7 @@
 #include "common/param_table.hpp"
 #include "components/pf_estimator/pf_params.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 
 // Units, ranges and one-line descriptions of these fields: pf_estimator_param_table() in
 // pf_estimator_params.cpp (the one source; `robodds components --params pf_estimator` prints it).
@@ -20,4 +20,4 @@ struct PfEstimatorNodeParams {
 
 const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table();
 
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

@@ -8,7 +8,7 @@
 
 #include "common/random.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 ParticleSet cloud_around(double x, double y, double std_m, Eigen::Index count, RandomEngine& engine) {
@@ -181,4 +181,4 @@ TEST(PositionFixInnovation, CarriesTheInnovationAndItsCovariance) {
 }
 
 }  // namespace
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 ParticleSet particles_on_x_axis(Eigen::Index count, double spacing_m) {
@@ -85,4 +85,4 @@ TEST(NormalizeLogWeights, ReportsDegenerateWeights) {
 }
 
 }  // namespace
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

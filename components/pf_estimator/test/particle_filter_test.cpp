@@ -13,7 +13,7 @@
 #include "common/model/diff_drive_kinematics.hpp"
 #include "common/random.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
@@ -701,4 +701,4 @@ TEST(ParticleFilter, SameSeedGivesABitIdenticalEstimateSequence) {
 }
 
 }  // namespace
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

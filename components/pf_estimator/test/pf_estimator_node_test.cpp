@@ -13,7 +13,7 @@
 
 ROBODDS_DECLARE_COMPONENT(pf_estimator);
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 using robodds::testing::NodeHarness;
@@ -158,4 +158,4 @@ components:
 }
 
 }  // namespace
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

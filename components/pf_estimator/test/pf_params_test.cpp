@@ -9,7 +9,7 @@
 
 #include "tests/support/validation_error.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
@@ -170,4 +170,4 @@ TEST(PfParams, UnknownEnumStringsNameTheKey) {
 }
 
 }  // namespace
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

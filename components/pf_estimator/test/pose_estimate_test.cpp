@@ -6,7 +6,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 ParticleSet make_particles(std::initializer_list<double> x, std::initializer_list<double> y,
@@ -68,4 +68,4 @@ TEST(IsValid, NeedsASmallPositionSpreadAndASmallHeadingSpread) {
 }
 
 }  // namespace
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

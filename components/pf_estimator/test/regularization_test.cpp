@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 TEST(OptimalKernelBandwidth, MatchesTheGaussianKernelFormulaForThreeStates) {
@@ -47,4 +47,4 @@ TEST(KernelShrinkage, ShrinkagePlusJitterKeepsTheVariance) {
 }
 
 }  // namespace
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-namespace robodds::pf {
+namespace robodds::pf_estimator {
 namespace {
 
 Eigen::ArrayXd weights_of(std::initializer_list<double> values) {
@@ -247,4 +247,4 @@ INSTANTIATE_TEST_SUITE_P(BothSchemes, ResamplerProperties, ::testing::Values(fal
                          });
 
 }  // namespace
-}  // namespace robodds::pf
+}  // namespace robodds::pf_estimator

@@ -11,10 +11,10 @@
 
 namespace {
 
-using robodds::range_rate::LinearObserverParams;
-using robodds::range_rate::LinearRangeRateObserver;
-using robodds::range_rate::SuperTwistingObserver;
-using robodds::range_rate::SuperTwistingParams;
+using robodds::range_rate_observer::LinearObserverParams;
+using robodds::range_rate_observer::LinearRangeRateObserver;
+using robodds::range_rate_observer::SuperTwistingObserver;
+using robodds::range_rate_observer::SuperTwistingParams;
 
 /// One period (4096 samples at 50 Hz, 81.92 s) of a range swinging 100 m around 200 m (peak rate
 /// 7.7 m/s, acceleration 0.59 m/s^2 < b, so no restart), sigma 0.5 m; precomputed: the benchmark

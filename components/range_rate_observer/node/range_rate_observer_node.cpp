@@ -5,7 +5,7 @@
 
 #include "common/number_text.hpp"
 
-#include "components/range_rate_observer/node/observer_node_params.hpp"
+#include "components/range_rate_observer/node/range_rate_observer_params.hpp"
 #include "components/range_rate_observer/range_rate_observer.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/log.hpp"
@@ -13,7 +13,7 @@
 #include "runtime/registry.hpp"
 #include "system/robot_facts.hpp"
 
-namespace robodds::range_rate {
+namespace robodds::range_rate_observer {
 namespace {
 
 /// One robot's pair of observers on its range stream.
@@ -122,9 +122,9 @@ class RangeRateObserverNode : public Component {
 
 std::unique_ptr<Component> make_range_rate_observer_node() { return std::make_unique<RangeRateObserverNode>(); }
 
-}  // namespace robodds::range_rate
+}  // namespace robodds::range_rate_observer
 
 ROBODDS_REGISTER_COMPONENT(range_rate_observer,
                            "range-rate observers (super-twisting and linear): sensor/range -> observer/range_rate(_linear)",
-                           robodds::range_rate::make_range_rate_observer_node,
-                           robodds::range_rate::observer_node_param_table);
+                           robodds::range_rate_observer::make_range_rate_observer_node,
+                           robodds::range_rate_observer::observer_node_param_table);

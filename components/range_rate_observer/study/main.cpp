@@ -47,20 +47,20 @@ int main(int argc, char** argv) {
   app.add_option("--out", out_path, "write the CSV here instead of stdout");
   CLI11_PARSE(app, argc, argv);
   try {
-    robodds::range_rate::study::StudyOptions options;
+    robodds::range_rate_observer::study::StudyOptions options;
     options.seeds = seeds;
     options.duration_s = duration_from_text(duration);
     const auto start = std::chrono::steady_clock::now();
-    const auto rows = robodds::range_rate::study::run_study(options);
+    const auto rows = robodds::range_rate_observer::study::run_study(options);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (out_path.empty()) {
-      robodds::range_rate::study::write_csv(std::cout, rows);
+      robodds::range_rate_observer::study::write_csv(std::cout, rows);
     } else {
       std::ofstream out(out_path);
       if (!out) {
         throw std::runtime_error("--out: cannot write " + out_path);
       }
-      robodds::range_rate::study::write_csv(out, rows);
+      robodds::range_rate_observer::study::write_csv(out, rows);
       if (!out.flush()) {
         throw std::runtime_error("--out: write failed: " + out_path);
       }

@@ -9,7 +9,7 @@
 #include "common/random.hpp"
 #include "components/range_rate_observer/range_rate_observer.hpp"
 
-namespace robodds::range_rate::study {
+namespace robodds::range_rate_observer::study {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -194,4 +194,4 @@ void write_csv(std::ostream& out, const std::vector<StudyRow>& rows) {
   }
 }
 
-}  // namespace robodds::range_rate::study
+}  // namespace robodds::range_rate_observer::study

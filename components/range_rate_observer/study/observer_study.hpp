@@ -22,7 +22,7 @@
 #include "components/range_rate_observer/observer_params.hpp"
 #include "common/sample_stats.hpp"
 
-namespace robodds::range_rate::study {
+namespace robodds::range_rate_observer::study {
 
 enum class SignalKind {
   /// s = 300 + 60 sin(0.15 t + phase) m: a robot at ~9 m/s turning at the plant's 0.15 rad/s
@@ -117,4 +117,4 @@ std::vector<StudyRow> run_study(const StudyOptions& options);
 /// super-twisting.
 void write_csv(std::ostream& out, const std::vector<StudyRow>& rows);
 
-}  // namespace robodds::range_rate::study
+}  // namespace robodds::range_rate_observer::study

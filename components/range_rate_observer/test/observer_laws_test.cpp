@@ -2,7 +2,7 @@
 
 #include <gtest/gtest.h>
 
-namespace robodds::range_rate {
+namespace robodds::range_rate_observer {
 namespace {
 
 TEST(SuperTwistingDerivative, MatchesEquationOne) {
@@ -31,4 +31,4 @@ TEST(LinearDerivative, MatchesEquationNine) {
 }
 
 }  // namespace
-}  // namespace robodds::range_rate
+}  // namespace robodds::range_rate_observer

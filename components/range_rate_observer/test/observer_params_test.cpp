@@ -7,7 +7,7 @@
 
 #include "tests/support/validation_error.hpp"
 
-namespace robodds::range_rate {
+namespace robodds::range_rate_observer {
 namespace {
 
 using test_support::validation_error;
@@ -74,4 +74,4 @@ TEST(ObserverParamTables, DocumentEveryFieldWithItsDefault) {
 }
 
 }  // namespace
-}  // namespace robodds::range_rate
+}  // namespace robodds::range_rate_observer

@@ -16,7 +16,7 @@
 
 ROBODDS_DECLARE_COMPONENT(range_rate_observer);
 
-namespace robodds::range_rate {
+namespace robodds::range_rate_observer {
 namespace {
 
 using robodds::testing::NodeHarness;
@@ -158,4 +158,4 @@ TEST(RangeRateObserverNode, AGainBBelowTheScenariosRangeAccelerationBoundIsAConf
 }
 
 }  // namespace
-}  // namespace robodds::range_rate
+}  // namespace robodds::range_rate_observer

@@ -12,7 +12,7 @@
 
 #include "common/random.hpp"
 
-namespace robodds::range_rate {
+namespace robodds::range_rate_observer {
 namespace {
 
 /// A range with bounded acceleration (|s''| <= 0.75 m/s^2 < b = 2.2): s = 50 + 2 t + 3 sin(t / 2).
@@ -327,4 +327,4 @@ TEST(RangeRateObserver, RejectsBadGainsAtConstruction) {
 }
 
 }  // namespace
-}  // namespace robodds::range_rate
+}  // namespace robodds::range_rate_observer

@@ -11,7 +11,7 @@
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 namespace {
 
 class RouteFollowerNode : public Component {
@@ -97,8 +97,8 @@ class RouteFollowerNode : public Component {
 
 std::unique_ptr<Component> make_route_follower_node() { return std::make_unique<RouteFollowerNode>(); }
 
-}  // namespace robodds::route
+}  // namespace robodds::route_follower
 
 ROBODDS_REGISTER_COMPONENT(route_follower,
                            "route follower (paper 3): estimate/pose -> plant/cmd, turn in place then drive each segment",
-                           robodds::route::make_route_follower_node, robodds::route::route_follower_param_table);
+                           robodds::route_follower::make_route_follower_node, robodds::route_follower::route_follower_param_table);

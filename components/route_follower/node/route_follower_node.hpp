@@ -3,7 +3,7 @@
 
 #include "runtime/component.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 /// estimate/pose in, plant/cmd (VELOCITY) out at rate_hz for every served robot.
 std::unique_ptr<Component> make_route_follower_node();
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

@@ -1,6 +1,6 @@
 #include "components/route_follower/node/route_follower_params.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 
 const params::ParamTable<RouteFollowerNodeParams>& route_follower_param_table() {
   using N = RouteFollowerNodeParams;
@@ -17,4 +17,4 @@ const params::ParamTable<RouteFollowerNodeParams>& route_follower_param_table() 
   return table;
 }
 
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

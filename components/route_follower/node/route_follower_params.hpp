@@ -5,7 +5,7 @@
 #include "common/param_table.hpp"
 #include "components/route_follower/route_params.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 
 // Units, ranges and one-line descriptions of these fields: route_follower_param_table() in
 // route_follower_params.cpp (the one source; `robodds components --params route_follower` prints
@@ -18,4 +18,4 @@ struct RouteFollowerNodeParams {
 
 const params::ParamTable<RouteFollowerNodeParams>& route_follower_param_table();
 
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

@@ -16,7 +16,7 @@
 #include "common/angle.hpp"
 #include "common/model/diff_drive_kinematics.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 namespace {
 
 constexpr double kDt = 0.02;  // s: 50 Hz, the scenario's control and plant rate
@@ -281,4 +281,4 @@ TEST(RouteClosedLoop, AnOpenPathStopsAtItsEnd) {
 }
 
 }  // namespace
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

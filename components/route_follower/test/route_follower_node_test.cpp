@@ -16,7 +16,7 @@
 
 ROBODDS_DECLARE_COMPONENT(route_follower);
 
-namespace robodds::route {
+namespace robodds::route_follower {
 namespace {
 
 using robodds::testing::NodeHarness;
@@ -149,4 +149,4 @@ components:
 }
 
 }  // namespace
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

@@ -10,7 +10,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 namespace {
 
 constexpr double kDt = 0.02;
@@ -138,4 +138,4 @@ TEST(RouteFollower, BadParamsThrowNamingTheKey) {
 }
 
 }  // namespace
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

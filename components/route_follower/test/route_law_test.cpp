@@ -7,7 +7,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 namespace {
 
 TEST(RouteLaw, TurnInPlaceTurnsTheShorterWayAtTheTurnRate) {
@@ -66,4 +66,4 @@ TEST(RouteLaw, LineFollowingRateIsProportionalThenBounded) {
 }
 
 }  // namespace
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

@@ -8,7 +8,7 @@
 
 #include "tests/support/validation_error.hpp"
 
-namespace robodds::route {
+namespace robodds::route_follower {
 namespace {
 
 using test_support::validation_error;
@@ -117,4 +117,4 @@ TEST(RouteParams, RealignThresholdMustExceedTheHeadingTolerance) {
 }
 
 }  // namespace
-}  // namespace robodds::route
+}  // namespace robodds::route_follower

@@ -15,7 +15,7 @@
 #include "common/angle.hpp"
 #include "common/model/pose2.hpp"
 #include "common/model/uwb_array.hpp"
-#include "components/uwb_relative_pose/relative_pose_solver.hpp"
+#include "components/uwb_relative_estimator/relative_pose_solver.hpp"
 #include "components/uwb_sensor/uwb_error_model.hpp"
 
 namespace robodds::uwb_sensor {
@@ -70,8 +70,8 @@ Errors run_experiment_1a(double side_m, std::uint64_t seed, const UwbErrorParams
   PairErrors shared(4, 4, 0.0, params, RandomEngine(seed * 1000 + 1), RandomEngine(seed * 1000 + 2));
   RandomEngine white(seed * 1000 + 3);
   RandomEngine nlos(seed * 1000 + 4);
-  uwb::SolverOptions options;
-  options.loss = uwb::RobustLoss::kNone;
+  uwb_relative_estimator::SolverOptions options;
+  options.loss = uwb_relative_estimator::RobustLoss::kNone;
   std::optional<model::Pose2> previous;
   std::vector<double> pos;
   std::vector<double> head;
@@ -81,9 +81,9 @@ Errors run_experiment_1a(double side_m, std::uint64_t seed, const UwbErrorParams
     shared.advance_to(t);
     const Eigen::MatrixXd ranges = measure_ranges(model::array_ranges(array, robot2, array, robot1), shared.link_bias_m(false),
                                                   shared.common_m(), params, white, nlos);
-    uwb::SolverResult best = uwb::solve_relative_pose(array, array, ranges, previous, options);
+    uwb_relative_estimator::SolverResult best = uwb_relative_estimator::solve_relative_pose(array, array, ranges, previous, options);
     if (previous && epoch % 100 == 0) {
-      const uwb::SolverResult cold = uwb::solve_relative_pose(array, array, ranges, std::nullopt, options);
+      const uwb_relative_estimator::SolverResult cold = uwb_relative_estimator::solve_relative_pose(array, array, ranges, std::nullopt, options);
       if (cold.final_cost < best.final_cost) {
         best = cold;
       }

@@ -9,8 +9,8 @@
 
 namespace {
 
-using robodds::waypoint::ControllerParams;
-using robodds::waypoint::WaypointTracker;
+using robodds::waypoint_controller::ControllerParams;
+using robodds::waypoint_controller::WaypointTracker;
 
 std::vector<Eigen::Vector2d> paper_mission() {
   return {{60, 20}, {75, 15}, {90, 25}, {85, 40}, {70, 45}, {60, 55}, {75, 65}, {90, 70}, {85, 85},

@@ -13,7 +13,7 @@
 #include "runtime/registry.hpp"
 #include "system/robot_facts.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 namespace {
 
 class WaypointControllerNode : public Component {
@@ -142,8 +142,8 @@ class WaypointControllerNode : public Component {
 
 std::unique_ptr<Component> make_waypoint_controller_node() { return std::make_unique<WaypointControllerNode>(); }
 
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller
 
 ROBODDS_REGISTER_COMPONENT(waypoint_controller, "paper 1 way-point tracking: estimate/pose + mission/waypoints -> plant/cmd, control/status",
-                           robodds::waypoint::make_waypoint_controller_node,
-                           robodds::waypoint::waypoint_controller_param_table);
+                           robodds::waypoint_controller::make_waypoint_controller_node,
+                           robodds::waypoint_controller::waypoint_controller_param_table);

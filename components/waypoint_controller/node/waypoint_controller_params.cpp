@@ -2,7 +2,7 @@
 
 #include "components/waypoint_controller/node/waypoint_controller_node.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 
 const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_param_table() {
   static const params::ParamTable<WaypointControllerNodeParams> table =
@@ -27,4 +27,4 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
   return table;
 }
 
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

@@ -9,7 +9,7 @@
 #include "common/param_table.hpp"
 #include "components/waypoint_controller/controller_params.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 
 // Units, ranges and one-line descriptions of these fields: waypoint_controller_param_table() in
 // waypoint_controller_params.cpp (the one source; `robodds components --params waypoint_controller`
@@ -25,4 +25,4 @@ struct WaypointControllerNodeParams {
 
 const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_param_table();
 
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

@@ -16,7 +16,7 @@
 #include "common/model/diff_drive_kinematics.hpp"
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 namespace {
 
 constexpr double kDt = 0.01;  // s, as the reference simulation
@@ -225,4 +225,4 @@ TEST(WaypointClosedLoopActuator, AnUnawareControllerFailsOnTheSameRobot) {
 }
 
 }  // namespace
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

@@ -8,7 +8,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 namespace {
 
 constexpr double kTol = 1e-12;
@@ -154,4 +154,4 @@ TEST(WaypointControlLaw, ZeroLimitsMeanUnlimited) {
 }
 
 }  // namespace
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

@@ -8,7 +8,7 @@
 
 #include "tests/support/validation_error.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
@@ -157,4 +157,4 @@ TEST(WaypointControllerParams, LimitsMustBeNonNegativeAndFinite) {
 }
 
 }  // namespace
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

@@ -6,7 +6,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 namespace {
 
 constexpr double kTol = 1e-12;
@@ -86,4 +86,4 @@ TEST(WaypointPolar, TinyDistanceStillHasABearing) {
 }
 
 }  // namespace
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

@@ -15,7 +15,7 @@
 
 ROBODDS_DECLARE_COMPONENT(waypoint_controller);
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 namespace {
 
 using robodds::testing::NodeHarness;
@@ -295,4 +295,4 @@ components:
 }
 
 }  // namespace
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

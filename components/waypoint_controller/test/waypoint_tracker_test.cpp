@@ -11,7 +11,7 @@
 
 #include "common/angle.hpp"
 
-namespace robodds::waypoint {
+namespace robodds::waypoint_controller {
 namespace {
 
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
@@ -306,4 +306,4 @@ TEST(WaypointTracker, WithoutStopWhenDoneTheLawStaysActiveAtTheLastWaypoint) {
 }
 
 }  // namespace
-}  // namespace robodds::waypoint
+}  // namespace robodds::waypoint_controller

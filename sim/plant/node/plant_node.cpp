@@ -13,8 +13,8 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
-#include "sim/plant/node/plant_node_params.hpp"
-#include "sim/plant/plant_params.hpp"
+#include "sim/plant/node/plant_params.hpp"
+#include "sim/plant/plant_model_params.hpp"
 #include "system/robot_facts.hpp"
 
 namespace robodds::plant {

@@ -1,0 +1,21 @@
+#include "components/range_rate_observer/node/range_rate_observer_params.hpp"
+
+namespace robodds::range_rate_observer {
+
+const params::ParamTable<ObserverNodeParams>& observer_node_param_table() {
+  using P = ObserverNodeParams;
+  static const params::ParamTable<P> table =
+      params::ParamTable<P>(
+          "Range-rate observers of paper 2 on each robot's range stream: the super-twisting observer (eq. 1)\n"
+          "on observer/range_rate and the linear baseline (eq. 9) on observer/range_rate_linear, both fed\n"
+          "the same samples; restarted on a range jump and on a target change.")
+          .add("rate_hz", &P::rate_hz, "Hz", params::positive(), "publication rate; the range sensor's rate")
+          .include_as("sta", &P::sta, super_twisting_param_table(), "super-twisting observer, eq. (1) (observer/range_rate)")
+          .include_as("linear", &P::linear, linear_observer_param_table(),
+                      "linear baseline observer, eq. (9) (observer/range_rate_linear)");
+  return table;
+}
+
+void ObserverNodeParams::validate() const { observer_node_param_table().check_ranges(*this); }
+
+}  // namespace robodds::range_rate_observer

@@ -1,0 +1,23 @@
+#pragma once
+// Every parameter of the range_rate_observer component: its rate and the gains of both observers
+// (config/range_rate_observer.params.yaml is generated from the table).
+
+#include "common/param_table.hpp"
+#include "components/range_rate_observer/observer_params.hpp"
+
+namespace robodds::range_rate_observer {
+
+// Units, ranges and descriptions: observer_node_param_table() (the one source). Defaults: the
+// member initialisers here and in observer_params.hpp.
+struct ObserverNodeParams {
+  double rate_hz = 50.0;
+  SuperTwistingParams sta;       // keys sta.*
+  LinearObserverParams linear;   // keys linear.*
+
+  /// Throws std::invalid_argument "key: reason (got value)" for the first bad field.
+  void validate() const;
+};
+
+const params::ParamTable<ObserverNodeParams>& observer_node_param_table();
+
+}  // namespace robodds::range_rate_observer

@@ -1,0 +1,119 @@
+// A full epoch of one robot's relative estimator in issue 11's experiment-2 shape (Performance): 2
+// peers and the link between them, i.e. 3 eq. (1) solves (RelativePoseTracker, periodic cold
+// starts included), one sliding window of 3 robots (w = 30, and 160), the particle filter and the
+// baseline of 500 particles for each peer, odometry dead reckoning. The peers circle this robot at
+// 4-6 m; ranges carry issue 11's structured errors (components/uwb_sensor's model, seeded).
+// Counters: the median and p99 (nearest rank) of the per-epoch wall times, in ms, and the share
+// of each stage.
+
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "common/model/diff_drive_kinematics.hpp"
+#include "components/uwb_relative_estimator/relative_estimator.hpp"
+#include "components/uwb_sensor/uwb_error_model.hpp"
+
+namespace {
+
+using namespace robodds;
+using namespace robodds::uwb_relative_estimator;
+
+constexpr double kEpochS = 0.1;
+constexpr int kEpochs = 6000;  // 600 s, the length of experiment 2
+
+struct Epoch {
+  std::vector<PeerEpoch> peers;
+  std::vector<std::optional<Eigen::MatrixXd>> links;
+};
+
+/// kEpochs epochs of two peers circling this (static) robot, 16 ranges per direction.
+std::vector<Epoch> make_epochs() {
+  const model::UwbArray array = square_array(0.5);
+  const uwb_sensor::UwbErrorParams noise;
+  std::vector<model::Pose2> pose{{4.0, 0.0, M_PI / 2}, {-6.0, 0.0, -M_PI / 2}};
+  const std::vector<model::Twist> twist{{0.2, 0.05}, {0.2, 1.0 / 30.0}};
+  RandomEngine white(derive_seed(1, "bench/white"));
+  RandomEngine nlos(derive_seed(1, "bench/nlos"));
+  std::vector<uwb_sensor::PairErrors> errors;
+  for (int k = 0; k < 3; ++k) {
+    errors.emplace_back(4, 4, 0.0, noise, RandomEngine(derive_seed(1, "bench/bias" + std::to_string(k))),
+                        RandomEngine(derive_seed(1, "bench/common" + std::to_string(k))));
+  }
+  std::vector<Epoch> out;
+  for (int e = 1; e <= kEpochs; ++e) {
+    Epoch epoch;
+    for (std::size_t k = 0; k < 2; ++k) {
+      pose[k] = model::integrate_exact(pose[k], twist[k], kEpochS);
+    }
+    for (std::size_t k = 0; k < 3; ++k) {
+      errors[k].advance_to(e * kEpochS);
+    }
+    for (std::size_t k = 0; k < 2; ++k) {
+      const Eigen::MatrixXd d = model::array_ranges(array, model::Pose2{}, array, pose[k]);
+      epoch.peers.push_back(PeerEpoch{model::integrate_exact(model::Pose2{}, twist[k], kEpochS),
+                                      uwb_sensor::measure_ranges(d, errors[k].link_bias_m(true), errors[k].common_m(), noise,
+                                                                 white, nlos)});
+    }
+    const Eigen::MatrixXd link = model::array_ranges(array, pose[0], array, pose[1]);
+    epoch.links.push_back(uwb_sensor::measure_ranges(link, errors[2].link_bias_m(true), errors[2].common_m(), noise, white, nlos));
+    out.push_back(std::move(epoch));
+  }
+  return out;
+}
+
+const std::vector<Epoch>& epochs() {
+  static const std::vector<Epoch> e = make_epochs();
+  return e;
+}
+
+double nearest_rank(std::vector<double> v, double q) {
+  std::sort(v.begin(), v.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
+  return v[std::max<std::size_t>(rank, 1) - 1];
+}
+
+/// One iteration = one epoch; the estimator runs through the 600 s sequence and starts over.
+void BM_Exp2Cycle(benchmark::State& state) {
+  const std::vector<Epoch>& sequence = epochs();
+  const model::UwbArray array = square_array(0.5);
+  RelativeEstimatorParams params;
+  params.window_epochs = static_cast<int>(state.range(0));
+  std::optional<RelativeEstimator> estimator;
+  std::vector<double> cycle_ms;
+  std::array<double, kStageCount> stage_total{};
+  std::size_t e = sequence.size();
+  double time_s = 0.0;
+  for (auto _ : state) {
+    if (e == sequence.size()) {
+      state.PauseTiming();
+      estimator.emplace(array, std::vector<PeerSetup>{PeerSetup{2, array, std::nullopt}, PeerSetup{3, array, std::nullopt}},
+                        params, 1);
+      e = 0;
+      time_s = 0.0;
+      state.ResumeTiming();
+    }
+    time_s += kEpochS;
+    const EpochResult r = estimator->step(time_s, model::Pose2{}, sequence[e].peers, sequence[e].links);
+    double total = 0.0;
+    for (std::size_t s = 0; s < kStageCount; ++s) {
+      stage_total[s] += r.stage_ms[s];
+      total += r.stage_ms[s];
+    }
+    cycle_ms.push_back(total);
+    benchmark::DoNotOptimize(r.peers.data());
+    ++e;
+  }
+  state.counters["median_ms"] = nearest_rank(cycle_ms, 0.5);
+  state.counters["p99_ms"] = nearest_rank(cycle_ms, 0.99);
+  for (std::size_t s = 0; s < kStageCount; ++s) {
+    state.counters[std::string(stage_name(static_cast<Stage>(s))) + "_ms"] = stage_total[s] / static_cast<double>(cycle_ms.size());
+  }
+}
+BENCHMARK(BM_Exp2Cycle)->Arg(30)->Arg(160)->Iterations(3000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+BENCHMARK_MAIN();

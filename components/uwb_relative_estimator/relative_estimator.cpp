@@ -1,0 +1,267 @@
+#include "components/uwb_relative_estimator/relative_estimator.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+#include <stdexcept>
+#include <utility>
+
+namespace robodds::uwb_relative_estimator {
+namespace {
+
+bool finite(const model::Pose2& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta); }
+
+/// Wall-clock milliseconds since `start`.
+double ms_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+StageEstimate filter_estimate(const RelativePoseFilter& filter) {
+  StageEstimate out;
+  if (!filter.initialized()) {
+    return out;
+  }
+  const pf_estimator::PoseEstimate e = filter.estimate();
+  out.pose = model::Pose2{e.mean.x(), e.mean.y(), e.mean.z()};
+  out.covariance = e.covariance;
+  out.valid = true;
+  return out;
+}
+
+}  // namespace
+
+const char* stage_name(Stage stage) {
+  switch (stage) {
+    case Stage::kUwb:
+      return "uwb";
+    case Stage::kWindow:
+      return "window";
+    case Stage::kPf:
+      return "pf";
+    case Stage::kPfBaseline:
+      return "pf_baseline";
+    case Stage::kOdometry:
+      return "odometry";
+  }
+  return "?";
+}
+
+RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<PeerSetup> peers, RelativeEstimatorParams params,
+                                     std::uint64_t seed)
+    : own_array_(std::move(own_array)), setups_(std::move(peers)), params_(std::move(params)) {
+  params_.validate();
+  model::check_array("own_array", own_array_);
+  if (setups_.empty()) {
+    throw std::invalid_argument("peers: a relative estimator needs at least one peer");
+  }
+  std::set<std::uint32_t> ids;
+  for (const PeerSetup& peer : setups_) {
+    if (!ids.insert(peer.id).second) {
+      throw std::invalid_argument("peers: robot " + std::to_string(peer.id) + " is listed twice");
+    }
+    model::check_array("peer " + std::to_string(peer.id) + " array", peer.array);
+    if (peer.known_start && !finite(*peer.known_start)) {
+      throw std::invalid_argument("peer " + std::to_string(peer.id) + " known_start is not finite (got " +
+                                  model::to_text(*peer.known_start) + ")");
+    }
+  }
+  peers_.reserve(setups_.size());
+  for (const PeerSetup& peer : setups_) {
+    const std::string stream = "peer" + std::to_string(peer.id);
+    peers_.push_back(PeerState{RelativePoseTracker(own_array_, peer.array, params_.solver, params_.tracker),
+                               RelativePoseFilter(params_.pf), RelativePoseFilter(params_.pf),
+                               RandomEngine(derive_seed(seed, stream + "/pf")),
+                               RandomEngine(derive_seed(seed, stream + "/pf_baseline")), peer.known_start, {}, std::nullopt,
+                               std::nullopt});
+  }
+  for (std::size_t a = 0; a < setups_.size(); ++a) {
+    for (std::size_t b = a + 1; b < setups_.size(); ++b) {
+      links_.push_back(PeerLink{a, b});
+      link_trackers_.emplace_back(setups_[a].array, setups_[b].array, params_.solver, params_.tracker);
+    }
+  }
+}
+
+EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
+                                    const std::vector<std::optional<Eigen::MatrixXd>>& link_ranges) {
+  if (peers.size() != setups_.size()) {
+    throw std::invalid_argument("step: " + std::to_string(peers.size()) + " peer entries for " +
+                                std::to_string(setups_.size()) + " peers");
+  }
+  if (!link_ranges.empty() && link_ranges.size() != links_.size()) {
+    throw std::invalid_argument("step: " + std::to_string(link_ranges.size()) + " link entries for " +
+                                std::to_string(links_.size()) + " links between peers");
+  }
+  if (!std::isfinite(time_s)) {
+    throw std::invalid_argument("step: time is not finite");
+  }
+  if (last_time_s_ && time_s < *last_time_s_) {
+    throw std::invalid_argument("step: time " + std::to_string(time_s) + " s is before the previous epoch's (" +
+                                std::to_string(*last_time_s_) + " s)");
+  }
+  if (!finite(own_increment)) {
+    throw std::invalid_argument("step: own odometry increment is not finite (got " + model::to_text(own_increment) + ")");
+  }
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    if (!finite(peers[k].odometry_increment)) {
+      throw std::invalid_argument("step: odometry increment of peer " + std::to_string(setups_[k].id) +
+                                  " is not finite (got " + model::to_text(peers[k].odometry_increment) + ")");
+    }
+  }
+  ++counts_.epochs;
+  last_time_s_ = time_s;
+  EpochResult result;
+  result.peers.resize(peers.size());
+
+  auto start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    PeerResult& out = result.peers[k];
+    out.had_ranges = peers[k].ranges_m.has_value();
+    if (!out.had_ranges) {
+      ++counts_.frames_missing;
+      out.uwb_reason = "no frame";
+      continue;
+    }
+    const TrackerOutput solved = peers_[k].tracker.update(*peers[k].ranges_m, time_s);
+    out.uwb_status = solved.status;
+    out.uwb_reason = solved.reason;
+    StageEstimate& uwb = out.stages[static_cast<std::size_t>(Stage::kUwb)];
+    uwb.pose = solved.pose;
+    uwb.valid = solved.status == TrackStatus::kOk;
+  }
+  std::vector<PairMeasurement> link_edges;
+  for (std::size_t l = 0; l < link_ranges.size(); ++l) {
+    if (link_ranges[l]) {
+      const TrackerOutput solved = link_trackers_[l].update(*link_ranges[l], time_s);
+      if (solved.status == TrackStatus::kOk) {
+        link_edges.push_back(PairMeasurement{links_[l].first + 1, links_[l].second + 1, solved.pose});
+      }
+    }
+  }
+  result.stage_ms[static_cast<std::size_t>(Stage::kUwb)] = ms_since(start);
+
+  start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    PeerState& peer = peers_[k];
+    const StageEstimate& uwb = result.peers[k].stages[static_cast<std::size_t>(Stage::kUwb)];
+    if (peer.odometry_pose) {
+      peer.odometry_pose = model::compose(model::between(own_increment, *peer.odometry_pose), peers[k].odometry_increment);
+    } else if (uwb.valid) {
+      peer.odometry_pose = uwb.pose;  // no known start: dead reckoning from the first valid fix
+    }
+    StageEstimate& odometry = result.peers[k].stages[static_cast<std::size_t>(Stage::kOdometry)];
+    odometry.valid = peer.odometry_pose.has_value();
+    if (odometry.valid) {
+      odometry.pose = *peer.odometry_pose;
+    }
+  }
+  result.stage_ms[static_cast<std::size_t>(Stage::kOdometry)] = ms_since(start);
+
+  start = std::chrono::steady_clock::now();
+  run_window(own_increment, peers, link_edges, result);
+  result.stage_ms[static_cast<std::size_t>(Stage::kWindow)] = ms_since(start);
+
+  start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    PeerState& peer = peers_[k];
+    peer.pf.predict(own_increment, peers[k].odometry_increment, peer.pf_random);
+    const StageEstimate& window = result.peers[k].stages[static_cast<std::size_t>(Stage::kWindow)];
+    const bool fix = result.peers[k].stages[static_cast<std::size_t>(Stage::kUwb)].valid;
+    if (window.valid) {
+      if (fix && peer.pf.initialized() && peer.last_fix_s && time_s - *peer.last_fix_s > params_.restart_after_gap_s) {
+        peer.pf.initialize(window.pose, peer.pf_random);  // the cloud (and the window) drifted on odometry alone
+      } else {
+        peer.pf.update_with_pose(window.pose, peer.pf_random);  // initialises at the first one
+      }
+    }
+    if (fix) {
+      peer.last_fix_s = time_s;
+    }
+    result.peers[k].stages[static_cast<std::size_t>(Stage::kPf)] = filter_estimate(peer.pf);
+  }
+  result.stage_ms[static_cast<std::size_t>(Stage::kPf)] = ms_since(start);
+
+  start = std::chrono::steady_clock::now();
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    PeerState& peer = peers_[k];
+    const PeerResult& solved = result.peers[k];
+    peer.baseline.predict(own_increment, peers[k].odometry_increment, peer.baseline_random);
+    if (solved.had_ranges && solved.uwb_status != TrackStatus::kRejected) {
+      const bool after_gap = peer.last_frame_s && time_s - *peer.last_frame_s > params_.restart_after_gap_s;
+      const StageEstimate& fix = solved.stages[static_cast<std::size_t>(Stage::kUwb)];
+      if (peer.baseline.initialized() && !after_gap) {
+        peer.baseline.update_with_ranges(own_array_, setups_[k].array, *peers[k].ranges_m, peer.baseline_random);
+        peer.last_frame_s = time_s;
+      } else if (fix.valid) {
+        peer.baseline.initialize(fix.pose, peer.baseline_random);  // first fix, or the cloud drifted
+        peer.last_frame_s = time_s;
+      }
+    }
+    result.peers[k].stages[static_cast<std::size_t>(Stage::kPfBaseline)] = filter_estimate(peer.baseline);
+  }
+  result.stage_ms[static_cast<std::size_t>(Stage::kPfBaseline)] = ms_since(start);
+  return result;
+}
+
+void RelativeEstimator::run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
+                                   const std::vector<PairMeasurement>& link_edges, EpochResult& result) {
+  std::vector<PairMeasurement> edges;
+  std::vector<bool> has_edge(peers.size(), false);
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    const StageEstimate& uwb = result.peers[k].stages[static_cast<std::size_t>(Stage::kUwb)];
+    if (uwb.valid) {
+      edges.push_back(PairMeasurement{0, k + 1, uwb.pose});
+      has_edge[k] = true;
+    }
+  }
+  if (!window_) {
+    if (edges.empty()) {
+      return;  // no peer measured yet: no window (every peer's window estimate invalid)
+    }
+    window_.emplace(peers.size() + 1, static_cast<std::size_t>(params_.window_epochs), params_.window);
+  }
+  // A link to a peer whose poses are still a guess would pull the other towards the guess.
+  for (const PairMeasurement& link : link_edges) {
+    if (placed(link.own - 1) && placed(link.other - 1)) {
+      edges.push_back(link);
+    }
+  }
+  std::vector<model::Pose2> increments;
+  increments.reserve(peers.size() + 1);
+  increments.push_back(own_increment);
+  for (const PeerEpoch& peer : peers) {
+    increments.push_back(peer.odometry_increment);
+  }
+  window_->add_epoch(increments, edges);
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    if (has_edge[k] && !placed(k)) {
+      // Its poses are a guess (its first edge, or none in the window for window_epochs epochs).
+      window_->place_robot(k + 1, 0, result.peers[k].stages[static_cast<std::size_t>(Stage::kUwb)].pose);
+    }
+    std::deque<bool>& recent = peers_[k].window_edges;
+    recent.push_back(has_edge[k]);
+    if (recent.size() > static_cast<std::size_t>(params_.window_epochs)) {
+      recent.pop_front();
+    }
+  }
+  const bool converged = window_->optimize();
+  if (!converged) {
+    ++counts_.window_not_converged;
+  }
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    StageEstimate& window = result.peers[k].stages[static_cast<std::size_t>(Stage::kWindow)];
+    window.pose = window_->latest_relative(0, k + 1);
+    // Valid while the window holds at least one measurement of this peer and the solve converged
+    // to a finite pose.
+    window.valid = converged && placed(k) && std::isfinite(window.pose.x) && std::isfinite(window.pose.y) &&
+                   std::isfinite(window.pose.theta);
+  }
+}
+
+bool RelativeEstimator::placed(std::size_t k) const {
+  const std::deque<bool>& recent = peers_[k].window_edges;
+  return std::find(recent.begin(), recent.end(), true) != recent.end();
+}
+
+}  // namespace robodds::uwb_relative_estimator

@@ -1,0 +1,156 @@
+#pragma once
+// One robot's relative-pose estimator of paper 3 (issue 11): every 10 Hz epoch, for each peer j,
+// the pose of j in this robot's (i's) body frame by five stages, each kept apart so that all can be
+// published and compared in one run:
+//   uwb          eq. (1), one solve per epoch from that epoch's K x L ranges (RelativePoseTracker:
+//                warm start, cold-start recovery; only kOk is valid);
+//   window       eq. (2), one sliding-window pose graph of this robot and all its peers (robot 0 =
+//                this robot), odometry edges between epochs and the uwb stage's kOk poses as edges,
+//                plus, as the paper's server that has every robot's data, the eq. (1) poses between
+//                pairs of peers ("links": ranges measured by the lower id of the two), which close
+//                loops in the graph;
+//   pf           eq. (3)-(6), one filter per peer: predicted by both robots' odometry (eq. 4),
+//                weighted by the window's estimate (eq. 5-6); started around the window's first
+//                estimate, restarted around it when a fix ends a gap of more than
+//                restart_after_gap_s without one (the window too drifted on odometry meanwhile);
+//   pf_baseline  the paper's [22]: the same filter weighted directly by the K x L ranges,
+//                (re)started from a kOk solve at the first one and after such a gap;
+//   odometry     dead reckoning of the relative pose from both odometries (the paper's first row),
+//                from a known start or, without one, from the first kOk solve.
+// Pure: Eigen + std + Ceres, time in plain seconds; wall-clock compute time per stage is measured
+// here (std::chrono::steady_clock) and returned, for the node to report.
+//
+// Ranges of an epoch: the newest frame the node has for the peer (none: lost, out of range). A
+// frame of the wrong shape, with a negative or non-finite range is rejected by the tracker and used
+// by no stage (counted). Odometry increments must be finite and the time must not go back
+// (std::invalid_argument, state untouched); past those checks step() does not throw.
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "common/model/pose2.hpp"
+#include "common/model/uwb_array.hpp"
+#include "common/random.hpp"
+#include "components/uwb_relative_estimator/relative_estimator_params.hpp"
+#include "components/uwb_relative_estimator/relative_pf.hpp"
+#include "components/uwb_relative_estimator/relative_pose_tracker.hpp"
+#include "components/uwb_relative_estimator/sliding_window.hpp"
+
+namespace robodds::uwb_relative_estimator {
+
+enum class Stage { kUwb = 0, kWindow, kPf, kPfBaseline, kOdometry };
+inline constexpr std::size_t kStageCount = 5;
+/// "uwb", "window", "pf", "pf_baseline", "odometry" (topic suffixes and metric names).
+const char* stage_name(Stage stage);
+
+struct StageEstimate {
+  model::Pose2 pose;  // peer in this robot's body frame: x forward, y left (m), theta CCW (rad)
+  bool valid = false;
+  /// Covariance of [x, y, theta] (m^2, m rad, rad^2) where the stage has one (the filters: the
+  /// particles' weighted covariance); zero otherwise.
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
+};
+
+struct PeerSetup {
+  std::uint32_t id = 0;          // the peer's robot id (names its random streams and messages)
+  model::UwbArray array;         // the peer's node positions in its body frame
+  /// The peer's pose in this robot's frame at the first epoch, when known (the odometry stage
+  /// starts from it; without it, from the first valid eq. 1 solve).
+  std::optional<model::Pose2> known_start;
+};
+
+struct PeerEpoch {
+  /// The peer's motion since the previous epoch, in its own frame at the previous epoch.
+  model::Pose2 odometry_increment;
+  /// K x L ranges of this epoch (row k: node k of this robot; column l: node l of the peer);
+  /// nullopt: no frame (lost, out of range).
+  std::optional<Eigen::MatrixXd> ranges_m;
+};
+
+struct PeerResult {
+  std::array<StageEstimate, kStageCount> stages;
+  bool had_ranges = false;  // a frame was given
+  TrackStatus uwb_status = TrackStatus::kRejected;  // meaningful when had_ranges
+  std::string uwb_reason;   // why the eq. (1) estimate is not valid (empty when it is)
+};
+
+struct EpochResult {
+  std::vector<PeerResult> peers;                 // in the order of the constructor's peers
+  std::array<double, kStageCount> stage_ms{};    // wall-clock compute time of each stage, ms
+};
+
+struct EstimatorCounts {
+  std::uint64_t epochs = 0;
+  std::uint64_t frames_missing = 0;      // peer epochs without a frame
+  std::uint64_t window_not_converged = 0;  // optimisations Ceres did not report converged
+};
+
+/// Two peers (indices into the constructor's peers, first < second) whose ranges also enter the
+/// window: the first measures the second.
+struct PeerLink {
+  std::size_t first = 0;
+  std::size_t second = 0;
+};
+
+class RelativeEstimator {
+ public:
+  /// Throws std::invalid_argument naming the problem: invalid params (the key), no peers, a peer
+  /// twice, an array that fails model::check_array ("own_array" / "peer <id> array").
+  /// `seed` seeds every peer's two filters (streams derived from it and the peer id).
+  RelativeEstimator(model::UwbArray own_array, std::vector<PeerSetup> peers, RelativeEstimatorParams params,
+                    std::uint64_t seed);
+
+  /// One epoch at `time_s` (non-decreasing): `own_increment` is this robot's motion since the
+  /// previous epoch in its own frame, `peers` one entry per peer in the constructor's order,
+  /// `link_ranges` empty (no link measured) or one entry per links() (the first peer's nodes in
+  /// rows; nullopt: no frame). Throws std::invalid_argument (nothing changed) on a wrong count or
+  /// a non-finite increment.
+  EpochResult step(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
+                   const std::vector<std::optional<Eigen::MatrixXd>>& link_ranges = {});
+
+  const std::vector<PeerSetup>& peers() const { return setups_; }
+  /// Every pair of peers, (0, 1), (0, 2), ..., (1, 2), ...: the order of step()'s link_ranges.
+  const std::vector<PeerLink>& links() const { return links_; }
+  /// Eq. (1) status counts of link `index` (links() order).
+  const TrackerCounts& link_tracker_counts(std::size_t index) const { return link_trackers_.at(index).counts(); }
+  const EstimatorCounts& counts() const { return counts_; }
+  /// Eq. (1) status counts of peer `index` (constructor order).
+  const TrackerCounts& tracker_counts(std::size_t index) const { return peers_.at(index).tracker.counts(); }
+
+ private:
+  struct PeerState {
+    RelativePoseTracker tracker;
+    RelativePoseFilter pf;
+    RelativePoseFilter baseline;
+    RandomEngine pf_random;
+    RandomEngine baseline_random;
+    std::optional<model::Pose2> odometry_pose;
+    std::deque<bool> window_edges;  // per epoch in the window: an eq. (1) edge to this peer
+    std::optional<double> last_fix_s;     // last epoch with a valid eq. (1) pose (the window's edges)
+    std::optional<double> last_frame_s;   // last epoch with an accepted frame (the baseline's input)
+  };
+
+  void run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
+                  const std::vector<PairMeasurement>& link_edges, EpochResult& result);
+  /// Peer `k` has an eq. (1) edge in the window: its poses there rest on a measurement.
+  bool placed(std::size_t k) const;
+
+  model::UwbArray own_array_;
+  std::vector<PeerSetup> setups_;
+  RelativeEstimatorParams params_;
+  std::vector<PeerState> peers_;
+  std::vector<PeerLink> links_;
+  std::vector<RelativePoseTracker> link_trackers_;  // one per link
+  /// Started at the first epoch with a valid eq. (1) pose of any peer; a peer whose poses in it are
+  /// a guess (no edge of it in the window yet) is placed by its first edge (place_robot).
+  std::optional<SlidingWindowGraph> window_;
+  std::optional<double> last_time_s_;
+  EstimatorCounts counts_;
+};
+
+}  // namespace robodds::uwb_relative_estimator

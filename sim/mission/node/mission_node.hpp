@@ -1,9 +1,0 @@
-#pragma once
-#include <memory>
-
-#include "runtime/component.hpp"
-
-namespace robodds::mission {
-/// Publishes the way-point list from its parameters on mission/waypoints, once per robot.
-std::unique_ptr<Component> make_mission_node();
-}  // namespace robodds::mission
