@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <mutex>
 #include <set>
 
 #include "common/number_text.hpp"
@@ -14,7 +15,30 @@ namespace robodds {
 namespace {
 
 const std::set<std::string> kTopLevelKeys = {"name", "description", "step_s", "duration_s", "seed",
-                                             "robots", "components", "groups", "targets", "events", "facts"};
+                                             "robots", "components", "groups", "facts"};
+
+/// The top-level sections the layer above reads (register_scenario_section); a function-local
+/// static, so registrations from other libraries' static initialisers find it constructed.
+std::set<std::string>& registered_sections() {
+  static std::set<std::string> sections;
+  return sections;
+}
+std::mutex& sections_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+bool is_registered_section(const std::string& key) {
+  std::lock_guard<std::mutex> lock(sections_mutex());
+  return registered_sections().count(key) != 0;
+}
+std::string known_top_level_keys() {
+  std::string text = "name, description, step_s, duration_s, seed, robots, components, groups, facts";
+  std::lock_guard<std::mutex> lock(sections_mutex());
+  for (const std::string& section : registered_sections()) {
+    text += ", " + section;
+  }
+  return text;
+}
 
 class ScenarioParser {
  public:
@@ -50,9 +74,8 @@ class ScenarioParser {
     }
     for (const auto& item : root) {
       const std::string key = item.first.as<std::string>();
-      if (kTopLevelKeys.count(key) == 0) {
-        fail(key, "unknown key (known: name, description, step_s, duration_s, seed, robots, components, groups, targets, "
-                  "events, facts)");
+      if (kTopLevelKeys.count(key) == 0 && !is_registered_section(key)) {
+        fail(key, "unknown key (known: " + known_top_level_keys() + ")");
       }
     }
     Scenario s;
@@ -75,9 +98,15 @@ class ScenarioParser {
     parse_components(root["components"], s);
     parse_groups(root["groups"], s);
     check_standbys(s);
-    parse_targets(root["targets"], s);
-    parse_events(root["events"], s);
     s.facts = facts(root["facts"], "facts");
+    for (const auto& item : root) {
+      const std::string key = item.first.as<std::string>();
+      if (kTopLevelKeys.count(key) == 0) {  // a section the layer above reads: its YAML text
+        YAML::Emitter emitter;
+        emitter << YAML::Flow << item.second;
+        s.sections[key] = ParamEntry{emitter.c_str(), file_};
+      }
+    }
     return s;
   }
 
@@ -243,99 +272,6 @@ class ScenarioParser {
     }
   }
 
-  /// `targets: [{id, x, y, radius_m}]` (paper 2's mission, common/model/target_plan.hpp).
-  void parse_targets(const YAML::Node& node, Scenario& s) const {
-    if (!node) {
-      return;
-    }
-    if (!node.IsSequence() || node.size() == 0) {
-      fail("targets", "expected a non-empty list of {id, x, y, radius_m}");
-    }
-    for (std::size_t i = 0; i < node.size(); ++i) {
-      const std::string key = "targets[" + std::to_string(i) + "]";
-      const YAML::Node& t = node[i];
-      if (!t.IsMap()) {
-        fail(key, "expected a map {id, x, y, radius_m}");
-      }
-      only_keys(t, key, {"id", "x", "y", "radius_m"}, "id, x, y, radius_m");
-      model::Target target;
-      target.id = scalar<std::uint32_t>(t["id"], key + ".id", "a target id (non-negative integer)");
-      target.x = finite(t["x"], key + ".x");
-      target.y = finite(t["y"], key + ".y");
-      target.radius_m = finite(t["radius_m"], key + ".radius_m");
-      if (target.radius_m <= 0.0) {
-        fail(key + ".radius_m", "must be > 0 (got " + shortest_text(target.radius_m) + ")");
-      }
-      if (s.mission.target(target.id) != nullptr) {
-        fail(key + ".id", "duplicate target id " + std::to_string(target.id));
-      }
-      s.mission.targets.push_back(target);
-    }
-  }
-
-  /// `events: [{time_s, robots, target} | {time_s, robots, leave: true}]`, in time order, each
-  /// within the run, naming known robots and targets; a robot that left does not come back.
-  void parse_events(const YAML::Node& node, Scenario& s) const {
-    if (!node) {
-      return;
-    }
-    if (!node.IsSequence() || node.size() == 0) {
-      fail("events", "expected a non-empty list of {time_s, robots, target} or {time_s, robots, leave: true}");
-    }
-    if (s.mission.targets.empty()) {
-      fail("events", "events assign targets: declare them under 'targets'");
-    }
-    std::set<std::uint32_t> left;
-    for (std::size_t i = 0; i < node.size(); ++i) {
-      const std::string key = "events[" + std::to_string(i) + "]";
-      const YAML::Node& e = node[i];
-      if (!e.IsMap()) {
-        fail(key, "expected a map {time_s, robots, target} or {time_s, robots, leave: true}");
-      }
-      only_keys(e, key, {"time_s", "robots", "target", "leave"}, "time_s, robots, target, leave");
-      model::TargetEvent event;
-      event.time_s = finite(e["time_s"], key + ".time_s");
-      if (event.time_s < 0.0 || event.time_s > s.duration_s) {
-        fail(key + ".time_s", shortest_text(event.time_s) + " s is outside the run (0 to duration_s " +
-                                  shortest_text(s.duration_s) + " s)");
-      }
-      if (!s.mission.events.empty() && event.time_s < s.mission.events.back().time_s) {
-        fail(key + ".time_s", shortest_text(event.time_s) + " s is before the previous event's " +
-                                  shortest_text(s.mission.events.back().time_s) + " s (list events in time order)");
-      }
-      event.leave = e["leave"] && scalar<bool>(e["leave"], key + ".leave", "true or false");
-      if (event.leave == static_cast<bool>(e["target"])) {
-        fail(key, "give either 'target: ID' or 'leave: true'");
-      }
-      if (!event.leave) {
-        event.target_id = scalar<std::uint32_t>(e["target"], key + ".target", "a target id");
-        if (s.mission.target(event.target_id) == nullptr) {
-          fail(key + ".target", "unknown target " + std::to_string(event.target_id) + " (not in 'targets')");
-        }
-      }
-      const YAML::Node& robots = e["robots"];
-      if (!robots || !robots.IsSequence() || robots.size() == 0) {
-        fail(key + ".robots", "expected a non-empty list of robot ids");
-      }
-      for (std::size_t j = 0; j < robots.size(); ++j) {
-        const std::string rkey = key + ".robots[" + std::to_string(j) + "]";
-        const auto id = scalar<std::uint32_t>(robots[j], rkey, "a robot id");
-        const bool known = std::any_of(s.robots.begin(), s.robots.end(), [&](const RobotSpec& r) { return r.id == id; });
-        if (!known) {
-          fail(rkey, "unknown robot " + std::to_string(id) + " (not in 'robots')");
-        }
-        if (left.count(id) != 0) {
-          fail(rkey, "robot " + std::to_string(id) + " left the mission at an earlier event and cannot come back");
-        }
-        event.robots.push_back(id);
-      }
-      if (event.leave) {
-        left.insert(event.robots.begin(), event.robots.end());
-      }
-      s.mission.events.push_back(std::move(event));
-    }
-  }
-
   /// A standby names a primary that is no standby, of the same type and robots, in another group.
   void check_standbys(const Scenario& s) const {
     const auto group_of = [&s](const std::string& component) {
@@ -447,6 +383,12 @@ const RobotSpec& Scenario::robot(std::uint32_t id) const {
     }
   }
   throw ConfigError(located(file, "robots", "no robot with id " + std::to_string(id)));
+}
+
+bool register_scenario_section(const std::string& name) {
+  std::lock_guard<std::mutex> lock(sections_mutex());
+  registered_sections().insert(name);
+  return true;
 }
 
 FlatParams Scenario::facts_of(std::uint32_t id) const {

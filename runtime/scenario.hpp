@@ -3,12 +3,12 @@
 // step, duration, seed, and the deployment grouping (which components share a process).
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "common/model/target_plan.hpp"
 #include "runtime/params.hpp"
 
 namespace robodds {
@@ -47,8 +47,10 @@ struct Scenario {
   std::vector<RobotSpec> robots;
   std::vector<ComponentSpec> components;
   std::vector<GroupSpec> groups;
-  /// Paper 2's `targets:` and `events:` (empty in scenarios without them).
-  model::TargetPlan mission;
+  /// Top-level sections that the layer above reads (register_scenario_section(): e.g. paper 2's
+  /// `targets:` and `events:`, system/mission_plan.hpp), each as its YAML text (flow style) and
+  /// the file; the runtime reads none of them.
+  std::map<std::string, ParamEntry> sections;
   /// The scenario's `facts:`, flattened ("robot_body.wheel_base_m" -> value and file): what
   /// several components must agree on. The runtime stores them and reads none; the layer above
   /// gives them types and checks them (system/, a ComponentRegistry scenario check).
@@ -80,6 +82,11 @@ std::uint64_t checked_last_step(double step_s, double duration_s, const std::str
 /// The command line's --duration and --seed over the scenario's (nullopt: keep the scenario's);
 /// a new duration is checked against the step (checked_last_step(), naming --duration).
 void apply_run_overrides(Scenario& scenario, const std::optional<double>& duration_s, const std::optional<std::uint64_t>& seed);
+
+/// Lets scenario files have a top-level section `name` that the runtime does not read (stored in
+/// Scenario::sections): the layer above declares its sections so, from a static initialiser or
+/// before loading; any other unknown key stays an error. Returns true (for static initialisers).
+bool register_scenario_section(const std::string& name);
 
 /// Loads and validates a scenario (throws ConfigError naming file, key and reason).
 Scenario load_scenario(const std::string& path);

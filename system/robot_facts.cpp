@@ -8,6 +8,7 @@
 #include "runtime/error.hpp"
 #include "runtime/log.hpp"
 #include "runtime/param_table_reader.hpp"
+#include "system/mission_plan.hpp"
 
 namespace robodds::system {
 namespace {
@@ -97,6 +98,7 @@ void check_facts(const Scenario& scenario) {
   }
   uwb_array(scenario);
   range_accel_bound(scenario);
+  target_plan(scenario);
 }
 
 void register_system_checks(ComponentRegistry& registry) { registry.add_scenario_check(check_facts); }

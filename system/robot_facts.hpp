@@ -43,7 +43,8 @@ struct RangeAccelBound {
 };
 RangeAccelBound range_accel_bound(const Scenario& scenario);
 
-/// Every fact of the scenario and of each robot is known and valid. ConfigError otherwise.
+/// Every fact of the scenario and of each robot is known and valid, and so is its mission plan
+/// (system/mission_plan.hpp). ConfigError otherwise.
 void check_facts(const Scenario& scenario);
 
 /// Adds check_facts() to the registry's scenario checks (run before a run or a host starts).

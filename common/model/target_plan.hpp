@@ -1,6 +1,6 @@
 #pragma once
 // Paper 2's mission: targets to circle and the events that (re)assign robots to them over time.
-// A scenario declares it (`targets:` and `events:`, runtime/scenario.hpp); the target_mission
+// A scenario declares it (`targets:` and `events:`, parsed by system/mission_plan.hpp); the target_mission
 // component publishes each robot's task on mission/target, and every other component learns its
 // task from that topic. Pure: SI units, world frame, time in s.
 

@@ -23,6 +23,9 @@ expect_error 2 "t4b\.yaml: facts\.robot_body: wheelbase_m: unknown parameter" --
   "${R[@]}" "$(scenario_with t4b 's/^robots:/facts: {robot_body: {wheelbase_m: 0.3}}\nrobots:/')"
 expect_error 2 "t4c\.yaml: facts: robot_color: unknown fact \(known: robot_body, uwb_array, range_accel_bound_mps2\)" -- \
   "${R[@]}" "$(scenario_with t4c 's/^robots:/facts: {robot_color: red}\nrobots:/')"
+# Paper 2's mission sections are read by the system layer (system/mission_plan.hpp), before the run starts.
+expect_error 2 "t4e\.yaml: events\[0\]\.robots\[0\]: unknown robot 9" -- \
+  "${R[@]}" "$(scenario_with t4e 's/^robots:/targets: [{id: 1, x: 0, y: 0, radius_m: 5}]\nevents: [{time_s: 0, robots: [9], target: 1}]\nrobots:/')"
 expect_error 2 "t4d\.yaml: wheel_base_m: unknown parameter" -- \
   "${R[@]}" "$(scenario_with t4d 's/{name: plant, type: plant}/{name: plant, type: plant, params: {wheel_base_m: 0.3}}/')"
 expect_error 2 "rate_hz: 7\.000000 Hz is not the simulation rate" -- \

@@ -8,6 +8,7 @@
 #include "runtime/error.hpp"
 #include "runtime/param_table_reader.hpp"
 #include "runtime/registry.hpp"
+#include "system/mission_plan.hpp"
 
 namespace robodds::target_mission {
 namespace {
@@ -26,7 +27,7 @@ class TargetMissionNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
     read_params(ctx.params(), target_mission_param_table());
-    plan_ = ctx.scenario().mission;
+    plan_ = system::target_plan(ctx.scenario());
     if (plan_.empty()) {
       throw ConfigError(ctx.scenario().file + ": the target_mission component needs the scenario's 'targets:' and 'events:'");
     }
