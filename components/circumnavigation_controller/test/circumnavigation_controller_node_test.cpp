@@ -12,25 +12,25 @@
 #include "runtime/error.hpp"
 #include "runtime/io.hpp"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(circumnavigation_controller);
 
 namespace robodds::circumnavigation_controller {
 namespace {
 
-using robodds::testing::NodeHarness;
-using robodds::testing::of_instance;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_circumnavigation_controller>;
 
 constexpr double kTargetX = 1000.0;
 constexpr double kTargetY = 1000.0;
 constexpr double kRadius = 200.0;
 
 // Steps 0..5 at 50 Hz; the controller serves robot 1, robot 2 is a peer.
-std::string scenario(const std::string& controller_params, const std::string& extra_components = "") {
-  return "name: circumnavigation_controller_node\nstep_s: 0.02\nduration_s: 0.1\nseed: 1\nrobots:\n  - {id: 1}\n  - {id: 2}\n"
-         "components:\n  - {name: controller, type: circumnavigation_controller, robots: [1], params: {" +
-         controller_params + "}}\n" + extra_components;
+ScenarioText scenario(const std::string& controller_params) {
+  return ScenarioText("circumnavigation_controller_node", 0.02, 0.1)
+      .robots({1, 2})
+      .component("{name: controller, type: circumnavigation_controller, robots: [1], params: {" + controller_params + "}}");
 }
 
 idl::TargetAssignment task(std::uint32_t robot, bool active, std::uint32_t target = 1) {
@@ -77,11 +77,10 @@ struct Feed {
   std::uint64_t invalid_step = kNeverAgain;  // the estimate is not valid at this one step
 };
 
-/// Runs the controller with missions at step 0 (never again), poses and estimates every step.
-std::vector<idl::VelocityCommand> run(const std::string& controller_params, const Feed& f,
-                                      const std::string& extra_components = "") {
-  NodeHarness h(scenario(controller_params, extra_components));
-  robodds::component_registration::register_circumnavigation_controller(h.registry());
+/// Runs the controller of `scenario_yaml` with missions at step 0 (never again), poses and
+/// estimates every step.
+std::vector<idl::VelocityCommand> run(const std::string& scenario_yaml, const Feed& f) {
+  Harness h(scenario_yaml);
   h.feed([&h, f](std::uint64_t step) {
     if (step == 0) {
       h.publish("mission/target", task(1, f.active1), 0, kNeverAgain);
@@ -99,7 +98,7 @@ std::vector<idl::VelocityCommand> run(const std::string& controller_params, cons
 TEST(CircumnavigationControllerNode, CommandsZeroOnLeave) {
   Feed f;
   f.active1 = false;
-  const auto commands = run("", f);
+  const auto commands = run(scenario(""), f);
   ASSERT_EQ(commands.size(), 6u) << "a command at every step, also when stopped";
   for (const auto& c : commands) {
     EXPECT_EQ(c.robot_id(), 1u);
@@ -111,12 +110,12 @@ TEST(CircumnavigationControllerNode, CommandsZeroOnLeave) {
 TEST(CircumnavigationControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
   Feed f;
   f.valid = false;
-  for (const auto& c : run("", f)) {
+  for (const auto& c : run(scenario(""), f)) {
     EXPECT_EQ(c.v(), 0.0);
     EXPECT_EQ(c.omega(), 0.0);
   }
   f.valid = true;  // the same inputs with a valid estimate steer
-  const auto commands = run("", f);
+  const auto commands = run(scenario(""), f);
   ASSERT_EQ(commands.size(), 6u);
   EXPECT_GT(commands.back().v(), 0.0);
 }
@@ -124,7 +123,7 @@ TEST(CircumnavigationControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
 TEST(CircumnavigationControllerNode, AfterAZeroCommandTheSpeedStartsFromRestAgain) {
   Feed f;
   f.invalid_step = 3;
-  const auto commands = run("start_cruising: false", f);
+  const auto commands = run(scenario("start_cruising: false"), f);
   ASSERT_EQ(commands.size(), 6u);
   EXPECT_NEAR(commands[2].v(), 0.03, 1e-12);
   EXPECT_EQ(commands[3].v(), 0.0);
@@ -134,8 +133,8 @@ TEST(CircumnavigationControllerNode, AfterAZeroCommandTheSpeedStartsFromRestAgai
 TEST(CircumnavigationControllerNode, FarFromTheTargetTurnsTowardsItFromRestAtMaxAccel) {
   Feed far;
   far.range = 1000.0;  // 800 m too far, range constant: turn left harder than the orbit's V / R
-  EXPECT_NEAR(run("", far).front().v(), 10.0, 0.0101) << "by default the first command cruises (start_cruising), moved by at most max_accel dt";
-  const auto commands = run("start_cruising: false", far);
+  EXPECT_NEAR(run(scenario(""), far).front().v(), 10.0, 0.0101) << "by default the first command cruises (start_cruising), moved by at most max_accel dt";
+  const auto commands = run(scenario("start_cruising: false"), far);
   ASSERT_EQ(commands.size(), 6u);
   for (std::size_t k = 0; k < commands.size(); ++k) {
     const double v = 0.01 * static_cast<double>(k + 1);  // 0.5 m/s^2 x 0.02 s per step from rest
@@ -145,7 +144,7 @@ TEST(CircumnavigationControllerNode, FarFromTheTargetTurnsTowardsItFromRestAtMax
     EXPECT_GT(commands[k].omega(), v / kRadius);
   }
   Feed on_orbit;  // on the radius with rate 0: exactly the orbit's turn rate
-  const auto orbit = run("", on_orbit);
+  const auto orbit = run(scenario(""), on_orbit);
   EXPECT_NEAR(orbit.back().omega(), orbit.back().v() / kRadius, 1e-15);
 }
 
@@ -155,31 +154,23 @@ TEST(CircumnavigationControllerNode, SpacesOnlyWithRobotsOfTheSameTarget) {
   // no team mate: robot 1 alone -> V0 = 10 m/s.
   Feed same;
   same.bearing2_deg = 30.0;
-  EXPECT_NEAR(run("max_accel_mps2: 1000", same).back().v(), 7.0, 1e-12);
+  EXPECT_NEAR(run(scenario("max_accel_mps2: 1000"), same).back().v(), 7.0, 1e-12);
   Feed behind = same;
   behind.bearing2_deg = -30.0;
-  EXPECT_NEAR(run("max_accel_mps2: 1000", behind).back().v(), 13.0, 1e-12);
+  EXPECT_NEAR(run(scenario("max_accel_mps2: 1000"), behind).back().v(), 13.0, 1e-12);
   Feed other = same;
   other.target2 = 2;
-  EXPECT_NEAR(run("max_accel_mps2: 1000", other).back().v(), 10.0, 1e-12);
+  EXPECT_NEAR(run(scenario("max_accel_mps2: 1000"), other).back().v(), 10.0, 1e-12);
 }
 
 // Real time: the observer stops at step 20 (0.4 s), robot 2's pose at step 10 (0.2 s). With
 // estimate_timeout_s 0.2 the commands become zero; with peer_timeout_s 0.1 robot 2 drops out of
 // the spacing first (robot 1 alone: 10 m/s instead of 7 with robot 2 30 deg ahead).
 TEST(CircumnavigationControllerNode, RealTimeStaleEstimateStopsAndStalePeerDropsOut) {
-  NodeHarness h(R"(name: circumnavigation_controller_stale
-step_s: 0.02
-duration_s: 1.2
-seed: 1
-robots:
-  - {id: 1}
-  - {id: 2}
-components:
-  - {name: controller, type: circumnavigation_controller, robots: [1],
-     params: {estimate_timeout_s: 0.2, peer_timeout_s: 0.1, max_accel_mps2: 1000}}
-)");
-  robodds::component_registration::register_circumnavigation_controller(h.registry());
+  Harness h(ScenarioText("circumnavigation_controller_stale", 0.02, 1.2)
+                .robots({1, 2})
+                .component("{name: controller, type: circumnavigation_controller, robots: [1], "
+                           "params: {estimate_timeout_s: 0.2, peer_timeout_s: 0.1, max_accel_mps2: 1000}}"));
   h.set_mode(TimeMode::kRealtime);
   constexpr std::uint64_t kLastEstimate = 20;
   constexpr std::uint64_t kLastPeerPose = 10;
@@ -226,9 +217,9 @@ components:
   EXPECT_GT(stopped, 0);
 }
 
-std::string configure_error(const std::string& controller_params, const std::string& extra_components = "") {
+std::string configure_error(const std::string& scenario_yaml) {
   try {
-    run(controller_params, Feed{}, extra_components);
+    run(scenario_yaml, Feed{});
   } catch (const ConfigError& e) {
     return e.what();
   }
@@ -239,20 +230,20 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 
 TEST(CircumnavigationControllerNode, ABrokenObserverBoundIsAConfigureErrorNamingTheKeys) {
   // The scenario declares no bound: the shared fact's default (2.2), said as such.
-  const std::string turn = configure_error("max_turn_rate_radps: 0.2");
+  const std::string turn = configure_error(scenario("max_turn_rate_radps: 0.2"));
   EXPECT_TRUE(contains(turn, "max_turn_rate_radps")) << turn;
   EXPECT_TRUE(contains(turn, "13 m/s x 0.2 rad/s = 2.6 m/s^2 > facts.range_accel_bound_mps2 (default) = 2.2")) << turn;
   // The bound the scenario declares (a shared fact), named by its file and key.
-  const std::string declared = configure_error("", "facts:\n  range_accel_bound_mps2: 1.5\n");
+  const std::string declared = configure_error(scenario("").fact("range_accel_bound_mps2: 1.5"));
   EXPECT_TRUE(contains(declared, ": facts.range_accel_bound_mps2 = 1.5")) << declared;
   // Another component's parameters are not read: an observer's sta.b changes nothing here.
-  EXPECT_EQ(configure_error("", "  - {name: observer, type: range_rate_observer, params: {sta: {b: 1.5}}}\n"), "");
-  EXPECT_EQ(configure_error(""), "");
+  EXPECT_EQ(configure_error(scenario("").component("{name: observer, type: range_rate_observer, params: {sta: {b: 1.5}}}")), "");
+  EXPECT_EQ(configure_error(scenario("")), "");
 }
 
 TEST(CircumnavigationControllerNode, BadParamsNameTheKey) {
-  EXPECT_TRUE(contains(configure_error("cruise_speed_mps: 0"), "cruise_speed_mps: must be > 0"));
-  EXPECT_TRUE(contains(configure_error("observer_topic: observer/foo"), "observer_topic"));
+  EXPECT_TRUE(contains(configure_error(scenario("cruise_speed_mps: 0")), "cruise_speed_mps: must be > 0"));
+  EXPECT_TRUE(contains(configure_error(scenario("observer_topic: observer/foo")), "observer_topic"));
 }
 
 }  // namespace

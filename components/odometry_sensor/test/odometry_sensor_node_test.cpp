@@ -3,32 +3,29 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "robodds/idl/robodds.h"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(odometry_sensor);
 
 namespace robodds::odometry_sensor {
 namespace {
 
-using robodds::testing::NodeHarness;
 using robodds::testing::of_instance;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_odometry_sensor>;
 
 // Steps 0..10 at 100 Hz; odometry at 50 Hz (every 2 steps) without noise or slip.
-const char* kScenario = R"(name: odometry_sensor_node
-step_s: 0.01
-duration_s: 0.1
-seed: 1
-robots:
-  - {id: 3}
-components:
-  - {name: odometry, type: odometry_sensor, params: {wheel_speed_noise_std_mps: 0.0}}
-)";
+const std::string kScenario =
+    ScenarioText("odometry_sensor_node", 0.01, 0.1)
+        .robots({3})
+        .component("{name: odometry, type: odometry_sensor, params: {wheel_speed_noise_std_mps: 0.0}}");
 
 TEST(OdometrySensorNode, ReportsTheMeanTwistOverEachIntervalStampedAndKeyed) {
-  NodeHarness h(kScenario);
-  robodds::component_registration::register_odometry_sensor(h.registry());
+  Harness h(kScenario);
   // The plant's state of step m carries the twist applied over step m: v = 1 + m, omega = 0.5.
   h.feed([&h](std::uint64_t step) {
     idl::RobotState s;

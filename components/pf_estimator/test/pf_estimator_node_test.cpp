@@ -9,7 +9,7 @@
 
 #include "robodds/idl/robodds.h"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(pf_estimator);
 
@@ -18,18 +18,15 @@ namespace {
 
 using robodds::testing::NodeHarness;
 using robodds::testing::of_instance;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_pf_estimator>;
 
 // Steps 0..20 at 100 Hz, fixes at 10 Hz (steps 0, 10, 20), odometry at every step.
-const char* kScenario = R"(name: pf_estimator_node
-step_s: 0.01
-duration_s: 0.2
-seed: 5
-robots:
-  - {id: 1}
-  - {id: 2}
-components:
-  - {name: pf, type: pf_estimator, params: {num_particles: 500, resample_threshold: 250.0, init_theta_known: true}}
-)";
+const std::string kScenario =
+    ScenarioText("pf_estimator_node", 0.01, 0.2)
+        .seed(5)
+        .robots({1, 2})
+        .component("{name: pf, type: pf_estimator, params: {num_particles: 500, resample_threshold: 250.0, init_theta_known: true}}");
 
 /// Where the fixes put each robot (m, world).
 double fix_x(std::uint32_t robot) { return robot == 1 ? 10.0 : 50.0; }
@@ -55,8 +52,7 @@ void publish_fix(NodeHarness& h, std::uint32_t robot, std::uint64_t step, std::u
 }
 
 TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
-  NodeHarness h(kScenario);
-  robodds::component_registration::register_pf_estimator(h.registry());
+  Harness h(kScenario);
   h.feed([&h](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
       publish_standstill_odometry(h, robot, step);
@@ -90,16 +86,12 @@ TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
 // A robot that has not moved yet has an unknown heading: the position alone is not a valid pose.
 TEST(PfEstimatorNode, UnknownHeadingIsNotValidUnlessTheHeadingCheckIsOff) {
   for (const char* heading_check : {"0.2", "0"}) {
-    NodeHarness h(std::string(R"(name: pf_estimator_heading
-step_s: 0.01
-duration_s: 0.2
-seed: 5
-robots:
-  - {id: 1}
-components:
-  - {name: pf, type: pf_estimator, params: {num_particles: 500, resample_threshold: 250.0, valid_max_heading_std_rad: )") +
-                  heading_check + "}}\n");
-    robodds::component_registration::register_pf_estimator(h.registry());
+    Harness h(ScenarioText("pf_estimator_heading", 0.01, 0.2)
+                  .seed(5)
+                  .robots({1})
+                  .component(std::string("{name: pf, type: pf_estimator, params: {num_particles: 500, resample_threshold: 250.0, "
+                                         "valid_max_heading_std_rad: ") +
+                             heading_check + "}}"));
     h.feed([&h](std::uint64_t step) {
       publish_standstill_odometry(h, 1, step);
       if (step % 10 == 0) {
@@ -118,16 +110,11 @@ components:
 // Real time: once its sensors stop (by this process's receive time) for longer than
 // input_timeout_s the estimator keeps publishing, but valid = false, so a controller stops.
 TEST(PfEstimatorNode, RealTimeEstimateTurnsInvalidWhenTheSensorsGoStale) {
-  NodeHarness h(R"(name: pf_estimator_stale
-step_s: 0.01
-duration_s: 0.8
-seed: 5
-robots:
-  - {id: 1}
-components:
-  - {name: pf, type: pf_estimator, params: {num_particles: 300, resample_threshold: 150.0, input_timeout_s: 0.2, init_theta_known: true}}
-)");
-  robodds::component_registration::register_pf_estimator(h.registry());
+  Harness h(ScenarioText("pf_estimator_stale", 0.01, 0.8)
+                .seed(5)
+                .robots({1})
+                .component("{name: pf, type: pf_estimator, params: {num_particles: 300, resample_threshold: 150.0, "
+                           "input_timeout_s: 0.2, init_theta_known: true}}"));
   h.set_mode(TimeMode::kRealtime);
   constexpr std::uint64_t kLastFed = 30;  // the sensors stop after 0.3 s
   h.feed([&h](std::uint64_t step) {

@@ -3,29 +3,26 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "robodds/idl/robodds.h"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(position_sensor);
 
 namespace robodds::position_sensor {
 namespace {
 
-using robodds::testing::NodeHarness;
 using robodds::testing::of_instance;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_position_sensor>;
 
 // Steps 0..25 at 100 Hz; the sensor samples at 10 Hz (steps 0, 10, 20) with a tiny noise.
-const char* kScenario = R"(name: position_sensor_node
-step_s: 0.01
-duration_s: 0.25
-seed: 1
-robots:
-  - {id: 1}
-  - {id: 2}
-components:
-  - {name: sensor, type: position_sensor, params: {noise_var_x_m2: 1.0e-8, noise_var_y_m2: 4.0e-8}}
-)";
+const std::string kScenario =
+    ScenarioText("position_sensor_node", 0.01, 0.25)
+        .robots({1, 2})
+        .component("{name: sensor, type: position_sensor, params: {noise_var_x_m2: 1.0e-8, noise_var_y_m2: 4.0e-8}}");
 
 idl::RobotState truth(std::uint32_t robot, std::uint64_t step) {
   idl::RobotState s;
@@ -36,8 +33,7 @@ idl::RobotState truth(std::uint32_t robot, std::uint64_t step) {
 }
 
 TEST(PositionSensorNode, SamplesTheTruePositionAtItsRateStampedAndKeyed) {
-  NodeHarness h(kScenario);
-  robodds::component_registration::register_position_sensor(h.registry());
+  Harness h(kScenario);
   h.feed([&h](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
       h.publish("plant/state", truth(robot, step), step, step + 1);

@@ -7,12 +7,14 @@
 
 #include <cmath>
 #include <limits>
+#include <string>
+#include <utility>
 
 #include "robodds/idl/robodds.h"
 #include "runtime/error.hpp"
 #include "runtime/io.hpp"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(range_rate_observer);
 
@@ -21,19 +23,14 @@ namespace {
 
 using robodds::testing::NodeHarness;
 using robodds::testing::of_robot;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_range_rate_observer>;
 
 // 50 Hz, steps 0..200 (4 s); the observer at 50 Hz.
-std::string scenario(const std::string& params = "") {
-  return R"(name: observer_node
-step_s: 0.02
-duration_s: 4.0
-seed: 1
-robots:
-  - {id: 1}
-  - {id: 2}
-components:
-  - {name: observer, type: range_rate_observer)" +
-         (params.empty() ? std::string() : ", params: {" + params + "}") + "}\n";
+ScenarioText scenario(const std::string& params = "") {
+  return ScenarioText("observer_node", 0.02, 4.0)
+      .robots({1, 2})
+      .component("{name: observer, type: range_rate_observer" + (params.empty() ? std::string() : ", params: {" + params + "}") + "}");
 }
 
 constexpr std::uint64_t kSwitchStep = 100;  // 2 s: robot 1 changes target
@@ -63,8 +60,7 @@ void feed(NodeHarness& h, std::uint64_t bad_step = 0, double bad_value = 0.0) {
 }
 
 TEST(RangeRateObserverNode, BothObserversRestartAtATargetChangeAndAreInvalidUntilTheWindowIsFull) {
-  NodeHarness h(scenario());
-  robodds::component_registration::register_range_rate_observer(h.registry());
+  Harness h(scenario());
   feed(h);
   const auto& sta = h.record<idl::RangeRateEstimate>("observer/range_rate");
   const auto& linear = h.record<idl::RangeRateEstimate>("observer/range_rate_linear");
@@ -91,8 +87,7 @@ TEST(RangeRateObserverNode, BothObserversRestartAtATargetChangeAndAreInvalidUnti
 }
 
 TEST(RangeRateObserverNode, AnEndedStreamGetsFinalEstimatesAndNothingAfter) {
-  NodeHarness h(scenario());
-  robodds::component_registration::register_range_rate_observer(h.registry());
+  Harness h(scenario());
   feed(h);
   const auto& sta = h.record<idl::RangeRateEstimate>("observer/range_rate");
   h.run({"observer"});
@@ -106,8 +101,7 @@ TEST(RangeRateObserverNode, AnEndedStreamGetsFinalEstimatesAndNothingAfter) {
 // checks"): the observers never see it, their estimate goes on from the good samples.
 TEST(RangeRateObserverNode, RefusedRangesLeaveTheObserversAlone) {
   for (double bad : {std::numeric_limits<double>::quiet_NaN(), -20.0}) {
-    NodeHarness h(scenario());
-    robodds::component_registration::register_range_rate_observer(h.registry());
+    Harness h(scenario());
     feed(h, 60, bad);
     const auto& sta = h.record<idl::RangeRateEstimate>("observer/range_rate");
     h.run({"observer"});
@@ -127,8 +121,7 @@ TEST(RangeRateObserverNode, GainsOutsideThePapersConditionsAreConfigErrorsNaming
                                     {"sta: {c: -1}", "sta.c"},
                                     {"linear: {k2: 0}", "linear.k2"},
                                     {"sta: {restart_window_s: 0}", "sta.restart_window_s"}}) {
-    NodeHarness h(scenario(params));
-    robodds::component_registration::register_range_rate_observer(h.registry());
+    Harness h(scenario(params));
     const std::string error = h.run_error<ConfigError>({"observer"});
     EXPECT_NE(error.find(key + ":"), std::string::npos) << params << ": expected a ConfigError, got: " << error;
   }
@@ -138,21 +131,18 @@ TEST(RangeRateObserverNode, GainsOutsideThePapersConditionsAreConfigErrorsNaming
 // range_accel_bound_mps2 (default 2.2), never another component's parameter.
 TEST(RangeRateObserverNode, AGainBBelowTheScenariosRangeAccelerationBoundIsAConfigError) {
   {
-    NodeHarness h(scenario("sta: {b: 2.0}"));  // below the default bound
-    robodds::component_registration::register_range_rate_observer(h.registry());
+    Harness h(scenario("sta: {b: 2.0}"));  // below the default bound
     const std::string error = h.run_error<ConfigError>({"observer"});
     EXPECT_NE(error.find("sta.b: 2 m/s^2 is below the range acceleration bound 2.2 m/s^2 of facts.range_accel_bound_mps2 (default)"),
               std::string::npos)
         << error;
   }
   {
-    NodeHarness h("facts: {range_accel_bound_mps2: 3.0}\n" + scenario("sta: {b: 2.5}"));  // a declared bound above b
-    robodds::component_registration::register_range_rate_observer(h.registry());
+    Harness h(scenario("sta: {b: 2.5}").fact("range_accel_bound_mps2: 3.0"));  // a declared bound above b
     const std::string error = h.run_error<ConfigError>({"observer"});
     EXPECT_NE(error.find(": facts.range_accel_bound_mps2: the observer would not follow"), std::string::npos) << error;
   }
-  NodeHarness h("facts: {range_accel_bound_mps2: 1.5}\n" + scenario("sta: {b: 2.0}"));  // b covers it: runs
-  robodds::component_registration::register_range_rate_observer(h.registry());
+  Harness h(scenario("sta: {b: 2.0}").fact("range_accel_bound_mps2: 1.5"));  // b covers it: runs
   feed(h);
   h.run({"observer"});
 }

@@ -6,12 +6,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "robodds/idl/robodds.h"
 #include "runtime/error.hpp"
 #include "runtime/io.hpp"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(range_sensor);
 
@@ -20,19 +21,14 @@ namespace {
 
 using robodds::testing::NodeHarness;
 using robodds::testing::of_robot;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_range_sensor>;
 
 // Steps 0..10 at 10 Hz; the sensor samples at 5 Hz (every 2 steps), noise-free unless overridden.
 std::string scenario(const std::string& params) {
-  return R"(name: range_sensor_node
-step_s: 0.1
-duration_s: 1.0
-seed: 1
-robots:
-  - {id: 1}
-  - {id: 2}
-components:
-  - {name: sensor, type: range_sensor, params: {rate_hz: 5, )" +
-         params + "}}\n";
+  return ScenarioText("range_sensor_node", 0.1, 1.0)
+      .robots({1, 2})
+      .component("{name: sensor, type: range_sensor, params: {rate_hz: 5, " + params + "}}");
 }
 
 idl::RobotState truth(std::uint32_t robot, std::uint64_t step) {
@@ -72,8 +68,7 @@ void feed(NodeHarness& h, std::uint64_t change) {
 }
 
 TEST(RangeSensorNode, RangesToTheCurrentTargetNewInstanceOnAChangeFinalOnLeave) {
-  NodeHarness h(scenario("noise_sigma_m: 0"));
-  robodds::component_registration::register_range_sensor(h.registry());
+  Harness h(scenario("noise_sigma_m: 0"));
   feed(h, 6);
   const auto& ranges = h.record<idl::RangeMeasurement>("sensor/range");
   h.run({"sensor"});
@@ -100,8 +95,7 @@ TEST(RangeSensorNode, RangesToTheCurrentTargetNewInstanceOnAChangeFinalOnLeave) 
 // With dropouts every sample announces exactly the step of its robot's next sample, and a
 // mission change is published when it happens, lost or not.
 TEST(RangeSensorNode, LostSamplesAreAnnouncedAndAChangeIsNeverLost) {
-  NodeHarness h(scenario("noise_sigma_m: 0, dropout_probability: 0.6"));
-  robodds::component_registration::register_range_sensor(h.registry());
+  Harness h(scenario("noise_sigma_m: 0, dropout_probability: 0.6"));
   feed(h, 6);
   const auto& ranges = h.record<idl::RangeMeasurement>("sensor/range");
   h.run({"sensor"});
@@ -119,8 +113,7 @@ TEST(RangeSensorNode, LostSamplesAreAnnouncedAndAChangeIsNeverLost) {
 }
 
 TEST(RangeSensorNode, ARobotWithoutATargetIsAnErrorInLockstep) {
-  NodeHarness h(scenario("noise_sigma_m: 0"));
-  robodds::component_registration::register_range_sensor(h.registry());
+  Harness h(scenario("noise_sigma_m: 0"));
   h.feed([&h](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
       h.publish("plant/state", truth(robot, step), step, step + 1);

@@ -12,29 +12,22 @@
 #include "runtime/error.hpp"
 #include "runtime/io.hpp"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(route_follower);
 
 namespace robodds::route_follower {
 namespace {
 
-using robodds::testing::NodeHarness;
 using robodds::testing::of_robot;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_route_follower>;
 
 // Steps 0..10 at 50 Hz (the default control rate); robot 2 drives the open path (0,0) -> (2,0).
-std::string scenario(const std::string& extra_params = "") {
-  return R"(name: route_follower_node
-step_s: 0.02
-duration_s: 0.2
-seed: 1
-robots:
-  - {id: 1}
-  - {id: 2}
-components:
-  - {name: follower, type: route_follower, robots: [2], params: {route: [[0, 0], [2, 0]], loop: false)" +
-         extra_params + "}}\n";
-}
+const std::string kScenario =
+    ScenarioText("route_follower_node", 0.02, 0.2)
+        .robots({1, 2})
+        .component("{name: follower, type: route_follower, robots: [2], params: {route: [[0, 0], [2, 0]], loop: false}}");
 
 idl::PoseEstimate estimate(std::uint32_t robot, double x, double theta, bool valid) {
   idl::PoseEstimate e;
@@ -46,8 +39,7 @@ idl::PoseEstimate estimate(std::uint32_t robot, double x, double theta, bool val
 }
 
 TEST(RouteFollowerNode, TurnsInPlaceThenDrivesStraight) {
-  NodeHarness h(scenario());
-  robodds::component_registration::register_route_follower(h.registry());
+  Harness h(kScenario);
   // On vertex 0 facing north (vertex 1 is east) until step 4, then facing east and moving on.
   h.feed([&h](std::uint64_t step) {
     const bool turned = step >= 5;
@@ -75,8 +67,7 @@ TEST(RouteFollowerNode, TurnsInPlaceThenDrivesStraight) {
 }
 
 TEST(RouteFollowerNode, ZeroCommandWhileTheEstimateIsNotValid) {
-  NodeHarness h(scenario());
-  robodds::component_registration::register_route_follower(h.registry());
+  Harness h(kScenario);
   h.feed([&h](std::uint64_t step) {
     h.publish("estimate/pose", estimate(2, 0.0, kPi / 2, step >= 6), step, step + 1);
   });
@@ -96,16 +87,9 @@ TEST(RouteFollowerNode, ZeroCommandWhileTheEstimateIsNotValid) {
 // Real time: when the estimates stop arriving, the commands are zero within estimate_timeout_s
 // of the last receipt (this process's receive time), instead of steering on the frozen estimate.
 TEST(RouteFollowerNode, RealTimeStaleEstimateStopsTheRobot) {
-  NodeHarness h(R"(name: route_follower_stale
-step_s: 0.02
-duration_s: 0.8
-seed: 1
-robots:
-  - {id: 1}
-components:
-  - {name: follower, type: route_follower, params: {route: [[0, 0], [10, 0]], estimate_timeout_s: 0.2}}
-)");
-  robodds::component_registration::register_route_follower(h.registry());
+  Harness h(ScenarioText("route_follower_stale", 0.02, 0.8)
+                .robots({1})
+                .component("{name: follower, type: route_follower, params: {route: [[0, 0], [10, 0]], estimate_timeout_s: 0.2}}"));
   h.set_mode(TimeMode::kRealtime);
   constexpr std::uint64_t kLastFed = 15;  // the estimator dies after 0.3 s
   h.feed([&h](std::uint64_t step) {
@@ -133,16 +117,9 @@ components:
 }
 
 TEST(RouteFollowerNode, ABadRouteIsAStartUpErrorNamingTheKey) {
-  NodeHarness h(R"(name: bad_route
-step_s: 0.02
-duration_s: 0.1
-seed: 1
-robots:
-  - {id: 1}
-components:
-  - {name: follower, type: route_follower, params: {route: [[0, 0], [0.01, 0]]}}
-)");
-  robodds::component_registration::register_route_follower(h.registry());
+  Harness h(ScenarioText("bad_route", 0.02, 0.1)
+                .robots({1})
+                .component("{name: follower, type: route_follower, params: {route: [[0, 0], [0.01, 0]]}}"));
   const std::string error = h.run_error<ConfigError>({"follower"});
   EXPECT_NE(error.find("route: consecutive points must be at least position_tolerance_m 0.05 m apart"), std::string::npos)
       << "points 1 cm apart (tolerance 5 cm) must be a ConfigError, got: " << error;

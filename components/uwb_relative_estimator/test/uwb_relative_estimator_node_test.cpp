@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <string>
 #include <utility>
@@ -17,7 +18,7 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/error.hpp"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(uwb_relative_estimator);
 
@@ -26,30 +27,20 @@ namespace {
 
 using robodds::testing::NodeHarness;
 using robodds::testing::of_instance;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_uwb_relative_estimator>;
 
 constexpr double kPi = 3.14159265358979323846;
 
-// Robot 1 at the origin facing +y; robot 2 at (3, 4) facing -x; robot 3 at (-2, 1) facing +x.
-std::string scenario(const std::string& params, const std::string& extra_robots = "  - {id: 2, x: 3, y: 4, theta: 3.14159265358979}\n  - {id: 3, x: -2, y: 1, theta: 0}\n",
-                     const std::string& extra_components = "") {
-  return R"(name: uwb_relative_estimator_node
-step_s: 0.02
-duration_s: 2.0
-seed: 1
-robots:
-  - {id: 1, x: 0, y: 0, theta: 1.5707963267948966}
-)" + extra_robots +
-         R"(components:
-  - {name: estimator, type: uwb_relative_estimator, robots: [1], params: {)" +
-         params + "}}\n" + extra_components;
-}
-
-/// `yaml` with the top-level `facts:` map `facts` (e.g. the array every robot carries).
-std::string with_facts(const std::string& facts, const std::string& yaml) {
-  const std::string after = "seed: 1\n";
-  std::string out = yaml;
-  out.insert(out.find(after) + after.size(), "facts:\n  " + facts + "\n");
-  return out;
+// Robot 1 at the origin facing +y; robot 2 at (3, 4) facing -x; robot 3 at (-2, 1) facing +x
+// (without `peers`: robot 1 alone).
+ScenarioText scenario(const std::string& params, bool peers = true) {
+  ScenarioText s("uwb_relative_estimator_node", 0.02, 2.0);
+  s.robot("{id: 1, x: 0, y: 0, theta: 1.5707963267948966}");
+  if (peers) {
+    s.robot("{id: 2, x: 3, y: 4, theta: 3.14159265358979}").robot("{id: 3, x: -2, y: 1, theta: 0}");
+  }
+  return s.component("{name: estimator, type: uwb_relative_estimator, robots: [1], params: {" + params + "}}");
 }
 
 model::Pose2 world(std::uint32_t robot) {
@@ -118,8 +109,7 @@ const std::vector<const char*> kTopics = {"estimate/relative_pose", "estimate/re
                                           "estimate/relative_pose_pf_baseline", "estimate/relative_pose_odometry"};
 
 TEST(UwbRelativeEstimatorNode, EveryStageOnItsTopicForEachPeerAtEveryEpoch) {
-  NodeHarness h(scenario(""));
-  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  Harness h(scenario(""));
   feed(h, [](std::uint64_t) { return true; });
   std::vector<const std::vector<idl::RelativePoseEstimate>*> out;
   for (const char* topic : kTopics) {
@@ -152,8 +142,7 @@ TEST(UwbRelativeEstimatorNode, EveryStageOnItsTopicForEachPeerAtEveryEpoch) {
 // The estimator models the scenario's array (facts: uwb_array:), the one the sensor measures with:
 // exact ranges of 0.8 m squares give an exact single-epoch solve.
 TEST(UwbRelativeEstimatorNode, ModelsTheScenariosArray) {
-  NodeHarness h(with_facts("uwb_array: {array_side_m: 0.8}", scenario("")));
-  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  Harness h(scenario("").fact("uwb_array: {array_side_m: 0.8}"));
   feed(h, [](std::uint64_t) { return true; }, nullptr, true, 0.8);
   const auto& uwb = h.record<idl::RelativePoseEstimate>("estimate/relative_pose_uwb");
   h.run({"estimator"});
@@ -167,8 +156,7 @@ TEST(UwbRelativeEstimatorNode, ModelsTheScenariosArray) {
 }
 
 TEST(UwbRelativeEstimatorNode, AFrameThatDoesNotFitTheArraysIsRejectedAndCountedNeverAnEstimate) {
-  NodeHarness h(scenario(""));
-  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  Harness h(scenario(""));
   // From step 50 on robot 1's frames to peer 3 have 4 x 3 ranges (a sensor with another array).
   feed(h, [](std::uint64_t) { return true; }, [](idl::UwbRanges m, std::uint64_t step) {
     if (m.peer_id() == 3 && step >= 50) {
@@ -188,8 +176,7 @@ TEST(UwbRelativeEstimatorNode, AFrameThatDoesNotFitTheArraysIsRejectedAndCounted
 }
 
 TEST(UwbRelativeEstimatorNode, NanAndNegativeRangesAreRefusedByTheInputAndNeverReachAnEstimate) {
-  NodeHarness h(scenario(""));
-  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  Harness h(scenario(""));
   // From step 50 on robot 1's frames to peer 3 carry a NaN range (odd steps) or a negative one.
   feed(h, [](std::uint64_t) { return true; }, [](idl::UwbRanges m, std::uint64_t step) {
     if (m.peer_id() == 3 && step >= 50) {
@@ -212,8 +199,7 @@ TEST(UwbRelativeEstimatorNode, NanAndNegativeRangesAreRefusedByTheInputAndNeverR
 }
 
 TEST(UwbRelativeEstimatorNode, WhenAPeersFramesStopItsFrameStagesBecomeInvalidAfterTheTimeout) {
-  NodeHarness h(scenario("uwb_timeout_s: 0.5"));
-  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  Harness h(scenario("uwb_timeout_s: 0.5"));
   // Frames until 0.78 s: the epoch of 0.8 s takes the last one (an epoch's newest frame).
   feed(h, [](std::uint64_t step) { return step < 40; });
   const auto& pf = h.record<idl::RelativePoseEstimate>("estimate/relative_pose");
@@ -232,15 +218,13 @@ TEST(UwbRelativeEstimatorNode, WhenAPeersFramesStopItsFrameStagesBecomeInvalidAf
 
 TEST(UwbRelativeEstimatorNode, WithPeerLinksTheEstimatorWaitsForThePeersStreamAndNamesIt) {
   {
-    NodeHarness h(scenario(""));
-    robodds::component_registration::register_uwb_relative_estimator(h.registry());
+    Harness h(scenario(""));
     h.options().input_timeout_s = 0.3;
     feed(h, [](std::uint64_t) { return true; }, nullptr, /*with_link=*/false);
     const std::string error = h.run_error<RunError>({"estimator"});
     EXPECT_NE(error.find("sensor/uwb, robot_id=2 peer_id=3"), std::string::npos) << error;
   }
-  NodeHarness h(scenario("peer_links: false"));
-  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  Harness h(scenario("peer_links: false"));
   h.options().input_timeout_s = 0.3;
   feed(h, [](std::uint64_t) { return true; }, nullptr, /*with_link=*/false);
   const auto& pf = h.record<idl::RelativePoseEstimate>("estimate/relative_pose");
@@ -253,19 +237,11 @@ TEST(UwbRelativeEstimatorNode, WithPeerLinksTheEstimatorWaitsForThePeersStreamAn
 // estimates 3 and 2 (link 3-2 from the stream (2,3), transposed), robot 2 estimates 3 and 1 (link
 // 3-1 from (1,3), transposed), and the streams (1,3), (2,3) serve both robots.
 TEST(UwbRelativeEstimatorNode, TwoServedRobotsThatMoveSharedStreamsAndTransposedLinks) {
-  const std::string yaml = R"(name: uwb_relative_estimator_moving
-step_s: 0.02
-duration_s: 3.0
-seed: 1
-robots:
-  - {id: 1, x: 0, y: 0, theta: 0}
-  - {id: 2, x: 4, y: 1, theta: 1}
-  - {id: 3, x: -3, y: 2, theta: -2}
-components:
-  - {name: estimator, type: uwb_relative_estimator, robots: [1, 2], params: {peers: [3, 2, 1]}}
-)";
-  NodeHarness h(yaml);
-  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  Harness h(ScenarioText("uwb_relative_estimator_moving", 0.02, 3.0)
+                .robot("{id: 1, x: 0, y: 0, theta: 0}")
+                .robot("{id: 2, x: 4, y: 1, theta: 1}")
+                .robot("{id: 3, x: -3, y: 2, theta: -2}")
+                .component("{name: estimator, type: uwb_relative_estimator, robots: [1, 2], params: {peers: [3, 2, 1]}}"));
   const std::map<std::uint32_t, model::Twist> twist{{1, {0.2, 0.1}}, {2, {0.15, -0.05}}, {3, {0.1, 0.2}}};
   const std::map<std::uint32_t, model::Pose2> start{{1, {0, 0, 0}}, {2, {4, 1, 1}}, {3, {-3, 2, -2}}};
   const auto pose_at = [&](std::uint32_t robot, std::uint64_t step) {
@@ -309,22 +285,21 @@ components:
 }
 
 std::string start_error(const std::string& yaml) {
-  NodeHarness h(yaml);
-  robodds::component_registration::register_uwb_relative_estimator(h.registry());
+  Harness h(yaml);
   return h.run_error<ConfigError>({"estimator"});
 }
 
 TEST(UwbRelativeEstimatorNode, BadSetUpsAreStartUpErrorsNamingTheKey) {
   EXPECT_NE(start_error(scenario("peers: [2, 9]")).find("peers: robot 9 is not in the scenario"), std::string::npos)
       << start_error(scenario("peers: [2, 9]"));
-  EXPECT_NE(start_error(scenario("", "")).find("has no peer"), std::string::npos);
+  EXPECT_NE(start_error(scenario("", /*peers=*/false)).find("has no peer"), std::string::npos);
   EXPECT_NE(start_error(scenario("window_epochs: 1")).find("window_epochs"), std::string::npos);
   EXPECT_NE(start_error(scenario("pf.num_particles: 0")).find("pf.num_particles"), std::string::npos);
   EXPECT_NE(start_error(scenario("peers: [2, 2]")).find("robot 2 is listed twice"), std::string::npos);
   // The array is the scenario's fact (facts: uwb_array:), read and checked by the estimator at configure.
-  std::string error = start_error(with_facts("uwb_array: {nodes_m: [[0.3, 0], [-0.3, 0]]}", scenario("")));
+  std::string error = start_error(scenario("").fact("uwb_array: {nodes_m: [[0.3, 0], [-0.3, 0]]}"));
   EXPECT_NE(error.find("facts.uwb_array: nodes_m: needs at least 3 nodes"), std::string::npos) << error;
-  error = start_error(with_facts("uwb_array: {nodes_m: [[0.3, 0], [-0.3, 0], [0.3, 0]]}", scenario("")));
+  error = start_error(scenario("").fact("uwb_array: {nodes_m: [[0.3, 0], [-0.3, 0], [0.3, 0]]}"));
   EXPECT_NE(error.find("facts.uwb_array: nodes_m: nodes 0 and 2 coincide"), std::string::npos) << error;
   error = start_error(scenario("array_side_m: 0.5"));
   EXPECT_NE(error.find("array_side_m"), std::string::npos) << "no longer a parameter of the estimator: " << error;

@@ -18,7 +18,7 @@
 #include "runtime/error.hpp"
 #include "runtime/io.hpp"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(uwb_sensor);
 
@@ -26,24 +26,17 @@ namespace robodds::uwb_sensor {
 namespace {
 
 using robodds::testing::NodeHarness;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_uwb_sensor>;
 
 constexpr const char* kNoiseOff = "white_sigma_m: 0, link_bias_sigma_m: 0, common_sigma_m: 0, max_range_m: 20";
 
 // Steps 0..10 at 10 Hz; the sensor runs at 5 Hz (every 2 steps) for robots 1 and 2; robot 3 is
-// only a peer. `facts`: the scenario's facts: map (e.g. the array every robot carries).
-std::string scenario(const std::string& params, const std::string& facts = "") {
-  return R"(name: uwb_sensor_node
-step_s: 0.1
-duration_s: 1.0
-seed: 1
-)" + (facts.empty() ? std::string() : "facts:\n  " + facts + "\n") +
-         R"(robots:
-  - {id: 1}
-  - {id: 2}
-  - {id: 3}
-components:
-  - {name: uwb, type: uwb_sensor, robots: [1, 2], params: {rate_hz: 5, )" +
-         params + "}}\n";
+// only a peer.
+ScenarioText scenario(const std::string& params) {
+  return ScenarioText("uwb_sensor_node", 0.1, 1.0)
+      .robots({1, 2, 3})
+      .component("{name: uwb, type: uwb_sensor, robots: [1, 2], params: {rate_hz: 5, " + params + "}}");
 }
 
 // Robot 1 at the origin facing +x, robot 2 at (3, 4) facing +y, robot 3 far away (100, 0).
@@ -71,7 +64,6 @@ void feed_static(NodeHarness& h) {
 std::uint64_t key(std::uint32_t robot, std::uint32_t peer) { return (std::uint64_t{robot} << 32) | peer; }
 
 std::vector<idl::UwbRanges> run(NodeHarness& h) {
-  robodds::component_registration::register_uwb_sensor(h.registry());
   feed_static(h);
   const auto& out = h.record<idl::UwbRanges>("sensor/uwb");
   h.run({"uwb"});
@@ -79,7 +71,7 @@ std::vector<idl::UwbRanges> run(NodeHarness& h) {
 }
 
 TEST(UwbSensorNode, RangesOfAKnownGeometryInTheKeyLayoutEveryPairEveryDueStep) {
-  NodeHarness h(scenario(kNoiseOff));
+  Harness h(scenario(kNoiseOff));
   const std::vector<idl::UwbRanges> out = run(h);
   std::map<std::uint64_t, std::vector<idl::UwbRanges>> by_pair;
   for (const idl::UwbRanges& m : out) {
@@ -114,7 +106,7 @@ TEST(UwbSensorNode, RangesOfAKnownGeometryInTheKeyLayoutEveryPairEveryDueStep) {
 }
 
 TEST(UwbSensorNode, APairBeyondMaxRangeGetsEmptySamplesInLockstep) {
-  NodeHarness h(scenario(kNoiseOff));
+  Harness h(scenario(kNoiseOff));
   const std::vector<idl::UwbRanges> out = run(h);
   std::size_t far = 0;
   for (const idl::UwbRanges& m : out) {
@@ -132,7 +124,7 @@ TEST(UwbSensorNode, APairBeyondMaxRangeGetsEmptySamplesInLockstep) {
 }
 
 TEST(UwbSensorNode, LostFramesAreEmptySamplesInLockstep) {
-  NodeHarness h(scenario(std::string(kNoiseOff) + ", frame_loss_probability: 0.5"));
+  Harness h(scenario(std::string(kNoiseOff) + ", frame_loss_probability: 0.5"));
   const std::vector<idl::UwbRanges> out = run(h);
   std::size_t near = 0;
   std::size_t empty = 0;
@@ -151,7 +143,7 @@ TEST(UwbSensorNode, LostFramesAreEmptySamplesInLockstep) {
 // directions are still each other's transpose; the same seed gives the same ranges, another not.
 TEST(UwbSensorNode, BothDirectionsShareTheLinkErrorsAndTheSeedDecides) {
   const std::string params = "white_sigma_m: 0";
-  NodeHarness a(scenario(params));
+  Harness a(scenario(params));
   const std::vector<idl::UwbRanges> first = run(a);
   std::map<std::pair<std::uint64_t, std::uint64_t>, std::vector<double>> ranges;  // (key, step)
   for (const idl::UwbRanges& m : first) {
@@ -171,13 +163,13 @@ TEST(UwbSensorNode, BothDirectionsShareTheLinkErrorsAndTheSeedDecides) {
   }
   EXPECT_TRUE(noisy) << "the errors are on";
 
-  NodeHarness b(scenario(params));
+  Harness b(scenario(params));
   const std::vector<idl::UwbRanges> again = run(b);
   ASSERT_EQ(again.size(), first.size());
   for (std::size_t i = 0; i < first.size(); ++i) {
     EXPECT_EQ(again[i].ranges(), first[i].ranges()) << "same seed, same ranges";
   }
-  NodeHarness c(scenario(params));
+  Harness c(scenario(params));
   c.scenario().seed = 2;
   const std::vector<idl::UwbRanges> other = run(c);
   ASSERT_EQ(other.size(), first.size());
@@ -187,19 +179,10 @@ TEST(UwbSensorNode, BothDirectionsShareTheLinkErrorsAndTheSeedDecides) {
 // Two instances, one per robot: the link errors are seeded by the pair, not by the instance name,
 // so the two directions still measure one link.
 TEST(UwbSensorNode, TwoInstancesServingTheTwoRobotsAgreeOnTheirLink) {
-  NodeHarness h(R"(name: uwb_sensor_two_instances
-step_s: 0.1
-duration_s: 1.0
-seed: 1
-robots:
-  - {id: 1}
-  - {id: 2}
-  - {id: 3}
-components:
-  - {name: uwb_one, type: uwb_sensor, robots: [1], params: {rate_hz: 5, white_sigma_m: 0}}
-  - {name: uwb_two, type: uwb_sensor, robots: [2], params: {rate_hz: 5, white_sigma_m: 0}}
-)");
-  robodds::component_registration::register_uwb_sensor(h.registry());
+  Harness h(ScenarioText("uwb_sensor_two_instances", 0.1, 1.0)
+                .robots({1, 2, 3})
+                .component("{name: uwb_one, type: uwb_sensor, robots: [1], params: {rate_hz: 5, white_sigma_m: 0}}")
+                .component("{name: uwb_two, type: uwb_sensor, robots: [2], params: {rate_hz: 5, white_sigma_m: 0}}"));
   feed_static(h);
   const auto& out = h.record<idl::UwbRanges>("sensor/uwb");
   h.run({"uwb_one", "uwb_two"});
@@ -222,7 +205,7 @@ components:
 
 // Real time: nobody waits on next_step, so an out-of-range pair or a lost frame is simply not sent.
 TEST(UwbSensorNode, RealTimeSendsNothingForFarPairsAndLostFrames) {
-  NodeHarness h(scenario(std::string(kNoiseOff) + ", frame_loss_probability: 0.5"));
+  Harness h(scenario(std::string(kNoiseOff) + ", frame_loss_probability: 0.5"));
   h.set_mode(TimeMode::kRealtime);
   const std::vector<idl::UwbRanges> out = run(h);
   ASSERT_FALSE(out.empty());
@@ -234,8 +217,7 @@ TEST(UwbSensorNode, RealTimeSendsNothingForFarPairsAndLostFrames) {
 
 // The array is the scenario's fact (facts: uwb_array:), read and checked by the sensor at configure.
 TEST(UwbSensorNode, TooFewNodesIsAConfigErrorNamingTheKey) {
-  NodeHarness h(scenario(kNoiseOff, "uwb_array: {nodes_m: [[0.3, 0], [-0.3, 0]]}"));
-  robodds::component_registration::register_uwb_sensor(h.registry());
+  Harness h(scenario(kNoiseOff).fact("uwb_array: {nodes_m: [[0.3, 0], [-0.3, 0]]}"));
   const std::string error = h.run_error<ConfigError>({"uwb"});
   EXPECT_NE(error.find("facts.uwb_array: nodes_m: needs at least 3 nodes"), std::string::npos)
       << "expected a ConfigError, got: " << error;
@@ -243,7 +225,7 @@ TEST(UwbSensorNode, TooFewNodesIsAConfigErrorNamingTheKey) {
 
 // Every robot carries the scenario's array: a 0.8 m square moves every node to (+-0.4, +-0.4).
 TEST(UwbSensorNode, MeasuresWithTheScenariosArray) {
-  NodeHarness h(scenario(kNoiseOff, "uwb_array: {array_side_m: 0.8}"));
+  Harness h(scenario(kNoiseOff).fact("uwb_array: {array_side_m: 0.8}"));
   const std::vector<idl::UwbRanges> out = run(h);
   std::size_t checked = 0;
   for (const idl::UwbRanges& m : out) {

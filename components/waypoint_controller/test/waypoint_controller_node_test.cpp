@@ -5,36 +5,27 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "robodds/idl/robodds.h"
 #include "runtime/error.hpp"
 #include "runtime/io.hpp"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(waypoint_controller);
 
 namespace robodds::waypoint_controller {
 namespace {
 
-using robodds::testing::NodeHarness;
-using robodds::testing::of_instance;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_waypoint_controller>;
 
 // Steps 0..5 at 100 Hz, one robot.
-const char* kScenario = R"(name: waypoint_controller_node
-step_s: 0.01
-duration_s: 0.05
-seed: 1
-robots:
-  - {id: 1}
-components:
-  - {name: controller, type: waypoint_controller}
-)";
-
-void add_controller(NodeHarness& h) {
-  robodds::component_registration::register_waypoint_controller(h.registry());
-}
+const std::string kScenario =
+    ScenarioText("waypoint_controller_node", 0.01, 0.05).robots({1}).component("{name: controller, type: waypoint_controller}");
 
 idl::WaypointMission mission(const std::vector<std::pair<double, double>>& points) {
   idl::WaypointMission m;
@@ -59,8 +50,7 @@ idl::PoseEstimate estimate(double x, double y, double theta, bool valid) {
 }
 
 TEST(WaypointControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
-  NodeHarness h(kScenario);
-  add_controller(h);
+  Harness h(kScenario);
   h.feed([&h](std::uint64_t step) {
     if (step == 0) {
       h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
@@ -85,18 +75,10 @@ TEST(WaypointControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
 // Issue 12: the limits of the robot's body (the scenario's shared fact), the control period from its rate
 // (50 Hz: 0.02 s): the command ramps at 1 m/s^2 and the wheel limit scales v and omega together.
 TEST(WaypointControllerNode, RampsAndScalesItsCommandsToTheActuatorLimits) {
-  NodeHarness h(R"(name: waypoint_controller_limits
-step_s: 0.01
-duration_s: 0.1
-seed: 1
-facts:
-  robot_body: {wheel_base_m: 0.3, max_wheel_speed_mps: 1.5, max_accel_mps2: 1.0, max_angular_accel_radps2: 5.0}
-robots:
-  - {id: 1}
-components:
-  - {name: controller, type: waypoint_controller, params: {rate_hz: 50}}
-)");
-  add_controller(h);
+  Harness h(ScenarioText("waypoint_controller_limits", 0.01, 0.1)
+                .fact("robot_body: {wheel_base_m: 0.3, max_wheel_speed_mps: 1.5, max_accel_mps2: 1.0, max_angular_accel_radps2: 5.0}")
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, params: {rate_hz: 50}}"));
   h.feed([&h](std::uint64_t step) {
     if (step == 0) {
       h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
@@ -117,19 +99,10 @@ components:
 // While the estimate is not valid the robot may creep straight ahead (so that the position fixes
 // reveal its heading), ramped like every command; once valid it tracks.
 TEST(WaypointControllerNode, CreepsAheadWhileTheEstimateIsNotValid) {
-  NodeHarness h(R"(name: waypoint_controller_creep
-step_s: 0.01
-duration_s: 0.1
-seed: 1
-facts:
-  robot_body: {max_accel_mps2: 10.0}
-robots:
-  - {id: 1}
-components:
-  - {name: controller, type: waypoint_controller,
-     params: {invalid_estimate_speed_mps: 0.3}}
-)");
-  add_controller(h);
+  Harness h(ScenarioText("waypoint_controller_creep", 0.01, 0.1)
+                .fact("robot_body: {max_accel_mps2: 10.0}")
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3}}"));
   h.feed([&h](std::uint64_t step) {
     if (step == 0) {
       h.publish("mission/waypoints", mission({{0.0, 10.0}}), 0, kNeverAgain);
@@ -151,19 +124,11 @@ components:
 // A filter that never becomes valid must not drive the robot on forever: the creep stops after
 // invalid_estimate_creep_limit_s, and a valid estimate lets it track again.
 TEST(WaypointControllerNode, CreepingStopsAfterItsLimitWithoutAValidEstimate) {
-  NodeHarness h(R"(name: waypoint_controller_creep_limit
-step_s: 0.01
-duration_s: 0.3
-seed: 1
-facts:
-  robot_body: {max_accel_mps2: 100.0}
-robots:
-  - {id: 1}
-components:
-  - {name: controller, type: waypoint_controller,
-     params: {invalid_estimate_speed_mps: 0.3, invalid_estimate_creep_limit_s: 0.1}}
-)");
-  add_controller(h);
+  Harness h(ScenarioText("waypoint_controller_creep_limit", 0.01, 0.3)
+                .fact("robot_body: {max_accel_mps2: 100.0}")
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, "
+                           "params: {invalid_estimate_speed_mps: 0.3, invalid_estimate_creep_limit_s: 0.1}}"));
   h.feed([&h](std::uint64_t step) {
     if (step == 0) {
       h.publish("mission/waypoints", mission({{0.0, 10.0}}), 0, kNeverAgain);
@@ -182,8 +147,7 @@ components:
 }
 
 TEST(WaypointControllerNode, DrivesToTheWaypointAndSwitchesWithinEpsilon) {
-  NodeHarness h(kScenario);
-  add_controller(h);
+  Harness h(kScenario);
   // The robot faces +x; the first way-point is 1 m ahead until step 3, when the estimate is
   // 0.05 m from it (< epsilon 0.1 m).
   h.feed([&h](std::uint64_t step) {
@@ -215,16 +179,9 @@ TEST(WaypointControllerNode, DrivesToTheWaypointAndSwitchesWithinEpsilon) {
 // zero within estimate_timeout_s of the last receipt and says why (ESTIMATE_STALE), instead of
 // steering on the frozen estimate.
 TEST(WaypointControllerNode, RealTimeStaleEstimateStopsTheRobotAndSaysWhy) {
-  NodeHarness h(R"(name: waypoint_controller_stale
-step_s: 0.01
-duration_s: 0.8
-seed: 1
-robots:
-  - {id: 1}
-components:
-  - {name: controller, type: waypoint_controller, params: {estimate_timeout_s: 0.2}}
-)");
-  add_controller(h);
+  Harness h(ScenarioText("waypoint_controller_stale", 0.01, 0.8)
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, params: {estimate_timeout_s: 0.2}}"));
   h.set_mode(TimeMode::kRealtime);
   constexpr std::uint64_t kLastFed = 30;  // the estimator dies after 0.3 s
   bool mission_sent = false;
@@ -262,8 +219,7 @@ components:
 }
 
 TEST(WaypointControllerNode, StatusSaysWhyTheCommandIsZero) {
-  NodeHarness h(kScenario);
-  add_controller(h);
+  Harness h(kScenario);
   h.feed([&h](std::uint64_t step) {
     if (step == 0) {
       h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
@@ -279,16 +235,9 @@ TEST(WaypointControllerNode, StatusSaysWhyTheCommandIsZero) {
 }
 
 TEST(WaypointControllerNode, EstimateTimeoutMustExceedTheControlPeriod) {
-  NodeHarness h(R"(name: bad_timeout
-step_s: 0.01
-duration_s: 0.05
-seed: 1
-robots:
-  - {id: 1}
-components:
-  - {name: controller, type: waypoint_controller, params: {estimate_timeout_s: 0.005}}
-)");
-  add_controller(h);
+  Harness h(ScenarioText("bad_timeout", 0.01, 0.05)
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, params: {estimate_timeout_s: 0.005}}"));
   const std::string error = h.run_error<ConfigError>({"controller"});
   EXPECT_NE(error.find("estimate_timeout_s: must be longer than the component's period"), std::string::npos)
       << "a timeout shorter than the control period must be a ConfigError, got: " << error;

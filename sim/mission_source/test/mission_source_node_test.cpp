@@ -4,37 +4,29 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "robodds/idl/robodds.h"
 #include "runtime/error.hpp"
 #include "runtime/io.hpp"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(mission_source);
 
 namespace robodds::mission_source {
 namespace {
 
-using robodds::testing::NodeHarness;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_mission_source>;
 
-const char* kScenario = R"(name: mission_node
-step_s: 0.01
-duration_s: 0.05
-seed: 1
-robots:
-  - {id: 1}
-  - {id: 2}
-components:
-  - {name: mission, type: mission_source, params: {waypoints: [[1, 2], [3, 4]]}}
-)";
-
-void add_mission(NodeHarness& h) {
-  robodds::component_registration::register_mission_source(h.registry());
-}
+const std::string kScenario = ScenarioText("mission_node", 0.01, 0.05)
+                                  .robots({1, 2})
+                                  .component("{name: mission, type: mission_source, params: {waypoints: [[1, 2], [3, 4]]}}");
 
 TEST(MissionNode, PublishesEachRobotsMissionOnceAsFinal) {
-  NodeHarness h(kScenario);
-  add_mission(h);
+  Harness h(kScenario);
   const auto& missions = h.record<idl::WaypointMission>("mission/waypoints");
   h.run({"mission"});
   ASSERT_EQ(missions.size(), 2u) << "once per robot, not once per step";
@@ -49,8 +41,7 @@ TEST(MissionNode, PublishesEachRobotsMissionOnceAsFinal) {
 }
 
 TEST(MissionNode, AReaderThatJoinsAfterTheRunStillGetsTheMission) {
-  NodeHarness h(kScenario);
-  add_mission(h);
+  Harness h(kScenario);
   h.run({"mission"});
   std::vector<std::uint32_t> late;
   const TopicInfo& info = topic_info("mission/waypoints");
@@ -61,16 +52,9 @@ TEST(MissionNode, AReaderThatJoinsAfterTheRunStillGetsTheMission) {
 }
 
 TEST(MissionNode, AnEmptyMissionIsAConfigError) {
-  NodeHarness h(R"(name: mission_node
-step_s: 0.01
-duration_s: 0.05
-seed: 1
-robots:
-  - {id: 1}
-components:
-  - {name: mission, type: mission_source, params: {waypoints: []}}
-)");
-  add_mission(h);
+  Harness h(ScenarioText("mission_node", 0.01, 0.05)
+                .robots({1})
+                .component("{name: mission, type: mission_source, params: {waypoints: []}}"));
   EXPECT_THROW(h.run({"mission"}), ConfigError);
 }
 

@@ -4,35 +4,30 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "robodds/idl/robodds.h"
-#include "runtime/testing/node_harness.hpp"
-#include "sim/open_loop_commander/open_loop_commander.hpp"
 #include "runtime/registry.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
+#include "sim/open_loop_commander/open_loop_commander.hpp"
 
 ROBODDS_DECLARE_COMPONENT(open_loop_commander);
 
 namespace robodds::open_loop_commander {
 namespace {
 
-using robodds::testing::NodeHarness;
 using robodds::testing::of_instance;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_open_loop_commander>;
 
 // Steps 0..10 at 100 Hz; commands at 50 Hz; v is NaN at step 4 (fault injection).
-const char* kScenario = R"(name: open_loop_node
-step_s: 0.01
-duration_s: 0.1
-seed: 1
-robots:
-  - {id: 4}
-  - {id: 7}
-components:
-  - {name: commander, type: open_loop_commander, params: {v_mps: 2.0, omega_period_s: 0.1, inject_nan_at_step: 4}}
-)";
+const std::string kScenario =
+    ScenarioText("open_loop_node", 0.01, 0.1)
+        .robots({4, 7})
+        .component("{name: commander, type: open_loop_commander, params: {v_mps: 2.0, omega_period_s: 0.1, inject_nan_at_step: 4}}");
 
 TEST(OpenLoopNode, PublishesTheCommanderLawPerRobotAtItsRate) {
-  NodeHarness h(kScenario);
-  robodds::component_registration::register_open_loop_commander(h.registry());
+  Harness h(kScenario);
   const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
   h.run({"commander"});
 

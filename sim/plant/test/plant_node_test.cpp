@@ -6,36 +6,28 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "robodds/idl/robodds.h"
 #include "runtime/error.hpp"
 #include "runtime/registry.hpp"
 #include "runtime/sample_checks.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(plant);
 
 namespace robodds::plant {
 namespace {
 
-using robodds::testing::NodeHarness;
 using robodds::testing::of_instance;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_plant>;
 
 // Steps 0..5 at 100 Hz; robot 2 starts at (5, 0) facing +y.
-const char* kScenario = R"(name: plant_node
-step_s: 0.01
-duration_s: 0.05
-seed: 1
-robots:
-  - {id: 1}
-  - {id: 2, x: 5.0, y: 0.0, theta: 1.5707963267948966}
-components:
-  - {name: plant, type: plant}
-)";
-
-void add_plant(NodeHarness& h) {
-  robodds::component_registration::register_plant(h.registry());
-}
+const std::string kScenario = ScenarioText("plant_node", 0.01, 0.05)
+                                  .robots({1})
+                                  .robot("{id: 2, x: 5.0, y: 0.0, theta: 1.5707963267948966}")
+                                  .component("{name: plant, type: plant}");
 
 idl::VelocityCommand velocity(std::uint32_t robot, double v, double omega) {
   idl::VelocityCommand cmd;
@@ -47,8 +39,7 @@ idl::VelocityCommand velocity(std::uint32_t robot, double v, double omega) {
 }
 
 TEST(PlantNode, IntegratesTheCommandOfThePreviousStep) {
-  NodeHarness h(kScenario);
-  add_plant(h);
+  Harness h(kScenario);
   // Command of step m: v = 1 + m (robot 1), robot 2 stands still.
   h.feed([&h](std::uint64_t step) {
     h.publish("plant/cmd", velocity(1, 1.0 + static_cast<double>(step), 0.0), step, step + 1);
@@ -78,8 +69,7 @@ TEST(PlantNode, IntegratesTheCommandOfThePreviousStep) {
 }
 
 TEST(PlantNode, ConvertsWheelSpeedCommands) {
-  NodeHarness h(kScenario);
-  add_plant(h);
+  Harness h(kScenario);
   h.feed([&h](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
       idl::VelocityCommand cmd;
@@ -100,8 +90,7 @@ TEST(PlantNode, ConvertsWheelSpeedCommands) {
 }
 
 TEST(PlantNode, ANonFiniteCommandIsRejectedAndTheLastValidOneKept) {
-  NodeHarness h(kScenario);
-  add_plant(h);
+  Harness h(kScenario);
   h.feed([&h](std::uint64_t step) {
     const double v = step == 2 ? std::numeric_limits<double>::quiet_NaN() : 1.0 + static_cast<double>(step);
     h.publish("plant/cmd", velocity(1, v, 0.0), step, step + 1);
@@ -123,8 +112,7 @@ TEST(PlantNode, ANonFiniteCommandIsRejectedAndTheLastValidOneKept) {
 // Finding 3 of issue 9: a command beyond the gross bounds or with a mode outside CommandMode is
 // refused by the input (runtime/sample_checks.hpp) and never integrated; the last valid one is kept.
 TEST(PlantNode, AbsurdCommandsAndBadModesAreRefusedNotIntegrated) {
-  NodeHarness h(kScenario);
-  add_plant(h);
+  Harness h(kScenario);
   h.feed([&h](std::uint64_t step) {
     idl::VelocityCommand one = velocity(1, step == 2 ? 1e300 : 1.0, 0.0);
     h.publish("plant/cmd", one, step, step + 1);
@@ -148,19 +136,11 @@ TEST(PlantNode, AbsurdCommandsAndBadModesAreRefusedNotIntegrated) {
 }
 
 TEST(PlantNode, CommandsBeyondTheLimitsAreSaturated) {
-  NodeHarness h(R"(name: plant_limits
-step_s: 0.01
-duration_s: 0.05
-seed: 1
-facts:
-  robot_body: {max_speed_mps: 1.0, max_turn_rate_radps: 0.5}
-robots:
-  - {id: 1}
-  - {id: 2, facts: {robot_body: {max_speed_mps: 2.0}}}
-components:
-  - {name: plant, type: plant}
-)");
-  add_plant(h);
+  Harness h(ScenarioText("plant_limits", 0.01, 0.05)
+                .fact("robot_body: {max_speed_mps: 1.0, max_turn_rate_radps: 0.5}")
+                .robots({1})
+                .robot("{id: 2, facts: {robot_body: {max_speed_mps: 2.0}}}")
+                .component("{name: plant, type: plant}"));
   h.feed([&h](std::uint64_t step) {
     h.publish("plant/cmd", velocity(1, -5.0, 2.0), step, step + 1);
     h.publish("plant/cmd", velocity(2, -5.0, 2.0), step, step + 1);
@@ -181,18 +161,10 @@ components:
 // 5 rad/s^2. A command of (18 m/s, 60 rad/s) is wheels (9, 27): clamped to (1.5, 1.5), i.e. a
 // straight line at 1.5 m/s, reached at 1 m/s^2.
 TEST(PlantNode, WheelSpeedsAreClampedAndTheTwistRampsAtTheAccelerationLimits) {
-  NodeHarness h(R"(name: plant_actuator
-step_s: 0.01
-duration_s: 2.0
-seed: 1
-facts:
-  robot_body: {wheel_base_m: 0.3, max_wheel_speed_mps: 1.5, max_accel_mps2: 1.0, max_angular_accel_radps2: 5.0}
-robots:
-  - {id: 1}
-components:
-  - {name: plant, type: plant}
-)");
-  add_plant(h);
+  Harness h(ScenarioText("plant_actuator", 0.01, 2.0)
+                .fact("robot_body: {wheel_base_m: 0.3, max_wheel_speed_mps: 1.5, max_accel_mps2: 1.0, max_angular_accel_radps2: 5.0}")
+                .robots({1})
+                .component("{name: plant, type: plant}"));
   h.feed([&h](std::uint64_t step) {
     h.publish("plant/cmd", step < 100 ? velocity(1, 18.0, 60.0) : velocity(1, 0.0, -60.0), step, step + 1);
   });
@@ -221,17 +193,10 @@ components:
 // Kidnapped robot: at t = 0.03 s (step 3) the true pose jumps once by (10, -2) m and pi/2 rad,
 // on top of the motion; the applied twist is unchanged.
 TEST(PlantNode, TheDisturbanceMovesThePoseOnceAtItsTime) {
-  NodeHarness h(R"(name: plant_disturbance
-step_s: 0.01
-duration_s: 0.05
-seed: 1
-robots:
-  - {id: 1}
-components:
-  - {name: plant, type: plant, params: {disturbance_at_s: 0.03, disturbance_dx_m: 10.0, disturbance_dy_m: -2.0,
-                                        disturbance_dtheta_rad: 1.5707963267948966}}
-)");
-  add_plant(h);
+  Harness h(ScenarioText("plant_disturbance", 0.01, 0.05)
+                .robots({1})
+                .component("{name: plant, type: plant, params: {disturbance_at_s: 0.03, disturbance_dx_m: 10.0, disturbance_dy_m: -2.0, "
+                           "disturbance_dtheta_rad: 1.5707963267948966}}"));
   h.feed([&h](std::uint64_t step) { h.publish("plant/cmd", velocity(1, 1.0, 0.0), step, step + 1); });
   const auto& states = h.record<idl::RobotState>("plant/state");
   h.run({"plant"});
@@ -247,24 +212,16 @@ components:
 }
 
 // Real time, scenario of 0.6 s with a 0.2 s command timeout.
-const char* kRealTimeScenario = R"(name: plant_realtime
-step_s: 0.01
-duration_s: 0.6
-seed: 1
-robots:
-  - {id: 1}
-  - {id: 2}
-components:
-  - {name: plant, type: plant, params: {command_timeout_s: 0.2}}
-)";
+const std::string kRealTimeScenario = ScenarioText("plant_realtime", 0.01, 0.6)
+                                          .robots({1, 2})
+                                          .component("{name: plant, type: plant, params: {command_timeout_s: 0.2}}");
 constexpr std::uint64_t kLastCommand = 20;  // the commander stops after 0.2 s
 constexpr std::uint64_t kStoppedFrom = kLastCommand + 20 + 15;  // + timeout + margin for a loaded machine
 
 // Finding 2 of issue 9: a command stamped in the future (or negative) never expired. It is now
 // refused on arrival (stamp_in_future, negative_stamp), so the robot never moves on it.
 TEST(PlantNode, RealTimeCommandsWithAbsurdStampsAreRefused) {
-  NodeHarness h(kRealTimeScenario);
-  add_plant(h);
+  Harness h(kRealTimeScenario);
   h.set_mode(TimeMode::kRealtime);
   h.feed([&h](std::uint64_t step) {
     if (step <= kLastCommand) {
@@ -285,8 +242,7 @@ TEST(PlantNode, RealTimeCommandsWithAbsurdStampsAreRefused) {
 // whose clock is 10 s behind still drives the robot, and the robot stops within the timeout of
 // the last receipt.
 TEST(PlantNode, RealTimeCommandAgeIsJudgedByReceiveTimeNotTheSendersClock) {
-  NodeHarness h(kRealTimeScenario);
-  add_plant(h);
+  Harness h(kRealTimeScenario);
   h.set_mode(TimeMode::kRealtime);
   h.feed([&h](std::uint64_t step) {
     if (step <= kLastCommand) {
@@ -318,18 +274,10 @@ TEST(PlantNode, RealTimeCommandAgeIsJudgedByReceiveTimeNotTheSendersClock) {
 // With acceleration limits a stale command still stops the robot at once (a motor driver's
 // watchdog), not at max_accel_mps2: the limits shape commands, not the safe stop.
 TEST(PlantNode, RealTimeStaleCommandStopsAtOnceDespiteAccelerationLimits) {
-  NodeHarness h(R"(name: plant_realtime_limits
-step_s: 0.01
-duration_s: 0.6
-seed: 1
-facts:
-  robot_body: {max_accel_mps2: 0.5, max_angular_accel_radps2: 0.5}
-robots:
-  - {id: 1}
-components:
-  - {name: plant, type: plant, params: {command_timeout_s: 0.2}}
-)");
-  add_plant(h);
+  Harness h(ScenarioText("plant_realtime_limits", 0.01, 0.6)
+                .fact("robot_body: {max_accel_mps2: 0.5, max_angular_accel_radps2: 0.5}")
+                .robots({1})
+                .component("{name: plant, type: plant, params: {command_timeout_s: 0.2}}"));
   h.set_mode(TimeMode::kRealtime);
   h.feed([&h](std::uint64_t step) {
     if (step <= kLastCommand) {
@@ -358,8 +306,7 @@ components:
 // offset cancels out, and adds it to the receive age: robot 1's late command is never applied;
 // robot 2's command of the same step, not held up, is.
 TEST(PlantNode, RealTimeCommandHeldUpOnTheWayIsStale) {
-  NodeHarness h(kRealTimeScenario);
-  add_plant(h);
+  Harness h(kRealTimeScenario);
   h.set_mode(TimeMode::kRealtime);
   constexpr std::uint64_t kLate = 40;  // the link is back: a 1 s old command arrives
   h.feed([&h](std::uint64_t step) {
@@ -386,16 +333,9 @@ TEST(PlantNode, RealTimeCommandHeldUpOnTheWayIsStale) {
 }
 
 TEST(PlantNode, CommandTimeoutMustExceedThePlantPeriod) {
-  NodeHarness h(R"(name: bad_timeout
-step_s: 0.01
-duration_s: 0.05
-seed: 1
-robots:
-  - {id: 1}
-components:
-  - {name: plant, type: plant, params: {command_timeout_s: 0.01}}
-)");
-  add_plant(h);
+  Harness h(ScenarioText("bad_timeout", 0.01, 0.05)
+                .robots({1})
+                .component("{name: plant, type: plant, params: {command_timeout_s: 0.01}}"));
   const std::string error = h.run_error<ConfigError>({"plant"});
   EXPECT_NE(error.find("command_timeout_s: must be longer than the component's period"), std::string::npos)
       << "a timeout not longer than the plant's period must be a ConfigError, got: " << error;

@@ -5,33 +5,27 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "robodds/idl/robodds.h"
 #include "runtime/registry.hpp"
-#include "runtime/testing/node_harness.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(truth_estimator);
 
 namespace robodds::truth_estimator {
 namespace {
 
-using robodds::testing::NodeHarness;
 using robodds::testing::of_instance;
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_truth_estimator>;
 
-const char* kScenario = R"(name: truth_estimator_node
-step_s: 0.01
-duration_s: 0.05
-seed: 1
-robots:
-  - {id: 1}
-  - {id: 2}
-components:
-  - {name: truth, type: truth_estimator, params: {inject_nan_at_step: 3}}
-)";
+const std::string kScenario = ScenarioText("truth_estimator_node", 0.01, 0.05)
+                                  .robots({1, 2})
+                                  .component("{name: truth, type: truth_estimator, params: {inject_nan_at_step: 3}}");
 
 TEST(TruthEstimatorNode, PublishesTheTruePoseOfTheSameStepPerRobot) {
-  NodeHarness h(kScenario);
-  robodds::component_registration::register_truth_estimator(h.registry());
+  Harness h(kScenario);
   h.feed([&h](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
       idl::RobotState s;
