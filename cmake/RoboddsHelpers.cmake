@@ -46,7 +46,7 @@ function(robodds_benchmark name)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} benchmark::benchmark robodds_warnings)
 endfunction()
 
-# Install layout. runtime/share_dir.hpp finds an installed share dir as
+# Install layout. runtime/config/share_dir.hpp finds an installed share dir as
 # <dir of the executable>/../share/robodds, so these two are fixed (not GNUInstallDirs cache
 # variables a packager could move apart).
 set(ROBODDS_INSTALL_BIN_DIR bin)
@@ -78,7 +78,7 @@ endfunction()
 # robodds_<type>_node; it links robodds_runtime_core) and adds the type to the set that
 # robodds_registered_components_library() registers. Each NODE_TESTS file is a unit test of the
 # node on the in-memory bus (runtime/testing/node_harness.hpp), named after the file. The node
-# sources must contain ROBODDS_REGISTER_COMPONENT(type, ...) (runtime/registry.hpp) with the same
+# sources must contain ROBODDS_REGISTER_COMPONENT(type, ...) (runtime/component/registry.hpp) with the same
 # type name; config/<type>.params.yaml (the generated defaults file) is installed into the share dir.
 # Nothing happens without the DDS runtime (-DROBODDS_WITH_DDS=OFF).
 function(robodds_component)
@@ -138,7 +138,7 @@ function(robodds_component_executable type node_library)
 endfunction()
 
 # robodds_registered_components_library(NAME)
-# A static library holding register_builtin_components() (runtime/registry.hpp), generated into
+# A static library holding register_builtin_components() (runtime/component/registry.hpp), generated into
 # the build tree from every robodds_component() call made so far: it calls each type's
 # registration function, sorted by type name so that the registry (and `robodds components`)
 # has a fixed order, and links every node library. Call it after the component folders are added.

@@ -5,7 +5,7 @@
 // gets); the table reads it from `S{}`. From a table come:
 //   - the range checks of the struct's validate() (check_ranges; cross-field rules stay in
 //     validate()),
-//   - the runtime's reading of a component's parameters (runtime/param_table_reader.hpp): the
+//   - the runtime's reading of a component's parameters (runtime/config/param_table_reader.hpp): the
 //     key set, the types and the built-in defaults,
 //   - the documentation: `robodds components --params NAME` and the generated
 //     config/<name>.params.yaml (doc(), common/param_doc.hpp), which a unit test compares with

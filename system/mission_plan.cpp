@@ -8,8 +8,8 @@
 #include <string>
 
 #include "common/number_text.hpp"
-#include "runtime/error.hpp"
-#include "runtime/log.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/base/log.hpp"
 
 namespace robodds::system {
 namespace {

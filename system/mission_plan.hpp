@@ -10,7 +10,7 @@
 //     - {time_s: 900.0, robots: [2], leave: true}
 
 #include "common/model/target_plan.hpp"
-#include "runtime/scenario.hpp"
+#include "runtime/config/scenario.hpp"
 
 namespace robodds::system {
 

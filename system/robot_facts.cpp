@@ -5,9 +5,9 @@
 #include <string>
 
 #include "common/model/uwb_array_params.hpp"
-#include "runtime/error.hpp"
-#include "runtime/log.hpp"
-#include "runtime/param_table_reader.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/config/param_table_reader.hpp"
 #include "system/mission_plan.hpp"
 
 namespace robodds::system {

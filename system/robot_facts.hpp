@@ -10,7 +10,7 @@
 //     - {id: 2, x: 1, y: 0, facts: {robot_body: {wheel_base_m: 0.35}}}  # robot 2 differs
 //
 // Facts: robot_body (per robot), uwb_array and range_accel_bound_mps2 (of the whole scenario).
-// The runtime stores the facts flattened and reads none (runtime/scenario.hpp); check_facts()
+// The runtime stores the facts flattened and reads none (runtime/config/scenario.hpp); check_facts()
 // runs before anything starts as a registered scenario check.
 
 #include <cstdint>
@@ -18,8 +18,8 @@
 
 #include "common/model/robot_body.hpp"
 #include "common/model/uwb_array.hpp"
-#include "runtime/registry.hpp"
-#include "runtime/scenario.hpp"
+#include "runtime/component/registry.hpp"
+#include "runtime/config/scenario.hpp"
 
 namespace robodds::system {
 

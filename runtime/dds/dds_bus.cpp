@@ -23,13 +23,13 @@
 #include "runtime/dds/match_report.hpp"
 #include "runtime/dds/participant.hpp"
 #include "runtime/dds/qos_files.hpp"
-#include "runtime/error.hpp"
-#include "runtime/instance_spread.hpp"
-#include "runtime/log.hpp"
-#include "runtime/qos_profiles.hpp"
-#include "runtime/sample_key.hpp"
-#include "runtime/topic_catalog.hpp"
-#include "runtime/shutdown_watchdog.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/bus/instance_spread.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/bus/qos_profiles.hpp"
+#include "runtime/bus/sample_key.hpp"
+#include "runtime/topics/topic_catalog.hpp"
+#include "runtime/health/shutdown_watchdog.hpp"
 #include "runtime/dds/type_support.hpp"
 #include "runtime/dds/undecodable.hpp"
 
@@ -40,7 +40,7 @@ using eprosima::fastrtps::types::ReturnCode_t;
 namespace {
 
 /// One topic's writer. In lockstep with many robots, several DataWriters of the topic, each
-/// publishing its share of the instances (runtime/instance_spread.hpp); the first one carries
+/// publishing its share of the instances (runtime/bus/instance_spread.hpp); the first one carries
 /// the listener (matches, incompatible QoS: the others have the same QoS and readers).
 class DdsWriter : public WriterHandle {
  public:
@@ -388,7 +388,7 @@ class FastDdsBus : public DdsBus {
 
   /// How many DataWriters publish one topic: several only for a topic keyed by robot (its first
   /// key member is robot_id: one instance per robot, or per robot and peer) in the `lockstep`
-  /// profile (the deep history; runtime/instance_spread.hpp), without exclusive ownership.
+  /// profile (the deep history; runtime/bus/instance_spread.hpp), without exclusive ownership.
   std::size_t writers_per_topic(const std::string& topic, const std::string& profile, bool exclusive) const {
     const TopicInfo* info = find_topic(topic);
     const bool robot_keyed = info != nullptr && info->key.rfind("robot_id", 0) == 0;

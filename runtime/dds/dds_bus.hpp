@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "runtime/bus.hpp"
-#include "runtime/qos_profiles.hpp"
+#include "runtime/bus/bus.hpp"
+#include "runtime/bus/qos_profiles.hpp"
 
 namespace robodds {
 

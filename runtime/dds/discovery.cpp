@@ -10,7 +10,7 @@
 #include <mutex>
 #include <thread>
 
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;

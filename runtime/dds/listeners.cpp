@@ -8,7 +8,7 @@
 #include <fastdds/rtps/common/InstanceHandle.h>
 
 #include "runtime/dds/text.hpp"
-#include "runtime/log.hpp"
+#include "runtime/base/log.hpp"
 #include "runtime/dds/type_support.hpp"
 
 namespace robodds {

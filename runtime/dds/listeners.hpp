@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/bus.hpp"
+#include "runtime/bus/bus.hpp"
 #include "runtime/dds/match_report.hpp"
 
 namespace robodds {

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "runtime/dds/text.hpp"
-#include "runtime/log.hpp"
+#include "runtime/base/log.hpp"
 
 namespace robodds {
 

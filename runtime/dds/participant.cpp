@@ -5,9 +5,9 @@
 #include <atomic>
 
 #include "runtime/dds/qos_files.hpp"
-#include "runtime/error.hpp"
-#include "runtime/log.hpp"
-#include "runtime/shutdown_watchdog.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/health/shutdown_watchdog.hpp"
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;

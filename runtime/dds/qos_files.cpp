@@ -23,8 +23,8 @@
 
 #include "runtime/dds/security_files.hpp"
 #include "runtime/dds/text.hpp"
-#include "runtime/error.hpp"
-#include "runtime/log.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/base/log.hpp"
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;

@@ -17,7 +17,7 @@
 #include <memory>
 #include <vector>
 
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 
 namespace robodds {
 namespace fs = std::filesystem;

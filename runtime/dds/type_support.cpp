@@ -8,8 +8,8 @@
 #include "robodds/idl/roboddsPubSubTypes.h"
 #include "robodds/idl/robodds_visit.hpp"
 #include "runtime/dds/undecodable.hpp"
-#include "runtime/log.hpp"
-#include "runtime/topic_catalog.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/topics/topic_catalog.hpp"
 
 namespace robodds {
 namespace {

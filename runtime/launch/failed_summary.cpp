@@ -5,7 +5,7 @@
 
 #include "common/json_writer.hpp"
 #include "common/replace_file.hpp"
-#include "runtime/log.hpp"
+#include "runtime/base/log.hpp"
 
 namespace robodds {
 namespace {

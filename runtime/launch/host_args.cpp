@@ -6,8 +6,8 @@
 
 #include "common/number_parse.hpp"
 #include "common/number_text.hpp"
-#include "runtime/error.hpp"
-#include "runtime/overrun_counter.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/health/overrun_counter.hpp"
 
 namespace robodds {
 namespace {

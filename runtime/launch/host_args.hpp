@@ -102,7 +102,7 @@ void add_duration_option(CLI::App* app, std::optional<double>& duration_s, const
 /// --seed: a whole number 0..2^64-1 in decimal digits ("-1" and overflow are CLI errors).
 void add_seed_option(CLI::App* app, std::optional<std::uint64_t>& seed, const std::string& help);
 /// --max-missed-steps: real time, the run fails when a host skips more due steps than this
-/// (default: kDefaultMaxMissedFraction of the run's steps, runtime/overrun_counter.hpp).
+/// (default: kDefaultMaxMissedFraction of the run's steps, runtime/health/overrun_counter.hpp).
 void add_max_missed_steps_option(CLI::App* app, std::optional<std::uint64_t>& max_missed_steps);
 /// The servers of --discovery-server (DdsArgs::discovery_servers), in order (server id = position):
 /// ConfigError naming the option and the entry for an empty address, a bad port or over 255.

@@ -11,11 +11,11 @@
 #include <string>
 
 #include "runtime/dds/dds_bus.hpp"
-#include "runtime/host.hpp"
+#include "runtime/host/host.hpp"
 #include "runtime/launch/host_args.hpp"
 #include "runtime/launch/output_dir.hpp"
-#include "runtime/registry.hpp"
-#include "runtime/scenario.hpp"
+#include "runtime/component/registry.hpp"
+#include "runtime/config/scenario.hpp"
 
 namespace robodds {
 

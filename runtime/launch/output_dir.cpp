@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <system_error>
 
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 
 namespace robodds {
 

@@ -10,9 +10,9 @@
 #include <unistd.h>
 
 #include "common/number_text.hpp"
-#include "runtime/host.hpp"
-#include "runtime/log.hpp"
-#include "runtime/error.hpp"
+#include "runtime/host/host.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/base/error.hpp"
 
 namespace robodds {
 namespace {

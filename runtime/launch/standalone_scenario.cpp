@@ -6,7 +6,7 @@
 #include <sstream>
 
 #include "common/number_parse.hpp"
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 
 namespace robodds {
 namespace {

@@ -7,7 +7,7 @@
 // scenario seed and its instance name).
 
 #include "runtime/launch/host_args.hpp"
-#include "runtime/scenario.hpp"
+#include "runtime/config/scenario.hpp"
 
 namespace robodds {
 

@@ -20,15 +20,15 @@
 #include <vector>
 
 #include "robodds/idl/robodds_visit.hpp"
-#include "runtime/component.hpp"
-#include "runtime/host.hpp"
-#include "runtime/host_slot.hpp"
-#include "runtime/memory_bus.hpp"
-#include "runtime/notifier.hpp"
-#include "runtime/registry.hpp"
-#include "runtime/sample_checks.hpp"
-#include "runtime/scenario.hpp"
-#include "runtime/topic_catalog.hpp"
+#include "runtime/component/component.hpp"
+#include "runtime/host/host.hpp"
+#include "runtime/host/host_slot.hpp"
+#include "runtime/bus/memory_bus.hpp"
+#include "runtime/io/notifier.hpp"
+#include "runtime/component/registry.hpp"
+#include "runtime/io/sample_checks.hpp"
+#include "runtime/config/scenario.hpp"
+#include "runtime/topics/topic_catalog.hpp"
 #include "tests/support/temp_file.hpp"
 
 namespace robodds::testing {

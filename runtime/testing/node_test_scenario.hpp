@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "common/number_text.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/component/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
 
 namespace robodds::testing {

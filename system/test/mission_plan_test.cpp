@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 #include "tests/support/temp_file.hpp"
 
 namespace robodds::system {

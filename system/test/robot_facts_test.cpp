@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 #include "tests/support/temp_file.hpp"
 
 namespace robodds::system {

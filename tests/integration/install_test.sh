@@ -2,7 +2,7 @@
 # The installed tree works on its own: `cmake --install BUILD --prefix P` gives P/bin/robodds and
 # P/share/robodds/..., and the installed binary, started outside the source tree with
 # ROBODDS_SHARE_DIR unset, finds its QoS profiles (and report.py) in P/share/robodds
-# (runtime/share_dir.hpp) and produces byte for byte what the build-tree binary produces:
+# (runtime/config/share_dir.hpp) and produces byte for byte what the build-tree binary produces:
 #   0. every registered component's defaults file and executable robodds-<type> is installed;
 #   1. `P/bin/robodds run` of plant_smoke, co-located, is byte-identical to the build-tree run;
 #   2. so is a run whose sensing group is the installed component executable

@@ -7,8 +7,8 @@
 
 #include <unistd.h>
 
-#include "runtime/error.hpp"
-#include "runtime/shutdown_watchdog.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/health/shutdown_watchdog.hpp"
 
 namespace robodds::cli {
 namespace {

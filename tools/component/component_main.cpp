@@ -9,7 +9,7 @@
 #include "runtime/dds/process_exit.hpp"
 #include "runtime/launch/host_args.hpp"
 #include "runtime/launch/launch.hpp"
-#include "runtime/log.hpp"
+#include "runtime/base/log.hpp"
 #include "tools/cli/cli_main.hpp"
 
 namespace robodds {

@@ -4,7 +4,7 @@
 // (robodds_component() in cmake/RoboddsHelpers.cmake) that calls this with the type's
 // registration function.
 
-#include "runtime/registry.hpp"
+#include "runtime/component/registry.hpp"
 
 namespace robodds {
 

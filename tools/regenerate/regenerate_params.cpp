@@ -4,7 +4,7 @@
 #include <exception>
 #include <fstream>
 
-#include "runtime/registry.hpp"
+#include "runtime/component/registry.hpp"
 #include "tools/robodds/params_files.hpp"
 
 int main(int argc, char** argv) {

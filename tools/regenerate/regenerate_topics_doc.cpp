@@ -7,9 +7,9 @@
 #include <iterator>
 #include <string>
 
-#include "runtime/error.hpp"
-#include "runtime/topic_catalog.hpp"
-#include "runtime/topic_table.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/topics/topic_catalog.hpp"
+#include "runtime/topics/topic_table.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 2) {

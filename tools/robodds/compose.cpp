@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "runtime/dds/security_files.hpp"
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 #include "runtime/launch/host_args.hpp"
-#include "runtime/qos_profiles.hpp"
+#include "runtime/bus/qos_profiles.hpp"
 
 namespace robodds {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/scenario.hpp"
+#include "runtime/config/scenario.hpp"
 
 namespace robodds {
 

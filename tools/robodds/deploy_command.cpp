@@ -5,9 +5,9 @@
 #include <fstream>
 
 #include "runtime/dds/security_files.hpp"
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 #include "runtime/launch/launch.hpp"
-#include "runtime/scenario.hpp"
+#include "runtime/config/scenario.hpp"
 #include "tools/robodds/compose.hpp"
 
 namespace robodds {

@@ -4,10 +4,10 @@
 #include <mutex>
 
 #include "runtime/launch/launch.hpp"
-#include "runtime/log.hpp"
-#include "runtime/notifier.hpp"
-#include "runtime/sample_format.hpp"
-#include "runtime/topic_catalog.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/io/notifier.hpp"
+#include "runtime/io/sample_format.hpp"
+#include "runtime/topics/topic_catalog.hpp"
 #include "tools/robodds/command.hpp"
 
 namespace robodds {

@@ -1,7 +1,7 @@
 // `robodds host`: some of a scenario's components (and/or the lockstep coordinator) in this
 // process; the options are HostArgs (runtime/launch/host_args.hpp), which the runner renders.
 #include "runtime/launch/launch.hpp"
-#include "runtime/log.hpp"
+#include "runtime/base/log.hpp"
 #include "tools/robodds/command.hpp"
 
 namespace robodds {

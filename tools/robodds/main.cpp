@@ -3,8 +3,8 @@
 #include <CLI/CLI.hpp>
 
 #include "runtime/dds/process_exit.hpp"
-#include "runtime/log.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/component/registry.hpp"
 #include "tools/cli/cli_main.hpp"
 #include "tools/robodds/command.hpp"
 

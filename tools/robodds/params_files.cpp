@@ -1,7 +1,7 @@
 #include "tools/robodds/params_files.hpp"
 
 #include "common/line_diff.hpp"
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 
 namespace robodds {
 

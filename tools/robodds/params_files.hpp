@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "runtime/registry.hpp"
+#include "runtime/component/registry.hpp"
 
 namespace robodds {
 

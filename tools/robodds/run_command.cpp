@@ -5,7 +5,7 @@
 #include <unistd.h>
 
 #include "runtime/launch/launch.hpp"
-#include "runtime/log.hpp"
+#include "runtime/base/log.hpp"
 #include "tools/robodds/command.hpp"
 #include "tools/robodds/summary_table.hpp"
 

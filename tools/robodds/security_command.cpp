@@ -2,8 +2,8 @@
 // (tools/robodds/security_init.hpp says which files; docs/security.md how to use them).
 #include <cstdio>
 
-#include "runtime/producer_check.hpp"
-#include "runtime/scenario.hpp"
+#include "runtime/host/producer_check.hpp"
+#include "runtime/config/scenario.hpp"
 #include "tools/robodds/command.hpp"
 #include "tools/robodds/security_init.hpp"
 #include "tools/robodds/security_policy.hpp"

@@ -9,9 +9,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 #include "runtime/launch/process_group.hpp"
-#include "runtime/log.hpp"
+#include "runtime/base/log.hpp"
 
 namespace robodds {
 namespace fs = std::filesystem;

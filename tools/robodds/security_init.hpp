@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/scenario.hpp"
+#include "runtime/config/scenario.hpp"
 #include "tools/robodds/security_policy.hpp"
 
 namespace robodds {

@@ -1,7 +1,7 @@
 #include "tools/robodds/security_policy.hpp"
 
-#include "runtime/error.hpp"
-#include "runtime/topic_catalog.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/topics/topic_catalog.hpp"
 
 namespace robodds {
 namespace {

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "runtime/dds/security_files.hpp"
-#include "runtime/producer_check.hpp"
-#include "runtime/scenario.hpp"
+#include "runtime/host/producer_check.hpp"
+#include "runtime/config/scenario.hpp"
 
 namespace robodds {
 

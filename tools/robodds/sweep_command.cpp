@@ -10,11 +10,11 @@
 #include <thread>
 
 #include "common/number_text.hpp"
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 #include "runtime/launch/host_args.hpp"
 #include "runtime/launch/launch.hpp"
 #include "runtime/launch/output_dir.hpp"
-#include "runtime/share_dir.hpp"
+#include "runtime/config/share_dir.hpp"
 #include "tools/robodds/command.hpp"
 #include "tools/robodds/sweep_emit.hpp"
 #include "tools/robodds/sweep_runner.hpp"

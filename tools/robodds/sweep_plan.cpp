@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "common/json_writer.hpp"
-#include "runtime/params.hpp"
+#include "runtime/config/params.hpp"
 
 namespace robodds::sweep {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "common/json_writer.hpp"
 #include "common/number_text.hpp"
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 #include "runtime/launch/output_dir.hpp"
 #include "runtime/launch/process_group.hpp"
 #include "tools/robodds/summary_table.hpp"

@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::circumnavigation_controller {
 /// observer/range_rate (or _linear) + mission/target + estimate/pose (all robots) in; plant/cmd out.

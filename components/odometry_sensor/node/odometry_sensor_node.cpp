@@ -6,8 +6,8 @@
 #include "components/odometry_sensor/odometry_model.hpp"
 #include "components/odometry_sensor/twist_accumulator.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 #include "system/robot_facts.hpp"
 
 namespace robodds::odometry_sensor {

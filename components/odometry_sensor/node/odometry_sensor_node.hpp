@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::odometry_sensor {
 /// plant/state in (every step), sensor/odometry out at rate_hz: the mean true twist over the

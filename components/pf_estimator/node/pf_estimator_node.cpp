@@ -8,8 +8,8 @@
 #include "components/pf_estimator/node/pf_estimator_params.hpp"
 #include "components/pf_estimator/particle_filter.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 
 namespace robodds::pf_estimator {
 namespace {

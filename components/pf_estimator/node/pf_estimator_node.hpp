@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::pf_estimator {
 /// sensor/odometry + sensor/position in, estimate/pose out (one particle filter per robot).

@@ -5,8 +5,8 @@
 #include "common/random.hpp"
 #include "components/position_sensor/position_model.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 
 namespace robodds::position_sensor {
 namespace {

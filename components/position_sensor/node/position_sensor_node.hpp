@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::position_sensor {
 /// plant/state in, sensor/position out at rate_hz, one seeded noise stream per robot.

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "robodds/idl/robodds.h"
-#include "runtime/registry.hpp"
+#include "runtime/component/registry.hpp"
 #include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(position_sensor);

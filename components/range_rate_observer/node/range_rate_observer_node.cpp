@@ -8,9 +8,9 @@
 #include "components/range_rate_observer/node/range_rate_observer_params.hpp"
 #include "components/range_rate_observer/range_rate_observer.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/log.hpp"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 #include "system/robot_facts.hpp"
 
 namespace robodds::range_rate_observer {

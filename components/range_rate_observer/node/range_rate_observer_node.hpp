@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::range_rate_observer {
 /// sensor/range in (per robot, whatever its target), observer/range_rate (super-twisting) and

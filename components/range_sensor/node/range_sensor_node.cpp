@@ -5,10 +5,10 @@
 #include "common/random.hpp"
 #include "components/range_sensor/range_model.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/error.hpp"
-#include "runtime/log.hpp"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 
 namespace robodds::range_sensor {
 namespace {

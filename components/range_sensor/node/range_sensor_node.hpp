@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::range_sensor {
 /// plant/state + mission/target in, sensor/range (robot, target) out at rate_hz, seeded per robot.

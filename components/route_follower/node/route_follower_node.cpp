@@ -7,9 +7,9 @@
 #include "components/route_follower/node/route_follower_params.hpp"
 #include "components/route_follower/route_follower.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/log.hpp"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 
 namespace robodds::route_follower {
 namespace {

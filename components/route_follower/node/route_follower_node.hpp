@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::route_follower {
 /// estimate/pose in, plant/cmd (VELOCITY) out at rate_hz for every served robot.

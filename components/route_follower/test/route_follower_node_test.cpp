@@ -9,9 +9,9 @@
 
 #include "common/angle.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/error.hpp"
-#include "runtime/io.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/io/io.hpp"
+#include "runtime/component/registry.hpp"
 #include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(route_follower);

@@ -14,9 +14,9 @@
 #include "components/uwb_relative_estimator/node/uwb_relative_estimator_params.hpp"
 #include "components/uwb_relative_estimator/relative_estimator.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/log.hpp"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 #include "system/robot_facts.hpp"
 
 namespace robodds::uwb_relative_estimator {

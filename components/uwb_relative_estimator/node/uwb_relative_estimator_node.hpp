@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::uwb_relative_estimator {
 /// sensor/uwb (robot, peer) and sensor/odometry of the robot and its peers in; for each served

@@ -16,8 +16,8 @@
 #include "common/model/diff_drive_kinematics.hpp"
 #include "common/model/uwb_array.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/error.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/component/registry.hpp"
 #include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(uwb_relative_estimator);

@@ -11,8 +11,8 @@
 #include "components/uwb_sensor/uwb_error_model.hpp"
 #include "components/uwb_sensor/uwb_sensor_params.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 #include "system/robot_facts.hpp"
 
 namespace robodds::uwb_sensor {

@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::uwb_sensor {
 /// plant/state of every scenario robot in; sensor/uwb (robot_id, peer_id) out at rate_hz for each

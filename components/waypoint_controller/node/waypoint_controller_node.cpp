@@ -8,9 +8,9 @@
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 #include "robodds/idl/robodds.h"
 #include "components/waypoint_controller/node/waypoint_controller_params.hpp"
-#include "runtime/log.hpp"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 #include "system/robot_facts.hpp"
 
 namespace robodds::waypoint_controller {

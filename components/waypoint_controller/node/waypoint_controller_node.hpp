@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::waypoint_controller {
 /// estimate/pose + mission/waypoints in; plant/cmd and control/status out.

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "robodds/idl/robodds.h"
-#include "runtime/error.hpp"
-#include "runtime/io.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/io/io.hpp"
+#include "runtime/component/registry.hpp"
 #include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(waypoint_controller);

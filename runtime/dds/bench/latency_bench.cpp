@@ -68,11 +68,11 @@
 #include "robodds/idl/robodds.h"
 #include "robodds/idl/roboddsPubSubTypes.h"
 #include "runtime/dds/dds_bus.hpp"
-#include "runtime/error.hpp"
-#include "runtime/io.hpp"
-#include "runtime/log.hpp"
-#include "runtime/notifier.hpp"
-#include "runtime/qos_profiles.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/io/io.hpp"
+#include "runtime/base/log.hpp"
+#include "runtime/io/notifier.hpp"
+#include "runtime/bus/qos_profiles.hpp"
 
 #ifndef ROBODDS_SOURCE_DIR
 #define ROBODDS_SOURCE_DIR "."

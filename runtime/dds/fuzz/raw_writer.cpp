@@ -56,9 +56,9 @@
 #include "runtime/dds/qos_files.hpp"
 #include "runtime/dds/type_support.hpp"
 #include "runtime/dds/undecodable.hpp"
-#include "runtime/error.hpp"
-#include "runtime/share_dir.hpp"
-#include "runtime/topic_catalog.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/config/share_dir.hpp"
+#include "runtime/topics/topic_catalog.hpp"
 
 #ifndef ROBODDS_SOURCE_DIR
 #define ROBODDS_SOURCE_DIR "."

@@ -17,7 +17,7 @@
 
 #include "robodds/idl/robodds.h"
 #include "runtime/dds/dds_bus.hpp"
-#include "runtime/share_dir.hpp"
+#include "runtime/config/share_dir.hpp"
 
 namespace {
 

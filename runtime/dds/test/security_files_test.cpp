@@ -16,7 +16,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 
 namespace robodds {
 namespace {

@@ -7,7 +7,7 @@
 #include <functional>
 #include <limits>
 
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 
 namespace robodds {
 namespace {

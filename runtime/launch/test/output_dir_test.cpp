@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 
 namespace robodds {
 namespace {

@@ -13,7 +13,7 @@
 #include <thread>
 #include <unistd.h>
 
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 
 namespace robodds {
 namespace {

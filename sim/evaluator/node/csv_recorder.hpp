@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "runtime/error.hpp"
-#include "runtime/io.hpp"
-#include "runtime/sample_format.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/io/io.hpp"
+#include "runtime/io/sample_format.hpp"
 #include "sim/evaluator/node/sample_metrics.hpp"
 
 namespace robodds::evaluator {

@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::evaluator {
 /// Records topics to CSV as samples arrive and writes summary.json (status and metrics) at the

@@ -5,7 +5,7 @@
 // deployment and, in real time, on the machine).
 
 #include "common/json_writer.hpp"
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::evaluator {
 

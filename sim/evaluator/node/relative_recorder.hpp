@@ -16,9 +16,9 @@
 #include "common/model/pose2.hpp"
 #include "common/number_text.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/error.hpp"
-#include "runtime/io.hpp"
-#include "runtime/sample_format.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/io/io.hpp"
+#include "runtime/io/sample_format.hpp"
 #include "sim/evaluator/node/csv_recorder.hpp"
 #include "sim/evaluator/node/sample_metrics.hpp"
 

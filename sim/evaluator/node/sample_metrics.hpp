@@ -16,7 +16,7 @@
 
 #include "common/model/diff_drive_kinematics.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/key_index.hpp"
+#include "runtime/bus/key_index.hpp"
 #include "sim/evaluator/circumnavigation_metrics.hpp"
 #include "sim/evaluator/handover.hpp"
 #include "sim/evaluator/motion_extremes.hpp"
@@ -217,7 +217,7 @@ class Metrics {
   }
 
  private:
-  /// One O(1) lookup per sample (runtime/key_index.hpp), not a walk down robots_ (log N cache
+  /// One O(1) lookup per sample (runtime/bus/key_index.hpp), not a walk down robots_ (log N cache
   /// misses at 1,000 robots); robots_ keeps the id order of match() and the summary.
   RobotMetrics& robot(std::uint32_t id) {
     const auto [number, added] = robot_numbers_.insert(id);

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "common/json_writer.hpp"
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::evaluator {
 

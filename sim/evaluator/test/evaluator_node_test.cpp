@@ -17,8 +17,8 @@
 #include "common/angle.hpp"
 #include "common/model/pose2.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/error.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/component/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
 
 ROBODDS_DECLARE_COMPONENT(evaluator);

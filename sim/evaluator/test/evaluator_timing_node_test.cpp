@@ -10,7 +10,7 @@
 #include <string>
 
 #include "robodds/idl/robodds.h"
-#include "runtime/registry.hpp"
+#include "runtime/component/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
 
 ROBODDS_DECLARE_COMPONENT(evaluator);

@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "robodds/idl/robodds.h"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 #include "sim/mission_source/node/mission_source_params.hpp"
 
 namespace robodds::mission_source {

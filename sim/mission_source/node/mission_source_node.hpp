@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::mission_source {
 /// Publishes the way-point list from its parameters on mission/waypoints, once per robot.

@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "robodds/idl/robodds.h"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 #include "sim/open_loop_commander/node/open_loop_commander_params.hpp"
 #include "sim/open_loop_commander/open_loop_commander.hpp"
 

@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::open_loop_commander {
 /// Publishes open-loop plant/cmd for every robot it serves.

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "robodds/idl/robodds.h"
-#include "runtime/registry.hpp"
+#include "runtime/component/registry.hpp"
 #include "runtime/testing/node_test_scenario.hpp"
 #include "sim/open_loop_commander/open_loop_commander.hpp"
 

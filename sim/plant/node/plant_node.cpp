@@ -11,8 +11,8 @@
 #include "common/model/robot_body.hpp"
 #include "sim/plant/disturbance.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 #include "sim/plant/node/plant_params.hpp"
 #include "sim/plant/plant_model_params.hpp"
 #include "system/robot_facts.hpp"
@@ -125,7 +125,7 @@ class PlantNode : public Component {
         return {};  // stale command: safe stop
       }
     }
-    // The input has refused commands beyond the gross bounds (runtime/sample_checks.hpp) and
+    // The input has refused commands beyond the gross bounds (runtime/io/sample_checks.hpp) and
     // bad modes; what is left is saturated to this robot's limits (its body) and counted.
     const model::Twist requested = cmd->mode() == idl::WHEEL_SPEEDS
                                        ? model::twist_from_wheel_speeds(cmd->v_left(), cmd->v_right(), body.wheel_base_m)

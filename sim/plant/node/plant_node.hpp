@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::plant {
 /// DDS node of the differential-drive plant: plant/cmd in, plant/state out.

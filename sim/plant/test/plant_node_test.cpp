@@ -9,9 +9,9 @@
 #include <string>
 
 #include "robodds/idl/robodds.h"
-#include "runtime/error.hpp"
-#include "runtime/registry.hpp"
-#include "runtime/sample_checks.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/component/registry.hpp"
+#include "runtime/io/sample_checks.hpp"
 #include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(plant);
@@ -110,7 +110,7 @@ TEST(PlantNode, ANonFiniteCommandIsRejectedAndTheLastValidOneKept) {
 }
 
 // Finding 3 of issue 9: a command beyond the gross bounds or with a mode outside CommandMode is
-// refused by the input (runtime/sample_checks.hpp) and never integrated; the last valid one is kept.
+// refused by the input (runtime/io/sample_checks.hpp) and never integrated; the last valid one is kept.
 TEST(PlantNode, AbsurdCommandsAndBadModesAreRefusedNotIntegrated) {
   Harness h(kScenario);
   h.feed([&h](std::uint64_t step) {

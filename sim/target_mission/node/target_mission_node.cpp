@@ -5,9 +5,9 @@
 
 #include "common/model/target_plan.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/error.hpp"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 #include "system/mission_plan.hpp"
 
 namespace robodds::target_mission {

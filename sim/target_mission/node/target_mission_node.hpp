@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::target_mission {
 /// Paper 2's mission: publishes every served robot's task (common/model/target_plan.hpp) from the

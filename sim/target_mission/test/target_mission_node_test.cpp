@@ -5,9 +5,9 @@
 #include <gtest/gtest.h>
 
 #include "robodds/idl/robodds.h"
-#include "runtime/error.hpp"
-#include "runtime/io.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/io/io.hpp"
+#include "runtime/component/registry.hpp"
 #include "runtime/testing/node_harness.hpp"
 
 ROBODDS_DECLARE_COMPONENT(target_mission);

@@ -3,8 +3,8 @@
 #include <limits>
 
 #include "robodds/idl/robodds.h"
-#include "runtime/param_table_reader.hpp"
-#include "runtime/registry.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
 #include "sim/truth_estimator/node/truth_estimator_params.hpp"
 
 namespace robodds::truth_estimator {

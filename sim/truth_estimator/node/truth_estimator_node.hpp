@@ -1,7 +1,7 @@
 #pragma once
 #include <memory>
 
-#include "runtime/component.hpp"
+#include "runtime/component/component.hpp"
 
 namespace robodds::truth_estimator {
 /// plant/state in, estimate/pose out (the true pose, zero covariance, valid).

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "robodds/idl/robodds.h"
-#include "runtime/registry.hpp"
+#include "runtime/component/registry.hpp"
 #include "runtime/testing/node_test_scenario.hpp"
 
 ROBODDS_DECLARE_COMPONENT(truth_estimator);

@@ -14,7 +14,7 @@
 #include <iterator>
 
 #include "runtime/dds/security_files.hpp"
-#include "runtime/error.hpp"
+#include "runtime/base/error.hpp"
 
 namespace robodds {
 namespace {

@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "runtime/error.hpp"
-#include "runtime/registry.hpp"
-#include "runtime/topic_catalog.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/component/registry.hpp"
+#include "runtime/topics/topic_catalog.hpp"
 
 namespace robodds {
 namespace {

@@ -1,0 +1,83 @@
+#include "runtime/component/component.hpp"
+
+#include <cmath>
+
+#include "common/random.hpp"
+#include "runtime/config/param_table_reader.hpp"
+#include "runtime/component/registry.hpp"
+
+namespace robodds {
+
+std::vector<RobotSpec> ComponentContext::robots() const {
+  std::vector<RobotSpec> out;
+  for (std::uint32_t id : spec_.robots) {
+    out.push_back(run_.scenario->robot(id));
+  }
+  return out;
+}
+
+std::vector<std::uint64_t> ComponentContext::robot_keys() const {
+  return std::vector<std::uint64_t>(spec_.robots.begin(), spec_.robots.end());
+}
+
+std::uint64_t ComponentContext::seed_for(const std::string& stream) const {
+  return derive_seed(run_.scenario->seed, spec_.name + "/" + stream);
+}
+
+void ComponentContext::set_rate_hz(double rate_hz, const std::string& key) {
+  const double steps = 1.0 / (rate_hz * step_s());
+  const double rounded = std::round(steps);
+  if (!(rate_hz > 0.0) || rounded < 1.0 || std::abs(steps - rounded) > 1e-6 * steps) {
+    params_.fail(key + ": " + std::to_string(rate_hz) + " Hz is not the simulation rate (" +
+                 std::to_string(1.0 / step_s()) + " Hz) divided by a whole number");
+  }
+  state_->period_steps = static_cast<std::uint64_t>(rounded);
+}
+
+void ComponentContext::require_longer_than_period(const std::string& key, double value_s) {
+  const double period_s = static_cast<double>(state_->period_steps) * step_s();
+  if (!(value_s > period_s)) {
+    params_.fail(key + ": must be longer than the component's period (" + std::to_string(period_s) + " s), is " +
+                 std::to_string(value_s));
+  }
+}
+
+ParamReader scenario_component_params(const ComponentType& type, const ComponentSpec& spec) {
+  const FlatParams defaults = default_params(type.params(), "built-in defaults of " + type.name);
+  return ParamReader(spec.name, merge_params(defaults, spec.overrides));
+}
+
+void ComponentRegistry::add_scenario_check(std::function<void(const Scenario&)> check) {
+  scenario_checks_.push_back(std::move(check));
+}
+
+void ComponentRegistry::check_scenario(const Scenario& scenario) const {
+  for (const auto& check : scenario_checks_) {
+    check(scenario);
+  }
+}
+
+void ComponentRegistry::add(ComponentType type) {
+  if (type.name.empty() || !type.create || !type.params) {
+    throw ConfigError("component type '" + type.name + "': a registration needs a name, a factory and a parameter table");
+  }
+  for (const ComponentType& known : types_) {
+    if (known.name == type.name) {
+      throw ConfigError("component type '" + type.name + "' is registered twice");
+    }
+  }
+  types_.push_back(std::move(type));
+}
+
+const ComponentType& ComponentRegistry::get(const std::string& name) const {
+  std::string known;
+  for (const ComponentType& type : types_) {
+    if (type.name == name) {
+      return type;
+    }
+    known += (known.empty() ? "" : ", ") + type.name;
+  }
+  throw ConfigError("unknown component type '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace robodds

@@ -1,0 +1,188 @@
+#pragma once
+// The component model. A component is a class registered by type name; it has no main and
+// does not know how it is deployed. The host configures it once (parameters, inputs, outputs,
+// rate) and then calls on_step() at each due step on the host's executor thread.
+
+#include <cstdint>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "runtime/bus/bus.hpp"
+#include "runtime/health/compute_times.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/health/host_health.hpp"
+#include "runtime/io/io.hpp"
+#include "runtime/config/params.hpp"
+#include "runtime/config/scenario.hpp"
+#include "runtime/topics/topic_catalog.hpp"
+
+namespace robodds {
+
+struct StepInfo {
+  std::uint64_t step = 0;  // the due step
+  double time_s = 0.0;     // sim time (lockstep) or seconds since start (real-time)
+  double dt_s = 0.0;       // s since this component's previous step (its period in lockstep)
+  std::int64_t stamp_ns = 0;  // the stamp its samples get: sim time (lockstep) or wall clock (real time)
+};
+
+class ComponentContext;
+
+class Component {
+ public:
+  virtual ~Component() = default;
+  /// Reads and validates parameters, declares inputs/outputs and the rate. Errors: ConfigError.
+  virtual void configure(ComponentContext& ctx) = 0;
+  /// Called once when this host starts its run, before the first on_step(): in real time before
+  /// the wall clock's first due step, so that one-off work done here (e.g. the evaluator opening
+  /// its files) does not make the first steps late. Errors: as on_step().
+  virtual void on_start() {}
+  /// Called at each due step once the inputs are ready (lockstep) or on the timer (real-time).
+  virtual void on_step(const StepInfo& info) = 0;
+  /// Called once after the last step (e.g. the evaluator writes its files).
+  virtual void on_finish(const StepInfo& /*info*/) {}
+  /// Called instead of (or after) on_finish() when the run fails (a RunError in this host: a
+  /// timeout, a failed peer, a signal); `reason` is the error line. E.g. the evaluator writes
+  /// what it recorded and a summary that says the run failed. Must not block.
+  virtual void on_abort(const std::string& /*reason*/) {}
+};
+
+/// Wall-clock figures of the run so far, for summary.json's "run" section: the host fills them
+/// just before on_finish() (ticks = steps done, wall_time_s = s since this host's run began).
+/// `hosts` (summary.json's "hosts" and "inputs"): this host's health first, then, across
+/// processes, what the other hosts published on run/health; `hosts_not_heard`: members whose
+/// health did not arrive within the wait (docs/architecture.md, "Host health").
+struct RunFigures {
+  std::uint64_t ticks = 0;
+  double wall_time_s = 0.0;
+  /// Lockstep: s since this host's run began when its first tick came and when the first and
+  /// the second third of the run's steps were done (summary.json run.ticks_per_s_by_third: does
+  /// a long run slow down?); fewer than 3 in real time or when the run failed early.
+  std::vector<double> thirds_done_at_s;
+  std::vector<HostHealth> hosts;
+  std::vector<std::string> hosts_not_heard;
+};
+
+/// What the host knows about the run, shared by all components of a process.
+struct RunContext {
+  const Scenario* scenario = nullptr;
+  Bus* bus = nullptr;
+  Notifier* notifier = nullptr;
+  TimeMode mode = TimeMode::kLockstep;
+  std::string output_dir;   // where the evaluator writes CSVs and summary.json
+  bool single_process = false;  // every component of the run lives in this process (co-located)
+  std::string deploy_label;     // how the run is deployed ("colocated", "processes"); empty: a host
+                                // started on its own, whose evaluator writes no "run" section
+  std::size_t lockstep_window = 1;  // lockstep: ticks the coordinator may have outstanding (1 = strict)
+  RunFigures figures;           // filled by the host before on_finish()
+  /// Topics whose readers and writers use DDS exclusive ownership because a hot standby writes
+  /// them (exclusive_topics() of runtime/host/producer_check.hpp).
+  std::set<std::string> exclusive_topics;
+};
+
+class ComponentContext {
+ public:
+  ComponentContext(const RunContext& run, const ComponentSpec& spec, ParamReader params, StepState* state)
+      : run_(run), spec_(spec), params_(std::move(params)), state_(state) {}
+
+  const std::string& name() const { return spec_.name; }
+  const std::string& type() const { return spec_.type; }
+  ParamReader& params() { return params_; }
+  const Scenario& scenario() const { return *run_.scenario; }
+  /// Robots this component serves, with their initial poses.
+  std::vector<RobotSpec> robots() const;
+  /// Instance keys of those robots (for Subscription::instances).
+  std::vector<std::uint64_t> robot_keys() const;
+  /// Seed of the random stream `stream` of this component (scenario seed + name + stream).
+  std::uint64_t seed_for(const std::string& stream) const;
+  double step_s() const { return run_.scenario->step_s; }
+  TimeMode mode() const { return run_.mode; }
+  const std::string& output_dir() const { return run_.output_dir; }
+  const std::string& deploy_label() const { return run_.deploy_label; }
+  /// Lockstep: ticks the coordinator may have outstanding at once (--lockstep-window; 1 = strict).
+  std::size_t lockstep_window() const { return run_.lockstep_window; }
+  /// The run's figures; valid in on_finish().
+  const RunFigures& run_figures() const { return run_.figures; }
+  /// Asks for every host's health in run_figures().hosts (configure() only): across processes
+  /// this component's host then waits, at the end, for the other hosts' run/health reports.
+  void request_run_health() { wants_run_health_ = true; }
+  bool wants_run_health() const { return wants_run_health_; }
+  /// This component's wall-clock compute times per stage (summary.json run.timing): e.g.
+  /// `ScopedComputeTimer timer(ctx.compute_times(), "cycle");` around the work of a step. Keep
+  /// the reference from configure(); the host reports the summaries after the last step.
+  ComputeTimes& compute_times() { return compute_times_; }
+  const ComputeTimes& compute_times() const { return compute_times_; }
+
+  /// Runs the component every round(1 / (rate_hz * step_s)) steps; the rate must divide the
+  /// simulation rate (ConfigError naming `key` otherwise).
+  void set_rate_hz(double rate_hz, const std::string& key);
+  std::uint64_t period_steps() const { return state_->period_steps; }
+  /// A freshness limit (parameter `key`, `value_s` s) must be longer than this component's period
+  /// (call set_rate_hz() first): an input is only judged stale after at least one of its own due
+  /// steps has passed without it. ConfigError naming the key otherwise.
+  void require_longer_than_period(const std::string& key, double value_s);
+
+  /// Subscribes to `topic` (ConfigError if it is not in the catalog or carries another type).
+  template <class Msg>
+  Input<Msg>& subscribe(const std::string& topic, const Subscription& subscription) {
+    const TopicInfo& info = checked_topic<Msg>(topic);
+    detail::InputOptions options;
+    options.expected = subscription.expected();
+    options.delay_steps = subscription.delay_steps();
+    options.by_robot = subscription.by_robot();
+    if (options.by_robot && info.key.find(',') == std::string::npos) {
+      throw ConfigError(spec_.name + ": robot_streams() needs a topic keyed (robot_id, X); " + topic + " is keyed " +
+                        (info.key.empty() ? std::string("by nothing") : info.key));
+    }
+    options.key_names = info.key;
+    Bus* bus = run_.bus;
+    options.writer_name = [bus](std::uint64_t writer_id) { return bus->writer_name(writer_id); };
+    options.exclusive_ownership = run_.exclusive_topics.count(topic) != 0;
+    auto input = std::make_unique<Input<Msg>>(topic, spec_.name, state_, run_.notifier, std::move(options));
+    Input<Msg>* raw = input.get();
+    const std::string owner = spec_.name;
+    readers_.push_back(run_.bus->reader(
+        topic, info.type_name, qos_profile_for(info, run_.mode, run_.single_process),
+        [raw](const void* sample, const SampleMeta& meta) { raw->on_sample(*static_cast<const Msg*>(sample), meta); },
+        [owner, topic](const std::string& event) { log::warn(owner, topic + ": " + event); }));
+    inputs_.push_back(std::move(input));
+    return *raw;
+  }
+
+  template <class Msg>
+  Output<Msg>& advertise(const std::string& topic) {
+    const TopicInfo& info = checked_topic<Msg>(topic);
+    // A mission's last sample stays for readers that join later; a stream's ended instances go.
+    const InstanceEnds ends = info.qos_class == QosClass::kMission ? InstanceEnds::kKept : InstanceEnds::kForgotten;
+    auto output = std::make_unique<Output<Msg>>(
+        run_.bus->writer(topic, info.type_name, qos_profile_for(info, run_.mode, run_.single_process)), state_, ends);
+    Output<Msg>* raw = output.get();
+    outputs_.push_back(std::shared_ptr<void>(output.release(), [](void* p) { delete static_cast<Output<Msg>*>(p); }));
+    return *raw;
+  }
+
+  const std::vector<std::unique_ptr<InputBase>>& inputs() const { return inputs_; }
+
+ private:
+  template <class Msg>
+  const TopicInfo& checked_topic(const std::string& topic) const {
+    const TopicInfo& info = topic_info(topic);
+    if (info.type_name != idl::type_name<Msg>()) {
+      throw ConfigError(spec_.name + ": topic " + topic + " carries " + info.type_name + ", not " + idl::type_name<Msg>());
+    }
+    return info;
+  }
+
+  const RunContext& run_;
+  const ComponentSpec& spec_;
+  ParamReader params_;
+  StepState* state_;
+  std::vector<std::unique_ptr<InputBase>> inputs_;
+  std::vector<std::shared_ptr<void>> outputs_;
+  std::vector<std::shared_ptr<ReaderHandle>> readers_;
+  bool wants_run_health_ = false;
+  ComputeTimes compute_times_;
+};
+
+}  // namespace robodds

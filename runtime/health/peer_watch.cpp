@@ -1,0 +1,72 @@
+#include "runtime/health/peer_watch.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/number_text.hpp"
+
+namespace robodds {
+namespace {
+
+bool has(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+std::string quoted_list(const std::vector<std::string>& names) {
+  std::string text;
+  for (const std::string& name : names) {
+    text += (text.empty() ? "'" : ", '") + name + "'";
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string participant_name_of_group(const std::string& group) { return "robodds-" + group; }
+
+PeerWatch::PeerWatch(std::vector<std::string> others, double deadline_s) : others_(std::move(others)), deadline_s_(deadline_s) {}
+
+bool PeerWatch::check(double elapsed_s, const std::vector<std::string>& discovered, bool run_ended) {
+  if (!checked_) {
+    if (elapsed_s < deadline_s_ && !run_ended) {
+      return false;
+    }
+    checked_ = true;
+    judged_s_ = elapsed_s;
+    for (const std::string& group : others_) {
+      if (!has(discovered, participant_name_of_group(group))) {
+        missing_.push_back(group);
+      }
+    }
+    return !missing_.empty();
+  }
+  for (const std::string& group : missing_) {
+    if (!has(late_, group) && has(discovered, participant_name_of_group(group))) {
+      late_.push_back(group);
+    }
+  }
+  return false;
+}
+
+std::string PeerWatch::degraded() const {
+  if (missing_.empty()) {
+    return "";
+  }
+  std::string text = "did not discover group(s) " + quoted_list(missing_);
+  if (judged_s_ < deadline_s_) {
+    text += " during its run (" + shortest_text(std::round(judged_s_ * 10.0) / 10.0) + " s, shorter than the start timeout of " +
+            shortest_text(deadline_s_) + " s)";
+  } else {
+    text += " within " + shortest_text(deadline_s_) + " s of its start";
+  }
+  if (missing_.size() == others_.size()) {
+    text += ": no participant of the run at all (are the other hosts running, on the same domain, and is discovery reachable:"
+            " multicast, or the discovery server?)";
+  }
+  if (!late_.empty()) {
+    text += " (discovered later: " + quoted_list(late_) + ")";
+  }
+  return text;
+}
+
+}  // namespace robodds

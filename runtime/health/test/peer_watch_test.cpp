@@ -1,0 +1,56 @@
+#include "runtime/health/peer_watch.hpp"
+
+#include <gtest/gtest.h>
+
+namespace robodds {
+namespace {
+
+TEST(PeerWatch, NothingIsJudgedBeforeTheDeadline) {
+  PeerWatch watch({"sim", "control"}, 10.0);
+  EXPECT_FALSE(watch.check(9.9, {}));
+  EXPECT_FALSE(watch.checked());
+  EXPECT_EQ(watch.degraded(), "");
+}
+
+TEST(PeerWatch, EveryGroupDiscoveredIsNotDegraded) {
+  PeerWatch watch({"sim", "control"}, 10.0);
+  EXPECT_FALSE(watch.check(10.0, {"robodds-control", "robodds-sim", "robodds-topics"}));
+  EXPECT_TRUE(watch.checked());
+  EXPECT_EQ(watch.degraded(), "");
+}
+
+TEST(PeerWatch, NoParticipantAtAllNamesEveryGroupAndSaysNoneWasSeen) {
+  PeerWatch watch({"sim", "control"}, 3.0);
+  EXPECT_TRUE(watch.check(3.5, {"someone-else"}));
+  const std::string why = watch.degraded();
+  EXPECT_NE(why.find("did not discover group(s) 'sim', 'control' within 3 s"), std::string::npos) << why;
+  EXPECT_NE(why.find("no participant of the run at all"), std::string::npos) << why;
+}
+
+TEST(PeerWatch, APartlyMissingRunNamesTheMissingAndThoseThatCameLate) {
+  PeerWatch watch({"sim", "control", "evaluation"}, 3.0);
+  EXPECT_TRUE(watch.check(3.0, {"robodds-evaluation"}));
+  EXPECT_EQ(watch.degraded().find("no participant of the run at all"), std::string::npos) << watch.degraded();
+  EXPECT_FALSE(watch.check(8.0, {"robodds-evaluation", "robodds-control"})) << "degraded once, not again";
+  EXPECT_EQ(watch.degraded(), "did not discover group(s) 'sim', 'control' within 3 s of its start (discovered later: 'control')");
+}
+
+// A run shorter than the start timeout is judged at its end, and says so (it did not wait 30 s).
+TEST(PeerWatch, ARunShorterThanTheDeadlineIsJudgedAtItsEnd) {
+  PeerWatch watch({"sim", "control"}, 30.0);
+  EXPECT_FALSE(watch.check(6.04, {"robodds-sim"})) << "not at the deadline yet";
+  EXPECT_TRUE(watch.check(6.04, {"robodds-sim"}, true));
+  EXPECT_EQ(watch.degraded(), "did not discover group(s) 'control' during its run (6 s, shorter than the start timeout of 30 s)");
+  PeerWatch everyone({"sim"}, 30.0);
+  EXPECT_FALSE(everyone.check(2.0, {"robodds-sim"}, true));
+  EXPECT_EQ(everyone.degraded(), "");
+}
+
+TEST(PeerWatch, AHostWithoutOtherGroupsWatchesNothing) {
+  PeerWatch watch({}, 1.0);
+  EXPECT_FALSE(watch.check(5.0, {}));
+  EXPECT_EQ(watch.degraded(), "");
+}
+
+}  // namespace
+}  // namespace robodds

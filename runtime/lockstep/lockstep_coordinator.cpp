@@ -1,0 +1,105 @@
+#include "runtime/lockstep/lockstep_coordinator.hpp"
+
+#include <algorithm>
+
+#include "runtime/base/log.hpp"
+
+namespace robodds {
+namespace {
+
+std::uint64_t member_key(const std::string& member) {
+  idl::StepDone probe;
+  probe.member(member);
+  return idl::instance_key(probe);
+}
+
+}  // namespace
+
+using host_detail::Clock;
+using host_detail::dds_report;
+using host_detail::fmt_s;
+using host_detail::seconds_since;
+using host_detail::sim_stamp_ns;
+
+LockstepCoordinator::LockstepCoordinator(const RunContext& run, const HostOptions& options, Bus& protocol_bus)
+    : run_(run), options_(options) {
+  state_.mode = run.mode;
+  const TopicInfo& clock = topic_info("sim/clock");
+  const TopicInfo& done = topic_info("sim/step_done");
+  const std::string profile = qos_profile_for(clock, run.mode, run.single_process);
+  detail::InputOptions ack_options;
+  ack_options.ignore_step = true;
+  for (const std::string& member : options.members) {
+    ack_options.expected.push_back(member_key(member));
+    ack_options.labels[member_key(member)] = "'" + member + "'";
+  }
+  ack_input_ = std::make_unique<Input<idl::StepDone>>(done.name, "coordinator", &state_, run.notifier, ack_options);
+  // A stale host of another run must not count: samples_of_run() passes this run's acks only.
+  ack_reader_ = protocol_bus.reader(done.name, done.type_name, profile, host_detail::samples_of_run(ack_input_.get(), options.run_id),
+                                [](const std::string& e) { log::warn("coordinator", "sim/step_done: " + e); });
+  tick_output_ = std::make_unique<Output<idl::SimTick>>(protocol_bus.writer(clock.name, clock.type_name, profile), &state_);
+}
+
+void LockstepCoordinator::begin(Clock::time_point start) { ack_progress_at_ = start; }
+
+bool LockstepCoordinator::poll() {
+  for (std::uint64_t key : ack_input_->instances()) {
+    for (const idl::StepDone& ack : ack_input_->take_new(key)) {
+      if (ack.run_id() == options_.run_id && ack.failed()) {
+        throw RunError("group '" + ack.member().to_string() + "' failed at step " + std::to_string(ack.header().step()) +
+                       ": " + ack.error().to_string());
+      }
+    }
+  }
+  const std::uint64_t last = run_.scenario->last_step();
+  // At most `lockstep_window` ticks are outstanding: 1 is the strict rule (the next tick waits
+  // for all acknowledgements). A wider window lets the groups of a pipeline work on
+  // consecutive steps at once; results are unchanged, because an input at step m only ever
+  // reads samples with step <= m - delay, however early later samples arrive.
+  const std::uint64_t window = std::max<std::uint64_t>(1, options_.lockstep_window);
+  std::string missing;
+  bool progressed = false;
+  while (acked_steps_ < next_tick_ && ack_input_->ready(acked_steps_, &missing)) {
+    if (options_.progress) {
+      options_.progress(acked_steps_, last);
+    }
+    ++acked_steps_;
+    ack_progress_at_ = Clock::now();
+    progressed = true;
+  }
+  if (acked_steps_ > last) {
+    done_ = true;
+  }
+  while (next_tick_ <= last && next_tick_ < acked_steps_ + window) {
+    publish_tick(next_tick_, next_tick_ == last);
+    if (next_tick_ == acked_steps_) {
+      ack_progress_at_ = Clock::now();  // the oldest outstanding tick starts its wait now
+    }
+    ++next_tick_;
+    progressed = true;
+  }
+  if (!done_ && !progressed) {
+    const double limit = acked_steps_ == 0 ? options_.start_timeout_s : options_.tick_timeout_s;
+    if (seconds_since(ack_progress_at_) > limit) {
+      throw RunError("lockstep: no acknowledgement of step " + std::to_string(acked_steps_) + " within " + fmt_s(limit) +
+                     " s from group " + missing + " on sim/step_done" + dds_report(*run_.bus));
+    }
+  }
+  return progressed;
+}
+
+void LockstepCoordinator::publish_tick(std::uint64_t step, bool final_tick) {
+  idl::SimTick tick;
+  tick.run_id(options_.run_id);
+  tick.step_s(run_.scenario->step_s);
+  tick.final_tick(final_tick);
+  state_.step = step;
+  state_.stamp_ns = sim_stamp_ns(step, run_.scenario->step_s);
+  if (final_tick) {
+    tick_output_->publish_final(tick);
+  } else {
+    tick_output_->publish(tick);
+  }
+}
+
+}  // namespace robodds

@@ -1,0 +1,221 @@
+#include "runtime/lockstep/lockstep_host.hpp"
+
+#include <algorithm>
+#include <optional>
+
+#include "common/number_text.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/bus/qos_profiles.hpp"
+#include "runtime/base/log.hpp"
+
+namespace robodds {
+
+using host_detail::Clock;
+using host_detail::dds_report;
+using host_detail::fmt_s;
+using host_detail::finish_run;
+using host_detail::samples_of_run;
+using host_detail::seconds_since;
+using host_detail::sim_stamp_ns;
+
+namespace {
+
+/// Lockstep across processes: ConfigError, naming the component, topic and figures, when a
+/// component's gated input could need a sample its producer's writer history (the `lockstep` QoS
+/// profile's KEEP_LAST depth) no longer holds: window + period + delay - 1 > depth.
+void check_history_bound(const RunContext& run, const HostOptions& options, const LockstepHost::Slots& slots) {
+  const std::optional<std::size_t> depth = run.bus->writer_history_depth(kLockstepProfile);
+  if (!depth) {
+    return;
+  }
+  const std::uint64_t window = std::max<std::uint64_t>(1, options.lockstep_window);
+  for (const auto& slot : slots) {
+    for (const auto& input : slot->context->inputs()) {
+      if (!input->gated()) {
+        continue;
+      }
+      // A consumer due every p steps reading d steps late needs, at its due step m, the samples up
+      // to m - d. Its host acknowledges the steps in between without them, and producers run up
+      // to `window` ticks past the last acknowledged step: W + p + d - 1 samples of an instance
+      // may be written before the consumer must have them. A writer keeping fewer may drop one a
+      // reader never got (e.g. a reader that matched late, at the start): a silently different run.
+      const std::uint64_t ahead = window + slot->state.period_steps + input->delay_steps() - 1;
+      if (ahead > *depth) {
+        throw ConfigError("lockstep: component '" + slot->spec->name + "' reads " + input->topic() + " " +
+                          std::to_string(input->delay_steps()) + " step(s) late every " +
+                          std::to_string(slot->state.period_steps) + " step(s): with --lockstep-window " +
+                          std::to_string(window) + " its producers may write " + std::to_string(ahead) +
+                          " samples of an instance before it reads them, more than the '" + kLockstepProfile +
+                          "' QoS profile's writer history keeps (KEEP_LAST " + std::to_string(*depth) +
+                          "): lower --lockstep-window or raise that depth in the QoS file");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& slots, Bus& protocol_bus,
+                           HealthExchange* health)
+    : run_(run), options_(options), slots_(slots), health_(health) {
+  state_.mode = run.mode;
+  const TopicInfo& clock = topic_info("sim/clock");
+  const TopicInfo& done = topic_info("sim/step_done");
+  const std::string profile = qos_profile_for(clock, run.mode, run.single_process);
+  detail::InputOptions tick_options;
+  tick_options.ignore_step = true;
+  tick_input_ = std::make_unique<Input<idl::SimTick>>(clock.name, options.member, &state_, run.notifier, tick_options);
+  auto* raw = tick_input_.get();
+  tick_reader_ = protocol_bus.reader(clock.name, clock.type_name, profile, samples_of_run(raw, options.run_id),
+                                 [this](const std::string& e) { log::warn(options_.member, "sim/clock: " + e); });
+  ack_writer_ = protocol_bus.writer(done.name, done.type_name, profile);
+  ack_output_ = std::make_unique<Output<idl::StepDone>>(ack_writer_, &state_);
+  if (run.mode == TimeMode::kLockstep && !run.single_process) {
+    check_history_bound(run, options, slots);
+  }
+}
+
+void LockstepHost::begin(Clock::time_point start) {
+  start_ = start;
+  waiting_since_ = start;
+}
+
+bool LockstepHost::step() {
+  bool progressed = false;
+  if (!tick_active_) {
+    progressed = take_tick();
+  }
+  if (tick_active_) {
+    progressed = run_due_components() || progressed;
+  }
+  return progressed;
+}
+
+bool LockstepHost::take_tick() {
+  for (idl::SimTick& tick : tick_input_->take_new(0)) {
+    if (tick.run_id() == options_.run_id) {
+      tick_queue_.push_back(std::move(tick));
+    }
+  }
+  if (tick_queue_.empty()) {
+    const double limit = first_tick_ ? options_.start_timeout_s : options_.tick_timeout_s;
+    if (seconds_since(waiting_since_) > limit) {
+      throw RunError(options_.member + ": no tick on sim/clock for " + fmt_s(limit) + " s " +
+                     (first_tick_ ? "after start" : "after step " + std::to_string(tick_step_)) +
+                     ": is the coordinator (robodds run) alive and on the same domain?" + dds_report(*run_.bus));
+    }
+    return false;
+  }
+  const idl::SimTick tick = tick_queue_.front();
+  tick_queue_.pop_front();
+  if (tick.step_s() != run_.scenario->step_s) {
+    // A host that does not load the coordinator's scenario (a component executable with its
+    // own --step) would otherwise integrate and stamp with the wrong dt, silently.
+    throw RunError(options_.member + ": the coordinator's step is " + shortest_text(tick.step_s()) + " s, this host's " +
+                   shortest_text(run_.scenario->step_s) + " s (--step or the scenario's step_s must agree)");
+  }
+  tick_active_ = true;
+  tick_step_ = tick.header().step();
+  tick_is_final_ = tick.final_tick();
+  components_run_ = 0;
+  if (first_tick_ && run_.figures.thirds_done_at_s.empty()) {
+    run_.figures.thirds_done_at_s.push_back(seconds_since(start_));  // the thirds count from the first tick
+  }
+  first_tick_ = false;
+  for (auto& slot : slots_) {
+    slot->pending = tick_step_ % slot->state.period_steps == 0;
+    slot->state.step = tick_step_;
+    slot->state.stamp_ns = sim_stamp_ns(tick_step_, run_.scenario->step_s);
+  }
+  waiting_since_ = Clock::now();
+  return true;
+}
+
+bool LockstepHost::run_due_components() {
+  const double step_s = run_.scenario->step_s;
+  bool progressed = false;
+  bool all_done = true;
+  for (auto& slot : slots_) {
+    if (!slot->pending) {
+      continue;
+    }
+    const InputBase* blocking = nullptr;
+    for (const auto& input : slot->context->inputs()) {
+      if (!input->ready(tick_step_, nullptr)) {  // no message built at every wake-up
+        blocking = input.get();
+        break;
+      }
+    }
+    if (blocking != nullptr) {
+      all_done = false;
+      if (seconds_since(waiting_since_) > options_.input_timeout_s) {
+        std::string missing;
+        if (blocking->ready(tick_step_, &missing)) {
+          continue;  // it arrived meanwhile
+        }
+        throw RunError("lockstep: component '" + slot->spec->name + "' waited " + fmt_s(options_.input_timeout_s) +
+                       " s at step " + std::to_string(tick_step_) + " for topic " + blocking->topic() + ", " + missing +
+                       dds_report(*run_.bus));
+      }
+      continue;
+    }
+    const double time_s = static_cast<double>(tick_step_) * step_s;
+    const double dt_s = slot->has_run ? static_cast<double>(tick_step_ - slot->last_run_step) * step_s : 0.0;
+    slot->run(tick_step_, time_s, dt_s);
+    slot->pending = false;
+    ++components_run_;
+    progressed = true;
+  }
+  if (!all_done) {
+    return progressed;
+  }
+  if (tick_is_final_) {
+    OverrunFigures lockstep_figures;  // lockstep waits for every step: none is missed or late
+    lockstep_figures.ticks = tick_step_ + 1;
+    finish_run(run_, options_.member, lockstep_figures, slots_, health_, tick_step_, seconds_since(start_));
+    done_ = true;
+  }
+  publish_ack(tick_step_, components_run_, "");
+  tick_active_ = false;
+  steps_done_ = tick_step_ + 1;
+  note_thirds();
+  waiting_since_ = Clock::now();
+  return true;
+}
+
+void LockstepHost::note_thirds() {
+  const std::uint64_t steps = run_.scenario->last_step() + 1;
+  const std::size_t noted = run_.figures.thirds_done_at_s.size();  // 1: the first tick's time
+  if (steps >= 3 && noted >= 1 && noted < 3 && steps_done_ == steps * noted / 3) {
+    run_.figures.thirds_done_at_s.push_back(seconds_since(start_));
+  }
+}
+
+void LockstepHost::publish_failure(const std::string& error) {
+  publish_ack(tick_step_, 0, error);
+  // The process exits next, and its participant's goodbye can overtake the report: the
+  // coordinator then drops it with the writer and waits for this group until its own timeout
+  // (docs/deployment.md, "A failing host's last word"). So wait until the report is acknowledged.
+  const Clock::time_point since = Clock::now();
+  if (ack_writer_->wait_acknowledged(kFailureReportWait)) {
+    log::debug(options_.member, "failure report acknowledged after " + std::to_string(seconds_since(since)) + " s");
+  } else {
+    log::warn(options_.member, "the coordinator did not acknowledge this host's failure report within " +
+                                   fmt_s(std::chrono::duration<double>(kFailureReportWait).count()) + " s (is it gone?)");
+  }
+}
+
+void LockstepHost::publish_ack(std::uint64_t step, std::uint64_t components_run, const std::string& error) {
+  idl::StepDone ack;
+  ack.member(options_.member);
+  ack.run_id(options_.run_id);
+  ack.components_run(static_cast<std::uint32_t>(components_run));
+  ack.failed(!error.empty());
+  ack.error(error.substr(0, 500));
+  state_.step = step;
+  state_.period_steps = 1;
+  state_.stamp_ns = sim_stamp_ns(step, run_.scenario->step_s);
+  ack_output_->publish(ack);
+}
+
+}  // namespace robodds

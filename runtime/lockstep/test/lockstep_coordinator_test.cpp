@@ -1,0 +1,131 @@
+#include "runtime/lockstep/lockstep_coordinator.hpp"
+
+#include <gtest/gtest.h>
+
+#include <thread>
+
+#include "runtime/bus/memory_bus.hpp"
+#include "runtime/topics/topic_catalog.hpp"
+
+namespace robodds {
+namespace {
+
+/// The profile the host and the coordinator use for a lockstep topic (not co-located).
+std::string profile_of(const std::string& topic) { return qos_profile_for(topic_info(topic), TimeMode::kLockstep, false); }
+
+/// A coordinator for members {"a", "b"} on the in-memory bus, with a recorder of its ticks and a
+/// way to acknowledge as a member.
+struct CoordinatorFixture : ::testing::Test {
+  MemoryBus bus;
+  Notifier notifier;
+  Scenario scenario;
+  RunContext run;
+  HostOptions options;
+  std::vector<std::uint64_t> ticks;
+  std::vector<bool> final_flags;
+  std::shared_ptr<ReaderHandle> tick_reader;
+  StepState ack_state;
+  std::unique_ptr<Output<idl::StepDone>> ack_output;
+
+  void SetUp() override {
+    scenario.step_s = 0.01;
+    scenario.duration_s = 0.05;  // steps 0..5
+    run.scenario = &scenario;
+    run.bus = &bus;
+    run.notifier = &notifier;
+    options.members = {"a", "b"};
+    options.run_id = 9;
+    tick_reader = bus.reader("sim/clock", topic_info("sim/clock").type_name, profile_of("sim/clock"), [this](const void* s, const SampleMeta&) {
+      const auto& tick = *static_cast<const idl::SimTick*>(s);
+      ticks.push_back(tick.header().step());
+      final_flags.push_back(tick.final_tick());
+    }, nullptr);
+    ack_output = std::make_unique<Output<idl::StepDone>>(bus.writer("sim/step_done", topic_info("sim/step_done").type_name, profile_of("sim/step_done")), &ack_state);
+  }
+
+  void ack(const std::string& member, std::uint64_t step, const std::string& error = "", std::uint64_t run_id = 9) {
+    idl::StepDone done;
+    done.member(member);
+    done.run_id(run_id);
+    done.failed(!error.empty());
+    done.error(error);
+    ack_state.step = step;
+    ack_output->publish(done);
+  }
+};
+
+TEST_F(CoordinatorFixture, WindowBoundsTheOutstandingTicks) {
+  options.lockstep_window = 2;
+  LockstepCoordinator coordinator(run, options, *run.bus);
+  coordinator.begin(std::chrono::steady_clock::now());
+  EXPECT_TRUE(coordinator.poll());
+  EXPECT_EQ(ticks, (std::vector<std::uint64_t>{0, 1}));
+  EXPECT_FALSE(coordinator.poll());  // nothing acknowledged: nothing moves
+  ack("a", 0);
+  EXPECT_FALSE(coordinator.poll());  // step 0 still waits for b
+  EXPECT_EQ(coordinator.acknowledged_steps(), 0u);
+  ack("b", 0);
+  EXPECT_TRUE(coordinator.poll());
+  EXPECT_EQ(coordinator.acknowledged_steps(), 1u);
+  EXPECT_EQ(ticks, (std::vector<std::uint64_t>{0, 1, 2}));
+}
+
+TEST_F(CoordinatorFixture, StrictWindowRunsToTheFinalTick) {
+  std::vector<std::uint64_t> progress;
+  options.progress = [&progress](std::uint64_t step, std::uint64_t) { progress.push_back(step); };
+  LockstepCoordinator coordinator(run, options, *run.bus);
+  coordinator.begin(std::chrono::steady_clock::now());
+  for (std::uint64_t step = 0; step <= 5; ++step) {
+    EXPECT_FALSE(coordinator.done());
+    coordinator.poll();
+    EXPECT_EQ(ticks.size(), step + 1) << "window 1: one tick per acknowledged step";
+    ack("a", step);
+    ack("b", step);
+  }
+  coordinator.poll();
+  EXPECT_TRUE(coordinator.done());
+  EXPECT_EQ(coordinator.acknowledged_steps(), 6u);
+  EXPECT_EQ(final_flags, (std::vector<bool>{false, false, false, false, false, true}));
+  EXPECT_EQ(progress, (std::vector<std::uint64_t>{0, 1, 2, 3, 4, 5}));
+}
+
+TEST_F(CoordinatorFixture, FailedGroupIsReported) {
+  LockstepCoordinator coordinator(run, options, *run.bus);
+  coordinator.begin(std::chrono::steady_clock::now());
+  coordinator.poll();
+  ack("b", 0, "component 'pf' failed at step 0: boom");
+  try {
+    coordinator.poll();
+    FAIL() << "expected a RunError";
+  } catch (const RunError& e) {
+    EXPECT_STREQ(e.what(), "group 'b' failed at step 0: component 'pf' failed at step 0: boom");
+  }
+}
+
+TEST_F(CoordinatorFixture, AcknowledgementsOfOtherRunsDoNotCount) {
+  LockstepCoordinator coordinator(run, options, *run.bus);
+  coordinator.begin(std::chrono::steady_clock::now());
+  coordinator.poll();
+  ack("a", 0, "", 8);
+  ack("b", 0, "stale failure", 8);
+  EXPECT_NO_THROW(coordinator.poll());
+  EXPECT_EQ(coordinator.acknowledged_steps(), 0u);
+}
+
+TEST_F(CoordinatorFixture, MissingAcknowledgementTimesOutNamingTheGroup) {
+  options.start_timeout_s = 0.05;
+  LockstepCoordinator coordinator(run, options, *run.bus);
+  coordinator.begin(std::chrono::steady_clock::now());
+  coordinator.poll();
+  ack("a", 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  try {
+    coordinator.poll();
+    FAIL() << "expected a RunError";
+  } catch (const RunError& e) {
+    EXPECT_STREQ(e.what(), "lockstep: no acknowledgement of step 0 within 0.1 s from group 'b' (nothing received yet) on sim/step_done");
+  }
+}
+
+}  // namespace
+}  // namespace robodds
