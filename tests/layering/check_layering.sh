@@ -9,6 +9,8 @@
 #   4. No component's CMakeLists.txt names another component's node library.
 #   5. One name per component: its folder, its namespace (robodds::<type>) and its registered type
 #      agree, its node is node/<type>_node.cpp, and one folder registers one type.
+#   6. The layers below never include the ones above: runtime/ includes nothing of system/,
+#      components/, sim/ or tools/; system/ nothing of components/, sim/ or tools/.
 # Usage: check_layering.sh SOURCE_ROOT. Exit 0 when clean, else 1 with one line per violation.
 set -euo pipefail
 
@@ -114,6 +116,17 @@ for f in "${!node_library_of[@]}"; do
       [[ -n $hit ]] && violation "$f:$hit: a component must not link another component's node library (${node_library_of[$other]})"
     done < <(sed 's/#.*//' "$f" | grep -nowF -e "${node_library_of[$other]}" || true)
   done
+done
+
+# Rule 6: no include upwards from runtime/ or system/.
+for layer in runtime system; do
+  below=()
+  for f in "${sources[@]}"; do [[ $f == $layer/* ]] && below+=("$f"); done
+  above='system/|components/|sim/|tools/'
+  [[ $layer == system ]] && above='components/|sim/|tools/'
+  while IFS= read -r hit; do
+    [[ -n $hit ]] && violation "$hit: $layer/ must not include a layer above it"
+  done < <(include_of "$above" "${below[@]}")
 done
 
 # Rule 5: folder = namespace = registered type.
