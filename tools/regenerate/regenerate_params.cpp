@@ -2,6 +2,7 @@
 // config/<name>.params.yaml from its parameter table (scripts/regenerate_params.sh runs it).
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <fstream>
 
 #include "runtime/component/registry.hpp"
@@ -17,6 +18,9 @@ int main(int argc, char** argv) {
     robodds::register_builtin_components(registry);
     for (const robodds::ComponentType& type : registry.types()) {
       const std::string path = std::string(argv[1]) + "/" + type.defaults_file;
+      // A new component has no config/ folder yet (docs/writing-a-component.md's first build).
+      std::error_code ignored;
+      std::filesystem::create_directories(std::filesystem::path(path).parent_path(), ignored);
       std::ofstream out(path, std::ios::binary | std::ios::trunc);
       out << robodds::expected_params_file(type);
       out.close();
