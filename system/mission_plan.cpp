@@ -8,8 +8,7 @@
 #include <string>
 
 #include "common/number_text.hpp"
-#include "runtime/base/error.hpp"
-#include "runtime/base/log.hpp"
+#include "runtime/config/yaml_reader.hpp"
 
 namespace robodds::system {
 namespace {
@@ -18,46 +17,7 @@ namespace {
 // the robodds CLI through check_facts).
 const bool kSectionsRegistered = register_scenario_section("targets") && register_scenario_section("events");
 
-/// Reads one section's YAML text; every error names the scenario file and a key under it.
-class SectionReader {
- public:
-  explicit SectionReader(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const std::string& key, const std::string& reason) const {
-    throw ConfigError(located(file_, key, reason));
-  }
-
-  template <class T>
-  T scalar(const YAML::Node& node, const std::string& key, const char* expected) const {
-    if (!node || !node.IsScalar()) {
-      fail(key, node ? std::string("expected ") + expected : "missing");
-    }
-    try {
-      return node.as<T>();
-    } catch (const YAML::Exception&) {
-      fail(key, std::string("expected ") + expected + ", got '" + node.Scalar() + "'");
-    }
-  }
-
-  double finite(const YAML::Node& node, const std::string& key) const {
-    const double value = scalar<double>(node, key, "a number");
-    if (!std::isfinite(value)) {
-      fail(key, "must be finite");
-    }
-    return value;
-  }
-
-  void only_keys(const YAML::Node& node, const std::string& key, const std::set<std::string>& known, const char* list) const {
-    for (const auto& item : node) {
-      if (known.count(item.first.as<std::string>()) == 0) {
-        fail(key + "." + item.first.as<std::string>(), std::string("unknown key (known: ") + list + ")");
-      }
-    }
-  }
-
- private:
-  std::string file_;
-};
+using SectionReader = YamlReader;  // errors name the scenario file and a key under it
 
 bool has_section(const Scenario& scenario, const char* name) { return scenario.sections.count(name) != 0; }
 YAML::Node section(const Scenario& scenario, const char* name) { return YAML::Load(scenario.sections.at(name).yaml); }

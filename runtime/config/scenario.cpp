@@ -10,6 +10,7 @@
 
 #include "common/number_text.hpp"
 #include "runtime/base/error.hpp"
+#include "runtime/config/yaml_reader.hpp"
 
 namespace robodds {
 namespace {
@@ -40,33 +41,9 @@ std::string known_top_level_keys() {
   return text;
 }
 
-class ScenarioParser {
+class ScenarioParser : public YamlReader {
  public:
-  explicit ScenarioParser(std::string file) : file_(std::move(file)) {}
-
-  [[noreturn]] void fail(const std::string& key, const std::string& reason) const {
-    throw ConfigError(located(file_, key, reason));
-  }
-
-  template <class T>
-  T scalar(const YAML::Node& node, const std::string& key, const char* expected) const {
-    if (!node || !node.IsScalar()) {
-      fail(key, node ? std::string("expected ") + expected : "missing");
-    }
-    try {
-      return node.as<T>();
-    } catch (const YAML::Exception&) {
-      fail(key, std::string("expected ") + expected + ", got '" + node.Scalar() + "'");
-    }
-  }
-
-  double finite(const YAML::Node& node, const std::string& key) const {
-    const double value = scalar<double>(node, key, "a number");
-    if (!std::isfinite(value)) {
-      fail(key, "must be finite");
-    }
-    return value;
-  }
+  explicit ScenarioParser(std::string file) : YamlReader(std::move(file)) {}
 
   Scenario parse(const YAML::Node& root) const {
     if (!root.IsMap()) {
@@ -79,7 +56,7 @@ class ScenarioParser {
       }
     }
     Scenario s;
-    s.file = file_;
+    s.file = file();
     s.name = scalar<std::string>(root["name"], "name", "a string");
     if (root["description"]) {
       s.description = scalar<std::string>(root["description"], "description", "a string");
@@ -92,7 +69,7 @@ class ScenarioParser {
     if (s.duration_s <= 0.0) {
       fail("duration_s", "must be > 0");
     }
-    checked_last_step(s.step_s, s.duration_s, file_, "step_s");
+    checked_last_step(s.step_s, s.duration_s, file(), "step_s");
     s.seed = scalar<std::uint64_t>(root["seed"], "seed", "a non-negative integer");
     parse_robots(root["robots"], s);
     parse_components(root["components"], s);
@@ -104,7 +81,7 @@ class ScenarioParser {
       if (kTopLevelKeys.count(key) == 0) {  // a section the layer above reads: its YAML text
         YAML::Emitter emitter;
         emitter << YAML::Flow << item.second;
-        s.sections[key] = ParamEntry{emitter.c_str(), file_};
+        s.sections[key] = ParamEntry{emitter.c_str(), file()};
       }
     }
     return s;
@@ -208,7 +185,7 @@ class ScenarioParser {
     }
     flatten_overrides(node, "", out);
     for (auto& [name, entry] : out) {
-      entry.file = file_ + ": " + key;
+      entry.file = file() + ": " + key;
     }
     return out;
   }
@@ -221,7 +198,7 @@ class ScenarioParser {
       } else {
         YAML::Emitter emitter;
         emitter << YAML::Flow << item.second;
-        out[key] = ParamEntry{emitter.c_str(), file_};
+        out[key] = ParamEntry{emitter.c_str(), file()};
       }
     }
   }
@@ -258,16 +235,6 @@ class ScenarioParser {
     for (const ComponentSpec& c : s.components) {
       if (placed.count(c.name) == 0) {
         s.groups.push_back(GroupSpec{c.name, {c.name}});
-      }
-    }
-  }
-
-  /// Refuses keys of a map entry other than `known` (a comma-separated list, for the message).
-  void only_keys(const YAML::Node& node, const std::string& key, const std::set<std::string>& known, const char* list) const {
-    for (const auto& item : node) {
-      const std::string k = item.first.as<std::string>();
-      if (known.count(k) == 0) {
-        fail(key + "." + k, std::string("unknown key (known: ") + list + ")");
       }
     }
   }
@@ -310,7 +277,6 @@ class ScenarioParser {
     }
   }
 
-  std::string file_;
 };
 
 }  // namespace
