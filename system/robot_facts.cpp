@@ -1,7 +1,5 @@
 #include "system/robot_facts.hpp"
 
-#include <cmath>
-#include <set>
 #include <string>
 
 #include "common/model/uwb_array_params.hpp"
@@ -16,10 +14,31 @@ namespace {
 constexpr const char* kRobotBody = "robot_body";
 constexpr const char* kUwbArray = "uwb_array";
 constexpr const char* kRangeAccelBound = "range_accel_bound_mps2";
-const std::set<std::string> kMapFacts = {kRobotBody, kUwbArray};
-const std::set<std::string> kScalarFacts = {kRangeAccelBound};
-const std::set<std::string> kRobotFacts = {kRobotBody};  // what one robot may declare for itself
-constexpr const char* kKnownList = "robot_body, uwb_array, range_accel_bound_mps2";
+/// Every kind of fact, in the order an error lists them: one table, so the checks and the list
+/// cannot drift apart.
+struct FactKind {
+  const char* name;
+  bool is_map;     // a map of keys (robot_body: {...}), else one number
+  bool per_robot;  // a robot may declare it for itself
+};
+constexpr FactKind kFactKinds[] = {{kRobotBody, true, true}, {kUwbArray, true, false}, {kRangeAccelBound, false, false}};
+
+const FactKind* fact_kind(const std::string& name) {
+  for (const FactKind& kind : kFactKinds) {
+    if (name == kind.name) {
+      return &kind;
+    }
+  }
+  return nullptr;
+}
+
+std::string known_facts() {
+  std::string list;
+  for (const FactKind& kind : kFactKinds) {
+    list += (list.empty() ? "" : ", ") + std::string(kind.name);
+  }
+  return list;
+}
 
 /// The entries of `facts` under "<group>.", without that prefix, each naming the group in its origin.
 FlatParams fact_group(const FlatParams& facts, const std::string& group) {
@@ -38,16 +57,17 @@ FlatParams fact_group(const FlatParams& facts, const std::string& group) {
 void check_known(const FlatParams& facts, bool of_one_robot) {
   for (const auto& [key, entry] : facts) {
     const std::string group = key.substr(0, key.find('.'));
-    if (kMapFacts.count(group) == 0 && kScalarFacts.count(group) == 0) {
-      throw ConfigError(located(entry.file, key, std::string("unknown fact (known: ") + kKnownList + ")"));
+    const FactKind* kind = fact_kind(group);
+    if (kind == nullptr) {
+      throw ConfigError(located(entry.file, key, "unknown fact (known: " + known_facts() + ")"));
     }
-    if (of_one_robot && kRobotFacts.count(group) == 0) {
+    if (of_one_robot && !kind->per_robot) {
       throw ConfigError(located(entry.file, key, "a fact of the whole scenario (under the top-level facts:), not of one robot"));
     }
-    if (kMapFacts.count(group) != 0 && group == key) {
+    if (kind->is_map && group == key) {
       throw ConfigError(located(entry.file, key, "expected a map of its keys (e.g. robot_body: {wheel_base_m: 0.3})"));
     }
-    if (kScalarFacts.count(group) != 0 && group != key) {
+    if (!kind->is_map && group != key) {
       throw ConfigError(located(entry.file, group, "expected a number, not a map"));
     }
   }

@@ -90,14 +90,15 @@ struct Host::Impl {
     return PeerWatch(std::move(others), options.start_timeout_s);
   }
 
-  /// Checks the peers at most every 0.5 s; logs a degraded run once.
-  void watch_peers(PeerWatch& watch, double elapsed_s, double& next_check_s) const {
-    if (elapsed_s < next_check_s) {
+  /// Checks the peers at most every 0.5 s, and at the run's end (`run_ended`: a run shorter than
+  /// the start timeout is judged then); logs a degraded run once.
+  void watch_peers(PeerWatch& watch, double elapsed_s, double& next_check_s, bool run_ended = false) const {
+    if (elapsed_s < next_check_s && !run_ended) {
       return;
     }
     next_check_s = elapsed_s + 0.5;
-    if (watch.check(elapsed_s, run.bus->discovered_participants().value_or(std::vector<std::string>{}))) {
-      log::warn(options.member, "degraded: " + watch.degraded() + "; the run goes on without them");
+    if (watch.check(elapsed_s, run.bus->discovered_participants().value_or(std::vector<std::string>{}), run_ended)) {
+      log::warn(options.member, "degraded: " + watch.degraded() + (run_ended ? "" : "; the run goes on without them"));
     }
   }
 
@@ -263,9 +264,8 @@ struct Host::Impl {
     if (overruns.figures().missed_steps > 0 || overruns.figures().late_steps > 0) {
       log::warn(options.member, "real-time overruns over the run: " + overruns.totals_text());
     }
-    if (!peers.checked() &&  // a run shorter than the start timeout: judged at its end
-        peers.check(seconds_since(start), run.bus->discovered_participants().value_or(std::vector<std::string>{}), true)) {
-      log::warn(options.member, "degraded: " + peers.degraded());
+    if (!peers.checked()) {  // a run shorter than the start timeout: judged at its end
+      watch_peers(peers, seconds_since(start), next_peer_check_s, true);
     }
     host_detail::finish_run(run, options.member, overruns.figures(), slots, health.get(), last_run, seconds_since(start),
                             peers.degraded());

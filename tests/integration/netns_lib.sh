@@ -51,15 +51,20 @@ netns_delete() {
   ip netns del "$ns" 2>/dev/null || true
 }
 
+# Deletes every namespace of this test run (what runs in them first).
+netns_delete_ours() {
+  local ns
+  for ns in $(ip netns list 2>/dev/null | awk '{print $1}' | grep -E "^${NETNS_PREFIX}-" || true); do
+    netns_delete "$ns"
+  done
+}
+
 netns_cleanup() {
   local rc=$?
   for pid in "${cleanup_pids[@]:-}"; do
     [[ -n "$pid" ]] && kill -TERM "$pid" 2>/dev/null || true
   done
-  local ns
-  for ns in $(ip netns list 2>/dev/null | awk '{print $1}' | grep -E "^${NETNS_PREFIX}-" || true); do
-    netns_delete "$ns"
-  done
+  netns_delete_ours
   cleanup
   return $rc
 }
@@ -171,10 +176,7 @@ wan_stop() {
 # netns_teardown: kills what runs in our namespaces, ends the WAN switch if one runs, deletes the
 # namespaces (a test may then set up others).
 netns_teardown() {
-  local ns
-  for ns in $(ip netns list 2>/dev/null | awk '{print $1}' | grep -E "^${NETNS_PREFIX}-" || true); do
-    netns_delete "$ns"
-  done
+  netns_delete_ours
   if [[ -n "${WAN_SWITCH_PID:-}" ]] && kill -0 "$WAN_SWITCH_PID" 2>/dev/null; then
     wan_stop
   fi
