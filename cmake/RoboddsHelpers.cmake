@@ -100,7 +100,8 @@ function(robodds_component)
   if(NOT ARG_LIBRARY)
     set(ARG_LIBRARY robodds_${ARG_NAME}_node)
   endif()
-  robodds_library(${ARG_LIBRARY} SOURCES ${ARG_NODE_SOURCES} DEPS ${ARG_DEPS} robodds_runtime_core)
+  # robodds_system: the runtime with the robot system's topics, sample checks and shared facts.
+  robodds_library(${ARG_LIBRARY} SOURCES ${ARG_NODE_SOURCES} DEPS ${ARG_DEPS} robodds_system)
   # The documented defaults file, by convention config/<type>.params.yaml of this folder, relative
   # to the repository root / share dir: ROBODDS_REGISTER_COMPONENT registers this path.
   file(RELATIVE_PATH defaults_file ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR}/config/${ARG_NAME}.params.yaml)

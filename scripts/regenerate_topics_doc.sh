@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Rewrites the topic table of docs/topics.md from runtime/topics/topic_catalog.cpp (run it after changing
+# Rewrites the topic table of docs/topics.md from the topic catalog (runtime/topics/topic_catalog.cpp:
+# the runtime's own topics; system/topics.cpp: the robot system's) (run it after changing
 # the catalog; runtime_topic_table_test fails until you do). Builds the generator into build/.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"

@@ -13,10 +13,6 @@
 namespace robodds::system {
 namespace {
 
-// The runtime accepts these top-level keys from any binary that links this file (target_mission,
-// the robodds CLI through check_facts).
-const bool kSectionsRegistered = register_scenario_section("targets") && register_scenario_section("events");
-
 using SectionReader = YamlReader;  // errors name the scenario file and a key under it
 
 bool has_section(const Scenario& scenario, const char* name) { return scenario.sections.count(name) != 0; }
@@ -108,8 +104,12 @@ void parse_events(const YAML::Node& node, const SectionReader& in, const Scenari
 
 }  // namespace
 
+void register_mission_sections() {
+  register_scenario_section("targets");
+  register_scenario_section("events");
+}
+
 model::TargetPlan target_plan(const Scenario& scenario) {
-  (void)kSectionsRegistered;
   const SectionReader in(scenario.file);
   model::TargetPlan plan;
   if (has_section(scenario, "targets")) {

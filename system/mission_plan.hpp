@@ -20,4 +20,8 @@ namespace robodds::system {
 /// the key (e.g. `events[1].robots[0]`) and the reason.
 model::TargetPlan target_plan(const Scenario& scenario);
 
+/// Lets scenario files have the top-level sections `targets:` and `events:` (the runtime keeps
+/// them as text, register_scenario_section()); called by install_robot_system().
+void register_mission_sections();
+
 }  // namespace robodds::system

@@ -455,7 +455,11 @@ class InputBase {
 template <class Msg>
 class Input : public InputBase {
  public:
-  using InputBase::InputBase;
+  /// Throws ConfigError naming the topic if Msg has no content check (require_content_check()).
+  Input(std::string topic, std::string owner, const StepState* state, Notifier* notifier, detail::InputOptions options)
+      : InputBase(std::move(topic), std::move(owner), state, notifier, std::move(options)) {
+    require_content_check<Msg>(this->topic());
+  }
 
   /// Stores a sample; called by the bus (listener thread or inside a local writer's write()).
   void on_sample(const Msg& sample, const SampleMeta& meta = SampleMeta{}) {
@@ -608,7 +612,7 @@ class Input : public InputBase {
   }
 
   /// Why `sample` is refused: a non-finite number first, then the plausibility checks of its
-  /// topic type (runtime/io/sample_checks.hpp); nullopt when it passes.
+  /// message type (runtime/io/sample_checks.hpp); nullopt when it passes.
   std::optional<SampleCheckFailure> first_failed_check(const Msg& sample) const {
     const std::string bad_field = first_non_finite_field(sample);
     if (!bad_field.empty()) {

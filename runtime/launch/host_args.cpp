@@ -234,7 +234,7 @@ namespace {
 /// The options of a run that `robodds host` and a component executable share.
 void add_run_options(CLI::App* app, HostArgs& args) {
   app->add_option("--run-id", args.run_id, "run id given by robodds run");
-  app->add_option("--out", args.out, "output directory for the evaluator");
+  app->add_option("--out", args.out, "output directory of the run (what its recording component writes)");
   app->add_option("--deploy", args.deploy,
                   "deployment label for the \"run\" section of summary.json (set by robodds run; default: no run section)");
   app->add_flag("--realtime", args.realtime, "wall-clock timers instead of lockstep");

@@ -1,10 +1,15 @@
 #pragma once
-// The project's topics: name, IDL type, QoS class, key, producers and consumers. The single
+// The topics of the run: name, IDL type, QoS class, key, producers and consumers. The single
 // source for the runtime (type checks, QoS profile choice), the topic CLI and docs/topics.md.
+// The runtime's own topics (the lockstep bookkeeping: sim/clock, sim/step_done, run/health) are
+// always there; the system built on the runtime adds its topics with add_topics() before any
+// run starts (system/topics.hpp), so the runtime names none of them.
 
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "robodds/idl/robodds_visit.hpp"
 #include "runtime/bus/bus.hpp"
 #include "runtime/bus/qos_profiles.hpp"
 
@@ -19,7 +24,20 @@ struct TopicInfo {
   std::string consumers;  // free text (markdown), shown only in docs/topics.md
 };
 
+/// One catalog entry of IDL type Msg: its type name and key come from the IDL (the generated
+/// idl::type_name<Msg>() and idl::key_names<Msg>()), so they cannot disagree with it.
+template <class Msg>
+TopicInfo make_topic(std::string name, QosClass qos_class, std::string producers, std::string consumers) {
+  return TopicInfo{std::move(name), idl::type_name<Msg>(), qos_class, idl::key_names<Msg>(), std::move(producers),
+                   std::move(consumers)};
+}
+
+/// Every topic: the runtime's own first, then those added, in the order added.
 const std::vector<TopicInfo>& topic_catalog();
+/// Adds topics to the catalog; call before any run starts (the catalog is read without a lock).
+/// A topic already there with the same info is skipped (adding twice is harmless); one of the
+/// same name with other info throws ConfigError naming the topic.
+void add_topics(const std::vector<TopicInfo>& topics);
 /// nullptr if the topic is not in the catalog.
 const TopicInfo* find_topic(const std::string& name);
 /// The topic's info; throws ConfigError naming the topic and the known topics.

@@ -11,7 +11,7 @@
 namespace robodds {
 
 inline constexpr const char* kTopicTableBegin =
-    "<!-- topic table: generated from runtime/topics/topic_catalog.cpp by scripts/regenerate_topics_doc.sh; do not edit -->";
+    "<!-- topic table: generated from the topic catalog (runtime/topics/topic_catalog.cpp, system/topics.cpp) by scripts/regenerate_topics_doc.sh; do not edit -->";
 inline constexpr const char* kTopicTableEnd = "<!-- end of generated topic table -->";
 
 /// The markdown table (header, separator, one row per topic in catalog order), each line ending

@@ -11,6 +11,10 @@
 #      agree, its node is node/<type>_node.cpp, and one folder registers one type.
 #   6. The layers below never include the ones above: runtime/ includes nothing of system/,
 #      components/, sim/ or tools/; system/ nothing of components/, sim/ or tools/.
+#   7. The runtime is domain-free: its code (runtime/ outside test/, and outside the test and bench
+#      tools runtime/dds/fuzz/ and runtime/dds/bench/, which exercise it with the robot system)
+#      names no topic of the system (system/topics.cpp), no message type but its own bookkeeping
+#      (RUNTIME_MESSAGE_TYPES) and no component type; comments aside.
 # Usage: check_layering.sh SOURCE_ROOT. Exit 0 when clean, else 1 with one line per violation.
 set -euo pipefail
 
@@ -145,6 +149,35 @@ for f in "${cmake_lists[@]}"; do
   done < <(grep -nHE '^[[:space:]]*namespace robodds::[a-z_]+' -- "$folder"/*.hpp "$folder"/*.cpp "$folder"/node/*.hpp "$folder"/node/*.cpp 2>/dev/null |
     grep -vE "namespace robodds::${type}([^a-z_]|$)" || true)
 done
+
+# Rule 7: runtime/ names no topic, message type or component of the system above it.
+# The IDL types the runtime owns: the lockstep bookkeeping (ticks, acknowledgements, host reports)
+# and the structs they are made of.
+RUNTIME_MESSAGE_TYPES=(SampleHeader SimTick StepDone HostReport InputReport ReasonCount StageTiming)
+mapfile -t system_topics < <(grep -ohE 'make_topic<[^>]+>\("[^"]+"' system/*.cpp 2>/dev/null | sed -E 's/.*\("//; s/"$//' | sort -u)
+mapfile -t message_types < <(grep -ohE '^[[:space:]]*(@final[[:space:]]+)?(struct|enum)[[:space:]]+[A-Za-z0-9_]+' idl/*.idl 2>/dev/null |
+  awk '{print $NF}' | grep -vxF "${RUNTIME_MESSAGE_TYPES[@]/#/-e}" | sort -u)
+component_types=()
+for f in "${cmake_lists[@]}"; do
+  [[ $f == components/* || $f == sim/* ]] || continue
+  mapfile -t -O "${#component_types[@]}" component_types < <(sed 's/#.*//' "$f" | tr '\n' ' ' |
+    grep -oE 'robodds_component\([[:space:]]*NAME[[:space:]]+[A-Za-z0-9_]+' | awk '{print $NF}')
+done
+runtime_code=()
+for f in "${sources[@]}"; do
+  [[ $f == runtime/* && $f != */test/* && $f != runtime/dds/fuzz/* && $f != runtime/dds/bench/* ]] && runtime_code+=("$f")
+done
+if ((${#runtime_code[@]})) && ((${#system_topics[@]} + ${#message_types[@]} + ${#component_types[@]})); then
+  names=()
+  for t in "${system_topics[@]}"; do names+=(-e "\"$t\""); done
+  for t in "${message_types[@]}" "${component_types[@]}"; do names+=(-e "$t"); done
+  for f in "${runtime_code[@]}"; do
+    # Comments stripped (a line's // tail), then whole words (topics: as quoted strings).
+    while IFS= read -r hit; do
+      [[ -n $hit ]] && violation "$f:$hit: the runtime must not name a topic, message type or component of the system above it (they belong in system/ or the component)"
+    done < <(sed -E 's#//.*$##' "$f" | grep -nowF "${names[@]}" || true)
+  done
+fi
 
 if ((failed == 0)); then
   echo "layering: ok (${#sources[@]} source files, ${#sim_targets[@]} sim targets)"

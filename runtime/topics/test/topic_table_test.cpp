@@ -26,7 +26,7 @@ TEST(TopicTable, DocsTopicsMdMatchesTheCatalog) {
   const std::string in_doc = generated_topic_table(doc, path);
   const std::string rendered = render_topic_table(topic_catalog());
   // Not EXPECT_EQ: its dump of both tables would bury the diff.
-  EXPECT_TRUE(in_doc == rendered) << "docs/topics.md's topic table differs from runtime/topics/topic_catalog.cpp "
+  EXPECT_TRUE(in_doc == rendered) << "docs/topics.md's topic table differs from the topic catalog "
                                   << "(- doc, + catalog):\n"
                                   << line_diff(in_doc, rendered) << "Regenerate it with scripts/regenerate_topics_doc.sh";
 }
