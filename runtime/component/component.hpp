@@ -13,6 +13,7 @@
 #include "runtime/health/compute_times.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/health/host_health.hpp"
+#include "runtime/base/log.hpp"
 #include "runtime/io/io.hpp"
 #include "runtime/config/params.hpp"
 #include "runtime/config/scenario.hpp"

@@ -1,0 +1,259 @@
+#pragma once
+// The type-free part of an Input (input.hpp): per stream, its progress and readiness in lockstep
+// (the lockstep rule, docs/architecture.md), its producer (one producer per instance), lost-sample
+// detection, freshness in real time, the counts of accepted and dropped samples, and whom to
+// wake. The hot path (ready(), the checks of every sample) stays inline here; what runs once per
+// instance, writer or error (labels, logs, hand-overs) is in input_base.cpp.
+
+#include <algorithm>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "runtime/base/error.hpp"
+#include "runtime/bus/bus.hpp"
+#include "runtime/bus/key_index.hpp"
+#include "runtime/io/input_counts.hpp"
+#include "runtime/io/notifier.hpp"
+#include "runtime/io/step_state.hpp"
+#include "runtime/io/subscription.hpp"
+
+namespace robodds {
+
+class InputBase {
+ public:
+  InputBase(std::string topic, std::string owner, const StepState* state, Notifier* notifier, detail::InputOptions options)
+      : topic_(std::move(topic)), owner_(std::move(owner)), state_(state), notifier_(notifier), options_(std::move(options)) {
+    // Each stream once: the wake-up count of ready() counts streams (a key named twice would
+    // never be counted down, and the executor would only notice at its 20 ms poll). The
+    // expected streams are the first streams_, in key order: ready() walks them without lookups.
+    std::sort(options_.expected.begin(), options_.expected.end());
+    options_.expected.erase(std::unique(options_.expected.begin(), options_.expected.end()), options_.expected.end());
+    for (std::uint64_t id : options_.expected) {
+      add_stream(id);
+    }
+  }
+  virtual ~InputBase() = default;
+
+  const std::string& topic() const { return topic_; }
+  /// Lockstep: reads samples up to `delay_steps()` steps old, and waits for some streams (gated).
+  std::uint64_t delay_steps() const { return options_.delay_steps; }
+  bool gated() const { return !options_.ignore_step && !options_.expected.empty(); }
+  std::uint64_t rejected_count() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return counts_.rejected_total();
+  }
+  InputCounts counts() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return counts_;
+  }
+  /// Counts an accepted sample the component corrected before use, under `reason`.
+  void count_adjusted(const std::string& reason) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    ++counts_.adjusted[reason];
+  }
+  /// Seconds between the receipt of the newest accepted sample of `key` (SampleMeta::received_ns,
+  /// this process's monotonic clock) and `now_ns` (same clock); nullopt if none was accepted or
+  /// its receive time is unknown. Judges freshness by the receiver's clock, not the sender's stamp.
+  std::optional<double> age_s(std::uint64_t key, std::int64_t now_ns = monotonic_now_ns()) const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::size_t s = stream_index_.find(key);
+    if (s == KeyIndex::kNone || streams_[s].progress.received_ns == 0) {
+      return std::nullopt;
+    }
+    return static_cast<double>(now_ns - streams_[s].progress.received_ns) * 1e-9;
+  }
+
+  /// Real time: the newest accepted sample of `key` was received at most `max_age_s` before
+  /// `now_ns` (age_s()); false if none was. The freshness rule of every consumer that acts on it.
+  bool fresh(std::uint64_t key, double max_age_s, std::int64_t now_ns = monotonic_now_ns()) const {
+    const std::optional<double> age = age_s(key, now_ns);
+    return age && *age <= max_age_s;
+  }
+
+  /// Lockstep: the error that ends the run, if one was seen (empty: none): the first second
+  /// producer of an instance, or the first lost sample of a stream.
+  std::string lockstep_error() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return lockstep_error_;
+  }
+
+  /// Lockstep: true when every expected instance has delivered all samples with
+  /// step <= step - delay. Otherwise names the first missing instance (in key order) in *missing.
+  /// Throws RunError once a second producer or a lost sample was seen in lockstep (lockstep_error()).
+  bool ready(std::uint64_t step, std::string* missing) const {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!lockstep_error_.empty()) {
+        throw RunError(lockstep_error_);
+      }
+    }
+    if (state_->mode == TimeMode::kRealtime || step < options_.delay_steps) {
+      return true;  // real time reads whatever is there; before `delay` steps nothing is due
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::size_t missing_streams = 0;
+    // The expected streams are the first streams_, in key order (constructor): one walk over
+    // an array, no lookup per key.
+    for (std::size_t i = 0; i < options_.expected.size(); ++i) {
+      const Stream& s = streams_[i];
+      if (!covers(s.progress, step)) {
+        if (missing_streams++ == 0 && missing != nullptr) {
+          *missing = !s.progress.seen ? label_of(s.id) + " (nothing received yet)"
+                                      : label_of(s.id) + " (newest sample: step " + std::to_string(s.progress.step) + ")";
+        }
+      }
+    }
+    // Not ready: the executor will wait, and this input wakes it once, when the last missing
+    // stream arrives (on_sample), not at every sample: across processes a wake-up per sample
+    // was a context switch per robot and topic (docs/performance.md, "Cost per robot-tick").
+    armed_step_ = step;
+    armed_missing_ = missing_streams;
+    return missing_streams == 0;
+  }
+
+ protected:
+  struct Progress {
+    std::uint64_t step = 0;
+    std::uint64_t next_step = 0;
+    std::int64_t received_ns = 0;  // SampleMeta::received_ns of the newest accepted sample
+    std::uint64_t producer = 0;    // the writer that owns this instance (0: none seen yet)
+    bool seen = false;             // a sample of this stream arrived
+  };
+  /// The unit of readiness and producer tracking (stream_of()): an instance, or a robot id.
+  struct Stream {
+    std::uint64_t id = 0;
+    Progress progress;
+    std::uint64_t current_key = 0;  // by_robot: the robot's newest instance key, for "waiting for" messages
+    bool has_current = false;
+  };
+  /// An instance that sent a sample this input wants, numbered in arrival order (instance_index_).
+  struct Instance {
+    std::uint64_t key = 0;
+    std::string label;       // spelled once, for messages only
+    std::size_t stream = 0;  // in streams_
+  };
+
+  /// Lockstep: a stream's samples form a chain, each announcing the step of the next
+  /// (SampleHeader::next_step); a sample beyond the announced step means one was lost on the way
+  /// (e.g. dropped, and gone from a writer history too short to resend it). That would change the
+  /// results silently, so it ends the run (ready() throws), naming the stream and the steps.
+  /// Call with mutex_ held, before `p` takes the sample's step.
+  void check_chain(const Progress& p, const std::string& label, std::uint64_t step) {
+    if (state_->mode == TimeMode::kLockstep && !options_.ignore_step && p.seen && step > p.next_step && lockstep_error_.empty()) {
+      note_lost_samples(p, label, step);
+    }
+  }
+  /// check_chain() found a break: records and logs the error ready() throws. Call with mutex_ held.
+  void note_lost_samples(const Progress& p, const std::string& label, std::uint64_t step);
+
+  /// One producer per instance (docs/architecture.md, "One producer per instance and hot standby"):
+  /// true if the sample of `writer_id` may be used. The first writer of an instance becomes its
+  /// producer. Another writer is, with exclusive ownership, a hand-over (logged); in lockstep an
+  /// error that ends the run (ready() throws it); in real time dropped and counted as
+  /// second_producer (first writer wins) unless the producer was silent for kProducerSilenceNs.
+  /// Call with mutex_ held.
+  bool accept_producer(Progress& p, const std::string& label, const SampleMeta& meta) {
+    if (meta.writer_id == 0 || options_.ignore_step || meta.writer_id == p.producer) {
+      return true;  // the sample of nearly every call: its instance's producer
+    }
+    if (p.producer == 0) {
+      p.producer = meta.writer_id;
+      return true;
+    }
+    return accept_other_writer(p, label, meta);
+  }
+  /// accept_producer() of a writer that is not the instance's producer. Call with mutex_ held.
+  bool accept_other_writer(Progress& p, const std::string& label, const SampleMeta& meta);
+  /// The writer's name for messages (InputOptions::writer_name, else "writer <id>").
+  std::string writer_label(std::uint64_t writer_id) const;
+
+  /// Counts a dropped sample; the first of each (writer, reason) is logged, naming the writer:
+  /// "rejected a sample on <topic> from <writer> <detail>; ...". Call with mutex_ held.
+  void count_rejection(const std::string& reason, const std::string& detail, std::uint64_t writer_id);
+
+  /// `key`: an instance, or with by_robot a robot id (then its current instance's label), spelled
+  /// for messages. Call with mutex_ held.
+  std::string label_of(std::uint64_t key) const;
+  /// The unit of readiness and producer tracking: the instance, or its robot id (by_robot).
+  std::uint64_t stream_of(std::uint64_t key) const { return options_.by_robot ? key >> 32 : key; }
+  /// Lockstep: the stream has delivered every sample with step <= `step` - delay, i.e. its next
+  /// sample's step is beyond it (next_step > step - delay, written without unsigned underflow).
+  bool covers(const Progress& p, std::uint64_t step) const { return p.next_step + options_.delay_steps > step; }
+  /// Whether a sample must wake the executor: always, unless this is a gated lockstep input
+  /// whose waiting executor (counted by ready()) still misses other streams. Call with mutex_ held,
+  /// `was_covering`: covers(p, armed_step_) before the sample was applied.
+  bool wakes_executor(const Progress& p, bool was_covering) {
+    if (!gated() || state_->mode == TimeMode::kRealtime) {
+      return true;
+    }
+    if (armed_missing_ == 0 || was_covering || !covers(p, armed_step_)) {
+      return false;  // nobody waits, or this stream was not among the missing
+    }
+    return --armed_missing_ == 0;
+  }
+  std::size_t add_stream(std::uint64_t id) {
+    stream_index_.insert(id);
+    Stream s;
+    s.id = id;
+    streams_.push_back(std::move(s));
+    return streams_.size() - 1;
+  }
+  /// The number of stream `id` in streams_, added at its first sample when the input takes every
+  /// instance; KeyIndex::kNone when the input does not want it. Call with mutex_ held.
+  std::size_t wanted_stream(std::uint64_t id) {
+    const std::size_t s = stream_index_.find(id);
+    if (s == KeyIndex::kNone && options_.expected.empty()) {
+      return add_stream(id);
+    }
+    return s;
+  }
+  /// Numbers a new instance of stream `stream` (an index in streams_), labelled with the preset
+  /// label of InputOptions::labels or else `label`. Call with mutex_ held.
+  std::size_t add_instance(std::uint64_t key, std::size_t stream, std::string label);
+  /// The numbers of robot `robot_id`'s instances (keys robot_id << 32 | X), in key order, or
+  /// nullptr. Call with mutex_ held.
+  const std::vector<std::size_t>* instances_of_robot(std::uint32_t robot_id) const {
+    const std::size_t r = robot_index_.find(robot_id);
+    return r == KeyIndex::kNone ? nullptr : &robot_instances_[r];
+  }
+  /// Highest step a consumer may read now.
+  std::uint64_t readable_limit() const {
+    if (options_.ignore_step || state_->mode == TimeMode::kRealtime) {
+      return kNeverAgain;
+    }
+    return state_->step >= options_.delay_steps ? state_->step - options_.delay_steps : 0;
+  }
+  bool nothing_readable() const {
+    return !options_.ignore_step && state_->mode == TimeMode::kLockstep && state_->step < options_.delay_steps;
+  }
+
+  std::string topic_;
+  std::string owner_;
+  const StepState* state_;
+  Notifier* notifier_;
+  detail::InputOptions options_;
+  mutable std::mutex mutex_;
+  // Per sample, one O(1) lookup (key_index.hpp), whatever the number of instances: ordered maps
+  // here made the cost per robot-tick grow with the robots (docs/performance.md).
+  std::vector<Stream> streams_;  // the expected streams first, in key order, then others as they come
+  KeyIndex stream_index_;        // stream id -> index in streams_
+  std::vector<Instance> instances_;
+  KeyIndex instance_index_;  // instance key -> index in instances_
+  KeyIndex robot_index_;     // robot id (key >> 32) -> index in robot_instances_
+  std::vector<std::vector<std::size_t>> robot_instances_;  // indices in instances_, in key order
+  InputCounts counts_;
+  std::set<std::pair<std::uint64_t, std::string>> logged_rejections_;  // (writer_id, reason)
+  std::string lockstep_error_;  // lockstep: the first second producer or lost sample, thrown by ready()
+  // Set by ready(), under mutex_: the step it was asked about and how many expected streams
+  // it still missed then, counted down by wakes_executor() (0: nobody waits). Mutable: ready() is
+  // a query for its callers; this is only whom to wake.
+  mutable std::uint64_t armed_step_ = 0;
+  mutable std::size_t armed_missing_ = 0;
+};
+
+}  // namespace robodds
