@@ -162,3 +162,47 @@ function(robodds_registered_components_library name)
                  ${CMAKE_CURRENT_BINARY_DIR}/registered_components.cpp @ONLY)
   robodds_library(${name} SOURCES ${CMAKE_CURRENT_BINARY_DIR}/registered_components.cpp DEPS robodds_system ${libraries})
 endfunction()
+
+# robodds_metrics_module(NAME kind SOURCES s... [DEPS d...] [TESTS t...])
+# A metrics module of the evaluator (sim/evaluator/module/metrics_module.hpp), registered from its
+# own folder like a component: builds robodds_<kind>_metrics_module and adds the module to the set
+# that robodds_registered_metrics_modules_library() registers. The sources must contain
+# ROBODDS_REGISTER_METRICS_MODULE(kind, ...) with the same name. Each TESTS file is a unit test
+# named evaluator_<file name>, on the in-memory bus with the whole evaluator. Nothing happens without
+# the DDS runtime (-DROBODDS_WITH_DDS=OFF).
+function(robodds_metrics_module)
+  cmake_parse_arguments(ARG "" "NAME" "SOURCES;DEPS;TESTS" ${ARGN})
+  if(NOT ARG_NAME MATCHES "^[a-z][a-z0-9_]*$" OR NOT ARG_SOURCES)
+    message(FATAL_ERROR "robodds_metrics_module: expected NAME <lower-case identifier> SOURCES s..., got: ${ARGN}")
+  endif()
+  if(NOT ROBODDS_WITH_DDS)
+    return()
+  endif()
+  set(library robodds_${ARG_NAME}_metrics_module)
+  robodds_library(${library} SOURCES ${ARG_SOURCES} DEPS ${ARG_DEPS} robodds_evaluator_module)
+  set_property(GLOBAL APPEND PROPERTY ROBODDS_METRICS_MODULES ${ARG_NAME})
+  foreach(test_source IN LISTS ARG_TESTS)
+    get_filename_component(test_name ${test_source} NAME_WE)
+    robodds_unit_test(evaluator_${test_name} SOURCES ${test_source} DEPS robodds_evaluator_node robodds_node_harness)
+  endforeach()
+endfunction()
+
+# robodds_registered_metrics_modules_library(NAME)
+# A static library holding register_builtin_metrics_modules() (metrics_module_registry.hpp),
+# generated into the build tree from every robodds_metrics_module() call made so far, sorted by
+# name, and linking every module library. Call it after the module folders are added.
+function(robodds_registered_metrics_modules_library name)
+  get_property(modules GLOBAL PROPERTY ROBODDS_METRICS_MODULES)
+  list(SORT modules)
+  set(ROBODDS_METRICS_MODULE_DECLARATIONS "")
+  set(ROBODDS_METRICS_MODULE_CALLS "")
+  set(libraries "")
+  foreach(module IN LISTS modules)
+    string(APPEND ROBODDS_METRICS_MODULE_DECLARATIONS "void register_${module}(evaluator::MetricsModuleRegistry& registry);\n")
+    string(APPEND ROBODDS_METRICS_MODULE_CALLS "  metrics_module_registration::register_${module}(registry);\n")
+    list(APPEND libraries robodds_${module}_metrics_module)
+  endforeach()
+  configure_file(${PROJECT_SOURCE_DIR}/cmake/registered_metrics_modules.cpp.in
+                 ${CMAKE_CURRENT_BINARY_DIR}/registered_metrics_modules.cpp @ONLY)
+  robodds_library(${name} SOURCES ${CMAKE_CURRENT_BINARY_DIR}/registered_metrics_modules.cpp DEPS robodds_evaluator_module ${libraries})
+endfunction()

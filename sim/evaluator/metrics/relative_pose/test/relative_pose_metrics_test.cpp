@@ -1,4 +1,4 @@
-#include "sim/evaluator/relative_pose_metrics.hpp"
+#include "sim/evaluator/metrics/relative_pose/relative_pose_metrics.hpp"
 
 #include <gtest/gtest.h>
 

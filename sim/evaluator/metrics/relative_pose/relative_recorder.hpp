@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <deque>
-#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,11 +15,11 @@
 #include "common/model/pose2.hpp"
 #include "common/number_text.hpp"
 #include "robodds/idl/robodds.h"
-#include "runtime/base/error.hpp"
 #include "runtime/io/io.hpp"
 #include "runtime/io/sample_format.hpp"
-#include "sim/evaluator/node/csv_recorder.hpp"
-#include "sim/evaluator/node/sample_metrics.hpp"
+#include "sim/evaluator/metrics/relative_pose/relative_pose_metrics.hpp"
+#include "sim/evaluator/metrics/relative_pose/truth_by_robot.hpp"
+#include "sim/evaluator/module/recorder.hpp"
 
 namespace robodds::evaluator {
 
@@ -57,24 +56,22 @@ inline std::vector<std::uint64_t> relative_pair_keys(const std::vector<std::uint
   return keys;
 }
 
-class RelativeRecorder : public RecorderBase {
+class RelativeRecorder : public TopicRecorder {
  public:
   using Msg = idl::RelativePoseEstimate;
   /// Rows waiting for truth beyond this many are written without it (a robot's plant fell silent).
   static constexpr std::size_t kMaxWaiting = 4096;
 
-  RelativeRecorder(std::string topic, std::string stage, Input<Msg>* input, std::vector<std::uint64_t> keys, double step_s)
-      : topic_(std::move(topic)), stage_(std::move(stage)), input_(input), keys_(std::move(keys)), step_s_(step_s) {}
+  /// Rows are written once `truth` has both robots at the sample's step; the errors go to `metrics`.
+  RelativeRecorder(std::string topic, std::string stage, Input<Msg>* input, std::vector<std::uint64_t> keys, double step_s,
+                   const TruthByRobot& truth, RelativePoseMetrics& metrics)
+      : TopicRecorder(std::move(topic), input), stage_(std::move(stage)), input_(input), keys_(std::move(keys)), step_s_(step_s),
+        truth_(truth), metrics_(metrics) {}
 
   void open(const std::string& dir) override {
-    path_ = dir + "/" + csv_file_name(topic_);
-    file_.open(path_, std::ios::binary | std::ios::trunc);
-    file_ << "t_s," << csv_header<Msg>() << ",true_x,true_y,true_theta\n";
-    if (!file_) {
-      throw RunError("evaluator: cannot write " + path_);
-    }
+    file_.open(dir, topic_, "t_s," + csv_header<Msg>() + ",true_x,true_y,true_theta");
   }
-  void collect(Metrics& /*metrics*/) override {
+  void collect() override {
     for (std::uint64_t key : keys_) {
       for (Msg& sample : input_->take_new(key)) {
         last_step_ = std::max(last_step_, sample.header().step());
@@ -85,10 +82,11 @@ class RelativeRecorder : public RecorderBase {
   }
   /// Writes the waiting samples, in the order taken, whose truth (both robots at the sample's
   /// step) has arrived; a sample without truth at its step gets empty truth columns and is left
-  /// out of the errors (an invalid one is still counted as such).
-  void settle(Metrics& metrics, bool final) override {
+  /// out of the errors (an invalid one is still counted as such). Called after every recorder's
+  /// collect() of the step (the step's truth is in); `final`: the run is over, nothing waits.
+  void settle(bool final) {
     text_.clear();
-    TruthByRobot& truth = metrics.relative_truth();
+    const TruthByRobot& truth = truth_;
     while (!pending_.empty()) {
       const Msg& s = pending_.front();
       const std::uint64_t step = s.header().step();
@@ -110,45 +108,33 @@ class RelativeRecorder : public RecorderBase {
           append_shortest(text_, v);
         }
         if (s.valid()) {
-          metrics.relative()->add_valid(stage_, t_s, i, j, {s.x(), s.y(), s.theta()});
+          metrics_.add_valid(stage_, t_s, i, j, {s.x(), s.y(), s.theta()});
         }
       } else {
         text_ += ",,,";
       }
       if (!s.valid()) {
-        metrics.relative()->add_invalid(stage_, t_s);
+        metrics_.add_invalid(stage_, t_s);
       }
       text_ += '\n';
       pending_.pop_front();
     }
-    if (file_.is_open()) {
-      file_.write(text_.data(), static_cast<std::streamsize>(text_.size()));
-    }
+    file_.write(text_);
   }
-  std::uint64_t truth_needed_from() const override {
+  /// The oldest step of truth this recorder may still need.
+  std::uint64_t truth_needed_from() const {
     return pending_.empty() ? last_step_ : pending_.front().header().step();
   }
-  void flush() override {
-    if (file_.is_open() && !file_.flush()) {
-      throw RunError("evaluator: cannot write " + path_);
-    }
-  }
-  const std::string& topic() const override { return topic_; }
-  std::uint64_t rejected() const override { return input_->rejected_count(); }
-  std::size_t rows() const override { return rows_; }
-
  private:
-  std::string topic_;
   std::string stage_;
   Input<Msg>* input_;
   std::vector<std::uint64_t> keys_;
   double step_s_;
-  std::string path_;
-  std::ofstream file_;
+  const TruthByRobot& truth_;
+  RelativePoseMetrics& metrics_;
   std::string text_;
   std::deque<Msg> pending_;     // taken, waiting for the truth of their step
   std::uint64_t last_step_ = 0; // the newest step taken
-  std::size_t rows_ = 0;        // samples taken
 };
 
 }  // namespace robodds::evaluator

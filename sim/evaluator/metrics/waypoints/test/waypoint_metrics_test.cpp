@@ -1,4 +1,4 @@
-#include "sim/evaluator/waypoint_metrics.hpp"
+#include "sim/evaluator/metrics/waypoints/waypoint_metrics.hpp"
 
 #include <gtest/gtest.h>
 

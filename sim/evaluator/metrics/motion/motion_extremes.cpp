@@ -1,4 +1,4 @@
-#include "sim/evaluator/motion_extremes.hpp"
+#include "sim/evaluator/metrics/motion/motion_extremes.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "sim/evaluator/circumnavigation_metrics.hpp"
+#include "sim/evaluator/metrics/circumnavigation/circumnavigation_metrics.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,0 +1,184 @@
+// Paper 1 (way-point missions): per robot the true track (path length, final pose), the errors
+// of sensor/position and estimate/pose against truth at the same step after metrics_after_s,
+// and the way-point figures of control/status and mission/waypoints (waypoint_metrics.hpp);
+// pooled over the served robots at the top level.
+
+#include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "common/angle.hpp"
+#include "robodds/idl/robodds.h"
+#include "sim/evaluator/metrics/waypoints/waypoint_metrics.hpp"
+#include "sim/evaluator/module/metrics_module_registry.hpp"
+#include "sim/evaluator/module/per_robot.hpp"
+#include "sim/evaluator/track.hpp"
+
+namespace robodds::evaluator {
+namespace {
+
+constexpr double kDegPerRad = 180.0 / kPi;
+
+/// What the figures need of one robot, updated sample by sample: running figures and the few
+/// samples still waiting for their match, never the whole history.
+struct RobotFigures {
+  explicit RobotFigures(std::uint64_t from_step)
+      : fixes(position_distance, from_step), position(position_distance, from_step), heading(heading_difference, from_step) {}
+  TrackSummary truth;
+  TruthWindow recent_truth;
+  MatchedError fixes;     // sensor/position against truth
+  MatchedError position;  // estimate/pose against truth
+  MatchedError heading;
+  WaypointTracker waypoints;
+};
+
+class WaypointsModule : public MetricsModule {
+ public:
+  void configure(MetricsSetup& setup) override {
+    served_ = setup.served_robots();
+    step_s_ = setup.step_s();
+    from_step_ = setup.metrics_from_step();
+    // Truth is kept for the matches of the recorded topics only.
+    fixes_recorded_ = setup.recorded("sensor/position");
+    estimates_recorded_ = setup.recorded("estimate/pose");
+    status_recorded_ = setup.recorded("control/status");
+    setup.on<idl::RobotState>("plant/state", [this](const idl::RobotState& m) {
+      const PoseSample s{m.header().step(), m.x(), m.y(), m.theta()};
+      RobotFigures& r = robot(m.robot_id());
+      r.truth.add(s);
+      r.recent_truth.add(s);
+    });
+    setup.on<idl::PositionMeasurement>("sensor/position", [this](const idl::PositionMeasurement& m) {
+      robot(m.robot_id()).fixes.add({m.header().step(), m.x(), m.y(), 0.0});
+    });
+    setup.on<idl::PoseEstimate>("estimate/pose", [this](const idl::PoseEstimate& m) {
+      const PoseSample s{m.header().step(), m.x(), m.y(), m.theta()};
+      RobotFigures& r = robot(m.robot_id());
+      r.position.add(s);
+      r.heading.add(s);
+    });
+    setup.on<idl::ControllerStatus>("control/status", [this](const idl::ControllerStatus& m) {
+      robot(m.robot_id()).waypoints.add_status({m.header().step(), m.waypoints_reached(), m.waypoints_total(), m.done(),
+                                                m.switched(), m.switch_distance(), m.epsilon()});
+    });
+    setup.on<idl::WaypointMission>("mission/waypoints", [this](const idl::WaypointMission& m) {
+      Mission mission;
+      for (const idl::Waypoint& w : m.waypoints()) {
+        mission.push_back({w.x(), w.y()});
+      }
+      robot(m.robot_id()).waypoints.set_mission(std::move(mission));
+    });
+  }
+
+  /// Matches what has arrived with truth and forgets the truth nothing waits for any more.
+  void step() override {
+    for (auto& [id, r] : robots_.all()) {
+      r.fixes.match(r.recent_truth);
+      r.position.match(r.recent_truth);
+      r.heading.match(r.recent_truth);
+      r.waypoints.match(r.recent_truth);
+      std::uint64_t needed = std::numeric_limits<std::uint64_t>::max();
+      if (fixes_recorded_) {
+        needed = std::min(needed, r.fixes.needed_from());
+      }
+      if (estimates_recorded_) {
+        needed = std::min({needed, r.position.needed_from(), r.heading.needed_from()});
+      }
+      if (status_recorded_) {
+        needed = std::min(needed, r.waypoints.needed_from());
+      }
+      r.recent_truth.drop_before(needed);
+    }
+  }
+
+  void write_robot(JsonWriter& json, std::uint32_t id) const override {
+    const RobotFigures* r = robots_.find(id);
+    if (r == nullptr || r->truth.empty()) {
+      return;
+    }
+    const PoseSample& last = r->truth.last();
+    json.value("path_length_m", r->truth.path_length());
+    json.value("final_x_m", last.x).value("final_y_m", last.y).value("final_theta_rad", last.theta);
+    json.value("state_samples", static_cast<std::int64_t>(r->truth.count()));
+    if (r->fixes.seen()) {
+      const ErrorStats e = r->fixes.stats();
+      json.value("measurement_rmse_m", e.rmse).value("measurement_samples", static_cast<std::int64_t>(e.count));
+    }
+    if (r->position.seen()) {
+      json.value("pf_rmse_m", r->position.stats().rmse).value("heading_rmse_deg", r->heading.stats().rmse * kDegPerRad);
+    }
+    write_waypoint_metrics(json, *r);
+  }
+
+  void write_single_robot(JsonWriter& json, std::uint32_t id) const override {
+    const RobotFigures* r = robots_.find(id);
+    if (r != nullptr && r->waypoints.has_status()) {
+      write_waypoint_metrics(json, *r);
+    }
+  }
+
+  /// The errors pooled over the served robots with truth.
+  void write_metrics(JsonWriter& json) const override {
+    PooledRmse fix_rmse;
+    PooledRmse estimate_rmse;
+    PooledRmse heading_rmse_rad;
+    for (std::uint64_t key : served_) {
+      const RobotFigures* r = robots_.find(static_cast<std::uint32_t>(key));
+      if (r == nullptr || r->truth.empty()) {
+        continue;
+      }
+      if (r->fixes.seen()) {
+        fix_rmse.add(r->fixes.stats());
+      }
+      if (r->position.seen()) {
+        estimate_rmse.add(r->position.stats());
+        heading_rmse_rad.add(r->heading.stats());
+      }
+    }
+    if (!fix_rmse.empty()) {
+      json.value("measurement_rmse_m", fix_rmse.rmse());
+    }
+    if (!estimate_rmse.empty()) {
+      json.value("pf_rmse_m", estimate_rmse.rmse());
+    }
+    if (!heading_rmse_rad.empty()) {
+      json.value("heading_rmse_deg", heading_rmse_rad.rmse() * kDegPerRad);
+    }
+  }
+
+ private:
+  RobotFigures& robot(std::uint32_t id) { return robots_.get(id, from_step_); }
+
+  void write_waypoint_metrics(JsonWriter& json, const RobotFigures& r) const {
+    if (!r.waypoints.has_status() || !r.waypoints.has_mission()) {
+      return;
+    }
+    const WaypointMetrics m = r.waypoints.metrics(r.truth.empty() ? nullptr : &r.truth.last(), step_s_);
+    json.value("waypoints_reached", static_cast<std::int64_t>(m.waypoints_reached));
+    json.value("waypoints_total", static_cast<std::int64_t>(m.waypoints_total));
+    json.value("time_to_final_s", m.time_to_final_s);
+    json.value("switch_distance_estimate_m", m.switch_distance_estimate_m);
+    json.value("switch_distance_true_m", m.switch_distance_true_m);
+    json.value("final_error_true_m", m.final_error_true_m);
+    json.value("epsilon", m.epsilon_m);
+  }
+
+  std::vector<std::uint64_t> served_;
+  double step_s_ = 0.0;
+  std::uint64_t from_step_ = 0;
+  bool fixes_recorded_ = false;
+  bool estimates_recorded_ = false;
+  bool status_recorded_ = false;
+  PerRobot<RobotFigures> robots_;
+};
+
+std::unique_ptr<MetricsModule> make_waypoints_module() { return std::make_unique<WaypointsModule>(); }
+
+}  // namespace
+}  // namespace robodds::evaluator
+
+ROBODDS_REGISTER_METRICS_MODULE(waypoints, "paper 1: the true track, measurement/pf/heading RMSE, way-point figures", 10,
+                                robodds::evaluator::make_waypoints_module);

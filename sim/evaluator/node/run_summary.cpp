@@ -1,0 +1,80 @@
+#include "sim/evaluator/node/run_summary.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "sim/evaluator/node/timing_summary.hpp"
+
+namespace robodds::evaluator {
+namespace {
+
+/// Why a run that reached its end is degraded: every host that ran without some of its peers
+/// (HostHealth::degraded) and every host whose report never came; empty: none.
+std::string degraded_reason(const RunFigures& figures) {
+  std::string reason;
+  for (const HostHealth& host : figures.hosts) {
+    if (!host.degraded.empty()) {
+      reason += (reason.empty() ? "" : "; ") + std::string("host '") + host.member + "' " + host.degraded;
+    }
+  }
+  for (const std::string& member : figures.hosts_not_heard) {
+    reason += (reason.empty() ? "" : "; ") + std::string("host '") + member + "' did not report (run/health): it may have run alone or not at all";
+  }
+  return reason;
+}
+
+/// Lockstep: "ticks_per_s_by_third": [first, middle, last third of the run's steps] on this
+/// host's wall clock from its first tick (start-up left out); a long run whose cost per step
+/// grows shows a falling list.
+void write_thirds(JsonWriter& json, const RunFigures& run) {
+  if (run.thirds_done_at_s.size() != 3 || run.ticks < 3) {
+    return;
+  }
+  const double bounds[4] = {run.thirds_done_at_s[0], run.thirds_done_at_s[1], run.thirds_done_at_s[2], run.wall_time_s};
+  const double third_steps[3] = {static_cast<double>(run.ticks / 3), static_cast<double>(run.ticks * 2 / 3 - run.ticks / 3),
+                                 static_cast<double>(run.ticks - run.ticks * 2 / 3)};
+  std::vector<double> rates;
+  for (int i = 0; i < 3; ++i) {
+    const double wall_s = bounds[i + 1] - bounds[i];
+    rates.push_back(wall_s > 0 ? std::round(third_steps[i] / wall_s * 10.0) / 10.0 : 0.0);
+  }
+  json.value("ticks_per_s_by_third", rates);
+}
+
+}  // namespace
+
+void write_status_section(JsonWriter& json, const RunEnd& end, const RunFigures& figures) {
+  if (!end.completed) {
+    json.value("status", "failed");
+    json.value("reason", end.reason);
+    return;
+  }
+  const std::string degraded = degraded_reason(figures);
+  json.value("status", degraded.empty() ? "completed" : "degraded");
+  if (!degraded.empty()) {
+    json.value("reason", degraded);
+  }
+}
+
+void write_run_section(JsonWriter& json, const ComponentContext& ctx) {
+  if (ctx.deploy_label().empty()) {
+    return;
+  }
+  const RunFigures& run = ctx.run_figures();
+  const double ticks_per_s = run.wall_time_s > 0 ? static_cast<double>(run.ticks) / run.wall_time_s : 0.0;
+  json.begin_object("run");
+  json.value("deploy", ctx.deploy_label());
+  json.value("mode", ctx.mode() == TimeMode::kRealtime ? "realtime" : "lockstep");
+  if (ctx.mode() == TimeMode::kLockstep) {
+    json.value("lockstep_window", static_cast<std::int64_t>(ctx.lockstep_window()));
+  }
+  json.value("wall_time_s", std::round(run.wall_time_s * 1e6) / 1e6);  // us, like the runner's log
+  json.value("ticks", static_cast<std::int64_t>(run.ticks));
+  json.value("ticks_per_s", std::round(ticks_per_s * 10.0) / 10.0);
+  write_thirds(json, run);
+  write_timing_section(json, run);  // the components' compute times (timing_summary.hpp)
+  json.end_object();
+}
+
+}  // namespace robodds::evaluator
