@@ -71,10 +71,10 @@ struct RunContext {
   Bus* bus = nullptr;
   Notifier* notifier = nullptr;
   TimeMode mode = TimeMode::kLockstep;
-  std::string output_dir;   // where the evaluator writes CSVs and summary.json
+  std::string output_dir;   // where the run's recorder writes its files (RunRecording)
   bool single_process = false;  // every component of the run lives in this process (co-located)
   std::string deploy_label;     // how the run is deployed ("colocated", "processes"); empty: a host
-                                // started on its own, whose evaluator writes no "run" section
+                                // started on its own
   std::size_t lockstep_window = 1;  // lockstep: ticks the coordinator may have outstanding (1 = strict)
   RunFigures figures;           // filled by the host before on_finish()
   /// Topics whose readers and writers use DDS exclusive ownership because a hot standby writes
@@ -82,10 +82,27 @@ struct RunContext {
   std::set<std::string> exclusive_topics;
 };
 
+/// What the component that records the run sees of it (ComponentContext::record_run()).
+class RunRecording {
+ public:
+  explicit RunRecording(const RunContext& run) : run_(run) {}
+  /// Where to write the run's files (`--out`); empty: write none.
+  const std::string& output_dir() const { return run_.output_dir; }
+  /// How the run is deployed ("colocated", "processes"); empty: a host started on its own.
+  const std::string& deploy_label() const { return run_.deploy_label; }
+  /// Lockstep: ticks the coordinator may have outstanding at once (--lockstep-window; 1 = strict).
+  std::size_t lockstep_window() const { return run_.lockstep_window; }
+  /// The run's figures and every host's health; valid in on_finish() and on_abort().
+  const RunFigures& figures() const { return run_.figures; }
+
+ private:
+  const RunContext& run_;
+};
+
 class ComponentContext {
  public:
   ComponentContext(const RunContext& run, const ComponentSpec& spec, ParamReader params, StepState* state)
-      : run_(run), spec_(spec), params_(std::move(params)), state_(state) {}
+      : run_(run), spec_(spec), params_(std::move(params)), state_(state), recording_(run) {}
 
   const std::string& name() const { return spec_.name; }
   const std::string& type() const { return spec_.type; }
@@ -99,16 +116,17 @@ class ComponentContext {
   std::uint64_t seed_for(const std::string& stream) const;
   double step_s() const { return run_.scenario->step_s; }
   TimeMode mode() const { return run_.mode; }
-  const std::string& output_dir() const { return run_.output_dir; }
-  const std::string& deploy_label() const { return run_.deploy_label; }
-  /// Lockstep: ticks the coordinator may have outstanding at once (--lockstep-window; 1 = strict).
-  std::size_t lockstep_window() const { return run_.lockstep_window; }
-  /// The run's figures; valid in on_finish().
-  const RunFigures& run_figures() const { return run_.figures; }
-  /// Asks for every host's health in run_figures().hosts (configure() only): across processes
-  /// this component's host then waits, at the end, for the other hosts' run/health reports.
-  void request_run_health() { wants_run_health_ = true; }
-  bool wants_run_health() const { return wants_run_health_; }
+  /// Makes this component the one that records the run (configure() only; a recorder such as the
+  /// evaluator) and gives it what only a recorder needs: where to write, how the run is deployed
+  /// and, at its end, the run's figures with every host's health. Across processes its host then
+  /// waits, at the end, for the other hosts' run/health reports. The reference stays valid while
+  /// the component runs.
+  const RunRecording& record_run() {
+    records_run_ = true;
+    return recording_;
+  }
+  /// record_run() was called: the host gathers the run's health for this component.
+  bool records_run() const { return records_run_; }
   /// This component's wall-clock compute times per stage (summary.json run.timing): e.g.
   /// `ScopedComputeTimer timer(ctx.compute_times(), "cycle");` around the work of a step. Keep
   /// the reference from configure(); the host reports the summaries after the last step.
@@ -182,7 +200,8 @@ class ComponentContext {
   std::vector<std::unique_ptr<InputBase>> inputs_;
   std::vector<std::shared_ptr<void>> outputs_;
   std::vector<std::shared_ptr<ReaderHandle>> readers_;
-  bool wants_run_health_ = false;
+  bool records_run_ = false;
+  RunRecording recording_;
   ComputeTimes compute_times_;
 };
 

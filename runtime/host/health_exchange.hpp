@@ -3,7 +3,7 @@
 // HostHealth once on `run/health` (idl::HostReport keyed by member; the `mission` profile:
 // reliable, transient local, keep last 1 per member) when it has run its last step, before its
 // components finish; the host of a component that asked for the run's health (the evaluator,
-// ComponentContext::request_run_health()) waits a bounded time for every other group's report
+// ComponentContext::record_run()) waits a bounded time for every other group's report
 // and adds them to RunFigures::hosts, naming the groups it did not hear from.
 //
 // The lockstep end: the final tick runs on every host in parallel. A host publishes its report

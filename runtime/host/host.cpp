@@ -40,7 +40,7 @@ struct Host::Impl {
   /// when one of its components asked for the run's health, else none.
   std::vector<std::string> health_sources() const {
     const bool wanted =
-        std::any_of(slots.begin(), slots.end(), [](const auto& slot) { return slot->context->wants_run_health(); });
+        std::any_of(slots.begin(), slots.end(), [](const auto& slot) { return slot->context->records_run(); });
     std::vector<std::string> others;
     for (const GroupSpec& group : run.scenario->groups) {
       if (wanted && group.name != options.member) {

@@ -57,7 +57,7 @@ std::map<std::string, ComponentTopics> scenario_component_topics(const Component
     ComponentContext context(run, spec, scenario_component_params(type, spec), &state);
     std::unique_ptr<Component> component = type.create();
     component->configure(context);
-    topics[spec.name] = ComponentTopics{bus.topics, bus.read_topics, context.wants_run_health()};
+    topics[spec.name] = ComponentTopics{bus.topics, bus.read_topics, context.records_run()};
   }
   return topics;
 }

@@ -44,7 +44,7 @@ class EvaluatorNode : public Component {
       add_recorder(ctx, setup, topic);
     }
     metrics_after_s_ = params.metrics_after_s;
-    ctx.request_run_health();  // summary.json "hosts" and "inputs" (health_summary.hpp)
+    recording_ = &ctx.record_run();  // and summary.json "hosts" and "inputs" (health_summary.hpp)
   }
 
   void on_start() override {
@@ -78,7 +78,7 @@ class EvaluatorNode : public Component {
     for (auto& module : modules_) {
       module->finish(true);
     }
-    if (context_->output_dir().empty()) {
+    if (recording_->output_dir().empty()) {
       return;
     }
     for (const auto& recorder : recorders_) {
@@ -90,10 +90,10 @@ class EvaluatorNode : public Component {
   /// The run failed: the rows recorded so far stay, summary.json says why and holds the metrics
   /// of the data so far.
   void on_abort(const std::string& reason) override {
-    if (context_ == nullptr || context_->output_dir().empty()) {
+    if (recording_ == nullptr || recording_->output_dir().empty()) {
       return;
     }
-    ::mkdir(context_->output_dir().c_str(), 0755);
+    ::mkdir(recording_->output_dir().c_str(), 0755);
     for (auto& module : modules_) {
       module->finish(false);
     }
@@ -133,13 +133,13 @@ class EvaluatorNode : public Component {
   /// Creates the output folder and each recorder's file, once; not at configure: a run that never
   /// starts leaves no files.
   void open_files() {
-    if (files_open_ || context_->output_dir().empty()) {
+    if (files_open_ || recording_->output_dir().empty()) {
       return;
     }
     files_open_ = true;
-    ::mkdir(context_->output_dir().c_str(), 0755);
+    ::mkdir(recording_->output_dir().c_str(), 0755);
     for (auto& recorder : recorders_) {
-      recorder->open(context_->output_dir());
+      recorder->open(recording_->output_dir());
     }
   }
 
@@ -148,16 +148,16 @@ class EvaluatorNode : public Component {
   void write_summary(const RunEnd& end) const {
     JsonWriter json;
     json.begin_object();
-    write_status_section(json, end, context_->run_figures());
+    write_status_section(json, end, recording_->figures());
     json.value("scenario", context_->scenario().name);
     json.value("steps", static_cast<std::int64_t>(steps_));
     json.value("step_s", context_->step_s());
     write_metrics_section(json);
-    write_run_section(json, *context_);
+    write_run_section(json, *recording_, context_->mode());
     standby_.write(json, keys_, start_s_);
-    write_health_sections(json, context_->run_figures());
+    write_health_sections(json, recording_->figures());
     json.end_object();
-    const std::string error = replace_file(context_->output_dir() + "/summary.json", json.str());
+    const std::string error = replace_file(recording_->output_dir() + "/summary.json", json.str());
     if (!error.empty()) {
       throw RunError("evaluator: " + error);
     }
@@ -204,6 +204,7 @@ class EvaluatorNode : public Component {
   std::vector<std::unique_ptr<RecorderBase>> recorders_;  // in the order of `topics`
   StandbySummary standby_;
   const ComponentContext* context_ = nullptr;  // owned by the host, which keeps it while it runs us
+  const RunRecording* recording_ = nullptr;     // this component records the run (context_->record_run())
   std::uint64_t steps_ = 0;  // steps whose samples were taken (the last one + 1)
   bool files_open_ = false;
   bool started_ = false;         // the first step was seen (start_s_ is known)

@@ -57,17 +57,17 @@ void write_status_section(JsonWriter& json, const RunEnd& end, const RunFigures&
   }
 }
 
-void write_run_section(JsonWriter& json, const ComponentContext& ctx) {
-  if (ctx.deploy_label().empty()) {
+void write_run_section(JsonWriter& json, const RunRecording& recording, TimeMode mode) {
+  if (recording.deploy_label().empty()) {
     return;
   }
-  const RunFigures& run = ctx.run_figures();
+  const RunFigures& run = recording.figures();
   const double ticks_per_s = run.wall_time_s > 0 ? static_cast<double>(run.ticks) / run.wall_time_s : 0.0;
   json.begin_object("run");
-  json.value("deploy", ctx.deploy_label());
-  json.value("mode", ctx.mode() == TimeMode::kRealtime ? "realtime" : "lockstep");
-  if (ctx.mode() == TimeMode::kLockstep) {
-    json.value("lockstep_window", static_cast<std::int64_t>(ctx.lockstep_window()));
+  json.value("deploy", recording.deploy_label());
+  json.value("mode", mode == TimeMode::kRealtime ? "realtime" : "lockstep");
+  if (mode == TimeMode::kLockstep) {
+    json.value("lockstep_window", static_cast<std::int64_t>(recording.lockstep_window()));
   }
   json.value("wall_time_s", std::round(run.wall_time_s * 1e6) / 1e6);  // us, like the runner's log
   json.value("ticks", static_cast<std::int64_t>(run.ticks));

@@ -23,6 +23,6 @@ void write_status_section(JsonWriter& json, const RunEnd& end, const RunFigures&
 /// "run": deployment, mode, wall time, ticks per s (by third of the run in lockstep) and the
 /// components' compute times per stage ("timing"). A host started on its own knows no
 /// deployment and writes none.
-void write_run_section(JsonWriter& json, const ComponentContext& ctx);
+void write_run_section(JsonWriter& json, const RunRecording& recording, TimeMode mode);
 
 }  // namespace robodds::evaluator
