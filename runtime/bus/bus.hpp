@@ -93,6 +93,13 @@ class Bus {
   /// Names the writer of SampleMeta::writer_id for log lines and errors, e.g.
   /// "'control' (writer 01.0f...|0.0.3.3)"; "writer <id>" when the bus knows nothing more.
   virtual std::string writer_name(std::uint64_t writer_id) const { return "writer " + std::to_string(writer_id); }
+  /// Whether the process of writer `writer_id` runs one of `components` (scenario component
+  /// names), as our hosts announce it (docs/architecture.md, "One producer per instance"): false
+  /// for a writer that announces nothing (a foreign program) or other components. The in-memory
+  /// buses are closed worlds whose every writer is this process's: true.
+  virtual bool writer_runs_any(std::uint64_t /*writer_id*/, const std::vector<std::string>& /*components*/) const {
+    return true;
+  }
   /// Hot standby: this process's readers and writers of `topic` created after this call request
   /// DDS EXCLUSIVE ownership, its writers with `writer_strength` (the highest alive strength owns
   /// each instance). Default: nothing (a bus without ownership, e.g. MemoryBus).

@@ -8,6 +8,28 @@
 
 namespace robodds {
 
+std::function<bool(std::uint64_t, std::uint64_t)> ComponentContext::assigned_producer_rule(const std::string& topic,
+                                                                                            const TopicInfo& info) const {
+  if (!run_.assigned_producers) {
+    return {};
+  }
+  // This topic's instances and their assigned components. An instance the scenario gives no
+  // producer (a robot commanded from outside: docs/interop.md) keeps the first writer rule.
+  const auto topic_producers = run_.assigned_producers->find(topic);
+  std::map<std::uint32_t, std::vector<std::string>> producers;
+  if (topic_producers != run_.assigned_producers->end()) {
+    producers = topic_producers->second;
+  }
+  const bool unkeyed = info.key.empty() || info.key == "-";
+  const bool pair_keyed = info.key.find(',') != std::string::npos;
+  const Bus* bus = run_.bus;
+  return [bus, producers = std::move(producers), unkeyed, pair_keyed](std::uint64_t writer_id, std::uint64_t key) {
+    const std::uint32_t robot = unkeyed ? 0u : static_cast<std::uint32_t>(pair_keyed ? key >> 32 : key);
+    const auto it = producers.find(robot);
+    return it == producers.end() || bus->writer_runs_any(writer_id, it->second);
+  };
+}
+
 std::vector<RobotSpec> ComponentContext::robots() const {
   std::vector<RobotSpec> out;
   for (std::uint32_t id : spec_.robots) {

@@ -4,6 +4,7 @@
 // rate) and then calls on_step() at each due step on the host's executor thread.
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -65,6 +66,10 @@ struct RunFigures {
   std::vector<std::string> hosts_not_heard;
 };
 
+/// The scenario's producers of each topic instance: topic -> robot id (0: an unkeyed topic) ->
+/// the component names that may publish it (its producer, and a declared hot standby).
+using AssignedProducers = std::map<std::string, std::map<std::uint32_t, std::vector<std::string>>>;
+
 /// What the host knows about the run, shared by all components of a process.
 struct RunContext {
   const Scenario* scenario = nullptr;
@@ -80,6 +85,10 @@ struct RunContext {
   /// Topics whose readers and writers use DDS exclusive ownership because a hot standby writes
   /// them (exclusive_topics() of runtime/host/producer_check.hpp).
   std::set<std::string> exclusive_topics;
+  /// A scenario run: who the scenario lets publish each instance (assigned_producers() of
+  /// runtime/host/producer_check.hpp); an input refuses every other writer (unknown_producer).
+  /// Null: the first writer of an instance is its producer (a component run without a scenario).
+  std::shared_ptr<const AssignedProducers> assigned_producers;
 };
 
 /// What the component that records the run sees of it (ComponentContext::record_run()).
@@ -158,6 +167,11 @@ class ComponentContext {
     Bus* bus = run_.bus;
     options.writer_name = [bus](std::uint64_t writer_id) { return bus->writer_name(writer_id); };
     options.exclusive_ownership = run_.exclusive_topics.count(topic) != 0;
+    options.send_once = info.qos_class == QosClass::kMission;
+    options.producer_assigned = assigned_producer_rule(topic, info);
+    for (const RobotSpec& robot : run_.scenario->robots) {
+      options.known_robots.push_back(robot.id);
+    }
     auto input = std::make_unique<Input<Msg>>(topic, spec_.name, state_, run_.notifier, std::move(options));
     Input<Msg>* raw = input.get();
     const std::string owner = spec_.name;
@@ -184,6 +198,11 @@ class ComponentContext {
   const std::vector<std::unique_ptr<InputBase>>& inputs() const { return inputs_; }
 
  private:
+  /// InputOptions::producer_assigned of `topic` in a scenario run: a writer may publish an
+  /// instance if its process runs a component the scenario assigns to that instance, or if the
+  /// scenario assigns it none; empty (the first writer rule) without RunContext::assigned_producers.
+  std::function<bool(std::uint64_t, std::uint64_t)> assigned_producer_rule(const std::string& topic, const TopicInfo& info) const;
+
   template <class Msg>
   const TopicInfo& checked_topic(const std::string& topic) const {
     const TopicInfo& info = topic_info(topic);

@@ -1,5 +1,7 @@
 #include "runtime/dds/dds_bus.hpp"
 
+#include "runtime/dds/component_announcement.hpp"
+
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
@@ -154,10 +156,13 @@ class FastDdsBus : public DdsBus {
     // delete what was built (it is declared after what its listeners point to).
     dds::DomainParticipantQos qos = checked_participant_qos(options);
     qos.name(options.participant_name);
+    const std::vector<std::uint8_t> announcement = component_announcement(options.components);
+    qos.user_data().data_vec(std::vector<eprosima::fastrtps::rtps::octet>(announcement.begin(), announcement.end()));
     peers_.set_secure(!options.security_dir.empty());
     // Only discovery callbacks (participant names, remote QoS): with an empty mask no entity
     // status reaches this listener, so on_data_available stays with the readers' listeners.
     participant_ = create_participant(options.domain_id, qos, &peers_, dds::StatusMask::none(), options.participant_profile);
+    peers_.set_self(participant_->guid().guidPrefix, options.components);
     publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
     subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
     if (publisher_ == nullptr || subscriber_ == nullptr) {
@@ -330,6 +335,9 @@ class FastDdsBus : public DdsBus {
   }
 
   std::string writer_name(std::uint64_t writer_id) const override { return peers_.writer_name(writer_id); }
+  bool writer_runs_any(std::uint64_t writer_id, const std::vector<std::string>& components) const override {
+    return peers_.writer_runs_any(writer_id, components);
+  }
 
   std::optional<std::vector<std::string>> discovered_participants() const override { return peers_.discovered_names(); }
 

@@ -29,6 +29,9 @@ struct DdsOptions {
   /// profile says; server i of the list has server id i (GUID prefix 44.53.<i>.5f...: start it
   /// with `fast-discovery-server -i <i>`), the others are its backups.
   std::vector<DiscoveryServer> discovery_servers;
+  /// The scenario components this process runs, announced to the other participants
+  /// (component_announcement.hpp) so their inputs accept this process's writers as producers.
+  std::vector<std::string> components;
 };
 
 class DdsBus : public Bus {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <sstream>
 
+#include "runtime/dds/component_announcement.hpp"
 #include "runtime/dds/text.hpp"
 #include "runtime/base/log.hpp"
 
@@ -14,9 +15,17 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
   std::lock_guard<std::mutex> lock(mutex_);
   switch (info.status) {
     case rtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT:
+    case rtps::ParticipantDiscoveryInfo::CHANGED_QOS_PARTICIPANT: {
       names_[key] = name;
       alive_.insert(key);
+      const std::vector<std::uint8_t> user_data(info.info.m_userData.begin(), info.info.m_userData.end());
+      if (auto components = announced_components(user_data)) {
+        components_[key] = std::move(*components);
+      } else {
+        components_.erase(key);
+      }
       break;
+    }
     case rtps::ParticipantDiscoveryInfo::DROPPED_PARTICIPANT:
       // Dropped = its lease expired without a goodbye: the host died or its network did.
       log::warn("dds", "participant '" + name + "' dropped: no announcement within its lease (host or network down?)");
@@ -126,6 +135,29 @@ std::string PeerDirectory::writer_name(std::uint64_t id) const {
   std::ostringstream entity;
   entity << guid.entityId;
   return who(guid) + " (writer " + guid_prefix_text(guid.guidPrefix) + "|" + entity.str() + ")";
+}
+
+void PeerDirectory::set_self(const rtps::GuidPrefix_t& prefix, std::vector<std::string> components) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  components_[guid_prefix_text(prefix)] = std::move(components);
+}
+
+bool PeerDirectory::writer_runs_any(std::uint64_t id, const std::vector<std::string>& components) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto writer = writer_guids_.find(id);
+  if (writer == writer_guids_.end()) {
+    return false;
+  }
+  const auto announced = components_.find(guid_prefix_text(writer->second.guidPrefix));
+  if (announced == components_.end()) {
+    return false;
+  }
+  for (const std::string& component : components) {
+    if (std::find(announced->second.begin(), announced->second.end(), component) != announced->second.end()) {
+      return true;
+    }
+  }
+  return false;
 }
 
 std::string PeerDirectory::who(const rtps::GUID_t& guid) const {

@@ -58,6 +58,12 @@ class PeerDirectory : public dds::DomainParticipantListener {
   std::uint64_t writer_id(const rtps::GUID_t& writer);
   /// "'control' (writer 01.0f...|0.0.1.3)" for an id writer_id() returned; "writer <id>" otherwise.
   std::string writer_name(std::uint64_t id) const;
+  /// This participant's own GUID prefix and the components it announces (its writers' process).
+  void set_self(const rtps::GuidPrefix_t& prefix, std::vector<std::string> components);
+  /// Whether the process of writer `id` (an id writer_id() returned) announced one of
+  /// `components` (component_announcement.hpp): false for an unknown writer or participant, or
+  /// one that announced nothing.
+  bool writer_runs_any(std::uint64_t id, const std::vector<std::string>& components) const;
 
  private:
   using Table = std::map<std::string, std::map<std::string, std::pair<std::string, rtps::GUID_t>>>;
@@ -72,6 +78,7 @@ class PeerDirectory : public dds::DomainParticipantListener {
   Table writers_;
   Table readers_;
   std::map<std::uint64_t, rtps::GUID_t> writer_guids_;  // writer_id() -> GUID
+  std::map<std::string, std::vector<std::string>> components_;  // GUID prefix -> announced components
 };
 
 /// Match state of one local endpoint, kept for the report appended to lockstep timeouts. The

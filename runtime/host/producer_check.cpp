@@ -70,6 +70,24 @@ ScenarioProducers scenario_producers(const ComponentRegistry& registry, const Sc
   return producers;
 }
 
+AssignedProducers assigned_producers(const Scenario& scenario, const ScenarioProducers& producers) {
+  AssignedProducers assigned;
+  for (const ComponentSpec& spec : scenario.components) {
+    auto it = producers.find(spec.name);
+    if (it == producers.end()) {
+      continue;
+    }
+    for (const std::string& topic : it->second) {
+      const TopicInfo& info = topic_info(topic);
+      const bool unkeyed = info.key == "-" || info.key.empty();
+      for (std::uint32_t robot : unkeyed ? std::vector<std::uint32_t>{0} : spec.robots) {
+        assigned[topic][robot].push_back(spec.name);
+      }
+    }
+  }
+  return assigned;
+}
+
 void check_one_producer_per_instance(const Scenario& scenario, const ScenarioProducers& producers) {
   // (topic, robot or 0 for unkeyed) -> the first component publishing it.
   std::map<std::pair<std::string, std::uint32_t>, const ComponentSpec*> owner;

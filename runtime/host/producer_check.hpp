@@ -23,6 +23,11 @@ using ScenarioProducers = std::map<std::string, std::set<std::string>>;
 /// propagates (it would stop the run anyway).
 ScenarioProducers scenario_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode);
 
+/// Who may publish each topic instance of the scenario (RunContext::assigned_producers): the
+/// component that publishes the topic for that robot (a pair-keyed topic: for the first key's
+/// robot; an unkeyed topic: robot 0), and a hot standby of it.
+AssignedProducers assigned_producers(const Scenario& scenario, const ScenarioProducers& producers);
+
 /// What one component instance writes and reads on the bus (its DDS endpoints, for DDS Security
 /// permissions): found like scenario_producers(), with readers recorded too.
 struct ComponentTopics {

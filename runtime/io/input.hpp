@@ -139,6 +139,12 @@ class Input : public InputBase {
     std::lock_guard<std::mutex> lock(mutex_);
     std::size_t i = instance_index_.find(key);
     if (i == KeyIndex::kNone) {
+      if (!known_key(key)) {
+        // Counted, and nothing kept for the key: a flood of keys grows no state.
+        count_rejection_lazily(detail::kRejectUnknownKey, meta.writer_id,
+                               [key] { return "(key " + std::to_string(key) + "): the scenario has no such robot"; });
+        return false;
+      }
       const std::size_t stream = wanted_stream(stream_of(key));
       if (stream == KeyIndex::kNone) {
         return false;
@@ -151,8 +157,8 @@ class Input : public InputBase {
     const std::string& label = instances_[i].label;
     Stream& s = streams_[instances_[i].stream];
     Progress& p = s.progress;
-    if (!accept_producer(p, label, meta)) {
-      return true;  // in lockstep a second producer ends the run: let ready() throw it now
+    if (!accept_producer(p, label, meta, key, !failed)) {
+      return !lockstep_error_.empty();  // in lockstep a second producer ends the run: let ready() throw it now
     }
     check_chain(p, label, sample.header().step());
     const bool was_covering = armed_missing_ != 0 && covers(p, armed_step_);

@@ -14,10 +14,13 @@ void InputBase::note_lost_samples(const Progress& p, const std::string& label, s
   log::error(owner_, lockstep_error_);
 }
 
-bool InputBase::accept_other_writer(Progress& p, const std::string& label, const SampleMeta& meta) {
+bool InputBase::accept_other_writer(Progress& p, const std::string& label, const SampleMeta& meta, bool sample_ok) {
   const std::string old_writer = writer_label(p.producer);
   const std::string new_writer = writer_label(meta.writer_id);
-  const bool silent = meta.received_ns != 0 && p.received_ns != 0 && meta.received_ns - p.received_ns > detail::kProducerSilenceNs;
+  // Silence is judged on the producer's accepted samples; a send-once topic's producer is never
+  // silent, and a sample that fails its checks takes nothing over.
+  const bool silent = !options_.send_once && sample_ok && meta.received_ns != 0 && p.received_ns != 0 &&
+                      meta.received_ns - p.received_ns > detail::kProducerSilenceNs;
   if (options_.exclusive_ownership || (state_->mode == TimeMode::kRealtime && silent)) {
     log::warn(owner_, topic_ + " (" + label + "): hand-over from " + old_writer + " to " + new_writer +
                       (options_.exclusive_ownership ? " (exclusive ownership)" : " (the old producer fell silent)"));
@@ -43,13 +46,9 @@ std::string InputBase::writer_label(std::uint64_t writer_id) const {
   return options_.writer_name ? options_.writer_name(writer_id) : "writer " + std::to_string(writer_id);
 }
 
-void InputBase::count_rejection(const std::string& reason, const std::string& detail, std::uint64_t writer_id) {
-  ++counts_.rejected[reason];
-  if (logged_rejections_.insert({writer_id, reason}).second) {
-    const std::string writer = writer_label(writer_id);
-    log::warn(owner_, "rejected a sample on " + topic_ + " from " + writer + " " + detail +
+void InputBase::log_rejection(const std::string& detail, std::uint64_t writer_id) const {
+  log::warn(owner_, "rejected a sample on " + topic_ + " from " + writer_label(writer_id) + " " + detail +
                       "; such samples are counted and dropped (logged once per writer and reason)");
-  }
 }
 
 std::string InputBase::label_of(std::uint64_t key) const {

@@ -36,6 +36,8 @@ class InputBase {
     for (std::uint64_t id : options_.expected) {
       add_stream(id);
     }
+    std::sort(options_.known_robots.begin(), options_.known_robots.end());
+    pair_keyed_ = options_.key_names.find(',') != std::string::npos;
   }
   virtual ~InputBase() = default;
 
@@ -123,6 +125,9 @@ class InputBase {
     std::int64_t received_ns = 0;  // SampleMeta::received_ns of the newest accepted sample
     std::uint64_t producer = 0;    // the writer that owns this instance (0: none seen yet)
     bool seen = false;             // a sample of this stream arrived
+    // InputOptions::producer_assigned's last answers, so that a writer's samples ask it once.
+    std::uint64_t assigned_writer = 0;
+    std::uint64_t refused_writer = 0;
   };
   /// The unit of readiness and producer tracking (stream_of()): an instance, or a robot id.
   struct Stream {
@@ -157,24 +162,72 @@ class InputBase {
   /// error that ends the run (ready() throws it); in real time dropped and counted as
   /// second_producer (first writer wins) unless the producer was silent for kProducerSilenceNs.
   /// Call with mutex_ held.
-  bool accept_producer(Progress& p, const std::string& label, const SampleMeta& meta) {
+  /// In a scenario run (InputOptions::producer_assigned) only a writer the scenario assigns to the
+  /// instance may be its producer: any other is refused and counted as unknown_producer, whether
+  /// it came first or not. A writer whose sample fails its checks (`sample_ok` false) claims
+  /// nothing in real time and takes nothing over (the real producer may come later); lockstep
+  /// claims anyway, its chain of steps must go on. Call with mutex_ held.
+  bool accept_producer(Progress& p, const std::string& label, const SampleMeta& meta, std::uint64_t key, bool sample_ok) {
     if (meta.writer_id == 0 || options_.ignore_step || meta.writer_id == p.producer) {
       return true;  // the sample of nearly every call: its instance's producer
     }
+    if (options_.producer_assigned && !assigned(p, meta.writer_id, key)) {
+      count_rejection_lazily(detail::kRejectUnknownProducer, meta.writer_id, [&label] {
+        return "(" + label + "): the scenario does not assign this instance to that writer's process (a foreign program, "
+               "or another component)";
+      });
+      return false;
+    }
     if (p.producer == 0) {
-      p.producer = meta.writer_id;
+      if (sample_ok || state_->mode == TimeMode::kLockstep) {
+        p.producer = meta.writer_id;
+      }
       return true;
     }
-    return accept_other_writer(p, label, meta);
+    return accept_other_writer(p, label, meta, sample_ok);
   }
   /// accept_producer() of a writer that is not the instance's producer. Call with mutex_ held.
-  bool accept_other_writer(Progress& p, const std::string& label, const SampleMeta& meta);
+  bool accept_other_writer(Progress& p, const std::string& label, const SampleMeta& meta, bool sample_ok);
+  /// InputOptions::producer_assigned for `writer_id`, asked once per writer and stream in a row.
+  bool assigned(Progress& p, std::uint64_t writer_id, std::uint64_t key) {
+    if (writer_id == p.assigned_writer) {
+      return true;
+    }
+    if (writer_id == p.refused_writer) {
+      return false;
+    }
+    const bool yes = options_.producer_assigned(writer_id, key);
+    (yes ? p.assigned_writer : p.refused_writer) = writer_id;
+    return yes;
+  }
+  /// The key names a robot of the scenario (InputOptions::known_robots; the first key part of a
+  /// pair). Host-level and unkeyed inputs know every key.
+  bool known_key(std::uint64_t key) const {
+    if (options_.known_robots.empty() || options_.ignore_step || options_.key_names.empty() || options_.key_names == "-") {
+      return true;
+    }
+    const std::uint64_t robot = pair_keyed_ ? key >> 32 : key;
+    return std::binary_search(options_.known_robots.begin(), options_.known_robots.end(), robot);
+  }
   /// The writer's name for messages (InputOptions::writer_name, else "writer <id>").
   std::string writer_label(std::uint64_t writer_id) const;
 
   /// Counts a dropped sample; the first of each (writer, reason) is logged, naming the writer:
   /// "rejected a sample on <topic> from <writer> <detail>; ...". Call with mutex_ held.
-  void count_rejection(const std::string& reason, const std::string& detail, std::uint64_t writer_id);
+  void count_rejection(const std::string& reason, const std::string& detail, std::uint64_t writer_id) {
+    count_rejection_lazily(reason, writer_id, [&detail] { return detail; });
+  }
+  /// count_rejection() whose detail (a string) is built only when it is logged: a flood of
+  /// refused samples builds no text.
+  template <class Detail>
+  void count_rejection_lazily(const std::string& reason, std::uint64_t writer_id, Detail&& detail) {
+    ++counts_.rejected[reason];
+    if (logged_rejections_.insert({writer_id, reason}).second) {
+      log_rejection(detail(), writer_id);
+    }
+  }
+  /// Logs the first rejection of a writer and reason. Call with mutex_ held.
+  void log_rejection(const std::string& detail, std::uint64_t writer_id) const;
 
   /// `key`: an instance, or with by_robot a robot id (then its current instance's label), spelled
   /// for messages. Call with mutex_ held.
@@ -254,6 +307,7 @@ class InputBase {
   // a query for its callers; this is only whom to wake.
   mutable std::uint64_t armed_step_ = 0;
   mutable std::size_t armed_missing_ = 0;
+  bool pair_keyed_ = false;  // the topic's key is (robot_id, X): the robot is its upper 32 bits
 };
 
 }  // namespace robodds

@@ -31,6 +31,11 @@ inline constexpr const char* kRejectNonFinite = "non_finite";
 /// Rejection reason of a sample of an instance that already has another producer (real time,
 /// shared ownership: the first writer wins; docs/architecture.md, "One producer per instance").
 inline constexpr const char* kRejectSecondProducer = "second_producer";
+/// Rejection reason of a sample from a writer the scenario does not assign to its instance (a
+/// foreign program, another component): InputOptions::producer_assigned.
+inline constexpr const char* kRejectUnknownProducer = "unknown_producer";
+/// Rejection reason of a sample whose key names a robot the scenario does not have.
+inline constexpr const char* kRejectUnknownKey = "unknown_key";
 /// Real time, shared ownership: a producer silent this long (the liveliness lease of the
 /// real-time profiles) gives its instance up, so a restarted producer (new writer) takes over.
 inline constexpr std::int64_t kProducerSilenceNs = 1000000000;

@@ -82,6 +82,18 @@ struct InputOptions {
   /// The topic's endpoints use DDS exclusive ownership (a hot standby writes it): the middleware
   /// picks the writer, and a change of writer is a logged hand-over, not a second producer.
   bool exclusive_ownership = false;
+  /// A send-once topic (a mission): its producer is never "silent", so no other writer takes an
+  /// instance over for want of samples.
+  bool send_once = false;
+  /// A scenario run: whether writer `writer_id` may produce instance `key`: its process runs a
+  /// component the scenario assigns to it (or the scenario assigns none: then any writer may, the
+  /// first one wins). Every other writer is refused and counted as unknown_producer, whenever it
+  /// starts. Empty: the first writer of an instance is its producer.
+  std::function<bool(std::uint64_t writer_id, std::uint64_t key)> producer_assigned;
+  /// The scenario's robot ids: a sample whose key names another robot is refused and counted as
+  /// unknown_key without any per-instance state (a flood of keys costs nothing to keep). Empty:
+  /// every key is known.
+  std::vector<std::uint32_t> known_robots;
 };
 
 }  // namespace detail

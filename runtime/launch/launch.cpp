@@ -246,7 +246,11 @@ DdsOptions tools_dds(const DdsArgs& args, const std::string& participant_name) {
 
 RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scenario, const DdsOptions& dds,
                         HostOptions options, const InProcessRun& in_process) {
-  auto bus = make_dds_bus(dds);
+  // Our hosts announce the components they run, so that inputs can tell the scenario's producers
+  // from other writers (RunContext::assigned_producers).
+  DdsOptions announced = dds;
+  announced.components = options.components;
+  auto bus = make_dds_bus(announced);
   bus->expect_robots(scenario.robots_served_by(options.components));  // this process's writers' instances
   // A co-located lockstep run: its components' samples stay in memory, DDS serves observers.
   std::unique_ptr<ColocatedBus> colocated;
@@ -265,8 +269,11 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   run.lockstep_window = std::max<std::size_t>(1, options.lockstep_window);
   const bool has_standby = std::any_of(scenario.components.begin(), scenario.components.end(),
                                        [](const ComponentSpec& c) { return !c.standby_for.empty(); });
+  const ScenarioProducers producers = scenario_producers(registry, scenario, run.mode);
+  if (in_process.assign_producers) {
+    run.assigned_producers = std::make_shared<const AssignedProducers>(assigned_producers(scenario, producers));
+  }
   if (has_standby) {  // hot standby: the topics it writes use exclusive ownership
-    const ScenarioProducers producers = scenario_producers(registry, scenario, run.mode);
     run.exclusive_topics = exclusive_topics(scenario, producers);
     apply_exclusive_ownership(*bus, scenario, producers, run.exclusive_topics, options.components);
   }
@@ -403,8 +410,10 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
     log::info(options.member, run_name + ": " + (options.coordinator ? "coordinating " : "components ") + what +
                                   (args.realtime ? " (real time)" : " (lockstep)"));
   }
+  // A component executable without a scenario file knows no other producer: the first writer rule.
+  const bool assign_producers = args.type.empty();
   const RunStats stats = run_in_process(registry, scenario, with_identity(resolve_dds(args.dds, "robodds-" + options.member), identity),
-                                        options, InProcessRun{time_mode(args.realtime), args.out, args.deploy});
+                                        options, InProcessRun{time_mode(args.realtime), args.out, args.deploy, assign_producers});
   const std::string figures = std::to_string(stats.steps) + " steps in " + shortest_text(std::round(stats.wall_s * 10.0) / 10.0) + " s";
   if (!stats.degraded.empty()) {
     log::error(options.member, run_name + " ended DEGRADED after " + figures + ": " + stats.degraded + " (exit code " +

@@ -55,7 +55,10 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
 struct InProcessRun {
   TimeMode mode = TimeMode::kLockstep;
   std::string out_dir;
-  std::string deploy_label;  // non-empty: the evaluator writes summary.json's "run" section
+  std::string deploy_label;  // non-empty: the run's recorder writes summary.json's "run" section
+  /// Inputs accept an instance only from the producers the scenario assigns to it
+  /// (RunContext::assigned_producers); false: the first writer rule (a component without a scenario).
+  bool assign_producers = true;
 };
 
 /// Creates a DDS bus and a Host for `options.components` and runs them to the end.

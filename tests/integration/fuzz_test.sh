@@ -11,7 +11,8 @@
 # --self-check reads every topic in its own process with the runtime's type support). The input
 # counters of summary.json add up: every consumer input of a topic counts the same (one process,
 # one stream), no more than the run's producer (one sample of robot 1 per step) plus the pass-2
-# payloads that carry robot 1, and only pass 2 causes rejections (pass 1's keys are random);
+# payloads that carry robot 1, which are refused as unknown_producer (robodds-fuzz is no producer
+# the scenario assigns: issue 24), and pass 1's decodable payloads (random keys) as unknown_key;
 # summary.json "hosts".<member>."undecodable" counts the dropped payloads per topic.
 # Args: ROBODDS SRC DOMAIN FUZZ (the robodds-fuzz binary).
 source "$(dirname "$0")/lib.sh"
@@ -139,8 +140,19 @@ for topic in topics:
     # payload), so only pass 2's `body` payloads (robot_id 1) can be counted besides the run's own
     # producer, which writes at most one sample of robot 1 per step (the mission: one in all).
     fuzz_robot1 = pass2[topic]["body"]
+    pass1_written = sum(pass1[topic][k] for k in ("random", "body", "header"))
     for component, c in consumers:
-        rejected = sum(c["rejected"].values())
+        # Pass 1's decodable payloads name robots the scenario does not have: refused as
+        # unknown_key, no more than pass 1 wrote; every other rejection is of robot 1.
+        unknown_key = c["rejected"].get("unknown_key", 0)
+        check(unknown_key <= pass1_written,
+              f"{component} {topic}: {unknown_key} unknown_key rejections > {pass1_written} payloads of pass 1")
+        rejected = sum(c["rejected"].values()) - unknown_key
+        # robodds-fuzz is no producer the scenario assigns (issue 24): robot 1's decodable payloads
+        # are refused as unknown_producer, never as a second producer or by a check.
+        check(set(c["rejected"]) <= {"unknown_key", "unknown_producer"},
+              f"{component} {topic}: rejected {c['rejected']}: robodds-fuzz's samples must be refused as unknown_producer "
+              "(or unknown_key), whatever their content")
         check(c["accepted"] <= steps + 1,
               f"{component} {topic}: accepted {c['accepted']} > {steps + 1} (steps run + 1): a fuzz payload was accepted as robot 1's")
         check(rejected <= fuzz_robot1,
@@ -158,7 +170,8 @@ for topic in topics:
     # than 0/1 or a random sequence length does not decode): robot 1's producer is alive, so
     # they must be refused (second producer, or a plausibility check).
     if topic in ("plant/cmd", "plant/state", "sensor/position", "sensor/odometry"):
-        check(sum(first["rejected"].values()) >= 1, f"{topic}: no consumer refused any of the {fuzz_robot1} payloads of robot 1")
+        check(first["rejected"].get("unknown_producer", 0) >= 1,
+              f"{topic}: no consumer refused any of the {fuzz_robot1} payloads of robot 1 as unknown_producer")
     # The run's process dropped undecodable payloads and summary.json says so per topic: at least
     # the 500 that robodds-fuzz --self-check requires of its own reader, at most twice what was
     # written (a payload without a key hash is decoded twice: docs/interop.md).

@@ -409,6 +409,75 @@ TEST_F(InputTest, RealtimeFirstWriterWinsAndTheSecondIsCountedAsSecondProducer) 
   EXPECT_EQ(input.counts().rejected.at(detail::kRejectSecondProducer), 3U);
 }
 
+// Issue 24, finding 1: a writer whose samples all fail their checks claimed the instance, and
+// the real producer was refused for good (its "silence" counted accepted samples only).
+TEST_F(InputTest, RealtimeWriterOfRefusedSamplesClaimsNothing) {
+  clock.mode = TimeMode::kRealtime;
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, named_writers());
+  for (std::uint64_t step = 0; step < 40; ++step) {
+    input.on_sample(state(1, step, step + 1, std::numeric_limits<double>::quiet_NaN()), SampleMeta{7, 1'000'000'000});
+  }
+  input.on_sample(state(1, 50, 51, 2.0), SampleMeta{8, 1'100'000'000});  // the real producer, 0.1 s later
+  ASSERT_NE(input.latest(1), nullptr);
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 2.0);
+  EXPECT_EQ(input.counts().accepted, 1U);
+  EXPECT_EQ(input.counts().rejected.at(detail::kRejectNonFinite), 40U);
+  EXPECT_EQ(input.counts().rejected.count(detail::kRejectSecondProducer), 0U);
+  // Nor does a refused sample of another writer take the instance over after a silence.
+  input.on_sample(state(1, 60, 61, std::numeric_limits<double>::quiet_NaN()), SampleMeta{7, 9'000'000'000});
+  input.on_sample(state(1, 61, 62, 3.0), SampleMeta{8, 9'000'000'001});
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 3.0);
+}
+
+// Issue 24, finding 2: in a scenario run only the writer the scenario assigns may produce an
+// instance, whether another started first or not.
+TEST_F(InputTest, AScenarioRunRefusesAnUnassignedWriterEvenIfItCameFirst) {
+  for (TimeMode mode : {TimeMode::kRealtime, TimeMode::kLockstep}) {
+    clock.mode = mode;
+    detail::InputOptions options = named_writers();
+    options.producer_assigned = [](std::uint64_t writer, std::uint64_t key) { return key == 1 && writer == 8; };
+    Input<idl::RobotState> input("plant/cmd", "test", &clock, &notifier, options);
+    input.on_sample(state(1, 0, 1, 9.0), SampleMeta{7, 1'000'000'000});  // foreign, first
+    input.on_sample(state(1, 0, 1, 2.0), SampleMeta{8, 1'100'000'000});  // the scenario's producer
+    input.on_sample(state(1, 1, 2, 9.0), SampleMeta{7, 1'200'000'000});
+    EXPECT_TRUE(input.lockstep_error().empty()) << "a refused foreign writer is no second producer";
+    ASSERT_NE(input.latest(1), nullptr);
+    EXPECT_DOUBLE_EQ(input.latest(1)->x(), 2.0);
+    EXPECT_EQ(input.counts().accepted, 1U);
+    EXPECT_EQ(input.counts().rejected.at(detail::kRejectUnknownProducer), 2U);
+  }
+}
+
+// Issue 24, finding 2: a mission is sent once, so its producer always looked "silent" and any
+// later writer took it over.
+TEST_F(InputTest, ASendOnceTopicsProducerIsNeverSilent) {
+  clock.mode = TimeMode::kRealtime;
+  detail::InputOptions options = named_writers();
+  options.send_once = true;
+  Input<idl::RobotState> input("mission/waypoints", "test", &clock, &notifier, options);
+  input.on_sample(state(1, 0, kNeverAgain, 1.0), SampleMeta{7, 1'000'000'000});
+  input.on_sample(state(1, 0, kNeverAgain, 5.0), SampleMeta{8, 60'000'000'000});  // a minute later
+  EXPECT_DOUBLE_EQ(input.latest(1)->x(), 1.0);
+  EXPECT_EQ(input.counts().rejected.at(detail::kRejectSecondProducer), 1U);
+}
+
+// Issue 24, finding 4: samples of robots the scenario does not have are refused and counted, and
+// leave no per-instance state behind (a flood of keys).
+TEST_F(InputTest, KeysOfRobotsOutsideTheScenarioAreRefusedWithoutState) {
+  clock.mode = TimeMode::kRealtime;
+  detail::InputOptions options;
+  options.key_names = "robot_id";
+  options.known_robots = {1, 2};
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, options);  // any instance
+  for (std::uint32_t robot = 3; robot < 20003; ++robot) {
+    input.on_sample(state(robot, 0, 1, 1.0), SampleMeta{7, 1'000'000'000});
+  }
+  input.on_sample(state(2, 0, 1, 1.0), SampleMeta{8, 1'000'000'000});
+  EXPECT_EQ(input.instances(), (std::vector<std::uint64_t>{2}));
+  EXPECT_EQ(input.counts().accepted, 1U);
+  EXPECT_EQ(input.counts().rejected.at(detail::kRejectUnknownKey), 20000U);
+}
+
 TEST_F(InputTest, ExclusiveOwnershipMakesAChangeOfWriterAHandOver) {
   clock.mode = TimeMode::kRealtime;
   detail::InputOptions options = named_writers();
