@@ -167,9 +167,9 @@ endfunction()
 # A metrics module of the evaluator (sim/evaluator/module/metrics_module.hpp), registered from its
 # own folder like a component: builds robodds_<kind>_metrics_module and adds the module to the set
 # that robodds_registered_metrics_modules_library() registers. The sources must contain
-# ROBODDS_REGISTER_METRICS_MODULE(kind, ...) with the same name. Each TESTS file is a unit test
-# named evaluator_<file name>, on the in-memory bus with the whole evaluator. Nothing happens without
-# the DDS runtime (-DROBODDS_WITH_DDS=OFF).
+# ROBODDS_REGISTER_METRICS_MODULE(kind, ...) with the same name; it registers this folder. Each
+# TESTS file is a unit test named evaluator_<file name>, on the in-memory bus with the whole
+# evaluator. Nothing happens without the DDS runtime (-DROBODDS_WITH_DDS=OFF).
 function(robodds_metrics_module)
   cmake_parse_arguments(ARG "" "NAME" "SOURCES;DEPS;TESTS" ${ARGN})
   if(NOT ARG_NAME MATCHES "^[a-z][a-z0-9_]*$" OR NOT ARG_SOURCES)
@@ -180,6 +180,9 @@ function(robodds_metrics_module)
   endif()
   set(library robodds_${ARG_NAME}_metrics_module)
   robodds_library(${library} SOURCES ${ARG_SOURCES} DEPS ${ARG_DEPS} robodds_evaluator_module)
+  # The module's folder, relative to the repository root: ROBODDS_REGISTER_METRICS_MODULE registers it.
+  file(RELATIVE_PATH folder ${PROJECT_SOURCE_DIR} ${CMAKE_CURRENT_SOURCE_DIR})
+  target_compile_definitions(${library} PRIVATE ROBODDS_METRICS_MODULE_FOLDER="${folder}")
   set_property(GLOBAL APPEND PROPERTY ROBODDS_METRICS_MODULES ${ARG_NAME})
   foreach(test_source IN LISTS ARG_TESTS)
     get_filename_component(test_name ${test_source} NAME_WE)

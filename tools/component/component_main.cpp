@@ -2,7 +2,6 @@
 
 #include <CLI/CLI.hpp>
 
-#include <algorithm>
 #include <string>
 
 #include "common/param_doc.hpp"
@@ -11,6 +10,7 @@
 #include "runtime/launch/launch.hpp"
 #include "runtime/base/log.hpp"
 #include "tools/cli/cli_main.hpp"
+#include "tools/component/executable_name.hpp"
 
 namespace robodds {
 
@@ -19,8 +19,7 @@ int component_main(int argc, char** argv, const char* type, void (*register_type
   ComponentRegistry registry;
   register_type(registry);
   const ComponentType& component = registry.get(type);
-  std::string program = "robodds-" + component.name;
-  std::replace(program.begin(), program.end(), '_', '-');
+  const std::string program = component_executable_name(component.name);
 
   CLI::App app{program + ": " + component.description + "\n(one component without a scenario file; in lockstep it "
                    "joins a run whose coordinator waits for its --member, by default its --name)",

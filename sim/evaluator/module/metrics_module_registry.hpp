@@ -18,6 +18,9 @@ namespace robodds::evaluator {
 struct MetricsModuleType {
   std::string name;
   std::string description;
+  /// Its folder relative to the repository root, e.g. sim/evaluator/metrics/waypoints: what the
+  /// generated rows of README.md's Layout name (tools/regenerate/layout_table.hpp).
+  std::string folder;
   /// Where its keys go in summary.json's "metrics", lowest first (ties by name): the shipped
   /// modules take 10 (waypoints), 20 (motion), 30 (circumnavigation), 40 (relative_pose); a new
   /// one takes a rank of its own so that the existing keys keep their places.
@@ -45,13 +48,15 @@ void register_builtin_metrics_modules(MetricsModuleRegistry& registry);
 /// Defines robodds::metrics_module_registration::register_<kind>(MetricsModuleRegistry&), which
 /// adds the module `kind` (a bare identifier, the NAME of its robodds_metrics_module() call) with
 /// a one-line description, its summary rank (MetricsModuleType::summary_rank) and its factory
-/// (std::unique_ptr<MetricsModule>()). Write it once, at global scope, in the module's .cpp.
+/// (std::unique_ptr<MetricsModule>()). Its folder is the one of its robodds_metrics_module()
+/// call, which passes the path as ROBODDS_METRICS_MODULE_FOLDER (a module registered by hand, in a
+/// test, defines it before the macro). Write it once, at global scope, in the module's .cpp.
 #define ROBODDS_REGISTER_METRICS_MODULE(kind, description, summary_rank, factory)                               \
   namespace robodds::metrics_module_registration {                                                              \
   void register_##kind(::robodds::evaluator::MetricsModuleRegistry& registry);                                  \
   }                                                                                                             \
   void ::robodds::metrics_module_registration::register_##kind(::robodds::evaluator::MetricsModuleRegistry& registry) { \
-    registry.add({#kind, description, summary_rank, factory});                                                  \
+    registry.add({#kind, description, ROBODDS_METRICS_MODULE_FOLDER, summary_rank, factory});                    \
   }                                                                                                             \
   static_assert(sizeof(description) > 1, "ROBODDS_REGISTER_METRICS_MODULE(" #kind "): the description must not be empty")
 

@@ -50,6 +50,8 @@ std::unique_ptr<MetricsModule> make_sample_counter_module() { return std::make_u
 }  // namespace
 }  // namespace robodds::evaluator
 
+// Registered by hand, not by robodds_metrics_module(), which would name the module's folder.
+#define ROBODDS_METRICS_MODULE_FOLDER "sim/evaluator/test"
 ROBODDS_REGISTER_METRICS_MODULE(sample_counter, "test: counts samples and steps", 50,
                                 robodds::evaluator::make_sample_counter_module);
 
