@@ -24,6 +24,7 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
       } else {
         components_.erase(key);
       }
+      participant_discovered_.notify_all();
       break;
     }
     case rtps::ParticipantDiscoveryInfo::DROPPED_PARTICIPANT:
@@ -143,12 +144,15 @@ void PeerDirectory::set_self(const rtps::GuidPrefix_t& prefix, std::vector<std::
 }
 
 bool PeerDirectory::writer_runs_any(std::uint64_t id, const std::vector<std::string>& components) const {
-  std::lock_guard<std::mutex> lock(mutex_);
+  std::unique_lock<std::mutex> lock(mutex_);
   const auto writer = writer_guids_.find(id);
   if (writer == writer_guids_.end()) {
     return false;
   }
-  const auto announced = components_.find(guid_prefix_text(writer->second.guidPrefix));
+  const std::string key = guid_prefix_text(writer->second.guidPrefix);
+  participant_discovered_.wait_for(lock, std::chrono::milliseconds(kParticipantWaitMs),
+                                   [&] { return names_.count(key) != 0 || components_.count(key) != 0; });
+  const auto announced = components_.find(key);
   if (announced == components_.end()) {
     return false;
   }

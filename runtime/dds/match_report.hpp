@@ -8,6 +8,7 @@
 #include <fastdds/rtps/common/Guid.h>
 
 #include <atomic>
+#include <condition_variable>
 #include <map>
 #include <mutex>
 #include <set>
@@ -61,8 +62,10 @@ class PeerDirectory : public dds::DomainParticipantListener {
   /// This participant's own GUID prefix and the components it announces (its writers' process).
   void set_self(const rtps::GuidPrefix_t& prefix, std::vector<std::string> components);
   /// Whether the process of writer `id` (an id writer_id() returned) announced one of
-  /// `components` (component_announcement.hpp): false for an unknown writer or participant, or
-  /// one that announced nothing.
+  /// `components` (component_announcement.hpp): false for an unknown writer, or a participant
+  /// that announced nothing. A participant whose discovery was not reported yet (its writer's
+  /// first sample can overtake the callback) is waited for, at most kParticipantWaitMs.
+  static constexpr int kParticipantWaitMs = 500;
   bool writer_runs_any(std::uint64_t id, const std::vector<std::string>& components) const;
 
  private:
@@ -71,6 +74,7 @@ class PeerDirectory : public dds::DomainParticipantListener {
   void remember(Table& table, const std::string& topic, const rtps::GUID_t& guid, bool present, const std::string& qos);
 
   mutable std::mutex mutex_;
+  mutable std::condition_variable participant_discovered_;  // names_ grew
   std::map<std::string, std::string> names_;  // GUID prefix -> participant name
   std::set<std::string> alive_;
   bool secure_ = false;
