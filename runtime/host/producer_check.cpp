@@ -70,8 +70,12 @@ ScenarioProducers scenario_producers(const ComponentRegistry& registry, const Sc
   return producers;
 }
 
-AssignedProducers assigned_producers(const Scenario& scenario, const ScenarioProducers& producers) {
-  AssignedProducers assigned;
+namespace {
+
+/// Calls fn(spec, topic, robot) for every instance each component of the scenario publishes
+/// (robot 0: an unkeyed topic's one instance), components in scenario order.
+template <class Fn>
+void for_each_produced_instance(const Scenario& scenario, const ScenarioProducers& producers, Fn&& fn) {
   for (const ComponentSpec& spec : scenario.components) {
     auto it = producers.find(spec.name);
     if (it == producers.end()) {
@@ -81,41 +85,41 @@ AssignedProducers assigned_producers(const Scenario& scenario, const ScenarioPro
       const TopicInfo& info = topic_info(topic);
       const bool unkeyed = info.key == "-" || info.key.empty();
       for (std::uint32_t robot : unkeyed ? std::vector<std::uint32_t>{0} : spec.robots) {
-        assigned[topic][robot].push_back(spec.name);
+        fn(spec, topic, info, robot);
       }
     }
   }
+}
+
+}  // namespace
+
+AssignedProducers assigned_producers(const Scenario& scenario, const ScenarioProducers& producers) {
+  AssignedProducers assigned;
+  for_each_produced_instance(scenario, producers,
+                             [&assigned](const ComponentSpec& spec, const std::string& topic, const TopicInfo&, std::uint32_t robot) {
+                               assigned[topic][robot].push_back(spec.name);
+                             });
   return assigned;
 }
 
 void check_one_producer_per_instance(const Scenario& scenario, const ScenarioProducers& producers) {
   // (topic, robot or 0 for unkeyed) -> the first component publishing it.
   std::map<std::pair<std::string, std::uint32_t>, const ComponentSpec*> owner;
-  for (const ComponentSpec& spec : scenario.components) {
+  for_each_produced_instance(scenario, producers, [&](const ComponentSpec& spec, const std::string& topic, const TopicInfo& info,
+                                                      std::uint32_t robot) {
     if (!spec.standby_for.empty()) {
-      continue;  // a hot standby shares its primary's instances by design (exclusive ownership)
+      return;  // a hot standby shares its primary's instances by design (exclusive ownership)
     }
-    auto it = producers.find(spec.name);
-    if (it == producers.end()) {
-      continue;
+    auto [slot, inserted] = owner.emplace(std::make_pair(topic, robot), &spec);
+    if (!inserted) {
+      const ComponentSpec& first = *slot->second;
+      throw ConfigError(located(scenario.file, "components",
+                                "topic " + topic + ", " + instance_text(info, robot) + ": published by both '" + first.name +
+                                    "' (" + first.type + ") and '" + spec.name + "' (" + spec.type +
+                                    "); one producer per topic instance (give them different robots, or declare "
+                                    "a hot standby with standby_for)"));
     }
-    for (const std::string& topic : it->second) {
-      const TopicInfo& info = topic_info(topic);
-      const bool unkeyed = info.key == "-" || info.key.empty();
-      const std::vector<std::uint32_t> robots = unkeyed ? std::vector<std::uint32_t>{0} : spec.robots;
-      for (std::uint32_t robot : robots) {
-        auto [slot, inserted] = owner.emplace(std::make_pair(topic, robot), &spec);
-        if (!inserted) {
-          const ComponentSpec& first = *slot->second;
-          throw ConfigError(located(scenario.file, "components",
-                                    "topic " + topic + ", " + instance_text(info, robot) + ": published by both '" +
-                                        first.name + "' (" + first.type + ") and '" + spec.name + "' (" + spec.type +
-                                        "); one producer per topic instance (give them different robots, or declare "
-                                        "a hot standby with standby_for)"));
-        }
-      }
-    }
-  }
+  });
 }
 
 void check_standby_deployment(const Scenario& scenario, TimeMode mode, bool single_process) {

@@ -7,66 +7,55 @@
 
 #include <limits>
 
+#include "runtime/testing/sample_check_cases.hpp"
+
 namespace robodds {
 namespace {
 
-constexpr std::int64_t kNow = 1'800'000'000'000'000'000;  // a wall clock reading, ns
-
-template <class Msg>
-std::string reason_of(const Msg& sample, TimeMode mode = TimeMode::kLockstep) {
-  const auto failed = check_sample(sample, mode, kNow);
-  return failed ? failed->reason + ":" + failed->field : "ok";
-}
-
-template <class Msg>
-Msg fresh() {
-  Msg m;
-  m.header().step(3);
-  m.header().next_step(4);
-  m.header().stamp_ns(kNow);
-  return m;
-}
+using robodds::testing::check_reason_of;
+using robodds::testing::plausible_sample;
+constexpr std::int64_t kNow = robodds::testing::kCheckNowNs;
 
 TEST(SampleChecks, HeaderStampsAndSteps) {
-  auto s = fresh<idl::StepDone>();
-  EXPECT_EQ(reason_of(s, TimeMode::kRealtime), "ok");
+  auto s = plausible_sample<idl::StepDone>();
+  EXPECT_EQ(check_reason_of(s, TimeMode::kRealtime), "ok");
   s.header().stamp_ns(std::numeric_limits<std::int64_t>::max());
-  EXPECT_EQ(reason_of(s, TimeMode::kRealtime), "stamp_in_future:header.stamp_ns");
-  EXPECT_EQ(reason_of(s, TimeMode::kLockstep), "ok") << "lockstep stamps are sim time";
+  EXPECT_EQ(check_reason_of(s, TimeMode::kRealtime), "stamp_in_future:header.stamp_ns");
+  EXPECT_EQ(check_reason_of(s, TimeMode::kLockstep), "ok") << "lockstep stamps are sim time";
   s.header().stamp_ns(kNow + sample_bounds::kFutureStampToleranceNs);
-  EXPECT_EQ(reason_of(s, TimeMode::kRealtime), "ok") << "at the tolerance";
+  EXPECT_EQ(check_reason_of(s, TimeMode::kRealtime), "ok") << "at the tolerance";
   s.header().stamp_ns(kNow + sample_bounds::kFutureStampToleranceNs + 1);
-  EXPECT_EQ(reason_of(s, TimeMode::kRealtime), "stamp_in_future:header.stamp_ns");
+  EXPECT_EQ(check_reason_of(s, TimeMode::kRealtime), "stamp_in_future:header.stamp_ns");
   for (std::int64_t bad : {std::numeric_limits<std::int64_t>::min(), std::int64_t{-1}}) {
     s.header().stamp_ns(bad);
-    EXPECT_EQ(reason_of(s, TimeMode::kRealtime), "negative_stamp:header.stamp_ns");
-    EXPECT_EQ(reason_of(s, TimeMode::kLockstep), "negative_stamp:header.stamp_ns");
+    EXPECT_EQ(check_reason_of(s, TimeMode::kRealtime), "negative_stamp:header.stamp_ns");
+    EXPECT_EQ(check_reason_of(s, TimeMode::kLockstep), "negative_stamp:header.stamp_ns");
   }
   s.header().stamp_ns(0);
   s.header().next_step(2);  // before step 3
-  EXPECT_EQ(reason_of(s), "bad_header:header.next_step");
+  EXPECT_EQ(check_reason_of(s), "bad_header:header.next_step");
   s.header().next_step(std::numeric_limits<std::uint64_t>::max());  // never again: fine
-  EXPECT_EQ(reason_of(s), "ok");
+  EXPECT_EQ(check_reason_of(s), "ok");
 }
 
 TEST(SampleChecks, RuntimeTopics) {
-  auto t = fresh<idl::SimTick>();
+  auto t = plausible_sample<idl::SimTick>();
   t.step_s(0.01);
-  EXPECT_EQ(reason_of(t), "ok");
+  EXPECT_EQ(check_reason_of(t), "ok");
   t.step_s(-0.01);
-  EXPECT_EQ(reason_of(t), "negative_duration:step_s");
-  EXPECT_EQ(reason_of(fresh<idl::StepDone>()), "ok");
+  EXPECT_EQ(check_reason_of(t), "negative_duration:step_s");
+  EXPECT_EQ(check_reason_of(plausible_sample<idl::StepDone>()), "ok");
 
-  auto r = fresh<idl::HostReport>();
+  auto r = plausible_sample<idl::HostReport>();
   r.ticks(10);
   r.late_steps(10);
   r.worst_lateness_s(0.02);
-  EXPECT_EQ(reason_of(r), "ok");
+  EXPECT_EQ(check_reason_of(r), "ok");
   r.late_steps(11);
-  EXPECT_EQ(reason_of(r), "bad_size:late_steps");
+  EXPECT_EQ(check_reason_of(r), "bad_size:late_steps");
   r.late_steps(0);
   r.worst_lateness_s(-1.0);
-  EXPECT_EQ(reason_of(r), "negative_duration:worst_lateness_s");
+  EXPECT_EQ(check_reason_of(r), "negative_duration:worst_lateness_s");
 }
 
 TEST(SampleChecks, TypeWithoutContentCheckIsRefusedNamingTopicAndType) {
@@ -78,15 +67,15 @@ TEST(SampleChecks, TypeWithoutContentCheckIsRefusedNamingTopicAndType) {
     EXPECT_NE(what.find("topic plant/state"), std::string::npos) << what;
     EXPECT_NE(what.find("robodds::idl::RobotState"), std::string::npos) << what;
   }
-  EXPECT_THROW(check_sample(fresh<idl::RobotState>(), TimeMode::kLockstep, kNow), ConfigError);
+  EXPECT_THROW(check_sample(plausible_sample<idl::RobotState>(), TimeMode::kLockstep, kNow), ConfigError);
 }
 
 TEST(SampleChecks, InstalledContentCheckRuns) {
   set_content_check<idl::Odometry>([](const idl::Odometry& o) { return field_check::duration("dt_s", o.dt_s()); });
-  auto o = fresh<idl::Odometry>();
-  EXPECT_EQ(reason_of(o), "ok");
+  auto o = plausible_sample<idl::Odometry>();
+  EXPECT_EQ(check_reason_of(o), "ok");
   o.dt_s(-1.0);
-  EXPECT_EQ(reason_of(o), "negative_duration:dt_s");
+  EXPECT_EQ(check_reason_of(o), "negative_duration:dt_s");
   set_content_check<idl::Odometry>(nullptr);
 }
 
