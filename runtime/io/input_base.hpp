@@ -45,6 +45,13 @@ class InputBase {
   /// Lockstep: reads samples up to `delay_steps()` steps old, and waits for some streams (gated).
   std::uint64_t delay_steps() const { return options_.delay_steps; }
   bool gated() const { return !options_.ignore_step && !options_.expected.empty(); }
+  /// The instances (by_robot(): robot ids) needed at every due step, in key order.
+  const std::vector<std::uint64_t>& expected() const { return options_.expected; }
+  /// The robot of expected key `key`: the key itself, or its upper 32 bits for a (robot_id, X) key
+  /// that is not a robot stream.
+  std::uint32_t robot_of(std::uint64_t key) const {
+    return static_cast<std::uint32_t>(pair_keyed_ && !options_.by_robot ? key >> 32 : key);
+  }
   std::uint64_t rejected_count() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return counts_.rejected_total();

@@ -53,6 +53,33 @@ void check_history_bound(const RunContext& run, const HostOptions& options, cons
   }
 }
 
+/// Lockstep: ConfigError when a component's gated input waits for an instance no component of the
+/// scenario publishes (RunContext::assigned_producers): it would wait at step 0 until the step
+/// timeout and then fail; say so before the first tick, naming the component, topic and robot.
+void check_inputs_have_producers(const RunContext& run, const LockstepHost::Slots& slots) {
+  if (!run.assigned_producers) {
+    return;  // a component without a scenario: its producers are not known
+  }
+  for (const auto& slot : slots) {
+    for (const auto& input : slot->context->inputs()) {
+      if (!input->gated()) {
+        continue;
+      }
+      const auto topic = run.assigned_producers->find(input->topic());
+      for (std::uint64_t key : input->expected()) {
+        const std::uint32_t robot = input->robot_of(key);
+        if (topic == run.assigned_producers->end() || topic->second.count(robot) == 0) {
+          throw ConfigError(located(run.scenario->file, "components",
+                                    "lockstep: component '" + slot->spec->name + "' waits at every step for " + input->topic() +
+                                        " of robot " + std::to_string(robot) +
+                                        ", which no component of the scenario publishes (add its producer for that robot, "
+                                        "or take the robot out of '" + slot->spec->name + "')"));
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& slots, Bus& protocol_bus,
@@ -70,6 +97,7 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
                                  [this](const std::string& e) { log::warn(options_.member, "sim/clock: " + e); });
   ack_writer_ = protocol_bus.writer(done.name, done.type_name, profile);
   ack_output_ = std::make_unique<Output<idl::StepDone>>(ack_writer_, &state_);
+  check_inputs_have_producers(run, slots);
   if (run.mode == TimeMode::kLockstep && !run.single_process) {
     check_history_bound(run, options, slots);
   }

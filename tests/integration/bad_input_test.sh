@@ -31,6 +31,10 @@ expect_error 2 "t4d\.yaml: wheel_base_m: unknown parameter" -- \
 expect_error 2 "rate_hz: 7\.000000 Hz is not the simulation rate" -- \
   "${R[@]}" "$(scenario_with t6 's/{name: position_sensor, type: position_sensor}/{name: position_sensor, type: position_sensor, params: {rate_hz: 7}}/')"
 expect_error 2 "groups\.sim: unknown component 'plnt'" -- "${R[@]}" "$(scenario_with t7 's/sim: \[plant\]/sim: [plnt]/')"
+# Issue 24, finding 7: a lockstep input waiting for an instance nobody publishes is found before
+# the first tick (was: a wait at step 0 until the step timeout, then "waited 10.0 s").
+expect_error 2 "t8\.yaml: components: lockstep: component 'plant' waits at every step for plant/cmd of robot 3, which no component of the scenario publishes" -- \
+  "${R[@]}" "$(scenario_with t8 's/{name: commander, type: open_loop_commander}/{name: commander, type: open_loop_commander, robots: [1, 2]}/')"
 
 # QoS files: missing, malformed, broken element, unknown profile.
 expect_error 2 "nope\.xml: QoS profile file not found" -- "${R[@]}" "$S" --qos "$WORK/nope.xml"
