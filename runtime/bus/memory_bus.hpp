@@ -38,7 +38,7 @@ class MemoryBus : public Bus {
                                        ReaderEventCallback on_event) override;
   /// Nothing to acknowledge: delivery is complete when write() returns.
   void flush(std::chrono::milliseconds timeout) override;
-  /// "in-memory writer 3 (plant/cmd|<profile>)": every writer handle is one writer id.
+  /// "in-memory writer 3 (sim/clock|<profile>)": every writer handle is one writer id.
   std::string writer_name(std::uint64_t writer_id) const override;
 
   struct State;  // shared with the handles, which may outlive the bus

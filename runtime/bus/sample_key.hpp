@@ -9,7 +9,7 @@ namespace robodds {
 
 using SampleKeyFunction = std::uint64_t (*)(const void* sample);
 
-/// idl::instance_key of the type named `type_name` (e.g. "robodds::idl::RobotState"), or nullptr
+/// idl::instance_key of the type named `type_name` (e.g. "robodds::idl::SimTick"), or nullptr
 /// when no IDL type has that name.
 SampleKeyFunction sample_key_function(const std::string& type_name);
 

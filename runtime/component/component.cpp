@@ -8,25 +8,20 @@
 
 namespace robodds {
 
-std::function<bool(std::uint64_t, std::uint64_t)> ComponentContext::assigned_producer_rule(const std::string& topic,
-                                                                                            const TopicInfo& info) const {
-  if (!run_.assigned_producers) {
+std::function<bool(std::uint64_t, std::uint32_t)> ComponentContext::assigned_producer_rule(const std::string& topic) const {
+  // A topic the scenario gives no producer at all, like an instance it gives none (a robot
+  // commanded from outside: docs/interop.md), keeps the first writer rule.
+  const auto topic_producers = run_.assigned_producers ? run_.assigned_producers->find(topic)
+                                                       : AssignedProducers::const_iterator{};
+  if (!run_.assigned_producers || topic_producers == run_.assigned_producers->end()) {
     return {};
   }
-  // This topic's instances and their assigned components. An instance the scenario gives no
-  // producer (a robot commanded from outside: docs/interop.md) keeps the first writer rule.
-  const auto topic_producers = run_.assigned_producers->find(topic);
-  std::map<std::uint32_t, std::vector<std::string>> producers;
-  if (topic_producers != run_.assigned_producers->end()) {
-    producers = topic_producers->second;
-  }
-  const bool unkeyed = info.key.empty() || info.key == "-";
-  const bool pair_keyed = info.key.find(',') != std::string::npos;
   const Bus* bus = run_.bus;
-  return [bus, producers = std::move(producers), unkeyed, pair_keyed](std::uint64_t writer_id, std::uint64_t key) {
-    const std::uint32_t robot = unkeyed ? 0u : static_cast<std::uint32_t>(pair_keyed ? key >> 32 : key);
-    const auto it = producers.find(robot);
-    return it == producers.end() || bus->writer_runs_any(writer_id, it->second);
+  // The map lives as long as the rule: it holds the shared pointer.
+  return [bus, assigned = run_.assigned_producers, producers = &topic_producers->second](std::uint64_t writer_id,
+                                                                                          std::uint32_t robot) {
+    const auto it = producers->find(robot);
+    return it == producers->end() || bus->writer_runs_any(writer_id, it->second);
   };
 }
 

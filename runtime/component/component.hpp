@@ -168,7 +168,7 @@ class ComponentContext {
     options.writer_name = [bus](std::uint64_t writer_id) { return bus->writer_name(writer_id); };
     options.exclusive_ownership = run_.exclusive_topics.count(topic) != 0;
     options.send_once = info.qos_class == QosClass::kMission;
-    options.producer_assigned = assigned_producer_rule(topic, info);
+    options.producer_assigned = assigned_producer_rule(topic);
     for (const RobotSpec& robot : run_.scenario->robots) {
       options.known_robots.push_back(robot.id);
     }
@@ -198,10 +198,11 @@ class ComponentContext {
   const std::vector<std::unique_ptr<InputBase>>& inputs() const { return inputs_; }
 
  private:
-  /// InputOptions::producer_assigned of `topic` in a scenario run: a writer may publish an
-  /// instance if its process runs a component the scenario assigns to that instance, or if the
-  /// scenario assigns it none; empty (the first writer rule) without RunContext::assigned_producers.
-  std::function<bool(std::uint64_t, std::uint64_t)> assigned_producer_rule(const std::string& topic, const TopicInfo& info) const;
+  /// InputOptions::producer_assigned of `topic` in a scenario run: a writer may publish a robot's
+  /// instances if its process runs a component the scenario assigns to them, or if the scenario
+  /// assigns them none; empty (the first writer rule) without RunContext::assigned_producers or
+  /// when no component of the scenario publishes the topic.
+  std::function<bool(std::uint64_t, std::uint32_t)> assigned_producer_rule(const std::string& topic) const;
 
   template <class Msg>
   const TopicInfo& checked_topic(const std::string& topic) const {

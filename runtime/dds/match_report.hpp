@@ -99,7 +99,7 @@ class MatchState {
   /// e.g. "incompatible QoS RELIABILITY: this reader requests RELIABLE/..., writers offer
   /// BEST_EFFORT/... from 'control'"; empty if no incompatibility was reported.
   std::string incompatible() const;
-  /// e.g. "plant/cmd (reader): no writer matched" or "plant/cmd (writer): incompatible QoS ..."; empty when
+  /// e.g. "sim/clock (reader): no writer matched" or "sim/step_done (writer): incompatible QoS ..."; empty when
   /// matched and compatible. An incompatible QoS explains a missing match, so it wins over "no match".
   std::string problem() const;
 

@@ -38,8 +38,8 @@ UndecodableCounts& undecodable_counts() {
   return counts;
 }
 
-/// The catalog topics of a type, for the log line ("plant/cmd"; a type may serve several topics,
-/// e.g. RelativePoseEstimate five: all are named).
+/// The catalog topics of a type, for the log line (a type may serve several topics: all are
+/// named).
 std::string topics_of(const std::string& type_name) {
   std::string names;
   for (const TopicInfo& topic : topic_catalog()) {

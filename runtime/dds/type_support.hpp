@@ -7,7 +7,7 @@
 
 namespace robodds {
 
-/// A new TopicDataType for `type_name` (e.g. "robodds::idl::RobotState") announcing no
+/// A new TopicDataType for `type_name` (e.g. "robodds::idl::SimTick") announcing no
 /// TypeObject/TypeInformation (XCDR1 interop with other vendors), or nullptr if unknown.
 eprosima::fastdds::dds::TopicDataType* make_type_support(const std::string& type_name);
 

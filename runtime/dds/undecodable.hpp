@@ -8,7 +8,7 @@
 
 namespace robodds {
 
-/// Undecodable samples of `type_name` (e.g. "robodds::idl::VelocityCommand") received by this
+/// Undecodable samples of `type_name` (e.g. "robodds::idl::StepDone") received by this
 /// process so far; they never reach an Input.
 std::uint64_t undecodable_samples(const std::string& type_name);
 

@@ -37,6 +37,7 @@ class InputBase {
       add_stream(id);
     }
     std::sort(options_.known_robots.begin(), options_.known_robots.end());
+    keyed_ = !options_.key_names.empty() && options_.key_names != "-";
     pair_keyed_ = options_.key_names.find(',') != std::string::npos;
   }
   virtual ~InputBase() = default;
@@ -47,10 +48,14 @@ class InputBase {
   bool gated() const { return !options_.ignore_step && !options_.expected.empty(); }
   /// The instances (by_robot(): robot ids) needed at every due step, in key order.
   const std::vector<std::uint64_t>& expected() const { return options_.expected; }
-  /// The robot of expected key `key`: the key itself, or its upper 32 bits for a (robot_id, X) key
-  /// that is not a robot stream.
+  /// The robot of expected key `key` (a robot id itself for robot streams).
   std::uint32_t robot_of(std::uint64_t key) const {
-    return static_cast<std::uint32_t>(pair_keyed_ && !options_.by_robot ? key >> 32 : key);
+    return options_.by_robot ? static_cast<std::uint32_t>(key) : robot_of_instance(key);
+  }
+  /// The robot of instance key `key`: the key, its upper 32 bits for a (robot_id, X) key, 0 for
+  /// an unkeyed topic's one instance.
+  std::uint32_t robot_of_instance(std::uint64_t key) const {
+    return !keyed_ ? 0u : static_cast<std::uint32_t>(pair_keyed_ ? key >> 32 : key);
   }
   std::uint64_t rejected_count() const {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -203,18 +208,17 @@ class InputBase {
     if (writer_id == p.refused_writer) {
       return false;
     }
-    const bool yes = options_.producer_assigned(writer_id, key);
+    const bool yes = options_.producer_assigned(writer_id, robot_of_instance(key));
     (yes ? p.assigned_writer : p.refused_writer) = writer_id;
     return yes;
   }
   /// The key names a robot of the scenario (InputOptions::known_robots; the first key part of a
   /// pair). Host-level and unkeyed inputs know every key.
   bool known_key(std::uint64_t key) const {
-    if (options_.known_robots.empty() || options_.ignore_step || options_.key_names.empty() || options_.key_names == "-") {
+    if (options_.known_robots.empty() || options_.ignore_step || !keyed_) {
       return true;
     }
-    const std::uint64_t robot = pair_keyed_ ? key >> 32 : key;
-    return std::binary_search(options_.known_robots.begin(), options_.known_robots.end(), robot);
+    return std::binary_search(options_.known_robots.begin(), options_.known_robots.end(), robot_of_instance(key));
   }
   /// The writer's name for messages (InputOptions::writer_name, else "writer <id>").
   std::string writer_label(std::uint64_t writer_id) const;
@@ -314,6 +318,7 @@ class InputBase {
   // a query for its callers; this is only whom to wake.
   mutable std::uint64_t armed_step_ = 0;
   mutable std::size_t armed_missing_ = 0;
+  bool keyed_ = false;       // the topic has a key (InputOptions::key_names, "-": none)
   bool pair_keyed_ = false;  // the topic's key is (robot_id, X): the robot is its upper 32 bits
 };
 

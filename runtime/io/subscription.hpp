@@ -13,7 +13,8 @@ namespace robodds {
 
 /// What a component chooses when it subscribes: which instances it needs and how many steps
 /// late it reads them, e.g.
-///   ctx.subscribe<idl::VelocityCommand>("plant/cmd", Subscription::instances(ctx.robot_keys()).delayed(1))
+///   ctx.subscribe<Msg>("some/topic", Subscription::instances(ctx.robot_keys()).delayed(1))
+/// (docs/writing-a-component.md shows the robot system's).
 class Subscription {
  public:
   /// Needs these instances (instance_key values, e.g. robot ids from ctx.robot_keys()) at every
@@ -24,8 +25,8 @@ class Subscription {
     s.expected_ = std::move(keys);
     return s;
   }
-  /// For topics keyed (robot_id, X) whose robot moves from one X to another (sensor/range and
-  /// observer/range_rate: X is the target, which a mission event changes): these robot ids, and
+  /// For topics keyed (robot_id, X) whose robot moves from one X to another (e.g. X a target that
+  /// a mission event changes): these robot ids, and
   /// per robot ONE stream whatever its X. In lockstep the component waits, per robot, for the
   /// newest sample of any X, so a producer that switches a robot from (r, 1) to (r, 2) at step S
   /// is waited for at S without the consumer knowing the new X in advance. Read with
@@ -39,8 +40,8 @@ class Subscription {
   /// Takes every instance and waits for none: reads whatever has arrived, which is not
   /// deterministic across deployments (monitoring only).
   static Subscription any_instance() { return Subscription{}; }
-  /// Reads samples of step <= m - steps at step m (1 closes a loop: the plant integrates the
-  /// command of the previous step). Default 0.
+  /// Reads samples of step <= m - steps at step m (1 closes a loop: a consumer acts on what its
+  /// producer computed at the previous step). Default 0.
   Subscription delayed(std::uint64_t steps) const {
     Subscription s = *this;
     s.delay_steps_ = steps;
@@ -85,11 +86,12 @@ struct InputOptions {
   /// A send-once topic (a mission): its producer is never "silent", so no other writer takes an
   /// instance over for want of samples.
   bool send_once = false;
-  /// A scenario run: whether writer `writer_id` may produce instance `key`: its process runs a
-  /// component the scenario assigns to it (or the scenario assigns none: then any writer may, the
-  /// first one wins). Every other writer is refused and counted as unknown_producer, whenever it
-  /// starts. Empty: the first writer of an instance is its producer.
-  std::function<bool(std::uint64_t writer_id, std::uint64_t key)> producer_assigned;
+  /// A scenario run: whether writer `writer_id` may produce the instances of robot `robot` (an
+  /// unkeyed topic: 0): its process runs a component the scenario assigns to them (or the
+  /// scenario assigns none: then any writer may, the first one wins). Every other writer is
+  /// refused and counted as unknown_producer, whenever it starts. Empty: the first writer of an
+  /// instance is its producer.
+  std::function<bool(std::uint64_t writer_id, std::uint32_t robot)> producer_assigned;
   /// The scenario's robot ids: a sample whose key names another robot is refused and counted as
   /// unknown_key without any per-instance state (a flood of keys costs nothing to keep). Empty:
   /// every key is known.

@@ -81,7 +81,8 @@ DdsOptions with_identity(DdsOptions dds, const std::string& identity) {
   return dds;
 }
 
-RunStats run_colocated(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& launch) {
+RunStats run_colocated(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& launch,
+                       const ScenarioProducers& producers) {
   HostOptions options;
   options.member = "colocated";
   options.components = all_components(scenario);
@@ -96,7 +97,7 @@ RunStats run_colocated(const ComponentRegistry& registry, const Scenario& scenar
   // One participant is every group and the coordinator: the `colocated` identity, whose
   // permissions are the union of theirs (tools/robodds/security_policy.hpp).
   return run_in_process(registry, scenario, with_identity(launch.dds, kColocatedIdentity), options,
-                        InProcessRun{time_mode(launch.realtime), launch.out_dir, to_string(Deploy::kColocated)});
+                        InProcessRun{time_mode(launch.realtime), launch.out_dir, to_string(Deploy::kColocated), true, &producers});
 }
 
 /// The command line of the child host of `group`.
@@ -269,13 +270,20 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   run.lockstep_window = std::max<std::size_t>(1, options.lockstep_window);
   const bool has_standby = std::any_of(scenario.components.begin(), scenario.components.end(),
                                        [](const ComponentSpec& c) { return !c.standby_for.empty(); });
-  const ScenarioProducers producers = scenario_producers(registry, scenario, run.mode);
-  if (in_process.assign_producers) {
-    run.assigned_producers = std::make_shared<const AssignedProducers>(assigned_producers(scenario, producers));
+  // Only inputs judge producers: a process without components (a coordinator) needs none.
+  const bool assign = in_process.assign_producers && !options.components.empty();
+  std::optional<ScenarioProducers> found;  // when the caller's start-up check did not find them
+  const ScenarioProducers* producers = in_process.producers;
+  if ((assign || has_standby) && producers == nullptr) {
+    found = scenario_producers(registry, scenario, run.mode);
+    producers = &*found;
+  }
+  if (assign) {
+    run.assigned_producers = std::make_shared<const AssignedProducers>(assigned_producers(scenario, *producers));
   }
   if (has_standby) {  // hot standby: the topics it writes use exclusive ownership
-    run.exclusive_topics = exclusive_topics(scenario, producers);
-    apply_exclusive_ownership(*bus, scenario, producers, run.exclusive_topics, options.components);
+    run.exclusive_topics = exclusive_topics(scenario, *producers);
+    apply_exclusive_ownership(*bus, scenario, *producers, run.exclusive_topics, options.components);
   }
   Host host(registry, run, options);
   // The readers call into the host's inputs and the notifier: delete them first, also on a throw.
@@ -291,17 +299,22 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
 }
 
 /// The registered scenario checks (shared facts), one producer per topic instance and where
-/// standbys may run, before anything starts.
-static void check_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode, bool single_process) {
+/// standbys may run, before anything starts. Returns the scenario's producers it found, for the
+/// run (InProcessRun::producers): finding them configures every component once.
+static ScenarioProducers check_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode,
+                                         bool single_process) {
   registry.check_scenario(scenario);
   check_standby_deployment(scenario, mode, single_process);
-  check_one_producer_per_instance(scenario, scenario_producers(registry, scenario, mode));
+  ScenarioProducers producers = scenario_producers(registry, scenario, mode);
+  check_one_producer_per_instance(scenario, producers);
+  return producers;
 }
 
 RunStats launch_run(const ComponentRegistry& registry, const Scenario& scenario, const LaunchOptions& options) {
-  check_producers(registry, scenario, time_mode(options.realtime), options.deploy == Deploy::kColocated);
+  const ScenarioProducers producers =
+      check_producers(registry, scenario, time_mode(options.realtime), options.deploy == Deploy::kColocated);
   try {
-    return options.deploy == Deploy::kColocated ? run_colocated(registry, scenario, options)
+    return options.deploy == Deploy::kColocated ? run_colocated(registry, scenario, options, producers)
                                                 : run_as_processes(registry, scenario, options);
   } catch (const RunError& e) {
     // The hosts have stopped (the children are reaped): the evaluator's partial summary, or none.
@@ -342,7 +355,7 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
 
 int run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop) {
   const Scenario scenario = host_scenario(registry, args);
-  check_producers(registry, scenario, time_mode(args.realtime), false);
+  const ScenarioProducers producers = check_producers(registry, scenario, time_mode(args.realtime), false);
   if (!args.out.empty() && args.deploy != to_string(Deploy::kProcesses)) {
     make_output_dir(args.out);  // a child of `robodds run --deploy processes` gets a checked one
   }
@@ -413,7 +426,7 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
   // A component executable without a scenario file knows no other producer: the first writer rule.
   const bool assign_producers = args.type.empty();
   const RunStats stats = run_in_process(registry, scenario, with_identity(resolve_dds(args.dds, "robodds-" + options.member), identity),
-                                        options, InProcessRun{time_mode(args.realtime), args.out, args.deploy, assign_producers});
+                                        options, InProcessRun{time_mode(args.realtime), args.out, args.deploy, assign_producers, &producers});
   const std::string figures = std::to_string(stats.steps) + " steps in " + shortest_text(std::round(stats.wall_s * 10.0) / 10.0) + " s";
   if (!stats.degraded.empty()) {
     log::error(options.member, run_name + " ended DEGRADED after " + figures + ": " + stats.degraded + " (exit code " +

@@ -12,6 +12,7 @@
 
 #include "runtime/dds/dds_bus.hpp"
 #include "runtime/host/host.hpp"
+#include "runtime/host/producer_check.hpp"
 #include "runtime/launch/host_args.hpp"
 #include "runtime/launch/output_dir.hpp"
 #include "runtime/component/registry.hpp"
@@ -59,6 +60,9 @@ struct InProcessRun {
   /// Inputs accept an instance only from the producers the scenario assigns to it
   /// (RunContext::assigned_producers); false: the first writer rule (a component without a scenario).
   bool assign_producers = true;
+  /// The scenario's producers (scenario_producers()) as the caller's start-up check found them;
+  /// null: found here when needed.
+  const ScenarioProducers* producers = nullptr;
 };
 
 /// Creates a DDS bus and a Host for `options.components` and runs them to the end.

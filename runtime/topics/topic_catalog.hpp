@@ -17,7 +17,7 @@ namespace robodds {
 
 struct TopicInfo {
   std::string name;
-  std::string type_name;  // e.g. robodds::idl::RobotState
+  std::string type_name;  // e.g. robodds::idl::SimTick
   QosClass qos_class;     // the real-time profile; lockstep substitutes (qos_profile_for)
   std::string key;        // key members in IDL order, e.g. "robot_id, peer_id"; "-" = unkeyed (from the IDL)
   std::string producers;  // free text (markdown), shown only in docs/topics.md

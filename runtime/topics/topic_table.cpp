@@ -9,7 +9,7 @@ namespace {
 
 std::string code(const std::string& text) { return "`" + text + "`"; }
 
-/// "robodds::idl::RobotState" -> "RobotState".
+/// "robodds::idl::SimTick" -> "SimTick".
 std::string short_type_name(const std::string& type_name) {
   const std::size_t colons = type_name.rfind("::");
   return colons == std::string::npos ? type_name : type_name.substr(colons + 2);

@@ -435,7 +435,7 @@ TEST_F(InputTest, AScenarioRunRefusesAnUnassignedWriterEvenIfItCameFirst) {
   for (TimeMode mode : {TimeMode::kRealtime, TimeMode::kLockstep}) {
     clock.mode = mode;
     detail::InputOptions options = named_writers();
-    options.producer_assigned = [](std::uint64_t writer, std::uint64_t key) { return key == 1 && writer == 8; };
+    options.producer_assigned = [](std::uint64_t writer, std::uint32_t robot) { return robot == 1 && writer == 8; };
     Input<idl::RobotState> input("plant/cmd", "test", &clock, &notifier, options);
     input.on_sample(state(1, 0, 1, 9.0), SampleMeta{7, 1'000'000'000});  // foreign, first
     input.on_sample(state(1, 0, 1, 2.0), SampleMeta{8, 1'100'000'000});  // the scenario's producer
