@@ -10,6 +10,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace robodds {
@@ -75,6 +76,18 @@ class ReaderHandle {
   virtual ~ReaderHandle() = default;
 };
 
+/// Which instance keys a subscriber takes (e.g. those of a scenario's robots), so that a
+/// transport can drop a sample of any other key before it keeps anything for that key (Fast DDS:
+/// an instance in the reader's history, with a deadline timer, for good): a flood of keys must
+/// cost nothing to keep (docs/security.md, "Floods").
+struct KeyFilter {
+  /// Whether the subscriber takes instance key `key` (the sample's 64-bit instance key).
+  std::function<bool(std::uint64_t key)> takes;
+  /// The transport dropped a sample of `key` from writer `writer_id` (SampleMeta::writer_id)
+  /// because no subscriber of its reader takes that key: count it as the subscriber would.
+  std::function<void(std::uint64_t key, std::uint64_t writer_id)> refused;
+};
+
 class Bus {
  public:
   virtual ~Bus() = default;
@@ -85,6 +98,16 @@ class Bus {
   virtual std::shared_ptr<ReaderHandle> reader(const std::string& topic, const std::string& type_name,
                                                const std::string& profile, SampleCallback on_sample,
                                                ReaderEventCallback on_event) = 0;
+  /// reader() for a subscriber that takes only the keys `filter` takes. A sample whose key no
+  /// subscriber of the reader takes may be dropped before the transport keeps any state for it;
+  /// then each subscriber's `refused` is called instead of its `on_sample`. A subscriber added
+  /// with reader() takes every key. Default: reader() (a bus that keeps no per-key state, e.g.
+  /// MemoryBus: the subscriber's own check refuses such samples).
+  virtual std::shared_ptr<ReaderHandle> filtered_reader(const std::string& topic, const std::string& type_name,
+                                                        const std::string& profile, SampleCallback on_sample,
+                                                        ReaderEventCallback on_event, KeyFilter /*filter*/) {
+    return reader(topic, type_name, profile, std::move(on_sample), std::move(on_event));
+  }
   /// Waits until every reliable writer's samples are acknowledged (before a process exits).
   virtual void flush(std::chrono::milliseconds timeout) = 0;
   /// One line naming this process's topics without a matched peer and any incompatible QoS

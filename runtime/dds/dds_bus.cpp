@@ -9,6 +9,7 @@
 #include <fastdds/dds/subscriber/DataReader.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/ContentFilteredTopic.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
@@ -17,14 +18,17 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "runtime/dds/key_filter.hpp"
 #include "runtime/dds/listeners.hpp"
 #include "runtime/dds/match_report.hpp"
 #include "runtime/dds/participant.hpp"
 #include "runtime/dds/qos_files.hpp"
+#include "runtime/dds/text.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/bus/instance_spread.hpp"
 #include "runtime/base/log.hpp"
@@ -163,6 +167,13 @@ class FastDdsBus : public DdsBus {
     // status reaches this listener, so on_data_available stays with the readers' listeners.
     participant_ = create_participant(options.domain_id, qos, &peers_, dds::StatusMask::none(), options.participant_profile);
     peers_.set_self(participant_->guid().guidPrefix, options.components);
+    // A class name no other participant knows: our readers' filters are never evaluated by a
+    // writer (Fast DDS does so for a writer whose participant registered the same class).
+    key_filters_ = std::make_unique<KeyFilterFactory>("robodds.keys." + guid_prefix_text(participant_->guid().guidPrefix));
+    if (participant_->register_content_filter_factory(key_filters_->class_name().c_str(), key_filters_.get()) !=
+        ReturnCode_t::RETCODE_OK) {
+      throw RunError("could not register the key filter factory on domain " + std::to_string(options.domain_id));
+    }
     publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
     subscriber_ = participant_->create_subscriber(dds::SUBSCRIBER_QOS_DEFAULT);
     if (publisher_ == nullptr || subscriber_ == nullptr) {
@@ -244,23 +255,13 @@ class FastDdsBus : public DdsBus {
 
   std::shared_ptr<ReaderHandle> reader(const std::string& topic, const std::string& type_name, const std::string& profile,
                                        SampleCallback on_sample, ReaderEventCallback on_event) override {
-    std::lock_guard<std::mutex> lock(mutex_);
-    const std::string key = topic + "|" + profile;
-    auto it = readers_.find(key);
-    if (it == readers_.end()) {
-      ensure_topic(topic, type_name);
-      PendingReader pending;
-      pending.topic = topic;
-      pending.type_name = type_name;
-      pending.profile = profile;
-      pending.listener = std::make_unique<ReaderListener>(type_name, topic, &peers_);
-      it = readers_.emplace(key, std::move(pending)).first;
-    }
-    it->second.listener->add(std::move(on_sample), std::move(on_event));
-    if (started_) {
-      create_reader(it->second);
-    }
-    return std::make_shared<DdsReader>();
+    return add_reader(topic, type_name, profile, std::move(on_sample), std::move(on_event), std::nullopt);
+  }
+
+  std::shared_ptr<ReaderHandle> filtered_reader(const std::string& topic, const std::string& type_name,
+                                                const std::string& profile, SampleCallback on_sample,
+                                                ReaderEventCallback on_event, KeyFilter filter) override {
+    return add_reader(topic, type_name, profile, std::move(on_sample), std::move(on_event), std::move(filter));
   }
 
   void start() override {
@@ -367,8 +368,61 @@ class FastDdsBus : public DdsBus {
     std::string type_name;
     std::string profile;
     std::unique_ptr<ReaderListener> listener;
+    // The subscribers' key rules (Bus::KeyFilter); Fast DDS evaluates it through filtered_topic.
+    std::unique_ptr<ReaderKeyFilter> key_filter;
+    dds::ContentFilteredTopic* filtered_topic = nullptr;  // owned by participant_; made once
     dds::DataReader* reader = nullptr;
   };
+
+  /// reader() and filtered_reader(): one DDS reader per (topic, profile), a callback per call.
+  std::shared_ptr<ReaderHandle> add_reader(const std::string& topic, const std::string& type_name, const std::string& profile,
+                                           SampleCallback on_sample, ReaderEventCallback on_event,
+                                           std::optional<KeyFilter> filter) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const std::string key = topic + "|" + profile;
+    auto it = readers_.find(key);
+    if (it == readers_.end()) {
+      ensure_topic(topic, type_name);
+      PendingReader pending;
+      pending.topic = topic;
+      pending.type_name = type_name;
+      pending.profile = profile;
+      pending.listener = std::make_unique<ReaderListener>(type_name, topic, &peers_);
+      pending.key_filter = std::make_unique<ReaderKeyFilter>(participant_->find_type(type_name), type_name);
+      it = readers_.emplace(key, std::move(pending)).first;
+    }
+    // A reader made before a subscriber without a rule joins keeps its content filter, which
+    // then passes every sample (ReaderKeyFilter::evaluate).
+    if (filter) {
+      it->second.key_filter->add(std::move(*filter));
+    } else {
+      it->second.key_filter->add_unfiltered();
+    }
+    it->second.listener->add(std::move(on_sample), std::move(on_event));
+    if (started_) {
+      create_reader(it->second);
+    }
+    return std::make_shared<DdsReader>();
+  }
+
+  /// The topic a reader reads: the topic itself, or, when every subscriber so far has a key rule,
+  /// a ContentFilteredTopic of it evaluated by the reader's ReaderKeyFilter (key_filter.hpp).
+  dds::TopicDescription* topic_to_read(PendingReader& pending) {
+    if (pending.filtered_topic == nullptr && pending.key_filter->filters()) {
+      // Not a name of any DDS topic ('|' is in none of ours); also the filter's expression.
+      const std::string name = pending.topic + "|keys|" + pending.profile;
+      key_filters_->add(name, pending.key_filter.get());
+      pending.filtered_topic = participant_->create_contentfilteredtopic(name, topics_.at(pending.topic), name, {},
+                                                                         key_filters_->class_name().c_str());
+      if (pending.filtered_topic == nullptr) {
+        throw RunError("could not create the key filter of topic " + pending.topic + ": Fast DDS: " + take_dds_errors());
+      }
+    }
+    if (pending.filtered_topic != nullptr) {
+      return pending.filtered_topic;
+    }
+    return topics_.at(pending.topic);
+  }
 
   void create_reader(PendingReader& pending) {
     if (pending.reader != nullptr) {
@@ -377,14 +431,14 @@ class FastDdsBus : public DdsBus {
     dds::StatusMask mask = dds::StatusMask::data_available() << dds::StatusMask::requested_incompatible_qos()
                            << dds::StatusMask::requested_deadline_missed() << dds::StatusMask::liveliness_changed()
                            << dds::StatusMask::subscription_matched();
+    dds::TopicDescription* topic = topic_to_read(pending);
     if (exclusive_.count(pending.topic) == 0) {
-      pending.reader = subscriber_->create_datareader_with_profile(topics_.at(pending.topic), pending.profile,
-                                                                   pending.listener.get(), mask);
+      pending.reader = subscriber_->create_datareader_with_profile(topic, pending.profile, pending.listener.get(), mask);
     } else {
       dds::DataReaderQos qos;
       if (subscriber_->get_datareader_qos_from_profile(pending.profile, qos) == ReturnCode_t::RETCODE_OK) {
         qos.ownership().kind = dds::EXCLUSIVE_OWNERSHIP_QOS;
-        pending.reader = subscriber_->create_datareader(topics_.at(pending.topic), qos, pending.listener.get(), mask);
+        pending.reader = subscriber_->create_datareader(topic, qos, pending.listener.get(), mask);
       }
     }
     if (pending.reader == nullptr) {
@@ -430,6 +484,7 @@ class FastDdsBus : public DdsBus {
   // What the participant and its entities call into: declared before participant_, so that they
   // outlive it (members die in reverse order, also when the constructor throws).
   PeerDirectory peers_;
+  std::unique_ptr<KeyFilterFactory> key_filters_;  // registered on participant_ by its class name
   mutable std::mutex mutex_;
   std::map<std::string, std::unique_ptr<WriterListener>> writer_listeners_;
   std::map<std::string, PendingReader> readers_;

@@ -140,9 +140,7 @@ class Input : public InputBase {
     std::size_t i = instance_index_.find(key);
     if (i == KeyIndex::kNone) {
       if (!known_key(key)) {
-        // Counted, and nothing kept for the key: a flood of keys grows no state.
-        count_rejection_lazily(detail::kRejectUnknownKey, meta.writer_id,
-                               [key] { return "(key " + std::to_string(key) + "): the scenario has no such robot"; });
+        refuse_unknown_key(key, meta.writer_id);
         return false;
       }
       const std::size_t stream = wanted_stream(stream_of(key));

@@ -65,6 +65,19 @@ class InputBase {
     std::lock_guard<std::mutex> lock(mutex_);
     return counts_;
   }
+  /// Whether this input takes a sample of instance `key` at all: its key names a robot of the
+  /// scenario (InputOptions::known_robots). Bus::KeyFilter::takes, so that the transport drops
+  /// the others before it keeps state for them. Reads only what the constructor set: no lock.
+  bool takes_key(std::uint64_t key) const { return known_key(key); }
+  /// Whether takes_key() refuses any key: a keyed component input of a scenario run. Host-level
+  /// and unkeyed inputs take every key.
+  bool filters_keys() const { return !options_.known_robots.empty() && !options_.ignore_step && keyed_; }
+  /// The transport dropped a sample of `key` (takes_key() false) from writer `writer_id`: counted
+  /// as unknown_key, as store() counts one that reaches the input. Bus::KeyFilter::refused.
+  void count_unknown_key(std::uint64_t key, std::uint64_t writer_id) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    refuse_unknown_key(key, writer_id);
+  }
   /// Counts an accepted sample the component corrected before use, under `reason`.
   void count_adjusted(const std::string& reason) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -215,10 +228,16 @@ class InputBase {
   /// The key names a robot of the scenario (InputOptions::known_robots; the first key part of a
   /// pair). Host-level and unkeyed inputs know every key.
   bool known_key(std::uint64_t key) const {
-    if (options_.known_robots.empty() || options_.ignore_step || !keyed_) {
+    if (!filters_keys()) {
       return true;
     }
     return std::binary_search(options_.known_robots.begin(), options_.known_robots.end(), robot_of_instance(key));
+  }
+  /// A sample of `key` (known_key() false) refused as unknown_key: counted, the first one of each
+  /// writer logged, nothing kept for the key (a flood of keys grows no state). Call with mutex_ held.
+  void refuse_unknown_key(std::uint64_t key, std::uint64_t writer_id) {
+    count_rejection_lazily(detail::kRejectUnknownKey, writer_id,
+                           [key] { return "(key " + std::to_string(key) + "): the scenario has no such robot"; });
   }
   /// The writer's name for messages (InputOptions::writer_name, else "writer <id>").
   std::string writer_label(std::uint64_t writer_id) const;

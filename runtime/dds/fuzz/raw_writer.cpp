@@ -3,7 +3,8 @@
 // docs/interop.md "Hostile input").
 //
 //   robodds-fuzz --domain D --topics plant/cmd,sensor/position [--count N] [--rate HZ] [--seed S]
-//                [--key ID] [--qos FILE]... [--participant-profile P] [--match-timeout S]
+//                [--key ID] [--kinds random,body,header] [--qos FILE]... [--participant-profile P]
+//                [--match-timeout S]
 //
 // For every topic it registers a TopicDataType under the topic's IDL type name (topic catalog)
 // whose "serialization" copies caller-given bytes, and writes with the topic's real-time QoS
@@ -15,6 +16,8 @@
 //   header      a valid encapsulation header and random bytes of random length 4..2*max.
 // --key ID writes ID as the first key member (robot_id) of the `body` payloads, so they decode
 // as samples of that robot; without it the key is random too (samples of unknown robots).
+// --kinds: the kinds written, in turn (default all three); `--kinds body` without --key is a
+// flood of decodable samples of distinct unknown robots (tests/integration/key_flood_test.sh).
 // Prints written_until_ns=<wall clock ns after the last payload>, then one line per topic
 // (payloads written per kind, write failures, matched readers).
 // --self-check: a second participant in this process reads every topic with the runtime's type
@@ -137,6 +140,7 @@ struct Options {
   double rate_hz = 1000.0;
   std::uint64_t seed = 1;
   std::int64_t key = -1;
+  std::vector<std::string> kinds = {"random", "body", "header"};
   std::vector<std::string> qos_files;
   std::string participant_profile = robodds::kDefaultParticipantProfile;
   double match_timeout_s = 15.0;
@@ -341,11 +345,15 @@ int run(const Options& o) {
     }
   }
 
+  std::vector<int> kinds;
+  for (const std::string& name : o.kinds) {
+    kinds.push_back(static_cast<int>(std::find(std::begin(kKindNames), std::end(kKindNames), name) - std::begin(kKindNames)));
+  }
   std::mt19937_64 rng(o.seed);
   const auto period = std::chrono::duration<double>(1.0 / o.rate_hz);
   auto next = std::chrono::steady_clock::now();
   for (std::uint64_t i = 0; i < o.count; ++i) {
-    const int kind = static_cast<int>(i % 3);
+    const int kind = kinds[i % kinds.size()];
     for (Target& t : targets) {
       RawSample sample = make_payload(kind, t, o.key, rng);
       if (t.writer->write(&sample)) {  // DataWriter::write(void*) returns bool in 2.9
@@ -400,6 +408,9 @@ int main(int argc, char** argv) {
   app.add_option("--rate", o.rate_hz, "payloads per topic per second")->check(CLI::Range(1.0, 1e6));
   app.add_option("--seed", o.seed, "random seed");
   app.add_option("--key", o.key, "robot_id written into the `body` payloads (default: random)")->check(CLI::Range(std::int64_t{0}, std::int64_t{0xffffffff}));
+  app.add_option("--kinds", o.kinds, "payload kinds written in turn: random, body, header (default: all)")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"random", "body", "header"}));
   app.add_option("--qos", o.qos_files, "QoS XML file(s) (default: the share dir's deploy/qos/robodds_qos.xml)");
   app.add_option("--participant-profile", o.participant_profile, "participant profile");
   app.add_option("--match-timeout", o.match_timeout_s, "s, max wait for a reader of every topic")->check(CLI::Range(0.0, 3600.0));

@@ -478,6 +478,33 @@ TEST_F(InputTest, KeysOfRobotsOutsideTheScenarioAreRefusedWithoutState) {
   EXPECT_EQ(input.counts().rejected.at(detail::kRejectUnknownKey), 20000U);
 }
 
+// The same rule as a transport's key filter asks it (Bus::KeyFilter): which keys the input takes,
+// and the samples the transport dropped counted as if they had arrived.
+TEST_F(InputTest, TheKeyRuleForTheTransportMatchesStoreAndCountsWhatItDropped) {
+  clock.mode = TimeMode::kRealtime;
+  detail::InputOptions options;
+  options.key_names = "robot_id, peer_id";
+  options.known_robots = {1, 2};
+  Input<idl::RobotState> input("sensor/uwb", "test", &clock, &notifier, options);
+  EXPECT_TRUE(input.filters_keys());
+  EXPECT_TRUE(input.takes_key(std::uint64_t{2} << 32 | 7));
+  EXPECT_FALSE(input.takes_key(std::uint64_t{3} << 32 | 1));
+  input.count_unknown_key(std::uint64_t{3} << 32 | 1, 0);
+  input.count_unknown_key(std::uint64_t{4} << 32 | 1, 0);
+  EXPECT_EQ(input.counts().rejected.at(detail::kRejectUnknownKey), 2U);
+  EXPECT_TRUE(input.instances().empty());
+  // Host-level and unkeyed inputs, and inputs without a scenario's robots, take every key.
+  detail::InputOptions host = options;
+  host.ignore_step = true;
+  EXPECT_FALSE(Input<idl::RobotState>("sim/clock", "test", &clock, &notifier, host).filters_keys());
+  detail::InputOptions unkeyed = options;
+  unkeyed.key_names = "-";
+  EXPECT_FALSE(Input<idl::RobotState>("run/health", "test", &clock, &notifier, unkeyed).filters_keys());
+  detail::InputOptions standalone = options;
+  standalone.known_robots.clear();
+  EXPECT_FALSE(Input<idl::RobotState>("plant/state", "test", &clock, &notifier, standalone).filters_keys());
+}
+
 TEST_F(InputTest, ExclusiveOwnershipMakesAChangeOfWriterAHandOver) {
   clock.mode = TimeMode::kRealtime;
   detail::InputOptions options = named_writers();
