@@ -135,6 +135,7 @@ python3 - "$WORK/out/summary.json" "$WORK/fuzz.txt" <<'PY' || fail "summary.json
 import json, sys
 summary = json.load(open(sys.argv[1]))
 written = {l.split()[1]: int(dict(kv.split("=") for kv in l.split()[2:])["body"]) for l in open(sys.argv[2]) if l.startswith("fuzz ")}
+print("missed steps per host:", ", ".join(f"{k} {v.get('missed_steps')}" for k, v in summary["hosts"].items()))
 ok = True
 for component, topic in (("plant", "plant/cmd"), ("evaluator", "plant/cmd"), ("evaluator", "sensor/position")):
     c = summary["inputs"][component][topic]
