@@ -43,6 +43,9 @@ bool InputBase::accept_other_writer(Progress& p, const std::string& label, const
 }
 
 std::string InputBase::writer_label(std::uint64_t writer_id) const {
+  if (writer_id == 0) {
+    return "an unnamed writer";  // SampleMeta 0: e.g. a sample the transport's key filter dropped
+  }
   return options_.writer_name ? options_.writer_name(writer_id) : "writer " + std::to_string(writer_id);
 }
 

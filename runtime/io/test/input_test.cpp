@@ -489,8 +489,12 @@ TEST_F(InputTest, TheKeyRuleForTheTransportMatchesStoreAndCountsWhatItDropped) {
   EXPECT_TRUE(input.filters_keys());
   EXPECT_TRUE(input.takes_key(std::uint64_t{2} << 32 | 7));
   EXPECT_FALSE(input.takes_key(std::uint64_t{3} << 32 | 1));
+  testing::internal::CaptureStderr();
   input.count_unknown_key(std::uint64_t{3} << 32 | 1, 0);
   input.count_unknown_key(std::uint64_t{4} << 32 | 1, 0);
+  const std::string log = testing::internal::GetCapturedStderr();
+  EXPECT_NE(log.find("rejected a sample on sensor/uwb from an unnamed writer (key 12884901889)"), std::string::npos) << log;
+  EXPECT_EQ(log.find("rejected", log.find("rejected") + 1), std::string::npos) << "logged once: " << log;
   EXPECT_EQ(input.counts().rejected.at(detail::kRejectUnknownKey), 2U);
   EXPECT_TRUE(input.instances().empty());
   // Host-level and unkeyed inputs, and inputs without a scenario's robots, take every key.
