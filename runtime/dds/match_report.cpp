@@ -5,6 +5,7 @@
 
 #include "runtime/dds/component_announcement.hpp"
 #include "runtime/dds/text.hpp"
+#include "runtime/bus/bus.hpp"
 #include "runtime/base/log.hpp"
 
 namespace robodds {
@@ -31,9 +32,14 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
       // Dropped = its lease expired without a goodbye: the host died or its network did.
       log::warn("dds", "participant '" + name + "' dropped: no announcement within its lease (host or network down?)");
       alive_.erase(key);
+      losses_.push_back(PeerLoss{name, true, monotonic_now_ns()});
+      loss_count_ = losses_.size();
       break;
     case rtps::ParticipantDiscoveryInfo::REMOVED_PARTICIPANT:
+      log::debug("dds", "participant '" + name + "' left");
       alive_.erase(key);
+      losses_.push_back(PeerLoss{name, false, monotonic_now_ns()});
+      loss_count_ = losses_.size();
       break;
     default:
       break;
@@ -209,6 +215,11 @@ std::vector<std::string> PeerDirectory::discovered_names() const {
   }
   std::sort(names.begin(), names.end());
   return names;
+}
+
+std::vector<PeerLoss> PeerDirectory::losses() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return losses_;
 }
 
 std::size_t PeerDirectory::participants_alive() const {
