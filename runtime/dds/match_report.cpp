@@ -17,6 +17,11 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
   switch (info.status) {
     case rtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT:
     case rtps::ParticipantDiscoveryInfo::CHANGED_QOS_PARTICIPANT: {
+      if (info.status == rtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT &&
+          std::any_of(losses_.begin(), losses_.end(), [&name](const PeerLoss& loss) { return loss.participant == name; })) {
+        // Back after a drop (a cut link restored) or a restart: its endpoints match again as new ones.
+        log::info("dds", "participant '" + name + "' discovered again after it was lost");
+      }
       names_[key] = name;
       alive_.insert(key);
       const std::vector<std::uint8_t> user_data(info.info.m_userData.begin(), info.info.m_userData.end());
