@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <thread>
 
 #include "common/number_text.hpp"
@@ -12,9 +11,9 @@
 #include "runtime/lockstep/lockstep_coordinator.hpp"
 #include "runtime/lockstep/lockstep_host.hpp"
 #include "runtime/bus/memory_bus.hpp"
-#include "runtime/bus/peer_losses.hpp"
 #include "runtime/health/overrun_counter.hpp"
 #include "runtime/health/peer_watch.hpp"
+#include "runtime/host/peer_loss_watch.hpp"
 #include "runtime/host/producer_check.hpp"
 
 namespace robodds {
@@ -23,26 +22,6 @@ namespace {
 using host_detail::Clock;
 using host_detail::ComponentSlot;
 using host_detail::seconds_since;
-
-/// Participant names of a lockstep coordinator without components: `robodds host --coordinate`
-/// ("coordinator") and the runner of `robodds run --deploy processes` ("run").
-bool is_coordinator_participant(const std::string& participant) {
-  return participant == participant_name_of_group("coordinator") || participant == participant_name_of_group("run");
-}
-
-/// Real time: a host that leaves cleanly this close to the run's end (s) is ending with it: the
-/// hosts end at the same wall time, apart by their clocks' offset and their last step.
-constexpr double kEndMarginS = 1.0;
-
-/// Lockstep: how long a host that lost its coordinator waits for the loss of a group that would
-/// explain it (s); within the participant announcement period, so it adds little to the bound.
-constexpr double kCoordinatorGraceS = 0.5;
-
-std::string how_lost(const PeerLoss& loss) {
-  return loss.dropped ? "its participant '" + loss.participant +
-                            "' dropped: no announcement within its lease (killed, frozen, or its machine or network down)"
-                      : "its participant '" + loss.participant + "' left before the run's end (it failed or was stopped)";
-}
 
 }  // namespace
 
@@ -55,11 +34,7 @@ struct Host::Impl {
   std::unique_ptr<LockstepHost> lockstep_host;                // lockstep, when this host runs components
   std::unique_ptr<LockstepCoordinator> lockstep_coordinator;  // lockstep, when it publishes the ticks
   std::unique_ptr<HealthExchange> health;                     // across processes: run/health
-  const PeerLossSource* peer_losses = nullptr;                // across processes: participants that went away
-  std::size_t peer_losses_seen = 0;
-  bool coordinator_lost = false;                              // lockstep: no one to report a failure to
-  std::string coordinator_lost_how;                           // lockstep: the coordinator went away (how_lost())
-  Clock::time_point coordinator_lost_at;
+  std::unique_ptr<PeerLossWatch> peer_losses;                 // across processes: hosts that went away
 
   Impl(const ComponentRegistry& r, RunContext rc, HostOptions o) : registry(r), run(std::move(rc)), options(std::move(o)) {}
 
@@ -129,113 +104,6 @@ struct Host::Impl {
     }
   }
 
-  /// The scenario's groups other than this host's.
-  std::vector<std::string> other_groups() const {
-    std::vector<std::string> others;
-    for (const GroupSpec& group : run.scenario->groups) {
-      if (group.name != options.member) {
-        others.push_back(group.name);
-      }
-    }
-    return others;
-  }
-
-  /// The losses of peers the bus reported since the last call; none (one atomic load) mostly.
-  std::vector<PeerLoss> new_peer_losses() {
-    if (peer_losses == nullptr || peer_losses->peer_loss_count() == peer_losses_seen) {
-      return {};
-    }
-    std::vector<PeerLoss> all = peer_losses->peer_losses();
-    std::vector<PeerLoss> fresh(all.begin() + static_cast<std::ptrdiff_t>(std::min(peer_losses_seen, all.size())), all.end());
-    peer_losses_seen = all.size();
-    return fresh;
-  }
-
-  /// Lockstep across processes (issue 24, finding 6): a lost peer ends the run at once instead of
-  /// after the tick or acknowledgement timeout. A host fails when another group's or the
-  /// coordinator's participant drops (its lease expired: killed, frozen, network down), or when
-  /// the coordinator leaves before this host acknowledged the final step (the coordinator ends
-  /// only after every member did, so it failed: its own log names why). A group that leaves
-  /// cleanly has either acknowledged the final step or reported its failure to the coordinator,
-  /// which then ends the run; so only its drop counts. The coordinator fails when a member drops.
-  void check_lockstep_peers(std::uint64_t step) {
-    for (const PeerLoss& loss : new_peer_losses()) {
-      const bool is_coordinator = is_coordinator_participant(loss.participant);
-      if (lockstep_host && !lockstep_host->done()) {
-        const std::string group = group_of_participant(loss.participant, other_groups());
-        if (is_coordinator && coordinator_lost_how.empty()) {
-          coordinator_lost_how = how_lost(loss);
-          coordinator_lost_at = Clock::now();
-        }
-        if (loss.dropped && !group.empty()) {
-          throw RunError("lockstep: group '" + group + "' lost at step " + std::to_string(step) + ": " + how_lost(loss));
-        }
-      }
-      if (lockstep_coordinator && !lockstep_coordinator->done() && loss.dropped) {
-        const std::string group = group_of_participant(loss.participant, options.members);
-        if (!group.empty()) {
-          throw RunError("lockstep: group '" + group + "' lost at step " + std::to_string(step) + ": " + how_lost(loss));
-        }
-      }
-    }
-    // A coordinator that ends the run because a group died leaves at about the moment this host
-    // learns of that death itself (the same lease, the same last announcement): wait a little for
-    // it, so that this host's error names the group rather than the coordinator.
-    if (!coordinator_lost_how.empty() && seconds_since(coordinator_lost_at) > kCoordinatorGraceS) {
-      coordinator_lost = true;
-      throw RunError(options.member + ": lockstep: the coordinator was lost at step " + std::to_string(step) + ": " +
-                     coordinator_lost_how);
-    }
-  }
-
-  /// Real time across processes (issue 24, finding 6): another group's host lost during the run
-  /// (its participant dropped, or it left more than kEndMarginS before the end) makes this host's
-  /// run degraded, named with the time after step 0; the run goes on (the components' own
-  /// freshness timeouts stop what depended on it). A group whose every component has a hot
-  /// standby in another group is taken over, not lost: a warning only.
-  void watch_peer_losses(PeerWatch& watch, double elapsed_s, double remaining_s) {
-    for (const PeerLoss& loss : new_peer_losses()) {
-      const std::string group = group_of_participant(loss.participant, other_groups());
-      if (group.empty() || (!loss.dropped && remaining_s < kEndMarginS)) {
-        continue;
-      }
-      const double at_s = elapsed_s - static_cast<double>(monotonic_now_ns() - loss.at_ns) * 1e-9;
-      const std::string standbys = standby_groups_of(group);
-      if (!standbys.empty()) {
-        log::warn(options.member, "group '" + group + "' lost at " + shortest_text(std::round(at_s * 100.0) / 100.0) +
-                                      " s after the start (" + how_lost(loss) + "); its hot standby in " + standbys + " takes over");
-        continue;
-      }
-      if (watch.lost(group, at_s, how_lost(loss))) {
-        log::warn(options.member, "degraded: " + watch.degraded() +
-                                      "; the run goes on (the components' own input timeouts stop what depended on it)");
-      }
-    }
-  }
-
-  /// "'estimation_standby'" when every component of `group` has a hot standby in another group
-  /// (the groups, quoted); "" when one has none.
-  std::string standby_groups_of(const std::string& group) const {
-    std::string groups;
-    for (const std::string& primary : run.scenario->group(group).components) {
-      std::string found;
-      for (const GroupSpec& other : run.scenario->groups) {
-        for (const std::string& name : other.components) {
-          if (other.name != group && run.scenario->component(name).standby_for == primary) {
-            found = other.name;
-          }
-        }
-      }
-      if (found.empty()) {
-        return "";
-      }
-      if (groups.find("'" + found + "'") == std::string::npos) {
-        groups += (groups.empty() ? "'" : ", '") + found + "'";
-      }
-    }
-    return groups;
-  }
-
   void check_stop() const {
     if (options.stop != nullptr && options.stop->load()) {
       throw RunError(options.member + ": interrupted by a signal");
@@ -258,9 +126,9 @@ struct Host::Impl {
     if (!run.single_process && !slots.empty()) {
       health = std::make_unique<HealthExchange>(run, options.member, options.run_id, health_sources());
     }
-    if (!run.single_process) {
-      peer_losses = dynamic_cast<const PeerLossSource*>(run.bus);  // null: a bus that discovers no peers
-    }
+    // Null source: a bus that discovers no peers (in memory, co-located).
+    peer_losses = std::make_unique<PeerLossWatch>(run.single_process ? nullptr : dynamic_cast<const PeerLossSource*>(run.bus),
+                                                  *run.scenario, options.member, options.members);
     if (run.mode != TimeMode::kLockstep) {
       return;
     }
@@ -304,7 +172,7 @@ struct Host::Impl {
       if (options.poll) {
         options.poll();
       }
-      check_lockstep_peers(stats.steps);
+      peer_losses->check_lockstep(stats.steps, !host_done(), !coordinator_done());
       const std::uint64_t seen = run.notifier->generation();
       bool progressed = false;
       if (!host_done()) {
@@ -366,7 +234,7 @@ struct Host::Impl {
       }
       last_run = current;
       watch_peers(peers, seconds_since(start), next_peer_check_s);
-      watch_peer_losses(peers, elapsed_s, static_cast<double>(last + 1) * step_s - elapsed_s);
+      peer_losses->check_realtime(peers, elapsed_s, static_cast<double>(last + 1) * step_s - elapsed_s);
       const std::uint64_t first_due = next_due.empty() ? current : *std::min_element(next_due.begin(), next_due.end());
       if (first_due <= current) {
         count_overrun(overruns, first_due, current, due_steps_between(periods, first_due, current), elapsed_s);
@@ -444,7 +312,7 @@ RunStats Host::run() {
   } catch (const RunError& e) {
     // Tell the coordinator why this host stops, so it can report it at once.
     try {
-      if (impl_->lockstep_host && !impl_->coordinator_lost) {
+      if (impl_->lockstep_host && !(impl_->peer_losses && impl_->peer_losses->coordinator_lost())) {
         impl_->lockstep_host->publish_failure(e.what());
       }
     } catch (...) {
