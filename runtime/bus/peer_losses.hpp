@@ -26,6 +26,9 @@ class PeerLossSource {
   virtual std::size_t peer_loss_count() const = 0;
   /// Every loss so far, oldest first (a participant that comes back and goes again counts twice).
   virtual std::vector<PeerLoss> peer_losses() const = 0;
+  /// Whether a participant named `participant` is alive now (discovered, not gone since): one
+  /// that was dropped and is discovered again was stalled (or starved of CPU), not dead.
+  virtual bool participant_alive(const std::string& participant) const = 0;
 };
 
 }  // namespace robodds

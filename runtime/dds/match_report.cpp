@@ -222,6 +222,14 @@ std::vector<std::string> PeerDirectory::discovered_names() const {
   return names;
 }
 
+bool PeerDirectory::alive_named(const std::string& name) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return std::any_of(alive_.begin(), alive_.end(), [&](const std::string& key) {
+    const auto it = names_.find(key);
+    return it != names_.end() && it->second == name;
+  });
+}
+
 std::vector<PeerLoss> PeerDirectory::losses() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return losses_;

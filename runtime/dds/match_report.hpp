@@ -48,6 +48,8 @@ class PeerDirectory : public dds::DomainParticipantListener {
   /// (PeerLossSource, for the host's loss watch).
   std::vector<PeerLoss> losses() const;
   std::size_t loss_count() const { return loss_count_.load(); }
+  /// Whether a participant of that name is alive now (PeerLossSource::participant_alive).
+  bool alive_named(const std::string& name) const;
   /// The names of every participant discovered so far (also those dropped since), sorted.
   std::vector<std::string> discovered_names() const;
 

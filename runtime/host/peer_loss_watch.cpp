@@ -49,38 +49,79 @@ std::vector<PeerLoss> PeerLossWatch::new_losses() {
   return fresh;
 }
 
+std::vector<PeerLossWatch::Drop> PeerLossWatch::confirmed_drops() {
+  std::vector<Drop> confirmed;
+  std::vector<Drop> waiting;
+  const std::int64_t now_ns = monotonic_now_ns();
+  for (Drop& drop : pending_) {
+    if (source_->participant_alive(drop.loss.participant)) {
+      const double back_after_s = std::round(static_cast<double>(now_ns - drop.loss.at_ns) * 1e-7) / 100.0;
+      log::warn(member_, "participant '" + drop.loss.participant + "' dropped and was discovered again " +
+                             shortest_text(back_after_s) + " s later: a stall (of this process or of group '" + drop.group +
+                             "'), not a death; the run goes on");
+    } else if (static_cast<double>(now_ns - drop.loss.at_ns) * 1e-9 > kRediscoveryGraceS) {
+      confirmed.push_back(std::move(drop));
+    } else {
+      waiting.push_back(std::move(drop));
+    }
+  }
+  pending_ = std::move(waiting);
+  return confirmed;
+}
+
 void PeerLossWatch::check_lockstep(std::uint64_t step, bool host_running, bool coordinating) {
   for (const PeerLoss& loss : new_losses()) {
-    if (host_running) {
-      if (is_coordinator(loss.participant) && coordinator_gone_.empty()) {
-        coordinator_gone_ = how_lost(loss);
-        coordinator_gone_ns_ = monotonic_now_ns();
-      }
-      const std::string group = group_of_participant(loss.participant, others_);
-      if (loss.dropped && !group.empty()) {
-        throw RunError(lost_at_step(group, step, loss));
-      }
+    if (host_running && is_coordinator(loss.participant) && coordinator_gone_.empty()) {
+      coordinator_gone_ = how_lost(loss);
+      coordinator_gone_ns_ = monotonic_now_ns();
     }
-    if (coordinating && loss.dropped) {
-      const std::string group = group_of_participant(loss.participant, members_);
-      if (!group.empty()) {
-        throw RunError(lost_at_step(group, step, loss));
-      }
+    if (!loss.dropped) {
+      continue;
+    }
+    std::string group = host_running ? group_of_participant(loss.participant, others_) : "";
+    if (group.empty() && coordinating) {
+      group = group_of_participant(loss.participant, members_);
+    }
+    if (!group.empty()) {
+      pending_.push_back(Drop{loss, group});
+    }
+  }
+  for (const Drop& drop : confirmed_drops()) {
+    if ((host_running && group_of_participant(drop.loss.participant, others_) == drop.group) ||
+        (coordinating && group_of_participant(drop.loss.participant, members_) == drop.group)) {
+      throw RunError(lost_at_step(drop.group, step, drop.loss));
     }
   }
   if (host_running && !coordinator_gone_.empty() &&
       static_cast<double>(monotonic_now_ns() - coordinator_gone_ns_) * 1e-9 > kCoordinatorGraceS) {
+    if (source_->participant_alive(participant_name_of_group("coordinator")) ||
+        source_->participant_alive(participant_name_of_group("run"))) {
+      coordinator_gone_.clear();  // dropped and discovered again: a stall, not a death
+      return;
+    }
     coordinator_lost_ = true;
     throw RunError(member_ + ": lockstep: the coordinator was lost at step " + std::to_string(step) + ": " + coordinator_gone_);
   }
 }
 
 void PeerLossWatch::check_realtime(PeerWatch& watch, double elapsed_s, double remaining_s) {
+  std::vector<PeerLoss> lost;
   for (const PeerLoss& loss : new_losses()) {
     const std::string group = group_of_participant(loss.participant, others_);
     if (group.empty() || (!loss.dropped && remaining_s < kEndMarginS)) {
       continue;
     }
+    if (loss.dropped) {
+      pending_.push_back(Drop{loss, group});
+    } else {
+      lost.push_back(loss);
+    }
+  }
+  for (Drop& drop : confirmed_drops()) {
+    lost.push_back(std::move(drop.loss));
+  }
+  for (const PeerLoss& loss : lost) {
+    const std::string group = group_of_participant(loss.participant, others_);
     const double at_s = elapsed_s - static_cast<double>(monotonic_now_ns() - loss.at_ns) * 1e-9;
     const std::string standbys = standby_groups_of(group);
     if (!standbys.empty()) {

@@ -21,6 +21,11 @@ class PeerLossWatch {
   /// explains it (s): a coordinator that ends the run because a group died leaves at about the
   /// moment this host learns that death itself (the same lease, the same last announcement).
   static constexpr double kCoordinatorGraceS = 0.5;
+  /// How long a dropped participant has to be discovered again before it counts as lost (s): a
+  /// process starved of CPU for longer than the lease (this one or the peer: seen once on a
+  /// 2-core machine at load 17) drops alive peers, whose queued or next announcement (every 0.5 s)
+  /// brings them back at once. The lease (1.5 s) plus this stays within the 2 s bound.
+  static constexpr double kRediscoveryGraceS = 0.4;
   /// Real time: a host that leaves cleanly this close to the run's end (s) ends with it (the hosts
   /// end at the same wall time, apart by their clocks' offset and their last step).
   static constexpr double kEndMarginS = 1.0;
@@ -30,8 +35,9 @@ class PeerLossWatch {
   PeerLossWatch(const PeerLossSource* source, const Scenario& scenario, std::string member, std::vector<std::string> members);
 
   /// Lockstep, every loop iteration. RunError naming the group when another group's or the
-  /// coordinator's participant dropped while `host_running` (this host has not acknowledged the
-  /// final step), or a member's while `coordinating` (this process's coordinator is not done);
+  /// coordinator's participant dropped (and was not discovered again within kRediscoveryGraceS)
+  /// while `host_running` (this host has not acknowledged the final step), or a member's while
+  /// `coordinating` (this process's coordinator is not done);
   /// or naming the coordinator kCoordinatorGraceS after it left (dropped or goodbye) while
   /// `host_running`. A group that leaves cleanly has acknowledged the final step or reported its
   /// failure to the coordinator, which then ends the run: only its drop counts.
@@ -39,7 +45,8 @@ class PeerLossWatch {
   /// The coordinator went away: no one to report this host's failure to.
   bool coordinator_lost() const { return coordinator_lost_; }
 
-  /// Real time, every loop iteration: another group dropped, or left more than kEndMarginS before
+  /// Real time, every loop iteration: another group dropped (not back within kRediscoveryGraceS),
+  /// or left more than kEndMarginS before
   /// the run's end (`remaining_s`), goes to `watch` as lost at its time after step 0 (from
   /// `elapsed_s`, now) and is logged once as a degraded run; a group whose every component has a
   /// hot standby in another group is logged as taken over instead.
@@ -50,7 +57,14 @@ class PeerLossWatch {
   std::string standby_groups_of(const std::string& group) const;
 
  private:
+  struct Drop {
+    PeerLoss loss;
+    std::string group;
+  };
   std::vector<PeerLoss> new_losses();  // since the last call; one atomic load when none
+  /// The drops of pending_ older than kRediscoveryGraceS whose participant is still gone; those
+  /// discovered again are logged and forgotten.
+  std::vector<Drop> confirmed_drops();
 
   const PeerLossSource* source_;
   const Scenario& scenario_;
@@ -58,6 +72,7 @@ class PeerLossWatch {
   std::vector<std::string> others_;   // the scenario's groups other than member_
   std::vector<std::string> members_;  // the coordinator's
   std::size_t seen_ = 0;
+  std::vector<Drop> pending_;        // dropped groups within their rediscovery grace
   bool coordinator_lost_ = false;
   std::string coordinator_gone_;      // how the coordinator went, once it did
   std::int64_t coordinator_gone_ns_ = 0;

@@ -5,9 +5,9 @@
 #   - the plant never acts on stale commands: from command_timeout_s (0.5 s) after the cut until
 #     the cable is back, the applied v and omega are exactly 0 and the robot does not move;
 #   - the system resumes: after the restore the robot moves again and every host runs to its end;
-#     a 2 s cut outlasts the 1.5 s participant lease, so every host names the other side lost
-#     (issue 24, finding 6): the survivors "lost group 'control'", the control host the others,
-#     and each ends degraded (exit 3);
+#     a 2 s cut outlasts the 1.5 s participant lease, so every host sees the other side dropped
+#     (issue 24, finding 6); a host that found it again within 0.4 s of the drop counts a stall
+#     and exits 0, else it names the group lost and ends degraded (exit 3);
 #   - the control host's real-time loop keeps its period during the cut (summary.json "hosts"):
 #     at most 50 due steps skipped (the cut lasts 200; load on a shared CI machine skips some),
 #     never more than 0.25 s late. Before robodds.udpv4 had non_blocking_send, sendto() blocked
@@ -43,13 +43,18 @@ echo "cable of host $VICTIM (control) cut at +$(( (cut_ns - epoch) / 1000000 )) 
 
 for i in "${!pids[@]}"; do
   wait_pid "${pids[$i]}" $((DURATION + 30))
-  [[ $RC -eq 3 ]] || fail "host ${GROUPS_[$i]} exited $RC, expected 3 (degraded by the cut): $(cat "$WORK/${GROUPS_[$i]}.log")"
-  lost="'control'"
-  [[ ${GROUPS_[$i]} == control ]] && lost="'[a-z]+'"
-  grep -qE "lost group $lost at [0-9.]+ s after the start" "$WORK/${GROUPS_[$i]}.log" ||
-    fail "host ${GROUPS_[$i]} did not name the group lost in the cut: $(cat "$WORK/${GROUPS_[$i]}.log")"
+  [[ $RC -eq 0 || $RC -eq 3 ]] || fail "host ${GROUPS_[$i]} exited $RC, expected 0 or 3 (degraded by the cut): $(cat "$WORK/${GROUPS_[$i]}.log")"
+  lost="control"
+  [[ ${GROUPS_[$i]} == control ]] && lost="[a-z]+"
+  grep -qE "participant 'robodds-$lost' dropped" "$WORK/${GROUPS_[$i]}.log" ||
+    fail "host ${GROUPS_[$i]} did not see the other side of the cut dropped: $(cat "$WORK/${GROUPS_[$i]}.log")"
+  if [[ $RC -eq 3 ]]; then
+    grep -qE "lost group '$lost' at [0-9.]+ s after the start" "$WORK/${GROUPS_[$i]}.log" ||
+      fail "host ${GROUPS_[$i]} ended degraded without naming the group lost in the cut: $(cat "$WORK/${GROUPS_[$i]}.log")"
+  fi
+  echo "host ${GROUPS_[$i]}: exit $RC"
 done
-grep -m1 -oE "lost group 'control' at [0-9.]+ s after the start" "$WORK/sim.log"
+grep -m1 -oE "lost group 'control' at [0-9.]+ s after the start|participant 'robodds-control' dropped and was discovered again [0-9.]+ s later" "$WORK/sim.log"
 
 # Survivors report the loss and the recovery, naming topic and group. The cut outlasts the
 # participant lease: the control participant is dropped (its writers unmatched, so no "regained

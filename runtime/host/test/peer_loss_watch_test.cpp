@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -19,8 +20,13 @@ class FakeLosses : public PeerLossSource {
  public:
   std::size_t peer_loss_count() const override { return losses.size(); }
   std::vector<PeerLoss> peer_losses() const override { return losses; }
-  void add(const std::string& participant, bool dropped) { losses.push_back(PeerLoss{participant, dropped, monotonic_now_ns()}); }
+  bool participant_alive(const std::string& participant) const override { return alive.count(participant) != 0; }
+  /// A loss learnt `age_s` ago (by default past the rediscovery grace: a drop counts at once).
+  void add(const std::string& participant, bool dropped, double age_s = 1.0) {
+    losses.push_back(PeerLoss{participant, dropped, monotonic_now_ns() - static_cast<std::int64_t>(age_s * 1e9)});
+  }
   std::vector<PeerLoss> losses;
+  std::set<std::string> alive;
 };
 
 Scenario groups_scenario() {
@@ -49,6 +55,28 @@ TEST(PeerLossWatch, LockstepAGroupThatDropsEndsTheRunNamingIt) {
   EXPECT_EQ(error_of(watch, 42, true, false),
             "lockstep: group 'sensing' lost at step 42: its participant 'robodds-sensing' dropped: no announcement within its "
             "lease (killed, frozen, or its machine or network down)");
+}
+
+// A drop whose participant is discovered again within the grace was a stall (this process or the
+// peer starved of CPU for longer than the lease), not a death; one still gone after it is lost.
+TEST(PeerLossWatch, ADropDiscoveredAgainWithinTheGraceIsAStallNotALoss) {
+  const Scenario scenario = groups_scenario();
+  FakeLosses source;
+  PeerLossWatch watch(&source, scenario, "sim", {});
+  source.add("robodds-sensing", true, 0.0);
+  EXPECT_EQ(error_of(watch, 10, true, false), "") << "within the grace";
+  source.alive.insert("robodds-sensing");
+  std::this_thread::sleep_for(std::chrono::duration<double>(PeerLossWatch::kRediscoveryGraceS + 0.05));
+  EXPECT_EQ(error_of(watch, 11, true, false), "") << "back: not lost";
+  PeerWatch peers({}, 30.0);
+  FakeLosses later;
+  PeerLossWatch realtime(&later, scenario, "sim", {});
+  later.add("robodds-sensing", true, 0.0);
+  realtime.check_realtime(peers, 5.0, 5.0);
+  EXPECT_EQ(peers.degraded(), "") << "within the grace";
+  std::this_thread::sleep_for(std::chrono::duration<double>(PeerLossWatch::kRediscoveryGraceS + 0.05));
+  realtime.check_realtime(peers, 5.5, 4.5);
+  EXPECT_NE(peers.degraded().find("lost group 'sensing' at"), std::string::npos) << "still gone after the grace: lost";
 }
 
 TEST(PeerLossWatch, LockstepAGroupThatLeavesCleanlyOrAStrangerIsNoLoss) {
@@ -108,8 +136,8 @@ TEST(PeerLossWatch, RealTimeALostGroupDegradesTheRunWithItsTime) {
   PeerLossWatch watch(&source, scenario, "sim", {});
   PeerWatch peers({"sensing"}, 30.0);
   source.add("robodds-sensing", true);
-  watch.check_realtime(peers, 5.5, 4.5);
-  EXPECT_EQ(peers.degraded().rfind("lost group 'sensing' at 5.5 s after the start (its participant 'robodds-sensing' dropped", 0), 0u)
+  watch.check_realtime(peers, 5.5, 4.5);  // learnt 1 s ago: lost at 4.5 s
+  EXPECT_EQ(peers.degraded().rfind("lost group 'sensing' at 4.5 s after the start (its participant 'robodds-sensing' dropped", 0), 0u)
       << peers.degraded();
 }
 
@@ -122,8 +150,8 @@ TEST(PeerLossWatch, RealTimeAGoodbyeAtTheEndIsTheEndButEarlierALoss) {
   watch.check_realtime(peers, 9.6, 0.4);
   EXPECT_EQ(peers.degraded(), "");
   PeerLossWatch early(&source, scenario, "estimation", {});
-  early.check_realtime(peers, 3.0, 7.0);
-  EXPECT_NE(peers.degraded().find("lost group 'sensing' at 3 s after the start (its participant 'robodds-sensing' left"),
+  early.check_realtime(peers, 3.0, 7.0);  // learnt 1 s ago: lost at 2 s
+  EXPECT_NE(peers.degraded().find("lost group 'sensing' at 2 s after the start (its participant 'robodds-sensing' left"),
             std::string::npos)
       << peers.degraded();
 }
