@@ -2,12 +2,12 @@
 # Every host failure named (issue 24, finding 6): plant_smoke started by hand, one `robodds host`
 # per group (+ `--coordinate` in lockstep), as docs/deployment.md "Multi-host by hand" does; the
 # sensing host (position sensor) is killed with SIGKILL mid-run. Its participant's lease (1.5 s,
-# deploy/qos) expires at every other host:
+# deploy/qos) expires at every other host, which waits 0.4 s for it to come back (a stall) and then:
 #   - lockstep: every surviving host and the coordinator exit non-zero within 4 s of the kill
 #     (2 s + a margin for a busy machine; before: they waited 30 s for ticks), each naming
 #     'sensing', and summary.json (written by the evaluation host) says "failed" naming it;
 #   - real time: the others run to their end and exit 3 (degraded); each names 'sensing' and the
-#     time it was lost, within 2.5 s after the kill; summary.json says "degraded" with that.
+#     time it was dropped, within 2.5 s after the kill; summary.json says "degraded" with that.
 source "$(dirname "$0")/lib.sh"
 S="$SRC/sim/scenarios/plant_smoke.yaml"
 now_s() { date +%s.%N; }
