@@ -152,7 +152,7 @@ class DdsWriter : public WriterHandle {
 
 class DdsReader : public ReaderHandle {};
 
-class FastDdsBus : public DdsBus {
+class FastDdsBus : public DdsBus, public PeerLossSource {
  public:
   explicit FastDdsBus(const DdsOptions& options) {
     // Every profile this bus can ask for is checked before the participant exists: a bad QoS file
@@ -341,6 +341,9 @@ class FastDdsBus : public DdsBus {
   }
 
   std::optional<std::vector<std::string>> discovered_participants() const override { return peers_.discovered_names(); }
+  std::size_t peer_loss_count() const override { return peers_.loss_count(); }
+  std::vector<PeerLoss> peer_losses() const override { return peers_.losses(); }
+  bool participant_alive(const std::string& participant) const override { return peers_.alive_named(participant); }
 
   /// The type support counts per type (it does not know the topic); each of our topics is
   /// credited with its type's count. A process reading several topics of one type (e.g. the

@@ -5,6 +5,7 @@
 
 #include "runtime/dds/component_announcement.hpp"
 #include "runtime/dds/text.hpp"
+#include "runtime/bus/bus.hpp"
 #include "runtime/base/log.hpp"
 
 namespace robodds {
@@ -16,6 +17,11 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
   switch (info.status) {
     case rtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT:
     case rtps::ParticipantDiscoveryInfo::CHANGED_QOS_PARTICIPANT: {
+      if (info.status == rtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT &&
+          std::any_of(losses_.begin(), losses_.end(), [&name](const PeerLoss& loss) { return loss.participant == name; })) {
+        // Back after a drop (a cut link restored) or a restart: its endpoints match again as new ones.
+        log::info("dds", "participant '" + name + "' discovered again after it was lost");
+      }
       names_[key] = name;
       alive_.insert(key);
       const std::vector<std::uint8_t> user_data(info.info.m_userData.begin(), info.info.m_userData.end());
@@ -31,9 +37,14 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
       // Dropped = its lease expired without a goodbye: the host died or its network did.
       log::warn("dds", "participant '" + name + "' dropped: no announcement within its lease (host or network down?)");
       alive_.erase(key);
+      losses_.push_back(PeerLoss{name, true, monotonic_now_ns()});
+      loss_count_ = losses_.size();
       break;
     case rtps::ParticipantDiscoveryInfo::REMOVED_PARTICIPANT:
+      log::debug("dds", "participant '" + name + "' left");
       alive_.erase(key);
+      losses_.push_back(PeerLoss{name, false, monotonic_now_ns()});
+      loss_count_ = losses_.size();
       break;
     default:
       break;
@@ -209,6 +220,19 @@ std::vector<std::string> PeerDirectory::discovered_names() const {
   }
   std::sort(names.begin(), names.end());
   return names;
+}
+
+bool PeerDirectory::alive_named(const std::string& name) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return std::any_of(alive_.begin(), alive_.end(), [&](const std::string& key) {
+    const auto it = names_.find(key);
+    return it != names_.end() && it->second == name;
+  });
+}
+
+std::vector<PeerLoss> PeerDirectory::losses() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return losses_;
 }
 
 std::size_t PeerDirectory::participants_alive() const {

@@ -16,6 +16,8 @@
 #include <utility>
 #include <vector>
 
+#include "runtime/bus/peer_losses.hpp"
+
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;
 namespace rtps = eprosima::fastrtps::rtps;
@@ -42,6 +44,12 @@ class PeerDirectory : public dds::DomainParticipantListener {
   std::string remote_qos(const std::string& topic, bool of_writers, const std::string& local) const;
 
   std::size_t participants_alive() const;
+  /// Participants that went away (lease expired: dropped; goodbye: left), oldest first
+  /// (PeerLossSource, for the host's loss watch).
+  std::vector<PeerLoss> losses() const;
+  std::size_t loss_count() const { return loss_count_.load(); }
+  /// Whether a participant of that name is alive now (PeerLossSource::participant_alive).
+  bool alive_named(const std::string& name) const;
   /// The names of every participant discovered so far (also those dropped since), sorted.
   std::vector<std::string> discovered_names() const;
 
@@ -83,6 +91,8 @@ class PeerDirectory : public dds::DomainParticipantListener {
   Table readers_;
   std::map<std::uint64_t, rtps::GUID_t> writer_guids_;  // writer_id() -> GUID
   std::map<std::string, std::vector<std::string>> components_;  // GUID prefix -> announced components
+  std::vector<PeerLoss> losses_;
+  std::atomic<std::size_t> loss_count_{0};  // losses_.size(), read without the mutex
 };
 
 /// Match state of one local endpoint, kept for the report appended to lockstep timeouts. The

@@ -257,6 +257,16 @@ std::string take_dds_errors() {
   return first;
 }
 
+void apply_peer_lease(dds::DomainParticipantQos& qos) {
+  rtps::DiscoverySettings& discovery = qos.wire_protocol().builtin.discovery_config;
+  const rtps::DiscoverySettings defaults;
+  if (discovery.leaseDuration != defaults.leaseDuration) {
+    return;  // the profile set its own lease: it wins
+  }
+  discovery.leaseDuration = eprosima::fastrtps::Duration_t(kPeerLeaseS);
+  discovery.leaseDuration_announcementperiod = eprosima::fastrtps::Duration_t(kPeerAnnouncementS);
+}
+
 dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
   check_qos_profiles(options);
   const std::string last = options.qos_files.empty() ? "(no QoS file)" : options.qos_files.back();
@@ -265,6 +275,7 @@ dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
       ReturnCode_t::RETCODE_OK) {
     throw ConfigError(located(last, "participant profile '" + options.participant_profile + "'", "not found in the loaded QoS files"));
   }
+  apply_peer_lease(qos);
   if (!options.discovery_servers.empty()) {
     make_discovery_client(qos, options.discovery_servers);
   }

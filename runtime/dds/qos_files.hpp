@@ -9,6 +9,16 @@
 
 namespace robodds {
 
+/// The participant lease our hosts announce (s): the other participants drop one that was silent
+/// this long (killed, frozen, its network down), so a dead host is known within it (issue 24,
+/// finding 6: within 2 s). Announced every kPeerAnnouncementS, so two lost announcements in a
+/// row are not a death. The shipped profiles (deploy/qos) set both; a profile that sets no lease
+/// (Fast DDS's default, 20 s) gets them from apply_peer_lease(); a profile that sets one keeps it.
+inline constexpr double kPeerLeaseS = 1.5;
+inline constexpr double kPeerAnnouncementS = 0.5;
+/// Sets kPeerLeaseS/kPeerAnnouncementS unless `qos` has a lease other than Fast DDS's default.
+void apply_peer_lease(eprosima::fastdds::dds::DomainParticipantQos& qos);
+
 /// Loads options.qos_files, checks every required profile (check_qos_profiles) and returns the
 /// participant QoS of options.participant_profile, checked; ConfigError naming the file and
 /// element if a profile is missing or unusable. Creates no participant.

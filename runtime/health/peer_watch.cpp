@@ -24,6 +24,15 @@ std::string quoted_list(const std::vector<std::string>& names) {
 
 std::string participant_name_of_group(const std::string& group) { return "robodds-" + group; }
 
+std::string group_of_participant(const std::string& participant, const std::vector<std::string>& groups) {
+  for (const std::string& group : groups) {
+    if (participant == participant_name_of_group(group)) {
+      return group;
+    }
+  }
+  return "";
+}
+
 PeerWatch::PeerWatch(std::vector<std::string> others, double deadline_s) : others_(std::move(others)), deadline_s_(deadline_s) {}
 
 bool PeerWatch::check(double elapsed_s, const std::vector<std::string>& discovered, bool run_ended) {
@@ -48,7 +57,25 @@ bool PeerWatch::check(double elapsed_s, const std::vector<std::string>& discover
   return false;
 }
 
+bool PeerWatch::lost(const std::string& group, double at_s, const std::string& how) {
+  if (has(lost_groups_, group)) {
+    return false;
+  }
+  lost_groups_.push_back(group);
+  lost_.push_back("lost group '" + group + "' at " + shortest_text(std::round(at_s * 100.0) / 100.0) + " s after the start (" +
+                  how + ")");
+  return true;
+}
+
 std::string PeerWatch::degraded() const {
+  std::string text = discovery_text();
+  for (const std::string& loss : lost_) {
+    text += (text.empty() ? "" : "; ") + loss;
+  }
+  return text;
+}
+
+std::string PeerWatch::discovery_text() const {
   if (missing_.empty()) {
     return "";
   }

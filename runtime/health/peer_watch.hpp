@@ -15,6 +15,8 @@ namespace robodds {
 
 /// The participant name a host of group `group` uses ("robodds-<group>").
 std::string participant_name_of_group(const std::string& group);
+/// The group among `groups` whose host uses participant name `participant`; "" for none.
+std::string group_of_participant(const std::string& participant, const std::vector<std::string>& groups);
 
 class PeerWatch {
  public:
@@ -28,19 +30,32 @@ class PeerWatch {
   /// degraded() says why); later calls only note groups that turned up late.
   bool check(double elapsed_s, const std::vector<std::string>& discovered, bool run_ended = false);
 
-  /// Empty while nothing is missing; else e.g. "did not discover group(s) 'sim', 'control' within
-  /// 10 s of its start (discovered later: 'sim')", or for a run that ended before the deadline
-  /// "... during its run (6 s, shorter than the start timeout of 30 s)".
+  /// Real time: group `group` was lost `at_s` after the start (its participant's lease expired,
+  /// or it left before the run's end): the run is degraded from then on. `how` says how, e.g.
+  /// "its participant dropped". Only the first loss of each group is kept; returns whether this
+  /// one was new.
+  bool lost(const std::string& group, double at_s, const std::string& how);
+
+  /// Empty while nothing is missing or lost; else e.g. "did not discover group(s) 'sim',
+  /// 'control' within 10 s of its start (discovered later: 'sim')", or for a run that ended
+  /// before the deadline "... during its run (6 s, shorter than the start timeout of 30 s)",
+  /// and "lost group 'estimation' at 5.2 s after the start (its participant dropped)", joined by "; ".
   std::string degraded() const;
   bool checked() const { return checked_; }
+  /// The groups this host watches (the constructor's `others`).
+  const std::vector<std::string>& others() const { return others_; }
 
  private:
+  std::string discovery_text() const;  // degraded()'s part about discovery at the deadline
+
   std::vector<std::string> others_;
   double deadline_s_;
   bool checked_ = false;
   double judged_s_ = 0.0;  // s after the start when it was checked
   std::vector<std::string> missing_;
   std::vector<std::string> late_;  // missing at the deadline, discovered since
+  std::vector<std::string> lost_;  // lost(): "lost group 'x' at T s after the start (how)"
+  std::vector<std::string> lost_groups_;
 };
 
 }  // namespace robodds

@@ -13,6 +13,7 @@
 #include "runtime/bus/memory_bus.hpp"
 #include "runtime/health/overrun_counter.hpp"
 #include "runtime/health/peer_watch.hpp"
+#include "runtime/host/peer_loss_watch.hpp"
 #include "runtime/host/producer_check.hpp"
 
 namespace robodds {
@@ -33,6 +34,7 @@ struct Host::Impl {
   std::unique_ptr<LockstepHost> lockstep_host;                // lockstep, when this host runs components
   std::unique_ptr<LockstepCoordinator> lockstep_coordinator;  // lockstep, when it publishes the ticks
   std::unique_ptr<HealthExchange> health;                     // across processes: run/health
+  std::unique_ptr<PeerLossWatch> peer_losses;                 // across processes: hosts that went away
 
   Impl(const ComponentRegistry& r, RunContext rc, HostOptions o) : registry(r), run(std::move(rc)), options(std::move(o)) {}
 
@@ -124,6 +126,9 @@ struct Host::Impl {
     if (!run.single_process && !slots.empty()) {
       health = std::make_unique<HealthExchange>(run, options.member, options.run_id, health_sources());
     }
+    // Null source: a bus that discovers no peers (in memory, co-located).
+    peer_losses = std::make_unique<PeerLossWatch>(run.single_process ? nullptr : dynamic_cast<const PeerLossSource*>(run.bus),
+                                                  *run.scenario, options.member, options.members);
     if (run.mode != TimeMode::kLockstep) {
       return;
     }
@@ -167,6 +172,7 @@ struct Host::Impl {
       if (options.poll) {
         options.poll();
       }
+      peer_losses->check_lockstep(stats.steps, !host_done(), !coordinator_done());
       const std::uint64_t seen = run.notifier->generation();
       bool progressed = false;
       if (!host_done()) {
@@ -228,6 +234,7 @@ struct Host::Impl {
       }
       last_run = current;
       watch_peers(peers, seconds_since(start), next_peer_check_s);
+      peer_losses->check_realtime(peers, elapsed_s, static_cast<double>(last + 1) * step_s - elapsed_s);
       const std::uint64_t first_due = next_due.empty() ? current : *std::min_element(next_due.begin(), next_due.end());
       if (first_due <= current) {
         count_overrun(overruns, first_due, current, due_steps_between(periods, first_due, current), elapsed_s);
@@ -305,7 +312,7 @@ RunStats Host::run() {
   } catch (const RunError& e) {
     // Tell the coordinator why this host stops, so it can report it at once.
     try {
-      if (impl_->lockstep_host) {
+      if (impl_->lockstep_host && !(impl_->peer_losses && impl_->peer_losses->coordinator_lost())) {
         impl_->lockstep_host->publish_failure(e.what());
       }
     } catch (...) {

@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Real time across namespace hosts, the controller's host loses its cable for 2 s:
 #   - the survivors report it: the plant (and the evaluator) log that the writer of plant/cmd in
-#     group 'control' lost liveliness, then that it regained it;
+#     group 'control' lost liveliness, then that the control participant was discovered again;
 #   - the plant never acts on stale commands: from command_timeout_s (0.5 s) after the cut until
 #     the cable is back, the applied v and omega are exactly 0 and the robot does not move;
-#   - the system resumes: after the restore the robot moves again and every host exits 0;
+#   - the system resumes: after the restore the robot moves again and every host runs to its end;
+#     a 2 s cut outlasts the 1.5 s participant lease, so every host sees the other side dropped
+#     (issue 24, finding 6); a host that found it again within 0.4 s of the drop counts a stall
+#     and exits 0, else it names the group lost and ends degraded (exit 3);
 #   - the control host's real-time loop keeps its period during the cut (summary.json "hosts"):
 #     at most 50 due steps skipped (the cut lasts 200; load on a shared CI machine skips some),
 #     never more than 0.25 s late. Before robodds.udpv4 had non_blocking_send, sendto() blocked
@@ -40,18 +43,30 @@ echo "cable of host $VICTIM (control) cut at +$(( (cut_ns - epoch) / 1000000 )) 
 
 for i in "${!pids[@]}"; do
   wait_pid "${pids[$i]}" $((DURATION + 30))
-  [[ $RC -eq 0 ]] || fail "host ${GROUPS_[$i]} exited $RC: $(cat "$WORK/${GROUPS_[$i]}.log")"
+  [[ $RC -eq 0 || $RC -eq 3 ]] || fail "host ${GROUPS_[$i]} exited $RC, expected 0 or 3 (degraded by the cut): $(cat "$WORK/${GROUPS_[$i]}.log")"
+  lost="control"
+  [[ ${GROUPS_[$i]} == control ]] && lost="[a-z]+"
+  grep -qE "participant 'robodds-$lost' dropped" "$WORK/${GROUPS_[$i]}.log" ||
+    fail "host ${GROUPS_[$i]} did not see the other side of the cut dropped: $(cat "$WORK/${GROUPS_[$i]}.log")"
+  if [[ $RC -eq 3 ]]; then
+    grep -qE "lost group '$lost' at [0-9.]+ s after the start" "$WORK/${GROUPS_[$i]}.log" ||
+      fail "host ${GROUPS_[$i]} ended degraded without naming the group lost in the cut: $(cat "$WORK/${GROUPS_[$i]}.log")"
+  fi
+  echo "host ${GROUPS_[$i]}: exit $RC"
 done
+grep -m1 -oE "lost group 'control' at [0-9.]+ s after the start|participant 'robodds-control' dropped and was discovered again [0-9.]+ s later" "$WORK/sim.log"
 
-# Survivors report the loss and the recovery, naming topic and group.
+# Survivors report the loss and the recovery, naming topic and group. The cut outlasts the
+# participant lease: the control participant is dropped (its writers unmatched, so no "regained
+# liveliness") and discovered again after the restore, its writers matched as new ones.
 for g in sim evaluation; do
   grep -q "plant/cmd: writer of 'control' lost liveliness" "$WORK/$g.log" ||
     fail "$g did not report the lost plant/cmd writer: $(cat "$WORK/$g.log")"
-  grep -q "plant/cmd: writer of 'control' regained liveliness" "$WORK/$g.log" ||
-    fail "$g did not report the plant/cmd writer back: $(cat "$WORK/$g.log")"
+  grep -q "participant 'robodds-control' discovered again after it was lost" "$WORK/$g.log" ||
+    fail "$g did not report the control host back: $(cat "$WORK/$g.log")"
 done
 grep -m1 "plant/cmd: writer of 'control' lost" "$WORK/sim.log"
-grep -m1 "plant/cmd: writer of 'control' regained" "$WORK/sim.log"
+grep -m1 "participant 'robodds-control' discovered again" "$WORK/sim.log"
 
 # The plant's applied command, from the evaluator's records of plant/state and plant/cmd (the
 # evaluator's host is not cut off). header.step is the real-time step: (wall clock - epoch) / step_s.

@@ -18,13 +18,36 @@ expect_error 2 "$P" -- "$ROBODDS" run "$S" --duration 0.5 --domain "$DOMAIN" --o
 expect_error 2 "$P" -- "$ROBODDS" host --scenario "$S" --group sim --duration 0.5 --domain "$DOMAIN" --out "$WORK/o3"
 [[ ! -e "$WORK/o1/plant_state.csv" && ! -e "$WORK/o2/plant_state.csv" ]] || fail "a run started despite the error"
 
-# 2. paper1_waypoints, one `robodds host` per group; the sim group coordinates.
+# 2. paper1_waypoints, one `robodds host` per group; the sim group coordinates. The sensors host
+# announces a 30 s participant lease (its own profile wins over ours: deploy/qos), so the others do
+# not end the run at its SIGKILL 1.5 s later (issue 24, finding 6: integration.host_death) before
+# the restarted host's samples reach them: this part checks the second producer, not the death.
 S1="$SRC/sim/scenarios/paper1_waypoints.yaml"
 out="$WORK/restart"
+cat >"$WORK/long_lease.xml" <<'XML'
+<?xml version="1.0" encoding="UTF-8" ?>
+<dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
+  <profiles>
+    <participant profile_name="test.long_lease">
+      <rtps>
+        <builtin>
+          <discovery_config>
+            <leaseDuration><sec>30</sec><nanosec>0</nanosec></leaseDuration>
+            <leaseAnnouncement><sec>0</sec><nanosec>500000000</nanosec></leaseAnnouncement>
+          </discovery_config>
+        </builtin>
+      </rtps>
+    </participant>
+  </profiles>
+</dds>
+XML
 C=(--scenario "$S1" --run-id "7$$" --domain "$DOMAIN" --out "$out" --duration 400 --input-timeout 30)
 declare -A pid
 for g in sensors estimation control evaluation; do
-  "$ROBODDS" --log warn host --group "$g" "${C[@]}" --start-timeout 15 >"$out.$g.log" 2>&1 &
+  LEASE=()
+  [[ $g == sensors ]] && LEASE=(--participant-profile test.long_lease)
+  ROBODDS_QOS_FILE="$WORK/long_lease.xml" "$ROBODDS" --log warn host --group "$g" "${C[@]}" "${LEASE[@]}" --start-timeout 15 \
+    >"$out.$g.log" 2>&1 &
   pid[$g]=$!
   cleanup_pids+=("$!")
 done

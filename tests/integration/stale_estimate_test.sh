@@ -31,7 +31,11 @@ kill_ns=$(date +%s%N)
 for group in sim sensors control evaluation; do
   eval "pid=\$pid_$group"
   timeout -k 5 40 tail --pid="$pid" -f /dev/null || fail "host $group did not finish: $(tail -5 "$WORK/$group.log")"
-  wait "$pid" || fail "host $group failed: $(tail -5 "$WORK/$group.log")"
+  # Every survivor ran to its end degraded (exit 3), naming the lost group (issue 24, finding 6).
+  rc=0
+  wait "$pid" || rc=$?
+  [[ $rc -eq 3 ]] || fail "host $group exited $rc, expected 3 (degraded): $(tail -5 "$WORK/$group.log")"
+  grep -q "lost group 'estimation' at" "$WORK/$group.log" || fail "host $group did not name the lost group: $(tail -5 "$WORK/$group.log")"
 done
 python3 - "$WORK/out" "$kill_ns" "$LIMIT" "$MARGIN" "$SCENARIO" <<'PY' || fail "freshness check failed"
 import csv, re, sys

@@ -7,6 +7,9 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
+
+#include "runtime/bus/bus.hpp"
 
 namespace robodds {
 namespace {
@@ -24,6 +27,16 @@ void discover(PeerDirectory& peers, const std::string& name, const rtps::GUID_t&
   data.m_guid = guid;
   data.m_participantName = name;
   peers.on_participant_discovery(nullptr, rtps::ParticipantDiscoveryInfo(data));
+}
+
+void lose(PeerDirectory& peers, const std::string& name, const rtps::GUID_t& guid, bool dropped) {
+  rtps::RTPSParticipantAllocationAttributes allocation;
+  rtps::ParticipantProxyData data(allocation);
+  data.m_guid = guid;
+  data.m_participantName = name;
+  rtps::ParticipantDiscoveryInfo info(data);
+  info.status = dropped ? rtps::ParticipantDiscoveryInfo::DROPPED_PARTICIPANT : rtps::ParticipantDiscoveryInfo::REMOVED_PARTICIPANT;
+  peers.on_participant_discovery(nullptr, std::move(info));
 }
 
 void authenticate(PeerDirectory& peers, const rtps::GUID_t& guid) {
@@ -49,6 +62,26 @@ TEST(MatchReport, ASecureTimeoutNamesThePeersNotAuthenticatedYet) {
             "plant/cmd (reader): no writer matched");
   authenticate(peers, kControl);
   EXPECT_EQ(peers.unauthenticated(), "");
+}
+
+// Issue 24, finding 6: the host learns which participants went away, and how (PeerLossSource).
+TEST(MatchReport, ParticipantsThatGoAwayAreKeptInOrderWithHowTheyWent) {
+  PeerDirectory peers;
+  discover(peers, "robodds-control", kControl);
+  discover(peers, "robodds-sim", kSim);
+  EXPECT_EQ(peers.loss_count(), 0u);
+  const std::int64_t before = monotonic_now_ns();
+  lose(peers, "robodds-sim", kSim, true);
+  lose(peers, "robodds-control", kControl, false);
+  ASSERT_EQ(peers.loss_count(), 2u);
+  const std::vector<PeerLoss> losses = peers.losses();
+  ASSERT_EQ(losses.size(), 2u);
+  EXPECT_EQ(losses[0].participant, "robodds-sim");
+  EXPECT_TRUE(losses[0].dropped);
+  EXPECT_GE(losses[0].at_ns, before);
+  EXPECT_EQ(losses[1].participant, "robodds-control");
+  EXPECT_FALSE(losses[1].dropped);
+  EXPECT_EQ(peers.participants_alive(), 0u);
 }
 
 TEST(MatchReport, AnUnsecuredParticipantSaysNothingAboutAuthentication) {

@@ -46,6 +46,25 @@ TEST(PeerWatch, ARunShorterThanTheDeadlineIsJudgedAtItsEnd) {
   EXPECT_EQ(everyone.degraded(), "");
 }
 
+// Issue 24, finding 6: a group lost during the run is named with the time, once, next to what
+// discovery found missing.
+TEST(PeerWatch, ALostGroupIsNamedWithItsTimeOnce) {
+  PeerWatch watch({"sim", "estimation"}, 3.0);
+  EXPECT_TRUE(watch.lost("estimation", 5.2345, "its participant dropped"));
+  EXPECT_FALSE(watch.lost("estimation", 6.0, "its participant left")) << "the first loss of a group counts";
+  EXPECT_EQ(watch.degraded(), "lost group 'estimation' at 5.23 s after the start (its participant dropped)");
+  EXPECT_TRUE(watch.check(3.0, {"robodds-estimation"}));
+  EXPECT_EQ(watch.degraded(),
+            "did not discover group(s) 'sim' within 3 s of its start; lost group 'estimation' at 5.23 s after the start "
+            "(its participant dropped)");
+}
+
+TEST(PeerWatch, TheGroupOfAParticipantIsFoundByItsName) {
+  EXPECT_EQ(group_of_participant("robodds-estimation", {"sim", "estimation"}), "estimation");
+  EXPECT_EQ(group_of_participant("robodds-topics", {"sim", "estimation"}), "");
+  EXPECT_EQ(group_of_participant("estimation", {"sim", "estimation"}), "");
+}
+
 TEST(PeerWatch, AHostWithoutOtherGroupsWatchesNothing) {
   PeerWatch watch({}, 1.0);
   EXPECT_FALSE(watch.check(5.0, {}));
