@@ -440,6 +440,7 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
   const bool assign_producers = args.type.empty();
   const DdsOptions dds = with_identity(resolve_dds(args.dds, "robodds-" + options.member), identity);
   if (args.type.empty() && digest_check_wanted()) {  // a host of a scenario: the others of its run must have loaded the same
+    check_qos_profiles(dds);  // a missing or bad QoS file is named as such, not as unreadable for its digest
     options.digest = host_digest(scenario, args.params, args.sets, dds);
   }
   const RunStats stats = run_in_process(registry, scenario, dds,
