@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "runtime/bus/run_digest.hpp"
+
 namespace robodds {
 
 enum class TimeMode { kLockstep, kRealtime };
@@ -142,6 +144,12 @@ class Bus {
   /// The names of the DDS participants this process has discovered so far (PeerWatch), or
   /// nullopt for a bus that discovers nothing (MemoryBus, a co-located run's in-memory bus).
   virtual std::optional<std::vector<std::string>> discovered_participants() const { return std::nullopt; }
+  /// The hosts of run `run_id` discovered so far (also those gone since) that announced what they loaded
+  /// (run_digest.hpp). Default: none (a bus that discovers nothing).
+  virtual std::vector<PeerDigest> peer_digests(std::uint64_t /*run_id*/) const { return {}; }
+  /// Grows whenever discovery learns or loses a participant: peer_digests() and
+  /// discovered_participants() need to be asked again only then. Default: never.
+  virtual std::uint64_t discovery_generation() const { return 0; }
 };
 
 }  // namespace robodds

@@ -160,9 +160,12 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
     // delete what was built (it is declared after what its listeners point to).
     dds::DomainParticipantQos qos = checked_participant_qos(options);
     qos.name(options.participant_name);
-    const std::vector<std::uint8_t> announcement = component_announcement(options.components);
+    const std::vector<std::uint8_t> announcement = component_announcement(options.components, options.run_id, options.digest);
     qos.user_data().data_vec(std::vector<eprosima::fastrtps::rtps::octet>(announcement.begin(), announcement.end()));
     peers_.set_secure(!options.security_dir.empty());
+    if (options.run_id) {
+      peers_.set_run(*options.run_id, options.digest);
+    }
     // Only discovery callbacks (participant names, remote QoS): with an empty mask no entity
     // status reaches this listener, so on_data_available stays with the readers' listeners.
     participant_ = create_participant(options.domain_id, qos, &peers_, dds::StatusMask::none(), options.participant_profile);
@@ -336,6 +339,8 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
   }
 
   std::string writer_name(std::uint64_t writer_id) const override { return peers_.writer_name(writer_id); }
+  std::vector<PeerDigest> peer_digests(std::uint64_t run_id) const override { return peers_.peer_digests(run_id); }
+  std::uint64_t discovery_generation() const override { return peers_.generation(); }
   bool writer_runs_any(std::uint64_t writer_id, const std::vector<std::string>& components) const override {
     return peers_.writer_runs_any(writer_id, components);
   }

@@ -1,12 +1,15 @@
 #pragma once
 // Creates the Fast DDS implementation of Bus. This header stays free of Fast DDS includes.
 
+#include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "runtime/bus/bus.hpp"
 #include "runtime/bus/qos_profiles.hpp"
+#include "runtime/bus/run_digest.hpp"
 
 namespace robodds {
 
@@ -32,6 +35,10 @@ struct DdsOptions {
   /// The scenario components this process runs, announced to the other participants
   /// (component_announcement.hpp) so their inputs accept this process's writers as producers.
   std::vector<std::string> components;
+  /// A host of a scenario run also announces its run and the digest of what it loaded
+  /// (runtime/bus/run_digest.hpp); nullopt: neither (a tool, a component without a scenario).
+  std::optional<std::uint64_t> run_id;
+  RunDigest digest;
 };
 
 class DdsBus : public Bus {

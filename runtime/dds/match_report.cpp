@@ -25,11 +25,21 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
       names_[key] = name;
       alive_.insert(key);
       const std::vector<std::uint8_t> user_data(info.info.m_userData.begin(), info.info.m_userData.end());
-      if (auto components = announced_components(user_data)) {
-        components_[key] = std::move(*components);
+      std::optional<Announcement> announced = parse_announcement(user_data);
+      runs_.erase(key);
+      if (announced && announced->run_id) {
+        runs_[key] = RunAnnounced{*announced->run_id, announced->digest};
+      }
+      // A host of this run that loaded other files produces nothing here (docs/deployment.md,
+      // "Multi-host by hand"): its writers are refused as unknown producers.
+      const bool other_files = announced && own_run_ && announced->run_id == own_run_ && !own_digest_.empty() &&
+                               !announced->digest.empty() && announced->digest != own_digest_;
+      if (announced && !other_files) {
+        components_[key] = std::move(announced->components);
       } else {
         components_.erase(key);
       }
+      ++generation_;
       participant_discovered_.notify_all();
       break;
     }
@@ -39,12 +49,14 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
       alive_.erase(key);
       losses_.push_back(PeerLoss{name, true, monotonic_now_ns()});
       loss_count_ = losses_.size();
+      ++generation_;
       break;
     case rtps::ParticipantDiscoveryInfo::REMOVED_PARTICIPANT:
       log::debug("dds", "participant '" + name + "' left");
       alive_.erase(key);
       losses_.push_back(PeerLoss{name, false, monotonic_now_ns()});
       loss_count_ = losses_.size();
+      ++generation_;
       break;
     default:
       break;
@@ -152,6 +164,28 @@ std::string PeerDirectory::writer_name(std::uint64_t id) const {
 void PeerDirectory::set_self(const rtps::GuidPrefix_t& prefix, std::vector<std::string> components) {
   std::lock_guard<std::mutex> lock(mutex_);
   components_[guid_prefix_text(prefix)] = std::move(components);
+}
+
+void PeerDirectory::set_run(std::uint64_t run_id, const RunDigest& digest) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  own_run_ = run_id;
+  own_digest_.clear();
+  for (const DigestEntry& entry : digest) {
+    own_digest_[entry.label] = entry.digest;
+  }
+}
+
+std::vector<PeerDigest> PeerDirectory::peer_digests(std::uint64_t run_id) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<PeerDigest> peers;
+  for (const auto& [key, run] : runs_) {
+    // Gone ones too: a host that loaded other files and left at once (it found the difference
+    // first) still was a host of this run.
+    if (run.run_id == run_id && !run.digest.empty()) {
+      peers.push_back(PeerDigest{who_locked(key), run.digest});
+    }
+  }
+  return peers;
 }
 
 bool PeerDirectory::writer_runs_any(std::uint64_t id, const std::vector<std::string>& components) const {

@@ -11,12 +11,14 @@
 #include <condition_variable>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "runtime/bus/peer_losses.hpp"
+#include "runtime/bus/run_digest.hpp"
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;
@@ -76,6 +78,16 @@ class PeerDirectory : public dds::DomainParticipantListener {
   static constexpr int kParticipantWaitMs = 500;
   bool writer_runs_any(std::uint64_t id, const std::vector<std::string>& components) const;
 
+  /// This participant's run and the digest of what its host loaded (runtime/bus/run_digest.hpp);
+  /// call before discovery starts. A participant that announces the same run with another digest
+  /// counts as announcing no component: its writers are no scenario producer here.
+  void set_run(std::uint64_t run_id, const RunDigest& digest);
+  /// Bus::peer_digests(): the participants discovered so far (also those gone since) that
+  /// announced run `run_id` with a digest.
+  std::vector<PeerDigest> peer_digests(std::uint64_t run_id) const;
+  /// Grows at every participant discovered, changed or gone.
+  std::uint64_t generation() const { return generation_.load(); }
+
  private:
   using Table = std::map<std::string, std::map<std::string, std::pair<std::string, rtps::GUID_t>>>;
   std::string who_locked(const std::string& guid_prefix_key) const;  // who(), mutex_ held
@@ -93,6 +105,14 @@ class PeerDirectory : public dds::DomainParticipantListener {
   std::map<std::string, std::vector<std::string>> components_;  // GUID prefix -> announced components
   std::vector<PeerLoss> losses_;
   std::atomic<std::size_t> loss_count_{0};  // losses_.size(), read without the mutex
+  struct RunAnnounced {
+    std::uint64_t run_id = 0;
+    std::map<std::string, std::string> digest;
+  };
+  std::map<std::string, RunAnnounced> runs_;  // GUID prefix -> its announced run and digest
+  std::optional<std::uint64_t> own_run_;
+  std::map<std::string, std::string> own_digest_;
+  std::atomic<std::uint64_t> generation_{0};
 };
 
 /// Match state of one local endpoint, kept for the report appended to lockstep timeouts. The

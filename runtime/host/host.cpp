@@ -5,6 +5,8 @@
 #include <thread>
 
 #include "common/number_text.hpp"
+#include "runtime/base/error.hpp"
+#include "runtime/host/digest_check.hpp"
 #include "runtime/host/health_exchange.hpp"
 #include "runtime/host/host_slot.hpp"
 #include "runtime/base/log.hpp"
@@ -210,6 +212,8 @@ struct Host::Impl {
     std::uint64_t last_run = 0;  // the last step the components ran at
     PeerWatch peers = peer_watch();
     double next_peer_check_s = 0.0;
+    DigestCheck digests(options.digest, options.run_id);
+    std::string other_files;  // degraded: hosts of this run that loaded other files
     bool stopped = false;
     while (true) {
       if (options.stop_ends_run && options.stop != nullptr && options.stop->load()) {
@@ -235,6 +239,7 @@ struct Host::Impl {
       last_run = current;
       watch_peers(peers, seconds_since(start), next_peer_check_s);
       peer_losses->check_realtime(peers, elapsed_s, static_cast<double>(last + 1) * step_s - elapsed_s);
+      watch_digests(digests, seconds_since(start), other_files);
       const std::uint64_t first_due = next_due.empty() ? current : *std::min_element(next_due.begin(), next_due.end());
       if (first_due <= current) {
         count_overrun(overruns, first_due, current, due_steps_between(periods, first_due, current), elapsed_s);
@@ -274,9 +279,34 @@ struct Host::Impl {
     if (!peers.checked()) {  // a run shorter than the start timeout: judged at its end
       watch_peers(peers, seconds_since(start), next_peer_check_s, true);
     }
-    host_detail::finish_run(run, options.member, overruns.figures(), slots, health.get(), last_run, seconds_since(start),
-                            peers.degraded());
-    return RunStats{last_run + 1, seconds_since(start), peers.degraded()};
+    const std::string degraded = peers.degraded() + (peers.degraded().empty() || other_files.empty() ? "" : "; ") + other_files;
+    host_detail::finish_run(run, options.member, overruns.figures(), slots, health.get(), last_run, seconds_since(start), degraded);
+    return RunStats{last_run + 1, seconds_since(start), degraded};
+  }
+
+  /// Real time: hosts of this run that loaded other files (DigestCheck). Within the start timeout, a
+  /// host outnumbered by hosts that agree on another digest refuses to start (RunConfigError, exit
+  /// 2): it is the odd one. Otherwise the run goes on degraded, naming each such host once; their
+  /// writers are no producer of the scenario here (refused and counted as unknown_producer).
+  void watch_digests(DigestCheck& digests, double elapsed_s, std::string& other_files) const {
+    const DigestVerdict& v = digests.verdict(*run.bus);
+    if (v.difference.empty()) {
+      return;
+    }
+    if (v.outnumbered() && elapsed_s < options.start_timeout_s) {
+      throw RunConfigError(DigestCheck::message(options.member + ": refuses to start", v.difference) + " (" +
+                           std::to_string(v.largest_other) + " host(s) agree on other files, " + std::to_string(v.agreeing) +
+                           " on this host's)");
+    }
+    for (const std::string& host : v.differing_hosts) {
+      if (other_files.find("host " + host + " ") != std::string::npos) {
+        continue;
+      }
+      const std::string line = "host " + host + " loaded other files than this host";
+      other_files += (other_files.empty() ? "" : "; ") + line;
+      log::warn(options.member, "degraded: " + (host == v.differing_hosts.front() ? v.difference : line) +
+                                    "; its samples are refused (unknown_producer), the run goes on without it");
+    }
   }
 
   /// Books one iteration of the real-time loop; warns (rate-limited) and fails past the limit.
@@ -313,7 +343,7 @@ RunStats Host::run() {
     // Tell the coordinator why this host stops, so it can report it at once.
     try {
       if (impl_->lockstep_host && !(impl_->peer_losses && impl_->peer_losses->coordinator_lost())) {
-        impl_->lockstep_host->publish_failure(e.what());
+        impl_->lockstep_host->publish_failure(e.what(), dynamic_cast<const RunConfigError*>(&e) != nullptr);
       }
     } catch (...) {
     }

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/bus/run_digest.hpp"
 #include "runtime/component/component.hpp"
 #include "runtime/component/registry.hpp"
 
@@ -41,6 +42,11 @@ struct HostOptions {
   /// Real time: the run fails (RunError) when more due steps than this are skipped; nullopt:
   /// default_max_missed_steps() of the run's steps (runtime/health/overrun_counter.hpp).
   std::optional<std::uint64_t> max_missed_steps;
+  /// What this host loaded (scenario, options, QoS files), announced to the other hosts of the run;
+  /// a host of this run that announces another one fails a lockstep run, and in real time makes
+  /// the outnumbered host refuse to start and the others run degraded (runtime/host/digest_check.hpp).
+  /// Empty: not compared (co-located, a component without a scenario file).
+  RunDigest digest;
 };
 
 struct RunStats {

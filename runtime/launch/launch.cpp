@@ -18,6 +18,7 @@
 #include "runtime/dds/security_files.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/launch/failed_summary.hpp"
+#include "runtime/launch/host_digest.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/host/producer_check.hpp"
 #include "runtime/bus/qos_profiles.hpp"
@@ -37,6 +38,11 @@ std::string env_or(const char* name, const std::string& fallback) {
   const char* value = std::getenv(name);
   return value != nullptr && *value != '\0' ? value : fallback;
 }
+
+/// Whether this host announces and compares the digest of what it loaded (docs/deployment.md,
+/// "Multi-host by hand"): not with ROBODDS_NO_DIGEST_CHECK=1, for hosts that knowingly load
+/// different files (e.g. a test of what a QoS mismatch does once it gets through).
+bool digest_check_wanted() { return env_or("ROBODDS_NO_DIGEST_CHECK", "") != "1"; }
 
 /// The robodds executable, which the child hosts run.
 std::string self_exe() {
@@ -198,6 +204,9 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
   options.progress = launch.progress;
   options.poll = [&children] { children.check_alive(); };
   options.stop = launch.stop;
+  if (digest_check_wanted()) {
+    options.digest = host_digest(scenario, "", launch.sets, with_identity(launch.dds, kCoordinatorIdentity));
+  }
   stats = run_in_process(registry, scenario, with_identity(launch.dds, kCoordinatorIdentity), options,
                          InProcessRun{TimeMode::kLockstep, launch.out_dir, ""});
   children.wait_all(30.0);
@@ -251,6 +260,10 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   // from other writers (RunContext::assigned_producers).
   DdsOptions announced = dds;
   announced.components = options.components;
+  if (!options.digest.empty()) {  // and what it loaded, which the other hosts of the run compare
+    announced.run_id = options.run_id;
+    announced.digest = options.digest;
+  }
   auto bus = make_dds_bus(announced);
   bus->expect_robots(scenario.robots_served_by(options.components));  // this process's writers' instances
   // A co-located lockstep run: its components' samples stay in memory, DDS serves observers.
@@ -425,7 +438,12 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
   }
   // A component executable without a scenario file knows no other producer: the first writer rule.
   const bool assign_producers = args.type.empty();
-  const RunStats stats = run_in_process(registry, scenario, with_identity(resolve_dds(args.dds, "robodds-" + options.member), identity),
+  const DdsOptions dds = with_identity(resolve_dds(args.dds, "robodds-" + options.member), identity);
+  if (args.type.empty() && digest_check_wanted()) {  // a host of a scenario: the others of its run must have loaded the same
+    check_qos_profiles(dds);  // a missing or bad QoS file is named as such, not as unreadable for its digest
+    options.digest = host_digest(scenario, args.params, args.sets, dds);
+  }
+  const RunStats stats = run_in_process(registry, scenario, dds,
                                         options, InProcessRun{time_mode(args.realtime), args.out, args.deploy, assign_producers, &producers});
   const std::string figures = std::to_string(stats.steps) + " steps in " + shortest_text(std::round(stats.wall_s * 10.0) / 10.0) + " s";
   if (!stats.degraded.empty()) {

@@ -1,7 +1,9 @@
 #include "runtime/lockstep/lockstep_coordinator.hpp"
 
 #include <algorithm>
+#include <thread>
 
+#include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
 
 namespace robodds {
@@ -22,7 +24,7 @@ using host_detail::seconds_since;
 using host_detail::sim_stamp_ns;
 
 LockstepCoordinator::LockstepCoordinator(const RunContext& run, const HostOptions& options, Bus& protocol_bus)
-    : run_(run), options_(options) {
+    : run_(run), options_(options), digests_(options.digest, options.run_id) {
   state_.mode = run.mode;
   const TopicInfo& clock = topic_info("sim/clock");
   const TopicInfo& done = topic_info("sim/step_done");
@@ -43,9 +45,20 @@ LockstepCoordinator::LockstepCoordinator(const RunContext& run, const HostOption
 void LockstepCoordinator::begin(Clock::time_point start) { ack_progress_at_ = start; }
 
 bool LockstepCoordinator::poll() {
+  // Before a member's failure report: a host that loaded other files fails because of it, and
+  // the difference is the reason to give.
+  digests_.fail_on_difference(*run_.bus, "coordinator");
   for (std::uint64_t key : ack_input_->instances()) {
     for (const idl::StepDone& ack : ack_input_->take_new(key)) {
       if (ack.run_id() == options_.run_id && ack.failed()) {
+        // A host that stopped because another loaded other files: that difference is the reason
+        // (its report can overtake the announcement of the host it names).
+        check_digests_once_discovered();
+        const std::string report = ack.error().to_string();
+        if (report.find(DigestCheck::kAdvice) != std::string::npos) {  // it saw a host this one never did
+          throw RunConfigError("group '" + ack.member().to_string() + "' failed at step " + std::to_string(ack.header().step()) +
+                               ": " + report);
+        }
         throw RunError("group '" + ack.member().to_string() + "' failed at step " + std::to_string(ack.header().step()) +
                        ": " + ack.error().to_string());
       }
@@ -60,6 +73,9 @@ bool LockstepCoordinator::poll() {
   std::string missing;
   bool progressed = false;
   while (acked_steps_ < next_tick_ && ack_input_->ready(acked_steps_, &missing)) {
+    if (acked_steps_ == 0) {
+      check_digests_once_discovered();
+    }
     if (options_.progress) {
       options_.progress(acked_steps_, last);
     }
@@ -86,6 +102,24 @@ bool LockstepCoordinator::poll() {
     }
   }
   return progressed;
+}
+
+void LockstepCoordinator::check_digests_once_discovered() {
+  if (options_.digest.empty()) {
+    return;
+  }
+  const Clock::time_point since = Clock::now();
+  while (seconds_since(since) < 0.5) {  // s: PeerDirectory::kParticipantWaitMs
+    const std::vector<std::string> found = run_.bus->discovered_participants().value_or(std::vector<std::string>{});
+    const bool all = std::all_of(options_.members.begin(), options_.members.end(), [&found](const std::string& m) {
+      return std::find(found.begin(), found.end(), "robodds-" + m) != found.end();
+    });
+    if (all) {
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  digests_.fail_on_difference(*run_.bus, "coordinator");
 }
 
 void LockstepCoordinator::publish_tick(std::uint64_t step, bool final_tick) {

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/host/digest_check.hpp"
 #include "runtime/host/host.hpp"
 #include "runtime/host/host_slot.hpp"
 
@@ -32,6 +33,11 @@ class LockstepCoordinator {
 
  private:
   void publish_tick(std::uint64_t step, bool final_tick);
+  /// Before step 0 counts as done, and before a member's failure is reported: waits (at most
+  /// 0.5 s, PeerDirectory's wait) until every member's participant is discovered, whose
+  /// announcement can come after its first sample, then compares their digests with this
+  /// host's (RunConfigError on a difference).
+  void check_digests_once_discovered();
 
   const RunContext& run_;
   const HostOptions& options_;
@@ -44,6 +50,7 @@ class LockstepCoordinator {
   std::uint64_t next_tick_ = 0;  // ticks [0, next_tick_) are sent
   host_detail::Clock::time_point ack_progress_at_;
   bool done_ = false;
+  DigestCheck digests_;
 };
 
 }  // namespace robodds

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <thread>
 
 #include "common/number_text.hpp"
 #include "runtime/base/error.hpp"
@@ -84,7 +85,7 @@ void check_inputs_have_producers(const RunContext& run, const LockstepHost::Slot
 
 LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& slots, Bus& protocol_bus,
                            HealthExchange* health)
-    : run_(run), options_(options), slots_(slots), health_(health) {
+    : run_(run), options_(options), slots_(slots), health_(health), digests_(options.digest, options.run_id) {
   state_.mode = run.mode;
   const TopicInfo& clock = topic_info("sim/clock");
   const TopicInfo& done = topic_info("sim/step_done");
@@ -109,6 +110,7 @@ void LockstepHost::begin(Clock::time_point start) {
 }
 
 bool LockstepHost::step() {
+  digests_.fail_on_difference(*run_.bus, options_.member);
   bool progressed = false;
   if (!tick_active_) {
     progressed = take_tick();
@@ -219,7 +221,11 @@ void LockstepHost::note_thirds() {
   }
 }
 
-void LockstepHost::publish_failure(const std::string& error) {
+void LockstepHost::publish_failure(const std::string& error, bool await_coordinator) {
+  const Clock::time_point asked = Clock::now();
+  while (await_coordinator && !ack_writer_->has_matched_readers() && seconds_since(asked) < options_.start_timeout_s) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
   publish_ack(tick_step_, 0, error);
   // The process exits next, and its participant's goodbye can overtake the report: the
   // coordinator then drops it with the writer and waits for this group until its own timeout

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/host/digest_check.hpp"
 #include "runtime/host/health_exchange.hpp"
 #include "runtime/host/host.hpp"
 #include "runtime/host/host_slot.hpp"
@@ -39,7 +40,10 @@ class LockstepHost {
   /// Tells the coordinator that this host stops, and why (a failed acknowledgement), and waits
   /// until the coordinator has acknowledged it (at most kFailureReportWait), so that the report
   /// is not lost with the process that exits next.
-  void publish_failure(const std::string& error);
+  /// `await_coordinator`: first wait for the coordinator's reader to match, at most the start
+  /// timeout (a host that found at once that another loaded other files: a coordinator that
+  /// starts later must still learn why this group stopped).
+  void publish_failure(const std::string& error, bool await_coordinator = false);
   static constexpr std::chrono::milliseconds kFailureReportWait{2000};
 
  private:
@@ -69,6 +73,7 @@ class LockstepHost {
   std::uint64_t components_run_ = 0;
   std::uint64_t steps_done_ = 0;
   bool done_ = false;
+  DigestCheck digests_;  // hosts of this run that loaded other files end it
 };
 
 }  // namespace robodds

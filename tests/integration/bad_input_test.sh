@@ -35,6 +35,11 @@ expect_error 2 "groups\.sim: unknown component 'plnt'" -- "${R[@]}" "$(scenario_
 # the first tick (was: a wait at step 0 until the step timeout, then "waited 10.0 s").
 expect_error 2 "t8\.yaml: components: lockstep: component 'plant' waits at every step for plant/cmd of robot 3, which no component of the scenario publishes" -- \
   "${R[@]}" "$(scenario_with t8 's/{name: commander, type: open_loop_commander}/{name: commander, type: open_loop_commander, robots: [1, 2]}/')"
+# The finding's own example: a UWB estimator whose window needs the link of two peers (peer_links)
+# that no UWB sensor measures (paper3_exp2 without robot 2's sensor): named before the first tick.
+sed -e '/name: uwb2/,+3d' -e 's/, uwb2\]/]/' "$SRC/sim/scenarios/paper3_exp2.yaml" >"$WORK/t8b.yaml"
+expect_error 2 "t8b\.yaml: components: lockstep: component 'estimator1' waits at every step for sensor/uwb of robot 2, which no component of the scenario publishes" -- \
+  "${R[@]}" "$WORK/t8b.yaml"
 
 # QoS files: missing, malformed, broken element, unknown profile.
 expect_error 2 "nope\.xml: QoS profile file not found" -- "${R[@]}" "$S" --qos "$WORK/nope.xml"

@@ -65,6 +65,9 @@ int parse_and_run(CLI::App& app, int argc, char** argv, const std::function<int(
   } catch (const ConfigError& e) {
     std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
     return 2;
+  } catch (const RunConfigError& e) {  // bad set-up found once running (hosts that loaded different files)
+    std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
+    return 2;
   } catch (const RunError& e) {
     std::fprintf(stderr, "%s: error: %s\n", program.c_str(), e.what());
     return g_stop ? 128 + g_signal.load() : 1;
