@@ -1,5 +1,7 @@
 #include "runtime/launch/process_group.hpp"
 
+#include <sched.h>
+
 #include <chrono>
 #include <csignal>
 #include <fcntl.h>
@@ -48,6 +50,10 @@ void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>
     if (getppid() != parent) {
       _exit(1);  // the runner died between fork and prctl
     }
+    // A child does not inherit the runner's SCHED_FIFO (--rt-priority): a host applies its own
+    // --rt-priority and locks its memory, and a helper (the plots' python3) runs as any process.
+    const sched_param normal{};
+    sched_setscheduler(0, SCHED_OTHER, &normal);
     if (log_fd >= 0 && (dup2(log_fd, STDOUT_FILENO) < 0 || dup2(log_fd, STDERR_FILENO) < 0)) {
       _exit(126);
     }

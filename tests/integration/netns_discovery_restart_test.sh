@@ -18,7 +18,7 @@ DURATION=14
 netns_setup 5 nomulticast
 SERVER_IP="$(netns_ip $SERVER_HOST)"
 # The early hosts' PeerWatch deadline (10 s) lets a host that starts at 5-6 s be found in time.
-COMMON=(--scenario "$S" --realtime --duration "$DURATION" --domain "$DOMAIN" --deploy processes
+COMMON=(--scenario "$S" --realtime $(rt_priority_flag) --duration "$DURATION" --domain "$DOMAIN" --deploy processes
         --participant-profile robodds.participant.udp_only --discovery-server "$SERVER_IP:11811")
 
 start_server() {
