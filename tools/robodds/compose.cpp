@@ -201,8 +201,9 @@ class ComposeWriter {
            << "# DIR/<group>/ (the coordinator DIR/coordinator/), read-only; its files must be readable by uid 10001.\n";
     }
     if (options_.rt_priority) {
-      out_ << "# --rt-priority " << *options_.rt_priority << ": every robodds service runs SCHED_FIFO with locked memory; it gets\n"
-           << "# the capabilities (cap_add SYS_NICE, IPC_LOCK) and limits (rtprio 99, memlock unlimited) for it.\n";
+      out_ << "# --rt-priority " << *options_.rt_priority << ": every robodds service runs SCHED_FIFO with locked memory. The limits\n"
+           << "# (ulimits rtprio 99, memlock unlimited) let its user (uid 10001) do so; cap_add SYS_NICE, IPC_LOCK\n"
+           << "# serve an image run as root.\n";
     }
     if (bridge()) {
       out_ << "# UDP only: containers do not share /dev/shm, so Fast DDS shared memory between them can\n"
