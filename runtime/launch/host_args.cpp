@@ -104,7 +104,8 @@ void add_rt_priority_option(CLI::App* app, std::optional<int>& rt_priority) {
             const std::string problem = rt_priority_problem(text);
             return problem.empty() ? problem : problem + " (got " + text + ")";
           },
-          "N"));
+          ""))
+      ->type_name("N");
 }
 
 bool DdsArgs::operator==(const DdsArgs& o) const {
