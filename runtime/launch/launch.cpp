@@ -172,7 +172,9 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
   const std::int64_t epoch_ns = (wall_clock_now_ns() / 1000000000LL + 2) * 1000000000LL;  // start in 2 s, on a whole second
   ProcessGroup children;
   for (const GroupSpec& group : scenario.groups) {
-    children.spawn(group.name, child_argv(scenario, launch, group.name, run_id, epoch_ns));
+    // With --rt-priority a host starts up (exec, loading, configuration) at the runner's priority:
+    // beside CPU hogs its start at SCHED_OTHER took seconds and made its first steps late.
+    children.spawn(group.name, child_argv(scenario, launch, group.name, run_id, epoch_ns), "", launch.rt_priority.has_value());
   }
   RunStats stats;
   if (launch.realtime) {

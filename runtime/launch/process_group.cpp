@@ -28,7 +28,8 @@ std::chrono::steady_clock::time_point deadline_after(double seconds) {
 
 ProcessGroup::~ProcessGroup() { terminate_all(2.0); }
 
-void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file) {
+void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file,
+                         bool keep_scheduling) {
   int log_fd = -1;
   if (!log_file.empty()) {
     log_fd = open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -50,10 +51,11 @@ void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>
     if (getppid() != parent) {
       _exit(1);  // the runner died between fork and prctl
     }
-    // A child does not inherit the runner's SCHED_FIFO (--rt-priority): a host applies its own
-    // --rt-priority and locks its memory, and a helper (the plots' python3) runs as any process.
-    const sched_param normal{};
-    sched_setscheduler(0, SCHED_OTHER, &normal);
+    if (!keep_scheduling) {
+      // A helper (the plots' python3) does not inherit the runner's SCHED_FIFO (--rt-priority).
+      const sched_param normal{};
+      sched_setscheduler(0, SCHED_OTHER, &normal);
+    }
     if (log_fd >= 0 && (dup2(log_fd, STDOUT_FILENO) < 0 || dup2(log_fd, STDERR_FILENO) < 0)) {
       _exit(126);
     }

@@ -27,7 +27,8 @@ expect_error 2 "--rt-priority 50: locking the memory \(mlockall\) refused \(.*no
   setpriv --bounding-set=-ipc_lock --inh-caps=-ipc_lock prlimit --memlock=65536 -- "$PLANT" --robot 1 --rt-priority 50 --domain "$DOMAIN"
 
 # 3. Granted: every thread of the runner and of each child host is SCHED_FIFO 10, memory locked.
-timeout -k 5 60 "$ROBODDS" run "$SCENARIO" --deploy processes --realtime --duration 3 --rt-priority 10 \
+# 6 s: the checks below take a while on a loaded machine, and every host must still be running.
+timeout -k 5 60 "$ROBODDS" run "$SCENARIO" --deploy processes --realtime --duration 6 --rt-priority 10 \
   --out "$WORK/rt" --domain "$DOMAIN" --no-plots >"$WORK/rt.log" 2>&1 &
 timeout_pid=$!
 cleanup_pids+=("$timeout_pid")

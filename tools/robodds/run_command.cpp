@@ -51,7 +51,8 @@ class RunCommand : public Command {
 
   int run() override {
     // The runner first (before any participant or child exists; a refusal starts nothing), then
-    // every child host applies it itself (the children start on SCHED_OTHER, ProcessGroup::spawn).
+    // every child host applies it itself (a host starts at the runner's policy, a helper such as
+    // the plots' python3 on SCHED_OTHER: ProcessGroup::spawn).
     apply_rt_priority_option(rt_priority_, "run", true);
     Scenario scenario = load_scenario(scenario_file_);
     apply_run_overrides(scenario, duration_s_, seed_);
