@@ -8,6 +8,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libssl-dev openssl
   iproute2 tcpdump procps bc docker-compose python3-matplotlib python3-yaml file time
+  stress-ng  # CPU hogs beside real-time runs (docs/deployment.md, Real-time priority)
   cyclonedds-dev cyclonedds-tools libcycloneddsidl0
 )
 missing=()

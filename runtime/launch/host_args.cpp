@@ -7,6 +7,7 @@
 #include "common/number_parse.hpp"
 #include "common/number_text.hpp"
 #include "runtime/base/error.hpp"
+#include "runtime/base/realtime_priority.hpp"
 #include "runtime/health/overrun_counter.hpp"
 
 namespace robodds {
@@ -93,6 +94,20 @@ void add_max_missed_steps_option(CLI::App* app, std::optional<std::uint64_t>& ma
       ->check(whole_number("N"));
 }
 
+void add_rt_priority_option(CLI::App* app, std::optional<int>& rt_priority) {
+  app->add_option_function<std::string>(
+         kRtPriorityOption, [&rt_priority](const std::string& text) { rt_priority = rt_priority_from_text(text); },
+         "run SCHED_FIFO at this priority (1..99) with locked memory (mlockall), so other load on the machine cannot "
+         "delay the real-time loop; needs root, CAP_SYS_NICE + CAP_IPC_LOCK, or rtprio/memlock in limits.conf")
+      ->check(CLI::Validator(
+          [](std::string& text) -> std::string {
+            const std::string problem = rt_priority_problem(text);
+            return problem.empty() ? problem : problem + " (got " + text + ")";
+          },
+          ""))
+      ->type_name("N");
+}
+
 bool DdsArgs::operator==(const DdsArgs& o) const {
   return domain == o.domain && qos_files == o.qos_files && participant_profile == o.participant_profile &&
          security_dir == o.security_dir && discovery_servers == o.discovery_servers;
@@ -106,7 +121,8 @@ bool HostArgs::operator==(const HostArgs& o) const {
   return scenario == o.scenario && group == o.group && components == o.components && params == o.params && sets == o.sets &&
          member == o.member && coordinate == o.coordinate && members == o.members && run_id == o.run_id && out == o.out &&
          deploy == o.deploy && realtime == o.realtime && epoch_ns == o.epoch_ns && duration_s == o.duration_s &&
-         seed == o.seed && log_level == o.log_level && max_missed_steps == o.max_missed_steps && type == o.type && name == o.name && robots == o.robots &&
+         seed == o.seed && log_level == o.log_level && max_missed_steps == o.max_missed_steps &&
+         rt_priority == o.rt_priority && type == o.type && name == o.name && robots == o.robots &&
          step_s == o.step_s && dds == o.dds && lockstep == o.lockstep;
 }
 
@@ -132,6 +148,7 @@ std::vector<std::string> to_argv(const HostArgs& args, const ArgPlaceholders& pl
   w.option("--seed", args.seed ? std::to_string(*args.seed) : "", !args.seed);
   w.option("--log", args.log_level, args.log_level.empty());
   w.option("--max-missed-steps", args.max_missed_steps ? std::to_string(*args.max_missed_steps) : "", !args.max_missed_steps);
+  w.option(kRtPriorityOption, args.rt_priority ? std::to_string(*args.rt_priority) : "", !args.rt_priority);
   w.option("--type", args.type, args.type.empty());
   w.option("--name", args.name, args.name.empty());
   for (const std::string& robot : args.robots) {
@@ -243,6 +260,7 @@ void add_run_options(CLI::App* app, HostArgs& args) {
   add_seed_option(app, args.seed, "override the scenario seed (a component without a scenario: 1)");
   app->add_option("--log", args.log_level, "log level: debug, info, warn, error (default: the global --log)");
   add_max_missed_steps_option(app, args.max_missed_steps);
+  add_rt_priority_option(app, args.rt_priority);
   add_dds_options(app, args.dds);
   add_lockstep_options(app, args.lockstep);
 }

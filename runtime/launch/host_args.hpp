@@ -56,6 +56,7 @@ struct HostArgs {
   std::optional<std::uint64_t> seed;    // override the scenario seed
   std::string log_level;                // empty: the global --log (or $ROBODDS_LOG)
   std::optional<std::uint64_t> max_missed_steps;  // real time: fail past this many skipped steps (default 5 %)
+  std::optional<int> rt_priority;       // SCHED_FIFO priority 1..99 + locked memory (runtime/base/realtime_priority.hpp)
   // One component without a scenario file (a component executable robodds-<type>, or
   // `robodds host --type`): the host makes a one-component scenario (standalone_scenario()).
   std::string type;                     // registered component type (instead of --scenario)
@@ -104,6 +105,9 @@ void add_seed_option(CLI::App* app, std::optional<std::uint64_t>& seed, const st
 /// --max-missed-steps: real time, the run fails when a host skips more due steps than this
 /// (default: kDefaultMaxMissedFraction of the run's steps, runtime/health/overrun_counter.hpp).
 void add_max_missed_steps_option(CLI::App* app, std::optional<std::uint64_t>& max_missed_steps);
+/// --rt-priority N: SCHED_FIFO priority 1..99 and locked memory for the process (the caller
+/// applies it with apply_rt_priority() before it creates a DDS participant).
+void add_rt_priority_option(CLI::App* app, std::optional<int>& rt_priority);
 /// The servers of --discovery-server (DdsArgs::discovery_servers), in order (server id = position):
 /// ConfigError naming the option and the entry for an empty address, a bad port or over 255.
 std::vector<DiscoveryServer> parse_discovery_servers(const std::string& text);

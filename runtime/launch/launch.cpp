@@ -20,6 +20,7 @@
 #include "runtime/launch/failed_summary.hpp"
 #include "runtime/launch/host_digest.hpp"
 #include "runtime/base/log.hpp"
+#include "runtime/base/realtime_priority.hpp"
 #include "runtime/host/producer_check.hpp"
 #include "runtime/bus/qos_profiles.hpp"
 #include "runtime/launch/process_group.hpp"
@@ -122,6 +123,7 @@ std::vector<std::string> child_argv(const Scenario& scenario, const LaunchOption
   args.sets = launch.sets;
   args.log_level = launch.log_level;
   args.max_missed_steps = launch.max_missed_steps;
+  args.rt_priority = launch.rt_priority;  // each child applies it before its participant exists
   args.dds.domain = launch.dds.domain_id;
   args.dds.qos_files = launch.dds.qos_files;
   args.dds.participant_profile = launch.dds.participant_profile;
@@ -176,7 +178,9 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
   const std::int64_t epoch_ns = (wall_clock_now_ns() / 1000000000LL + 2) * 1000000000LL;  // start in 2 s, on a whole second
   ProcessGroup children;
   for (const GroupSpec& group : scenario.groups) {
-    children.spawn(group.name, child_argv(scenario, launch, group.name, run_id, epoch_ns));
+    // With --rt-priority a host starts up (exec, loading, configuration) at the runner's priority:
+    // beside CPU hogs its start at SCHED_OTHER took seconds and made its first steps late.
+    children.spawn(group.name, child_argv(scenario, launch, group.name, run_id, epoch_ns), "", launch.rt_priority.has_value());
   }
   RunStats stats;
   if (launch.realtime) {
@@ -216,6 +220,20 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
 }  // namespace
 
 const char* to_string(Deploy deploy) { return deploy == Deploy::kProcesses ? "processes" : "colocated"; }
+
+void apply_rt_priority_option(const std::optional<int>& priority, const std::string& who, bool announce) {
+  if (!priority) {
+    return;
+  }
+  const std::string warning = apply_rt_priority(*priority);
+  if (!warning.empty()) {
+    log::warn(who, warning);
+  }
+  if (announce) {
+    log::info(who, std::string(kRtPriorityOption) + " " + std::to_string(*priority) + ": SCHED_FIFO priority " +
+                       std::to_string(*priority) + ", memory locked");
+  }
+}
 
 std::string share_dir() { return share_dir_of_this_process(ROBODDS_SOURCE_DIR); }
 
@@ -367,6 +385,10 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
 }  // namespace
 
 int run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop) {
+  const bool standalone = args.deploy != to_string(Deploy::kProcesses);  // not a child of `robodds run --deploy processes`
+  // First: a refusal ends the host before anything started; every thread created later inherits it.
+  const std::string who = !args.member.empty() ? args.member : !args.group.empty() ? args.group : !args.type.empty() ? args.type : "host";
+  apply_rt_priority_option(args.rt_priority, who, standalone);
   const Scenario scenario = host_scenario(registry, args);
   const ScenarioProducers producers = check_producers(registry, scenario, time_mode(args.realtime), false);
   if (!args.out.empty() && args.deploy != to_string(Deploy::kProcesses)) {
@@ -415,7 +437,6 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
   // A host on its own (a container, another machine) says what it runs and how the run ends, and
   // a coordinator its progress every 10 %: `docker-compose logs` shows them. A child of `robodds
   // run --deploy processes` stays quiet: its runner reports.
-  const bool standalone = args.deploy != to_string(Deploy::kProcesses);
   const std::string run_name = "run " + std::to_string(options.run_id) + " of '" + scenario.name + "'";
   if (standalone && options.coordinator) {
     options.progress = [member = options.member, reported = std::uint64_t{0}](std::uint64_t step, std::uint64_t last) mutable {

@@ -36,9 +36,15 @@ struct LaunchOptions {
   LockstepArgs lockstep;
   std::string log_level;      // of the child hosts
   std::optional<std::uint64_t> max_missed_steps;  // real time: HostOptions::max_missed_steps of every host
+  std::optional<int> rt_priority;  // --rt-priority of every child host (the caller applies it to itself: apply_rt_priority_option())
   std::function<void(std::uint64_t step, std::uint64_t last_step)> progress;
   const std::atomic<bool>* stop = nullptr;  // set by a signal handler
 };
+
+/// --rt-priority of this process, if given: apply_rt_priority() before anything else starts (no
+/// DDS participant yet, so every thread inherits it), its warning logged as `who`; ConfigError
+/// (exit 2) when refused. `announce`: say so on the log (a host on its own, the runner).
+void apply_rt_priority_option(const std::optional<int>& priority, const std::string& who, bool announce);
 
 /// Runs `scenario` (already loaded, with the run's --seed and --duration applied) to its end.
 /// The figures are this process's: the co-located host, the lockstep coordinator, or the wait

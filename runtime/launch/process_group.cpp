@@ -1,5 +1,7 @@
 #include "runtime/launch/process_group.hpp"
 
+#include <sched.h>
+
 #include <chrono>
 #include <csignal>
 #include <fcntl.h>
@@ -26,7 +28,8 @@ std::chrono::steady_clock::time_point deadline_after(double seconds) {
 
 ProcessGroup::~ProcessGroup() { terminate_all(2.0); }
 
-void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file) {
+void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file,
+                         bool keep_scheduling) {
   int log_fd = -1;
   if (!log_file.empty()) {
     log_fd = open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -47,6 +50,11 @@ void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) {
       _exit(1);  // the runner died between fork and prctl
+    }
+    if (!keep_scheduling) {
+      // A helper (the plots' python3) does not inherit the runner's SCHED_FIFO (--rt-priority).
+      const sched_param normal{};
+      sched_setscheduler(0, SCHED_OTHER, &normal);
     }
     if (log_fd >= 0 && (dup2(log_fd, STDOUT_FILENO) < 0 || dup2(log_fd, STDERR_FILENO) < 0)) {
       _exit(126);

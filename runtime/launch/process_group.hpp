@@ -15,8 +15,11 @@ class ProcessGroup {
   ~ProcessGroup();
   /// Starts `argv` as the process of group `name`; argv[0] is an executable path, or a name
   /// looked up in $PATH. A non-empty `log_file` takes the child's stdout and stderr (created or
-  /// truncated; RunError naming it if it cannot be opened).
-  void spawn(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file = "");
+  /// truncated; RunError naming it if it cannot be opened). The child starts on SCHED_OTHER
+  /// unless `keep_scheduling` (a host of `robodds run --rt-priority`: it starts up at the
+  /// runner's priority, before it applies its own; a helper such as python3 must not).
+  void spawn(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file = "",
+             bool keep_scheduling = false);
   /// Throws RunError naming the group if a child has failed (non-zero exit or a signal) while the
   /// run goes on; a child that ended with code 0 finished its part and is only reaped.
   void check_alive();

@@ -72,6 +72,28 @@ docker-compose -f "$SRC/out/compose_test.$$/sub/plant_smoke.yml" config -q
 "${CHECK[@]}" "$SRC/out/compose_test.$$/sub/plant_smoke.yml" >/dev/null
 echo "ok: -o FILE gets paths relative to FILE"
 
+# 5b. --rt-priority N: every robodds service runs with it and gets the capabilities and limits it
+#     needs; without it (the shipped files) none of them.
+expect_error 2 "--rt-priority: must be a whole number 1\.\.99" -- "${D[@]}" "$S" --rt-priority 0
+"${D[@]}" "$S" --rt-priority 50 -o "$SRC/out/compose_test.$$/rt.yml" >/dev/null
+docker-compose -f "$SRC/out/compose_test.$$/rt.yml" config -q || fail "--rt-priority: docker-compose config -q"
+"${CHECK[@]}" "$SRC/out/compose_test.$$/rt.yml" >/dev/null
+python3 - "$SRC/out/compose_test.$$/rt.yml" "${files[@]}" <<'PY' || fail "--rt-priority: capabilities, limits or option wrong"
+import sys, yaml
+def services(path):
+    return yaml.safe_load(open(path))["services"]
+for name, s in services(sys.argv[1]).items():
+    assert sorted(s.get("cap_add", [])) == ["IPC_LOCK", "SYS_NICE"], f"{name}: cap_add {s.get('cap_add')}"
+    assert s.get("ulimits") == {"rtprio": 99, "memlock": -1}, f"{name}: ulimits {s.get('ulimits')}"
+    command = s["command"]
+    assert command[command.index("--rt-priority") + 1] == "50", f"{name}: command {command}"
+for path in sys.argv[2:]:
+    for name, s in services(path).items():
+        assert "cap_add" not in s and "ulimits" not in s, f"{path}: {name} has capabilities it was not asked for"
+        assert "--rt-priority" not in s.get("command", []), f"{path}: {name} runs --rt-priority unasked"
+PY
+echo "ok: --rt-priority 50 gives every service the option, cap_add SYS_NICE + IPC_LOCK, rtprio 99, memlock unlimited; the shipped files none"
+
 # 6. The services' commands, run as local processes, complete the run; the outputs are
 #    byte-identical to a co-located run (bridge variant: UDP only; host variant: SHM + UDP).
 for scenario in plant_smoke paper1_waypoints; do

@@ -2,7 +2,7 @@
 # Killing one host process makes `robodds run --deploy processes` fail fast, naming the group.
 source "$(dirname "$0")/lib.sh"
 "$ROBODDS" run "$SRC/sim/scenarios/plant_smoke.yaml" --out "$WORK/out" --domain "$DOMAIN" --deploy processes \
-  --duration 600 --realtime >"$WORK/log" 2>&1 &
+  --duration 600 --realtime $(rt_priority_flag) >"$WORK/log" 2>&1 &
 runner=$!
 cleanup_pids+=("$runner")
 for _ in $(seq 100); do

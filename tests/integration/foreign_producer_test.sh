@@ -27,7 +27,7 @@ fi
 timeout -k 5 40 "$PROBE" write-cmd --domain "$DOMAIN" --robot 1 --pattern valid --linger 8 >"$WORK/a_cmd.txt" 2>"$WORK/a_writer.log" &
 probe_pid=$!
 cleanup_pids+=("$probe_pid")
-timeout -k 5 90 "$ROBODDS" run "$SRC/tests/interop/scenario_commander.yaml" --realtime --deploy processes --domain "$DOMAIN" \
+timeout -k 5 90 "$ROBODDS" run "$SRC/tests/interop/scenario_commander.yaml" --realtime $(rt_priority_flag) --deploy processes --domain "$DOMAIN" \
   --out "$WORK/a" --no-plots >"$WORK/a_run.log" 2>&1 || fail "run A exited non-zero: $(tail -20 "$WORK/a_run.log")"
 wait "$probe_pid" || fail "cyclone_probe write-cmd (A) failed: $(cat "$WORK/a_writer.log")"
 sent=$(grep -c '^cmd ' "$WORK/a_cmd.txt" || true)
@@ -54,7 +54,7 @@ print(f"ok: A: Cyclone commands ({sent} sent) refused as unknown_producer by pla
 PY
 
 # --- B: a writer of refused samples first, a valid one later
-timeout -k 5 60 "$ROBODDS" run "$SRC/tests/interop/foreign_commander.yaml" --realtime --domain "$DOMAIN" --out "$WORK/b" \
+timeout -k 5 60 "$ROBODDS" run "$SRC/tests/interop/foreign_commander.yaml" --realtime $(rt_priority_flag) --domain "$DOMAIN" --out "$WORK/b" \
   --no-plots >"$WORK/b_run.log" 2>&1 &
 run_pid=$!
 cleanup_pids+=("$run_pid")

@@ -27,7 +27,7 @@ PY
 timeout -k 5 60 "$ROBODDS" run "$SCENARIO" --deploy processes --duration 1 --out "$WORK/lockstep" --domain "$DOMAIN" --no-plots \
   >"$WORK/lockstep.log" 2>&1 || fail "lockstep processes run failed: $(tail -5 "$WORK/lockstep.log")"
 check_summary "$WORK/lockstep" lockstep
-timeout -k 5 60 "$ROBODDS" run "$SCENARIO" --deploy processes --realtime --duration 2 --max-missed-steps 1000000 \
+timeout -k 5 60 "$ROBODDS" run "$SCENARIO" --deploy processes --realtime $(rt_priority_flag) --duration 2 --max-missed-steps 1000000 \
   --out "$WORK/realtime" --domain "$DOMAIN" --no-plots >"$WORK/realtime.log" 2>&1 ||
   fail "real-time processes run failed: $(tail -5 "$WORK/realtime.log")"
 check_summary "$WORK/realtime" realtime

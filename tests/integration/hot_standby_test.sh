@@ -20,7 +20,7 @@ out="$WORK/run"
 DURATION=14
 KILL_AT=7  # s after step 0
 epoch_s=$(($(date +%s) + 3))
-C=(--scenario "$S" --realtime --epoch-ns "${epoch_s}000000000" --duration "$DURATION" --domain "$DOMAIN" --out "$out")
+C=(--scenario "$S" --realtime $(rt_priority_flag) --epoch-ns "${epoch_s}000000000" --duration "$DURATION" --domain "$DOMAIN" --out "$out")
 declare -A pid
 for g in sim sensors estimation estimation_standby control evaluation; do
   "$ROBODDS" --log info host --group "$g" "${C[@]}" >"$WORK/$g.log" 2>&1 &

@@ -22,7 +22,7 @@ TIMEOUT_S=$(sed -n 's/.*command_timeout_s: \([0-9.]*\).*/\1/p' "$SCENARIO")
 [[ -n "$TIMEOUT_S" ]] || fail "no command_timeout_s in $SCENARIO"
 MARGIN_S=0.15   # plant period (10 ms) + delivery and scheduling slack on a loaded 2-core machine
 
-timeout -k 5 60 "$ROBODDS" run "$SCENARIO" --realtime --domain "$DOMAIN" --out "$WORK/out" --no-plots \
+timeout -k 5 60 "$ROBODDS" run "$SCENARIO" --realtime $(rt_priority_flag) --domain "$DOMAIN" --out "$WORK/out" --no-plots \
   >"$WORK/run.log" 2>&1 &
 run_pid=$!
 cleanup_pids+=("$run_pid")

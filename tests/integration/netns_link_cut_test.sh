@@ -29,7 +29,7 @@ pids=()
 for i in "${!GROUPS_[@]}"; do
   netns_spawn $((i + 1)) "$WORK/${GROUPS_[$i]}.log" "$ROBODDS" host --group "${GROUPS_[$i]}" --scenario "$S" \
     --out "$WORK/out" --domain "$DOMAIN" --participant-profile robodds.participant.udp_only --duration "$DURATION" \
-    --realtime --epoch-ns "$epoch"
+    --realtime $(rt_priority_flag) --epoch-ns "$epoch"
   pids+=("$SPAWNED")
 done
 

@@ -53,7 +53,7 @@ same_outputs "$WORK/plain" "$WORK/secure_colocated"
 echo "ok: secure lockstep runs (processes, co-located) byte-identical to the unsecured one ($N_CSV CSVs)"
 
 # 2. A secure real-time run; outsiders see nothing, the tools identity sees it.
-timeout -k 5 60 "$ROBODDS" run "$SCENARIO" --realtime --deploy processes --duration 9 --out "$WORK/rt" --domain "$DOMAIN" \
+timeout -k 5 60 "$ROBODDS" run "$SCENARIO" --realtime $(rt_priority_flag) --deploy processes --duration 9 --out "$WORK/rt" --domain "$DOMAIN" \
   --security "$SEC" --no-plots >"$WORK/rt.log" 2>&1 &
 cleanup_pids+=("$!")
 sleep 3

@@ -16,7 +16,7 @@ epoch=$(( $(date +%s%N) + 4000000000 ))  # step 0 in 4 s: every host has started
 # kill): with an unknown heading the estimate is valid only after ~14 s of creeping (issue 12).
 KNOWN_START=(--set estimator.init_theta_known=true --set estimator.init_theta_rad=0)
 for group in sim sensors estimation control evaluation; do
-  "$ROBODDS" host --scenario "$SCENARIO" --group "$group" --realtime --epoch-ns "$epoch" --duration "$DURATION" \
+  "$ROBODDS" host --scenario "$SCENARIO" --group "$group" --realtime $(rt_priority_flag) --epoch-ns "$epoch" --duration "$DURATION" \
     --domain "$DOMAIN" --out "$WORK/out" "${KNOWN_START[@]}" >"$WORK/$group.log" 2>&1 &
   pid=$!
   cleanup_pids+=("$pid")

@@ -24,7 +24,7 @@ for deploy in colocated processes; do
   check_timing "$WORK/$deploy"
 done
 same_outputs "$WORK/colocated" "$WORK/processes"
-timeout -k 5 120 "$ROBODDS" run "$SCENARIO" --duration 2 --deploy processes --realtime --max-missed-steps 1000000 \
+timeout -k 5 120 "$ROBODDS" run "$SCENARIO" --duration 2 --deploy processes --realtime $(rt_priority_flag) --max-missed-steps 1000000 \
   --out "$WORK/realtime" --domain "$DOMAIN" --no-plots >"$WORK/realtime.log" 2>&1 ||
   fail "real-time processes run failed: $(tail -5 "$WORK/realtime.log")"
 check_timing "$WORK/realtime"

@@ -7,7 +7,7 @@
 # estimate was valid after 11.8-16.1 s in 5 runs on an idle machine (2026-12-02), and once in CI
 # late enough that the first way-point missed a 35 s run: hence 45 s.
 source "$(dirname "$0")/../integration/lib.sh"
-timeout -k 5 120 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --realtime --deploy processes --duration 45 \
+timeout -k 5 120 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --realtime $(rt_priority_flag) --deploy processes --duration 45 \
   --out "$WORK/run" --domain "$DOMAIN" --no-plots >"$WORK/run.log" 2>&1 || fail "run failed: $(tail -5 "$WORK/run.log")"
 python3 - "$WORK/run/summary.json" <<'PY' || fail "metrics check failed: $(tail -5 "$WORK/run.log")"
 import json, sys

@@ -4,7 +4,7 @@
 # formation forms before the switch at 30 s (every radius within 2 m, every gap within 15 deg of
 # 90), robots 1-3 then reach target 2's circle and robot 4 stops.
 source "$(dirname "$0")/../integration/lib.sh"
-timeout -k 5 150 "$ROBODDS" run "$(dirname "$0")/paper2_realtime.yaml" --realtime --deploy processes \
+timeout -k 5 150 "$ROBODDS" run "$(dirname "$0")/paper2_realtime.yaml" --realtime $(rt_priority_flag) --deploy processes \
   --out "$WORK/run" --domain "$DOMAIN" --no-plots >"$WORK/run.log" 2>&1 || fail "run failed: $(tail -5 "$WORK/run.log")"
 python3 - "$WORK/run/plant_state.csv" <<'PY' || fail "formation check failed: $(tail -3 "$WORK/run.log")"
 import csv, math, sys

@@ -12,7 +12,7 @@ python3 "$(dirname "$0")/paper3_per_robot.py" "$SRC/sim/scenarios/paper3_exp2.ya
   || fail "could not write the per-robot scenario"
 timeout -k 5 300 "$ROBODDS" run "$WORK/per_robot.yaml" --out "$WORK/lockstep" --domain "$DOMAIN" --no-plots >"$WORK/lockstep.log" 2>&1 \
   || fail "lockstep run failed: $(tail -5 "$WORK/lockstep.log")"
-timeout -k 5 $(( ${4%.*} + 120 )) "$ROBODDS" run "$WORK/per_robot.yaml" --realtime --deploy processes --out "$WORK/realtime" \
+timeout -k 5 $(( ${4%.*} + 120 )) "$ROBODDS" run "$WORK/per_robot.yaml" --realtime $(rt_priority_flag) --deploy processes --out "$WORK/realtime" \
   --domain "$DOMAIN" --no-plots >"$WORK/realtime.log" 2>&1 || fail "real-time run failed: $(tail -5 "$WORK/realtime.log")"
 python3 - "$WORK/lockstep/summary.json" "$WORK/realtime/summary.json" <<'PY' || fail "real-time errors out of bounds"
 import json, sys

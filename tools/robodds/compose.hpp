@@ -6,6 +6,7 @@
 // parameter files; the output depends only on the arguments (deterministic ordering).
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,10 @@ struct ComposeOptions {
   /// kSecurityDir/<identity> (the identity is its group, `coordinator` for the coordinator), and
   /// runs with --security kSecurityDir. Not with the Discovery Server (it would need an identity).
   std::string security_dir;
+  /// --rt-priority N of every robodds service (the coordinator and the group hosts), which then
+  /// get the capabilities and limits it needs (cap_add SYS_NICE and IPC_LOCK, ulimits rtprio 99 and
+  /// memlock unlimited); nullopt: none of these.
+  std::optional<int> rt_priority;
   /// The registered component types; a scenario component of another type is an error. (No
   /// parameter file is mounted: defaults are compiled in, scenario overrides are in the scenario.)
   std::vector<std::string> component_types;

@@ -50,6 +50,7 @@ DeployCommand::DeployCommand(CLI::App& app, const CommandEnv& env) : env_(env) {
       ->check(CLI::IsMember({"bridge", "host"}));
   compose->add_option("--security", security_dir_,
                       "DDS Security: directory made by `robodds security init`; each container mounts its own identity, read-only");
+  add_rt_priority_option(compose, rt_priority_);
   compose->add_option("-o,--output", output_, "write here (default: stdout, with paths for a file in deploy/compose/)");
 }
 
@@ -72,6 +73,7 @@ int DeployCommand::run() {
   for (const ComponentType& type : env_.registry.types()) {
     options.component_types.push_back(type.name);
   }
+  options.rt_priority = rt_priority_;
   if (!security_dir_.empty()) {  // absolute in the file: the folder is usually outside the repository
     options.security_dir = fs::weakly_canonical(fs::absolute(security_dir_)).generic_string();
   }

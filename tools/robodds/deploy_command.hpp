@@ -1,7 +1,9 @@
 #pragma once
-// `robodds deploy compose SCENARIO [--discovery multicast|server] [--network bridge|host] [-o FILE]`:
+// `robodds deploy compose SCENARIO [--discovery multicast|server] [--network bridge|host]
+// [--rt-priority N] [-o FILE]`:
 // command-line wiring and path handling around the pure generator in compose.hpp.
 
+#include <optional>
 #include <string>
 
 #include "tools/robodds/command.hpp"
@@ -27,6 +29,7 @@ class DeployCommand : public Command {
   std::string network_ = "bridge";
   std::string output_;
   std::string security_dir_;  // empty: no DDS Security
+  std::optional<int> rt_priority_;  // --rt-priority of every robodds service, with its capabilities
 };
 
 }  // namespace robodds

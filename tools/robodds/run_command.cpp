@@ -41,6 +41,7 @@ class RunCommand : public Command {
     cmd_->add_flag("--realtime", realtime_, "wall-clock timers instead of lockstep");
     add_duration_option(cmd_, duration_s_, "override the scenario duration (s)");
     add_max_missed_steps_option(cmd_, max_missed_steps_);
+    add_rt_priority_option(cmd_, rt_priority_);
     add_dds_options(cmd_, dds_);
     add_lockstep_options(cmd_, lockstep_);
     cmd_->add_flag("--no-plots", no_plots_, "do not draw the PNG plots at the end");
@@ -49,6 +50,10 @@ class RunCommand : public Command {
   bool parsed() const override { return cmd_->parsed(); }
 
   int run() override {
+    // The runner first (before any participant or child exists; a refusal starts nothing), then
+    // every child host applies it itself (a host starts at the runner's policy, a helper such as
+    // the plots' python3 on SCHED_OTHER: ProcessGroup::spawn).
+    apply_rt_priority_option(rt_priority_, "run", true);
     Scenario scenario = load_scenario(scenario_file_);
     apply_run_overrides(scenario, duration_s_, seed_);
     apply_param_overrides(scenario, parse_param_assignments(sets_), "--set");
@@ -61,6 +66,7 @@ class RunCommand : public Command {
     launch.lockstep = lockstep_;
     launch.log_level = env_.log_level;
     launch.max_missed_steps = max_missed_steps_;
+    launch.rt_priority = rt_priority_;
     launch.progress = show_progress;
     launch.stop = &env_.stop;
     launch.dds = resolve_dds(dds_, "robodds-run");  // a bad $ROBODDS_DOMAIN_ID creates no --out
@@ -91,6 +97,7 @@ class RunCommand : public Command {
   bool realtime_ = false;
   std::optional<double> duration_s_;
   std::optional<std::uint64_t> max_missed_steps_;
+  std::optional<int> rt_priority_;
   bool no_plots_ = false;
   DdsArgs dds_;
   LockstepArgs lockstep_;

@@ -44,6 +44,7 @@ HostArgs every_field_set() {
   a.seed = 0;                // given, although 0
   a.log_level = "debug";
   a.max_missed_steps = 0;    // given, although 0
+  a.rt_priority = 99;
   a.dds.domain = 102;
   a.dds.qos_files = {"a.xml", "b.xml"};
   a.dds.participant_profile = "robodds.participant.udp_only";
@@ -78,6 +79,7 @@ TEST(HostArgs, RenderThenParseGivesTheSameStruct) {
   EXPECT_EQ(parsed.seed, original.seed);
   EXPECT_EQ(parsed.log_level, original.log_level);
   EXPECT_EQ(parsed.max_missed_steps, original.max_missed_steps);
+  EXPECT_EQ(parsed.rt_priority, original.rt_priority);
   EXPECT_TRUE(parsed.dds == original.dds);
   EXPECT_EQ(parsed.lockstep.start_timeout_s, original.lockstep.start_timeout_s);
   EXPECT_EQ(parsed.lockstep.lockstep_window, original.lockstep.lockstep_window);
@@ -99,6 +101,7 @@ TEST(HostArgs, EachFieldAloneSurvivesTheRoundTrip) {
       [&](HostArgs& a) { a.dds.qos_files = {"q.xml"}; },  [&](HostArgs& a) { a.dds.participant_profile = "p"; },
       [&](HostArgs& a) { a.lockstep.input_timeout_s = 3; }, [&](HostArgs& a) { a.lockstep.start_timeout_s = 4; },
       [&](HostArgs& a) { a.lockstep.lockstep_window = 2; }, [&](HostArgs& a) { a.max_missed_steps = 3; },
+      [&](HostArgs& a) { a.rt_priority = 1; },
       [&](HostArgs& a) { a.dds.security_dir = full.dds.security_dir; },
       [&](HostArgs& a) { a.dds.discovery_servers = full.dds.discovery_servers; },
   };
@@ -184,6 +187,22 @@ TEST(HostArgs, MaxMissedStepsIsAWholeNumber) {
   EXPECT_EQ(parse({"--max-missed-steps", "25"}).max_missed_steps, 25u);
   for (const char* bad : {"-1", "nan", "1.5", ""}) {
     EXPECT_THROW(parse({"--max-missed-steps", bad}), CLI::ParseError) << bad;
+  }
+}
+
+TEST(HostArgs, RtPriorityIsOneTo99) {
+  EXPECT_FALSE(parse({}).rt_priority);
+  EXPECT_EQ(parse({"--rt-priority", "1"}).rt_priority, 1);
+  EXPECT_EQ(parse({"--rt-priority", "99"}).rt_priority, 99);
+  for (const char* bad : {"0", "100", "-1", "50.5", "nan", "", " 5", "1e1"}) {
+    EXPECT_THROW(parse({"--rt-priority", bad}), CLI::ParseError) << bad;
+  }
+  try {
+    parse({"--rt-priority", "0"});
+    ADD_FAILURE() << "--rt-priority 0 was accepted";
+  } catch (const CLI::ValidationError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--rt-priority: must be a whole number 1..99 (the SCHED_FIFO priority; 99 is the highest) (got 0)");
   }
 }
 
