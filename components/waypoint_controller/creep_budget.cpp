@@ -21,6 +21,17 @@ CreepVerdict CreepBudget::check(double time_s, bool mission_done) {
   return time_s - started_s_ <= limits_.max_time_s ? CreepVerdict::kAllowed : CreepVerdict::kTimeSpent;
 }
 
+bool CreepBudget::estimator_restarted() {
+  if (restarts_granted_ >= limits_.max_restarts) {
+    return false;
+  }
+  ++restarts_granted_;
+  had_valid_ = false;
+  started_ = false;
+  distance_m_ = 0.0;
+  return true;
+}
+
 void CreepBudget::crept(double v_mps, double period_s) { distance_m_ += std::abs(v_mps) * period_s; }
 
 const char* describe(CreepVerdict verdict) {

@@ -75,7 +75,7 @@ class WaypointTracker {
   /// valid), brought within the wheel-speed and acceleration limits like step()'s; no switching.
   Command hold(const Command& wanted);
   /// The command last returned by step() or hold() (zero after command_stopped()): what the node
-  /// repeats while its estimate is late (estimate_age.hpp).
+  /// repeats while its estimate is late (common/estimate_age.hpp).
   const Command& last_command() const { return last_command_; }
 
   bool has_mission() const { return !mission_.empty(); }

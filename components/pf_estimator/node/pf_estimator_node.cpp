@@ -103,6 +103,7 @@ class PfEstimatorNode : public Component {
         m.cov()[static_cast<std::size_t>(i)] = e.covariance(i / 3, i % 3);
       }
       m.valid(next_validity(e, validity_, was_valid));
+      m.restarts(static_cast<std::uint32_t>(filter.recovery_count()));  // a consumer sees each redraw, even one it missed
     }
     return m;
   }

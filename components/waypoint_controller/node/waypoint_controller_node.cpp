@@ -5,7 +5,7 @@
 #include <string>
 
 #include "components/waypoint_controller/creep_budget.hpp"
-#include "components/waypoint_controller/estimate_age.hpp"
+#include "common/estimate_age.hpp"
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 #include "robodds/idl/robodds.h"
 #include "components/waypoint_controller/node/waypoint_controller_params.hpp"
@@ -26,7 +26,8 @@ class WaypointControllerNode : public Component {
     params_ = node_params.controller;
     require_valid_ = node_params.require_valid_estimate;
     invalid_estimate_speed_mps_ = node_params.invalid_estimate_speed_mps;
-    const CreepLimits creep_limits{node_params.invalid_estimate_creep_max_m, node_params.invalid_estimate_creep_limit_s};
+    const CreepLimits creep_limits{node_params.invalid_estimate_creep_max_m, node_params.invalid_estimate_creep_limit_s,
+                                   node_params.invalid_estimate_creep_restarts};
     estimate_timeout_s_ = node_params.estimate_timeout_s;
     p.validate(params_);  // the body is checked where it is declared (system::check_facts)
     ctx.set_rate_hz(rate_hz, "rate_hz");
@@ -65,8 +66,11 @@ class WaypointControllerNode : public Component {
       status.robot_id(id);
       status.epsilon(params_.epsilon_m);
       status.state(state_for(id, tracker, estimate));
-      if (estimate != nullptr && estimate->valid() && status.state() != idl::ESTIMATE_STALE) {
-        robot.creep.estimate_was_valid();  // from now on the robot never drives without one
+      if (estimate != nullptr && status.state() != idl::ESTIMATE_STALE) {
+        note_restarts(id, robot, *estimate, info.time_s);
+        if (estimate->valid()) {
+          robot.creep.estimate_was_valid();  // from now on the robot never drives without one
+        }
       }
       if (status.state() == idl::TRACKING && estimate_is_late(id, robot, *estimate)) {
         const Command held = tracker.last_command();  // a frozen pose is no news: no higher command
@@ -109,7 +113,23 @@ class WaypointControllerNode : public Component {
     TrackerStatus last_tracked;                  // of its last tracking step, repeated while the estimate is late
     CreepVerdict told = CreepVerdict::kAllowed;  // the last refusal logged
     bool told_late = false;                      // a late estimate was logged once
+    std::uint32_t restarts_seen = 0;             // the estimator's restart count last seen
   };
+
+  /// The estimator restarted (its count rose since the last estimate seen): a new creep budget
+  /// while the run's allowance lasts (creep_budget.hpp). Says which, once per restart.
+  static void note_restarts(std::uint32_t id, Robot& robot, const idl::PoseEstimate& estimate, double time_s) {
+    if (estimate.restarts() <= robot.restarts_seen) {
+      return;
+    }
+    robot.restarts_seen = estimate.restarts();
+    const bool granted = robot.creep.estimator_restarted();
+    log::warn("waypoint_controller", "robot " + std::to_string(id) + ": the estimator restarted at " + std::to_string(time_s) +
+                                         " s (restart " + std::to_string(estimate.restarts()) + "): " +
+                                         (granted ? "a new creep budget until its next valid estimate"
+                                                  : "invalid_estimate_creep_restarts used up: no creeping"));
+    robot.told = CreepVerdict::kAllowed;  // a refusal after this restart is said again
+  }
 
   /// Way-point index, total, reached and done from the tracker: true in every state.
   static void set_progress(idl::ControllerStatus& status, const WaypointTracker& tracker) {
@@ -136,9 +156,9 @@ class WaypointControllerNode : public Component {
     if (!realtime_) {
       return false;  // lockstep: every estimate is the one of its step
     }
-    const double period_s = producer_period_s(estimate.header().step(), estimate.header().next_step(), step_s_);
+    const double period_s = control::producer_period_s(estimate.header().step(), estimate.header().next_step(), step_s_);
     const double age_s = estimates_->age_s(id).value_or(estimate_timeout_s_);
-    if (classify_estimate_age(age_s, period_s, estimate_timeout_s_) != EstimateAge::kLate) {
+    if (control::classify_estimate_age(age_s, period_s, estimate_timeout_s_) != control::EstimateAge::kLate) {
       return false;
     }
     if (!robot.told_late) {

@@ -27,6 +27,10 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
                params::positive(),
                "with invalid_estimate_speed_mps: stop creeping this long after the first creeping step (a filter that "
                "never converges must not drive the robot on)")
+          .add("invalid_estimate_creep_restarts", &WaypointControllerNodeParams::invalid_estimate_creep_restarts, "",
+               params::at_least(0),
+               "with invalid_estimate_speed_mps: how many estimator restarts (PoseEstimate.restarts rising: a lost filter "
+               "redrawn from the fixes, its heading unknown) may each grant a new creep budget in a run; 0 = none")
           .add("estimate_timeout_s", &WaypointControllerNodeParams::estimate_timeout_s, "s", params::positive(),
                "real time only: an estimate received longer ago than this stops the robot (state ESTIMATE_STALE); > the control period. "
                "One older than two of its producer's periods (next_step - step) already holds the last command");

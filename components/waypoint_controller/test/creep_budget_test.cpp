@@ -45,5 +45,30 @@ TEST(CreepBudget, StopsAfterItsTimeFromTheFirstCreepingStep) {
   EXPECT_EQ(creep.check(15.02, false), CreepVerdict::kTimeSpent);
 }
 
+TEST(CreepBudget, AnEstimatorRestartGrantsANewBudgetUntilTheAllowanceIsUsedUp) {
+  CreepBudget creep(CreepLimits{2.0, 10.0, 2});
+  creep.crept(0.3, kPeriodS);
+  creep.estimate_was_valid();
+  EXPECT_EQ(creep.check(1.0, false), CreepVerdict::kAfterValidEstimate);
+  ASSERT_TRUE(creep.estimator_restarted());
+  EXPECT_EQ(creep.distance_m(), 0.0) << "a new budget";
+  EXPECT_EQ(creep.check(50.0, false), CreepVerdict::kAllowed) << "its time counts from here";
+  EXPECT_EQ(creep.check(60.0, false), CreepVerdict::kAllowed);
+  EXPECT_EQ(creep.check(60.02, false), CreepVerdict::kTimeSpent);
+  EXPECT_EQ(creep.check(70.0, true), CreepVerdict::kMissionDone) << "never once the mission is done";
+  creep.estimate_was_valid();
+  ASSERT_TRUE(creep.estimator_restarted());
+  creep.estimate_was_valid();
+  EXPECT_FALSE(creep.estimator_restarted()) << "max_restarts 2 used up";
+  EXPECT_EQ(creep.check(80.0, false), CreepVerdict::kAfterValidEstimate);
+}
+
+TEST(CreepBudget, NoRestartBudgetWhenNoneIsAllowed) {
+  CreepBudget creep(CreepLimits{2.0, 10.0, 0});
+  creep.estimate_was_valid();
+  EXPECT_FALSE(creep.estimator_restarted());
+  EXPECT_EQ(creep.check(1.0, false), CreepVerdict::kAfterValidEstimate);
+}
+
 }  // namespace
 }  // namespace robodds::waypoint_controller

@@ -212,6 +212,37 @@ TEST(WaypointControllerNode, NoCreepingOnceTheEstimateWasValid) {
   }
 }
 
+// A lost filter redrawn (PoseEstimate.restarts rises) knows no heading, as at the start: one new
+// bounded creep, until its next valid estimate; a plain invalid estimate grants none.
+TEST(WaypointControllerNode, AnEstimatorRestartGrantsOneNewCreepUntilTheNextValidEstimate) {
+  Harness h(ScenarioText("waypoint_controller_restart", 0.01, 0.3)
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3, "
+                           "invalid_estimate_creep_restarts: 1}}"));
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
+    }
+    // valid 2-5; invalid 6-9 (no restart); restart 1 at 10 (invalid to 14, valid 15-17);
+    // restart 2 at 18 (beyond the allowance of 1): invalid to the end.
+    idl::PoseEstimate e = estimate(0.0, 0.0, 0.0, (step >= 2 && step < 6) || (step >= 15 && step < 18));
+    e.restarts(step >= 18 ? 2u : step >= 10 ? 1u : 0u);
+    h.publish("estimate/pose", e, step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 31u);
+  for (std::size_t i = 6; i < 10; ++i) {
+    EXPECT_DOUBLE_EQ(commands[i].v(), 0.0) << "step " << i << ": invalid, no restart: no creeping";
+  }
+  EXPECT_GT(commands[12].v(), 0.0) << "restarted: creeping again";
+  EXPECT_LE(commands[12].v(), 0.3 + 1e-12);
+  EXPECT_EQ(commands[12].omega(), 0.0) << "straight ahead";
+  for (std::size_t i = 19; i < commands.size(); ++i) {
+    EXPECT_DOUBLE_EQ(commands[i].v(), 0.0) << "step " << i << ": the restart allowance is used up";
+  }
+}
+
 // Issue 24, findings 3 and 8: a robot whose mission is done stays put while `valid` flickers at
 // standstill (before: it crept away at every flicker), and every status sample carries the
 // mission's progress, whatever the state (before: waypoints_total 0 while invalid).

@@ -1,9 +1,9 @@
-#include "components/waypoint_controller/estimate_age.hpp"
+#include "common/estimate_age.hpp"
 
 #include <cmath>
 #include <limits>
 
-namespace robodds::waypoint_controller {
+namespace robodds::control {
 
 EstimateAge classify_estimate_age(double age_s, double producer_period_s, double timeout_s) {
   if (!(age_s <= timeout_s)) {
@@ -20,4 +20,4 @@ double producer_period_s(std::uint64_t step, std::uint64_t next_step, double ste
   return static_cast<double>(next_step - step) * step_s;
 }
 
-}  // namespace robodds::waypoint_controller
+}  // namespace robodds::control

@@ -1,13 +1,13 @@
 // Issue 24, finding 5: an estimate older than two of its producer's periods is late (hold the
 // last command, never raise it), older than the timeout stale (zero).
-#include "components/waypoint_controller/estimate_age.hpp"
+#include "common/estimate_age.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
-namespace robodds::waypoint_controller {
+namespace robodds::control {
 namespace {
 
 TEST(EstimateAge, FreshUpToTwoProducerPeriodsThenLateThenStale) {
@@ -34,4 +34,4 @@ TEST(EstimateAge, TheProducersPeriodIsWhatItsHeaderAnnounces) {
 }
 
 }  // namespace
-}  // namespace robodds::waypoint_controller
+}  // namespace robodds::control

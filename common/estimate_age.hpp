@@ -4,7 +4,7 @@
 
 #include <cstdint>
 
-namespace robodds::waypoint_controller {
+namespace robodds::control {
 
 enum class EstimateAge {
   kFresh,  // at most two of its producer's periods old: track on it
@@ -23,4 +23,4 @@ EstimateAge classify_estimate_age(double age_s, double producer_period_s, double
 /// UINT64_MAX (the runtime's kNeverAgain: its last sample).
 double producer_period_s(std::uint64_t step, std::uint64_t next_step, double step_s);
 
-}  // namespace robodds::waypoint_controller
+}  // namespace robodds::control
