@@ -47,4 +47,12 @@ bool is_valid(const PoseEstimate& estimate, double max_position_std_m, double ma
   return position_ok && heading_ok;
 }
 
+bool next_validity(const PoseEstimate& estimate, const ValidityLimits& limits, bool was_valid) {
+  const bool check_heading = limits.enter_max_heading_std_rad > 0.0;
+  const double heading_limit = !check_heading ? 0.0
+                               : was_valid    ? limits.keep_max_heading_std_rad
+                                              : limits.enter_max_heading_std_rad;
+  return is_valid(estimate, limits.max_position_std_m, heading_limit);
+}
+
 }  // namespace robodds::pf_estimator

@@ -25,4 +25,18 @@ PoseEstimate weighted_pose_estimate(const ParticleSet& particles,
 /// sqrt(var theta) < max_heading_std_rad (a position alone does not steer a robot: issue 12).
 bool is_valid(const PoseEstimate& estimate, double max_position_std_m, double max_heading_std_rad);
 
+/// Validity with hysteresis on the heading. An estimate becomes valid within the `enter` limits
+/// (is_valid) and, once valid, stays valid while its heading std is below `keep_max_heading_std_rad`
+/// (>= enter; the position limit is the same both ways). Why: the heading of paper 1's filter is
+/// observed only while the robot moves, and on turning missions its std hovers at the enter limit;
+/// without a band `valid` flickers, every flicker stops the robot (the controller never drives on an
+/// invalid estimate: issue 24), and a robot standing still cannot bring its heading std down again.
+/// No defaults here: the component's parameters (pf_estimator_params) hold them.
+struct ValidityLimits {
+  double max_position_std_m = 0.0;         ///< m, > 0: sqrt(var x + var y) below this, both ways
+  double enter_max_heading_std_rad = 0.0;  ///< rad, >= 0 (0 = heading not checked): to become valid
+  double keep_max_heading_std_rad = 0.0;   ///< rad, >= enter: to stay valid once valid
+};
+bool next_validity(const PoseEstimate& estimate, const ValidityLimits& limits, bool was_valid);
+
 }  // namespace robodds::pf_estimator

@@ -74,6 +74,9 @@ class WaypointTracker {
   /// A command of the caller's instead of step()'s (e.g. creeping ahead until the estimate is
   /// valid), brought within the wheel-speed and acceleration limits like step()'s; no switching.
   Command hold(const Command& wanted);
+  /// The command last returned by step() or hold() (zero after command_stopped()): what the node
+  /// repeats while its estimate is late (common/estimate_age.hpp).
+  const Command& last_command() const { return last_command_; }
 
   bool has_mission() const { return !mission_.empty(); }
   const std::vector<Eigen::Vector2d>& mission() const { return mission_; }

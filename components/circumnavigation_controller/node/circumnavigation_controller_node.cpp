@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "common/estimate_age.hpp"
 #include "components/circumnavigation_controller/guidance_law.hpp"
 #include "components/circumnavigation_controller/node/circumnavigation_controller_params.hpp"
 #include "robodds/idl/robodds.h"
@@ -47,10 +48,11 @@ class CircumnavigationControllerNode : public Component {
     estimate_timeout_s_ = params.estimate_timeout_s;
     peer_timeout_s_ = params.peer_timeout_s;
     dt_s_ = static_cast<double>(ctx.period_steps()) * ctx.step_s();
+    step_s_ = ctx.step_s();
     realtime_ = ctx.mode() == TimeMode::kRealtime;
     name_ = ctx.name();
     for (const RobotSpec& robot : ctx.robots()) {
-      robots_.emplace(robot.id, Robot{GuidanceLaw(params.guidance), "(not started)"});
+      robots_.emplace(robot.id, Robot{GuidanceLaw(params.guidance), "(not started)", model::Twist{}, false});
     }
     std::vector<std::uint64_t> all_robots;
     for (const RobotSpec& robot : ctx.scenario().robots) {
@@ -78,12 +80,17 @@ class CircumnavigationControllerNode : public Component {
       const idl::RangeRateEstimate* estimate = observer_->latest_of_robot(id);
       const std::string why_zero = zero_reason(id, task, estimate);
       if (why_zero.empty()) {
-        const model::Twist twist = robot.law.step(estimate->range(), estimate->range_rate(), task->desired_radius(),
-                                                  gaps_of(id, *task), dt_s_);
-        cmd.v(twist.v);
-        cmd.omega(twist.omega);
+        // A late estimate (real time: frozen, not yet stale) is no news: the law would ramp on it
+        // (issue 24, finding 5), so the last command is held until it is fresh or stale.
+        if (!estimate_is_late(id, robot, *estimate)) {
+          robot.last_command = robot.law.step(estimate->range(), estimate->range_rate(), task->desired_radius(),
+                                              gaps_of(id, *task), dt_s_);
+        }
+        cmd.v(robot.last_command.v);
+        cmd.omega(robot.last_command.omega);
       } else {
         robot.law.reset();  // the robot stops; it starts again from rest
+        robot.last_command = model::Twist{};
       }
       report(id, robot, why_zero);
       cmd_out_->publish(cmd);
@@ -94,7 +101,29 @@ class CircumnavigationControllerNode : public Component {
   struct Robot {
     GuidanceLaw law;
     std::string last_reason = "(not started)";  // why the last command was zero ("" = steering)
+    model::Twist last_command;                   // m/s, rad/s: what the law last gave
+    bool told_late = false;                      // the late-estimate warning was logged
   };
+
+  /// Real time: the observer's estimate is older than two of its periods (by this process's
+  /// receive time) but not stale (common/estimate_age.hpp). Says once per robot when it first is.
+  bool estimate_is_late(std::uint32_t id, Robot& robot, const idl::RangeRateEstimate& estimate) const {
+    if (!realtime_) {
+      return false;  // lockstep: every estimate is the one of its step
+    }
+    const double period_s = control::producer_period_s(estimate.header().step(), estimate.header().next_step(), step_s_);
+    const double age_s = observer_->age_s(id).value_or(estimate_timeout_s_);
+    if (control::classify_estimate_age(age_s, period_s, estimate_timeout_s_) != control::EstimateAge::kLate) {
+      return false;
+    }
+    if (!robot.told_late) {
+      robot.told_late = true;
+      log::warn(name_, "robot " + std::to_string(id) + ": estimate on " + observer_->topic() + " " + std::to_string(age_s) +
+                           " s old (> 2 periods of " + std::to_string(period_s) +
+                           " s): holding the last command until it is fresh or stale (not logged again)");
+    }
+    return true;
+  }
 
   /// Why robot `id` must get a zero command, or "" when the law may run.
   std::string zero_reason(std::uint32_t id, const idl::TargetAssignment* task, const idl::RangeRateEstimate* estimate) const {
@@ -166,6 +195,7 @@ class CircumnavigationControllerNode : public Component {
   double estimate_timeout_s_ = 0.5;
   double peer_timeout_s_ = 1.0;
   double dt_s_ = 0.02;
+  double step_s_ = 0.01;
   bool realtime_ = false;
   std::string name_;
   std::map<std::uint32_t, Robot> robots_;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -215,6 +216,48 @@ TEST(CircumnavigationControllerNode, RealTimeStaleEstimateStopsAndStalePeerDrops
   EXPECT_GT(spaced, 0);
   EXPECT_GT(alone, 0);
   EXPECT_GT(stopped, 0);
+}
+
+// Issue 24, finding 5: real time, the observer freezes (killed). Until estimate_timeout_s its last
+// estimate is no news: the law must not keep ramping on it (it did: +0.01 m/s per step).
+TEST(CircumnavigationControllerNode, RealTimeAFrozenEstimateDoesNotRaiseTheCommand) {
+  Harness h(ScenarioText("circumnavigation_controller_frozen", 0.02, 1.0)
+                .robots({1, 2})
+                .component("{name: controller, type: circumnavigation_controller, robots: [1], "
+                           "params: {estimate_timeout_s: 0.3, start_cruising: false}}"));
+  h.set_mode(TimeMode::kRealtime);
+  constexpr std::uint64_t kLastFed = 10;
+  bool missions_sent = false;
+  h.feed([&](std::uint64_t step) {
+    if (!missions_sent) {
+      h.publish("mission/target", task(1, true), step, kNeverAgain);
+      h.publish("mission/target", task(2, true), step, kNeverAgain);
+      missions_sent = true;
+    }
+    h.publish("estimate/pose", pose_at(1, 0.0), step, step + 1);
+    h.publish("estimate/pose", pose_at(2, 90.0), step, step + 1);
+    if (step <= kLastFed) {
+      h.publish("observer/range_rate", estimate(kRadius, 0.0, true), step, step + 1);
+    }
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  h.run({"controller"});
+  double v_at_last_fed = -1.0;
+  double v_max_after = 0.0;
+  int stopped = 0;
+  for (const auto& c : commands) {
+    const std::uint64_t step = c.header().step();
+    if (step <= kLastFed) {
+      v_at_last_fed = c.v();
+    } else {
+      v_max_after = std::max(v_max_after, c.v());
+      stopped += c.v() == 0.0 && c.omega() == 0.0 ? 1 : 0;
+    }
+  }
+  ASSERT_GT(v_at_last_fed, 0.05) << "the command ramped up from rest while the estimate was fresh";
+  // Late after two observer periods (0.04 s): at most 3 more ramp steps of 0.01 m/s, scheduling included.
+  EXPECT_LE(v_max_after - v_at_last_fed, 0.03 + 1e-9) << "raised on a frozen estimate from " << v_at_last_fed << " m/s";
+  EXPECT_GT(stopped, 0) << "then stale: zero";
 }
 
 std::string configure_error(const std::string& scenario_yaml) {

@@ -21,9 +21,9 @@ class PfEstimatorNode : public Component {
     const PfEstimatorNodeParams node_params = read_params(p, pf_estimator_param_table());
     const PfParams& params = node_params.filter;
     const double rate_hz = node_params.rate_hz;
-    valid_max_std_m_ = node_params.valid_max_position_std_m;
-    valid_max_heading_std_rad_ = node_params.valid_max_heading_std_rad;
-    p.validate(params);
+    p.validate(node_params);
+    validity_ = {node_params.valid_max_position_std_m, node_params.valid_max_heading_std_rad,
+                 node_params.valid_keep_max_heading_std_rad};
     ctx.set_rate_hz(rate_hz, "rate_hz");
     input_timeout_s_ = node_params.input_timeout_s;
     ctx.require_longer_than_period("input_timeout_s", input_timeout_s_);
@@ -64,7 +64,7 @@ class PfEstimatorNode : public Component {
       // The estimate is published every step but the cloud only changes with new odometry or
       // fixes: reuse the last estimate otherwise (it costs a pass with sin/cos over M particles).
       if (!odometry.empty() || !fixes.empty() || published_.count(id) == 0) {
-        published_[id] = to_message(id, *filter);
+        published_[id] = to_message(id, *filter, published_[id].valid());
       }
       if (realtime_ && !inputs_fresh(id)) {
         // Safe behaviour: a filter without fresh sensors says so, and its consumers stop.
@@ -89,7 +89,9 @@ class PfEstimatorNode : public Component {
     }
   }
 
-  idl::PoseEstimate to_message(std::uint32_t id, const ParticleFilter& filter) const {
+  /// `was_valid`: the filter's own judgement at its last estimate (not the real-time staleness
+  /// override: stale inputs say nothing about what the cloud knows).
+  idl::PoseEstimate to_message(std::uint32_t id, const ParticleFilter& filter, bool was_valid) const {
     idl::PoseEstimate m;
     m.robot_id(id);
     if (filter.initialized()) {
@@ -100,15 +102,15 @@ class PfEstimatorNode : public Component {
       for (int i = 0; i < 9; ++i) {
         m.cov()[static_cast<std::size_t>(i)] = e.covariance(i / 3, i % 3);
       }
-      m.valid(is_valid(e, valid_max_std_m_, valid_max_heading_std_rad_));
+      m.valid(next_validity(e, validity_, was_valid));
+      m.restarts(static_cast<std::uint32_t>(filter.recovery_count()));  // a consumer sees each redraw, even one it missed
     }
     return m;
   }
 
   std::map<std::uint32_t, std::unique_ptr<ParticleFilter>> filters_;
   std::map<std::uint32_t, idl::PoseEstimate> published_;  // last estimate per robot
-  double valid_max_std_m_ = 3.0;
-  double valid_max_heading_std_rad_ = 0.2;
+  ValidityLimits validity_;
   double input_timeout_s_ = 0.5;
   bool realtime_ = false;
   Input<idl::Odometry>* odometry_ = nullptr;

@@ -1,5 +1,8 @@
 #include "components/pf_estimator/node/pf_estimator_params.hpp"
 
+#include "common/number_text.hpp"
+#include "common/param_checks.hpp"
+
 namespace robodds::pf_estimator {
 
 const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table() {
@@ -15,9 +18,21 @@ const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table() {
                "the estimate is valid once sqrt(trace of its xy covariance) is below this ...")
           .add("valid_max_heading_std_rad", &PfEstimatorNodeParams::valid_max_heading_std_rad, "rad",
                params::non_negative("0 = heading not checked"), "... and the heading's standard deviation too")
+          .add("valid_keep_max_heading_std_rad", &PfEstimatorNodeParams::valid_keep_max_heading_std_rad, "rad",
+               params::shown_as(params::non_negative(), ">= valid_max_heading_std_rad"),
+               "once valid, the estimate stays valid while the heading's std is below this (a band against flicker)")
           .add("input_timeout_s", &PfEstimatorNodeParams::input_timeout_s, "s", params::positive(),
                "real time only: valid = false while odometry or position was last received longer ago than this; > the period");
   return table;
+}
+
+void PfEstimatorNodeParams::validate() const {
+  pf_estimator_param_table().check_ranges(*this);
+  filter.validate();
+  if (!(valid_keep_max_heading_std_rad >= valid_max_heading_std_rad)) {
+    param_checks::reject("valid_keep_max_heading_std_rad", "must be >= valid_max_heading_std_rad (" +
+                         shortest_text(valid_max_heading_std_rad) + ")", valid_keep_max_heading_std_rad);
+  }
 }
 
 }  // namespace robodds::pf_estimator

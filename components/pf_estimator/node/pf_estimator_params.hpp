@@ -15,7 +15,11 @@ struct PfEstimatorNodeParams {
   PfParams filter;
   double valid_max_position_std_m = 3.0;
   double valid_max_heading_std_rad = 0.2;
+  double valid_keep_max_heading_std_rad = 0.35;
   double input_timeout_s = 0.5;
+
+  /// The table's ranges, then valid_keep_max_heading_std_rad >= valid_max_heading_std_rad.
+  void validate() const;
 };
 
 const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table();

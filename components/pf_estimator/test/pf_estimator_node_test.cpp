@@ -107,6 +107,17 @@ TEST(PfEstimatorNode, UnknownHeadingIsNotValidUnlessTheHeadingCheckIsOff) {
   }
 }
 
+// The validity band must not be narrower than its entry: a key that breaks it is named.
+TEST(PfEstimatorNode, AKeepLimitBelowTheEnterLimitIsAConfigErrorNamingTheKey) {
+  Harness h(ScenarioText("pf_estimator_band", 0.01, 0.1)
+                .robots({1})
+                .component("{name: pf, type: pf_estimator, params: {valid_max_heading_std_rad: 0.3, "
+                           "valid_keep_max_heading_std_rad: 0.25}}"));
+  const std::string error = h.run_error<ConfigError>({"pf"});
+  EXPECT_NE(error.find("valid_keep_max_heading_std_rad:"), std::string::npos) << error;
+  EXPECT_NE(error.find(">= valid_max_heading_std_rad"), std::string::npos) << error;
+}
+
 // Real time: once its sensors stop (by this process's receive time) for longer than
 // input_timeout_s the estimator keeps publishing, but valid = false, so a controller stops.
 TEST(PfEstimatorNode, RealTimeEstimateTurnsInvalidWhenTheSensorsGoStale) {

@@ -67,5 +67,28 @@ TEST(IsValid, NeedsASmallPositionSpreadAndASmallHeadingSpread) {
   EXPECT_TRUE(is_valid(e, 3.0, 0.0));    // heading not checked
 }
 
+PoseEstimate with_stds(double position_std_m, double heading_std_rad) {
+  PoseEstimate e;
+  const double axis_var = position_std_m * position_std_m / 2.0;
+  e.covariance.diagonal() << axis_var, axis_var, heading_std_rad * heading_std_rad;
+  return e;
+}
+
+TEST(NextValidity, EntersBelowTheEnterLimitAndStaysUntilTheKeepLimit) {
+  const ValidityLimits limits{3.0, 0.2, 0.35};
+  EXPECT_FALSE(next_validity(with_stds(1.0, 0.25), limits, false));  // in the band, not yet valid
+  EXPECT_TRUE(next_validity(with_stds(1.0, 0.19), limits, false));   // enters
+  EXPECT_TRUE(next_validity(with_stds(1.0, 0.25), limits, true));    // in the band, stays
+  EXPECT_TRUE(next_validity(with_stds(1.0, 0.349), limits, true));
+  EXPECT_FALSE(next_validity(with_stds(1.0, 0.36), limits, true));   // beyond the keep limit
+  EXPECT_FALSE(next_validity(with_stds(3.5, 0.1), limits, true));    // position: no band
+}
+
+TEST(NextValidity, NoBandWhenTheKeepLimitIsTheEnterLimitAndNoHeadingCheckAtZero) {
+  EXPECT_FALSE(next_validity(with_stds(1.0, 0.25), {3.0, 0.2, 0.2}, true));
+  EXPECT_TRUE(next_validity(with_stds(1.0, 3.0), {3.0, 0.0, 0.0}, false));
+  EXPECT_TRUE(next_validity(with_stds(1.0, 3.0), {3.0, 0.0, 0.35}, true));
+}
+
 }  // namespace
 }  // namespace robodds::pf_estimator

@@ -2,9 +2,10 @@
 #include "components/waypoint_controller/node/waypoint_controller_node.hpp"
 
 #include <map>
-#include <set>
 #include <string>
 
+#include "components/waypoint_controller/creep_budget.hpp"
+#include "common/estimate_age.hpp"
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 #include "robodds/idl/robodds.h"
 #include "components/waypoint_controller/node/waypoint_controller_params.hpp"
@@ -25,16 +26,20 @@ class WaypointControllerNode : public Component {
     params_ = node_params.controller;
     require_valid_ = node_params.require_valid_estimate;
     invalid_estimate_speed_mps_ = node_params.invalid_estimate_speed_mps;
-    invalid_estimate_creep_limit_s_ = node_params.invalid_estimate_creep_limit_s;
+    const CreepLimits creep_limits{node_params.invalid_estimate_creep_max_m, node_params.invalid_estimate_creep_limit_s,
+                                   node_params.invalid_estimate_creep_restarts};
     estimate_timeout_s_ = node_params.estimate_timeout_s;
     p.validate(params_);  // the body is checked where it is declared (system::check_facts)
     ctx.set_rate_hz(rate_hz, "rate_hz");
     ctx.require_longer_than_period("estimate_timeout_s", estimate_timeout_s_);
     realtime_ = ctx.mode() == TimeMode::kRealtime;
+    period_s_ = 1.0 / rate_hz;
+    step_s_ = ctx.step_s();
     for (const RobotSpec& robot : ctx.robots()) {
       ControllerParams robot_params = params_;
       robot_params.body = system::robot_body(ctx.scenario(), robot.id);  // the robot it drives
-      trackers_.emplace(robot.id, WaypointTracker(robot_params, 1.0 / rate_hz));
+      robots_.emplace(robot.id, Robot{WaypointTracker(robot_params, period_s_), CreepBudget(creep_limits), TrackerStatus{},
+                                      CreepVerdict::kAllowed, false});
     }
     const auto keys = ctx.robot_keys();
     estimates_ = &ctx.subscribe<idl::PoseEstimate>("estimate/pose", Subscription::instances(keys));
@@ -44,7 +49,8 @@ class WaypointControllerNode : public Component {
   }
 
   void on_step(const StepInfo& info) override {
-    for (auto& [id, tracker] : trackers_) {
+    for (auto& [id, robot] : robots_) {
+      WaypointTracker& tracker = robot.tracker;
       if (const idl::WaypointMission* mission = missions_->latest(id); mission != nullptr && !tracker.has_mission()) {
         std::vector<Eigen::Vector2d> waypoints;
         for (const idl::Waypoint& w : mission->waypoints()) {
@@ -60,50 +66,119 @@ class WaypointControllerNode : public Component {
       status.robot_id(id);
       status.epsilon(params_.epsilon_m);
       status.state(state_for(id, tracker, estimate));
-      if (status.state() == idl::TRACKING) {
+      if (estimate != nullptr && status.state() != idl::ESTIMATE_STALE) {
+        note_restarts(id, robot, *estimate, info.time_s);
+        if (estimate->valid()) {
+          robot.creep.estimate_was_valid();  // from now on the robot never drives without one
+        }
+      }
+      if (status.state() == idl::TRACKING && estimate_is_late(id, robot, *estimate)) {
+        const Command held = tracker.last_command();  // a frozen pose is no news: no higher command
+        cmd.v(held.v);
+        cmd.omega(held.omega);
+        set_tracking(status, robot.last_tracked, false);
+      } else if (status.state() == idl::TRACKING) {
         Eigen::Matrix2d position_covariance;  // row-major 3x3 [x, y, theta] -> its xy block
         position_covariance << estimate->cov()[0], estimate->cov()[1], estimate->cov()[3], estimate->cov()[4];
         const TrackerOutput out = tracker.step(estimate->x(), estimate->y(), estimate->theta(), position_covariance);
         cmd.v(out.command.v);
         cmd.omega(out.command.omega);
-        status.waypoint_index(static_cast<std::uint32_t>(out.status.target_index));
-        status.waypoints_total(static_cast<std::uint32_t>(tracker.mission().size()));
-        status.waypoints_reached(static_cast<std::uint32_t>(out.status.reached_count));
-        status.distance_to_waypoint(out.status.distance_to_target_m);
-        status.distance_to_final(out.status.distance_to_final_m);
-        status.alpha(out.status.alpha_rad);
-        status.sigma(out.status.sigma_rad);
-        status.done(out.status.done);
-        status.switched(out.status.reached_this_step);
-        status.switch_distance(out.status.reached_this_step ? out.status.reached_distance_m : 0.0);
-        status.state(out.status.done ? idl::DONE : idl::TRACKING);
-        creep_started_s_.erase(id);
-      } else if (status.state() == idl::ESTIMATE_INVALID && invalid_estimate_speed_mps_ > 0.0 && may_creep(id, info.time_s)) {
-        const Command creep = tracker.hold(Command{invalid_estimate_speed_mps_, 0.0});  // until the estimate is valid
-        cmd.v(creep.v);
-        cmd.omega(creep.omega);
+        robot.last_tracked = out.status;
+        set_tracking(status, out.status, out.status.reached_this_step);
+      } else if (status.state() == idl::ESTIMATE_INVALID) {
+        // Creep ahead until the first valid estimate (within its budget), else stop: v = omega = 0,
+        // reached within the robot's acceleration limits like the stop at the mission's end (the
+        // plant would brake no faster on an instant zero, and a one-step flicker of `valid` does not
+        // restart the ramp from rest while the robot is still at speed).
+        const bool creeping = invalid_estimate_speed_mps_ > 0.0 && may_creep(id, robot, info.time_s);
+        const Command out = tracker.hold(creeping ? Command{invalid_estimate_speed_mps_, 0.0} : Command{});
+        if (creeping) {
+          robot.creep.crept(out.v, period_s_);
+        }
+        cmd.v(out.v);
+        cmd.omega(out.omega);
       } else {
         tracker.command_stopped();  // the zero command below: the plant brakes within its own limits
       }
+      set_progress(status, tracker);  // the mission's progress in every state (issue 24, finding 8)
       cmd_out_->publish(cmd);
       status_out_->publish(status);
     }
   }
 
  private:
-  /// Whether robot `id` may still creep at `time_s` (s): within invalid_estimate_creep_limit_s of
-  /// the first creeping step since its estimate was last valid. Says once when the limit stops it.
-  bool may_creep(std::uint32_t id, double time_s) {
-    const double since_s = creep_started_s_.try_emplace(id, time_s).first->second;
-    if (invalid_estimate_creep_limit_s_ <= 0.0 || time_s - since_s <= invalid_estimate_creep_limit_s_) {
-      return true;
+  struct Robot {
+    WaypointTracker tracker;
+    CreepBudget creep;
+    TrackerStatus last_tracked;                  // of its last tracking step, repeated while the estimate is late
+    CreepVerdict told = CreepVerdict::kAllowed;  // the last refusal logged
+    bool told_late = false;                      // a late estimate was logged once
+    std::uint32_t restarts_seen = 0;             // the estimator's restart count last seen
+  };
+
+  /// The estimator restarted (its count rose since the last estimate seen): a new creep budget
+  /// while the run's allowance lasts (creep_budget.hpp). Says which, once per restart.
+  static void note_restarts(std::uint32_t id, Robot& robot, const idl::PoseEstimate& estimate, double time_s) {
+    if (estimate.restarts() <= robot.restarts_seen) {
+      return;
     }
-    if (creep_stopped_.insert(id).second) {
-      log::warn("waypoint_controller", "robot " + std::to_string(id) + ": no valid pose estimate after " +
-                                           std::to_string(time_s - since_s) + " s of creeping "
-                                           "(invalid_estimate_creep_limit_s): stopped until the estimate is valid");
+    robot.restarts_seen = estimate.restarts();
+    const bool granted = robot.creep.estimator_restarted();
+    log::warn("waypoint_controller", "robot " + std::to_string(id) + ": the estimator restarted at " + std::to_string(time_s) +
+                                         " s (restart " + std::to_string(estimate.restarts()) + "): " +
+                                         (granted ? "a new creep budget until its next valid estimate"
+                                                  : "invalid_estimate_creep_restarts used up: no creeping"));
+    robot.told = CreepVerdict::kAllowed;  // a refusal after this restart is said again
+  }
+
+  /// Way-point index, total, reached and done from the tracker: true in every state.
+  static void set_progress(idl::ControllerStatus& status, const WaypointTracker& tracker) {
+    status.waypoint_index(static_cast<std::uint32_t>(tracker.target_index()));
+    status.waypoints_total(static_cast<std::uint32_t>(tracker.mission().size()));
+    status.waypoints_reached(static_cast<std::uint32_t>(tracker.reached_count()));
+    status.done(tracker.done());
+  }
+
+  /// The tracking fields of a step that tracked on (or, late, held) the estimate.
+  static void set_tracking(idl::ControllerStatus& status, const TrackerStatus& tracked, bool switched) {
+    status.distance_to_waypoint(tracked.distance_to_target_m);
+    status.distance_to_final(tracked.distance_to_final_m);
+    status.alpha(tracked.alpha_rad);
+    status.sigma(tracked.sigma_rad);
+    status.switched(switched);
+    status.switch_distance(switched ? tracked.reached_distance_m : 0.0);
+    status.state(tracked.done ? idl::DONE : idl::TRACKING);
+  }
+
+  /// Real time: the estimate is older than two of its producer's periods (by this process's
+  /// receive time) but not stale. Says once per robot when that first happens.
+  bool estimate_is_late(std::uint32_t id, Robot& robot, const idl::PoseEstimate& estimate) const {
+    if (!realtime_) {
+      return false;  // lockstep: every estimate is the one of its step
     }
-    return false;
+    const double period_s = control::producer_period_s(estimate.header().step(), estimate.header().next_step(), step_s_);
+    const double age_s = estimates_->age_s(id).value_or(estimate_timeout_s_);
+    if (control::classify_estimate_age(age_s, period_s, estimate_timeout_s_) != control::EstimateAge::kLate) {
+      return false;
+    }
+    if (!robot.told_late) {
+      robot.told_late = true;
+      log::warn("waypoint_controller", "robot " + std::to_string(id) + ": estimate " + std::to_string(age_s) +
+                                           " s old (> 2 periods of " + std::to_string(period_s) +
+                                           " s): holding the last command until it is fresh or stale (not logged again)");
+    }
+    return true;
+  }
+
+  /// Whether robot `id` may creep at `time_s` (s) (creep_budget.hpp). Says once why it may not.
+  static bool may_creep(std::uint32_t id, Robot& robot, double time_s) {
+    const CreepVerdict verdict = robot.creep.check(time_s, robot.tracker.done());
+    if (verdict != CreepVerdict::kAllowed && verdict != robot.told) {
+      log::warn("waypoint_controller", "robot " + std::to_string(id) + ": no valid pose estimate at " +
+                                           std::to_string(time_s) + " s: " + describe(verdict));
+    }
+    robot.told = verdict;
+    return verdict == CreepVerdict::kAllowed;
   }
 
   /// TRACKING when the tracker may run on `estimate`; otherwise why the command is zero.
@@ -126,12 +201,11 @@ class WaypointControllerNode : public Component {
   ControllerParams params_;
   bool require_valid_ = true;
   double invalid_estimate_speed_mps_ = 0.0;
-  double invalid_estimate_creep_limit_s_ = 60.0;
-  std::map<std::uint32_t, double> creep_started_s_;  // robot -> time (s) of its first creeping step
-  std::set<std::uint32_t> creep_stopped_;            // robots told once that the creep limit stopped them
   double estimate_timeout_s_ = 0.5;
+  double period_s_ = 0.01;  // s, the control period (1 / rate_hz)
+  double step_s_ = 0.01;    // s, the scenario's step (header steps -> seconds)
   bool realtime_ = false;
-  std::map<std::uint32_t, WaypointTracker> trackers_;
+  std::map<std::uint32_t, Robot> robots_;
   Input<idl::PoseEstimate>* estimates_ = nullptr;
   Input<idl::WaypointMission>* missions_ = nullptr;
   Output<idl::VelocityCommand>* cmd_out_ = nullptr;

@@ -17,13 +17,23 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
           .add("invalid_estimate_speed_mps", &WaypointControllerNodeParams::invalid_estimate_speed_mps, "m/s",
                params::non_negative("0 = stand still"),
                "with require_valid_estimate: drive straight ahead at this speed while the estimate is not valid "
-               "(motion makes the heading observable from position fixes), within the acceleration limits")
+               "(motion makes the heading observable from position fixes), within the acceleration limits; only "
+               "before the first valid estimate of the run and never once the mission is done: after that, zero")
+          .add("invalid_estimate_creep_max_m", &WaypointControllerNodeParams::invalid_estimate_creep_max_m, "m",
+               params::positive(),
+               "with invalid_estimate_speed_mps: stop creeping once this distance was commanded (|v| integrated over "
+               "the control steps: there is no pose to measure it with)")
           .add("invalid_estimate_creep_limit_s", &WaypointControllerNodeParams::invalid_estimate_creep_limit_s, "s",
-               params::non_negative("0 = no limit"),
-               "with invalid_estimate_speed_mps: stop after creeping this long without a valid estimate (a filter that "
-               "never converges must not drive the robot on forever); a valid estimate resets it")
+               params::positive(),
+               "with invalid_estimate_speed_mps: stop creeping this long after the first creeping step (a filter that "
+               "never converges must not drive the robot on)")
+          .add("invalid_estimate_creep_restarts", &WaypointControllerNodeParams::invalid_estimate_creep_restarts, "",
+               params::at_least(0),
+               "with invalid_estimate_speed_mps: how many estimator restarts (PoseEstimate.restarts rising: a lost filter "
+               "redrawn from the fixes, its heading unknown) may each grant a new creep budget in a run; 0 = none")
           .add("estimate_timeout_s", &WaypointControllerNodeParams::estimate_timeout_s, "s", params::positive(),
-               "real time only: an estimate received longer ago than this stops the robot (state ESTIMATE_STALE); > the control period");
+               "real time only: an estimate received longer ago than this stops the robot (state ESTIMATE_STALE); > the control period. "
+               "One older than two of its producer's periods (next_step - step) already holds the last command");
   return table;
 }
 

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -49,6 +51,22 @@ idl::PoseEstimate estimate(double x, double y, double theta, bool valid) {
   return e;
 }
 
+// Real time: a mission 10 m ahead at the first step, then a valid estimate at rest at every step
+// up to `last_fed` (the estimator's steps: next_step = step + 1), then nothing (it died).
+void feed_realtime_until(Harness& h, std::uint64_t last_fed) {
+  h.set_mode(TimeMode::kRealtime);
+  auto mission_sent = std::make_shared<bool>(false);
+  h.feed([&h, last_fed, mission_sent](std::uint64_t step) {
+    if (!*mission_sent) {
+      h.publish("mission/waypoints", mission({{10.0, 0.0}}), step, kNeverAgain);
+      *mission_sent = true;
+    }
+    if (step <= last_fed) {
+      h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, true), step, step + 1);
+    }
+  });
+}
+
 TEST(WaypointControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
   Harness h(kScenario);
   h.feed([&h](std::uint64_t step) {
@@ -67,7 +85,7 @@ TEST(WaypointControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
     EXPECT_EQ(commands[i].robot_id(), 1u);
     EXPECT_DOUBLE_EQ(commands[i].v(), 0.0);
     EXPECT_DOUBLE_EQ(commands[i].omega(), 0.0);
-    EXPECT_EQ(status[i].waypoints_total(), 0u) << "no tracking step was taken";
+    EXPECT_EQ(status[i].waypoints_total(), 1u) << "the mission's progress, tracking or not";
     EXPECT_DOUBLE_EQ(status[i].epsilon(), 0.1);
   }
 }
@@ -121,8 +139,8 @@ TEST(WaypointControllerNode, CreepsAheadWhileTheEstimateIsNotValid) {
   EXPECT_GT(std::abs(commands[8].omega()), 0.0) << "valid: it turns towards the way-point (to its left)";
 }
 
-// A filter that never becomes valid must not drive the robot on forever: the creep stops after
-// invalid_estimate_creep_limit_s, and a valid estimate lets it track again.
+// A filter that never becomes valid must not drive the robot on forever: the creep stops
+// invalid_estimate_creep_limit_s after its first step, and a valid estimate lets it track.
 TEST(WaypointControllerNode, CreepingStopsAfterItsLimitWithoutAValidEstimate) {
   Harness h(ScenarioText("waypoint_controller_creep_limit", 0.01, 0.3)
                 .fact("robot_body: {max_accel_mps2: 100.0}")
@@ -144,6 +162,123 @@ TEST(WaypointControllerNode, CreepingStopsAfterItsLimitWithoutAValidEstimate) {
   EXPECT_DOUBLE_EQ(commands[24].v(), 0.0) << "still stopped while invalid";
   EXPECT_EQ(status[24].state(), idl::ESTIMATE_INVALID);
   EXPECT_EQ(status[25].state(), idl::TRACKING) << "a valid estimate tracks again";
+}
+
+// Issue 24, finding 3: the creep is also bounded by the commanded distance (|v| integrated over
+// the control steps): 0.018 m at 0.5 m/s (0.005 m per 0.01 s step) allows 4 steps, the last one
+// past it by less than a step.
+TEST(WaypointControllerNode, CreepingStopsAtItsDistanceWithoutAValidEstimate) {
+  Harness h(ScenarioText("waypoint_controller_creep_distance", 0.01, 0.1)
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, "
+                           "params: {invalid_estimate_speed_mps: 0.5, invalid_estimate_creep_max_m: 0.018}}"));
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{0.0, 10.0}}), 0, kNeverAgain);
+    }
+    h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, false), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 11u);
+  for (std::size_t i = 0; i < commands.size(); ++i) {
+    EXPECT_DOUBLE_EQ(commands[i].v(), i < 4 ? 0.5 : 0.0) << "step " << i;
+  }
+}
+
+// Issue 24, finding 3: once the estimate was valid, an invalid one means v = omega = 0 (the
+// sensors died at speed): the robot never creeps on blind. Before: it crept at 0.3 m/s.
+TEST(WaypointControllerNode, NoCreepingOnceTheEstimateWasValid) {
+  Harness h(ScenarioText("waypoint_controller_no_blind", 0.01, 0.3)
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3}}"));
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
+    }
+    h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, step >= 5 && step < 10), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 31u);
+  EXPECT_NEAR(commands[4].v(), 0.3, 1e-12) << "creeping before the first valid estimate";
+  EXPECT_EQ(status[7].state(), idl::TRACKING);
+  EXPECT_GT(commands[9].v(), 0.3) << "tracking at speed";
+  for (std::size_t i = 10; i < commands.size(); ++i) {
+    EXPECT_EQ(status[i].state(), idl::ESTIMATE_INVALID) << "step " << i;
+    EXPECT_DOUBLE_EQ(commands[i].v(), 0.0) << "step " << i << ": invalid after a valid estimate";
+    EXPECT_DOUBLE_EQ(commands[i].omega(), 0.0) << "step " << i;
+  }
+}
+
+// A lost filter redrawn (PoseEstimate.restarts rises) knows no heading, as at the start: one new
+// bounded creep, until its next valid estimate; a plain invalid estimate grants none.
+TEST(WaypointControllerNode, AnEstimatorRestartGrantsOneNewCreepUntilTheNextValidEstimate) {
+  Harness h(ScenarioText("waypoint_controller_restart", 0.01, 0.3)
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3, "
+                           "invalid_estimate_creep_restarts: 1}}"));
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
+    }
+    // valid 2-5; invalid 6-9 (no restart); restart 1 at 10 (invalid to 14, valid 15-17);
+    // restart 2 at 18 (beyond the allowance of 1): invalid to the end.
+    idl::PoseEstimate e = estimate(0.0, 0.0, 0.0, (step >= 2 && step < 6) || (step >= 15 && step < 18));
+    e.restarts(step >= 18 ? 2u : step >= 10 ? 1u : 0u);
+    h.publish("estimate/pose", e, step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 31u);
+  for (std::size_t i = 6; i < 10; ++i) {
+    EXPECT_DOUBLE_EQ(commands[i].v(), 0.0) << "step " << i << ": invalid, no restart: no creeping";
+  }
+  EXPECT_GT(commands[12].v(), 0.0) << "restarted: creeping again";
+  EXPECT_LE(commands[12].v(), 0.3 + 1e-12);
+  EXPECT_EQ(commands[12].omega(), 0.0) << "straight ahead";
+  for (std::size_t i = 19; i < commands.size(); ++i) {
+    EXPECT_DOUBLE_EQ(commands[i].v(), 0.0) << "step " << i << ": the restart allowance is used up";
+  }
+}
+
+// Issue 24, findings 3 and 8: a robot whose mission is done stays put while `valid` flickers at
+// standstill (before: it crept away at every flicker), and every status sample carries the
+// mission's progress, whatever the state (before: waypoints_total 0 while invalid).
+TEST(WaypointControllerNode, AFinishedMissionStaysFinishedWhileTheEstimateFlickers) {
+  Harness h(ScenarioText("waypoint_controller_done_flicker", 0.01, 0.3)
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3}}"));
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{1.0, 0.0}, {2.0, 0.0}}), 0, kNeverAgain);
+    }
+    const double x = step < 5 ? 0.0 : step < 10 ? 0.95 : 1.98;  // the first way-point at step 5, the last at 10
+    const bool valid = (step >= 3 && step < 20) || (step >= 20 && step % 3 == 0);  // invalid at 0-2, then flickering from 20 on
+    h.publish("estimate/pose", estimate(x, 0.0, 0.0, valid), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(status.size(), 31u);
+  EXPECT_EQ(status[1].state(), idl::ESTIMATE_INVALID);
+  EXPECT_EQ(status[1].waypoints_total(), 2u) << "the mission is known before the estimate is valid";
+  EXPECT_EQ(status[1].waypoints_reached(), 0u);
+  EXPECT_EQ(status[7].waypoints_reached(), 1u);
+  EXPECT_EQ(status[7].waypoint_index(), 1u);
+  EXPECT_EQ(status[12].state(), idl::DONE);
+  int invalid = 0;
+  for (std::size_t i = 20; i < status.size(); ++i) {
+    EXPECT_DOUBLE_EQ(commands[i].v(), 0.0) << "step " << i << ": done, valid or not";
+    EXPECT_DOUBLE_EQ(commands[i].omega(), 0.0) << "step " << i;
+    EXPECT_EQ(status[i].waypoints_total(), 2u) << "step " << i;
+    EXPECT_EQ(status[i].waypoints_reached(), 2u) << "step " << i;
+    EXPECT_EQ(status[i].waypoint_index(), 1u) << "step " << i;
+    EXPECT_TRUE(status[i].done()) << "step " << i;
+    invalid += status[i].state() == idl::ESTIMATE_INVALID ? 1 : 0;
+  }
+  EXPECT_GT(invalid, 0) << "the flicker was seen";
 }
 
 TEST(WaypointControllerNode, DrivesToTheWaypointAndSwitchesWithinEpsilon) {
@@ -182,18 +317,8 @@ TEST(WaypointControllerNode, RealTimeStaleEstimateStopsTheRobotAndSaysWhy) {
   Harness h(ScenarioText("waypoint_controller_stale", 0.01, 0.8)
                 .robots({1})
                 .component("{name: controller, type: waypoint_controller, params: {estimate_timeout_s: 0.2}}"));
-  h.set_mode(TimeMode::kRealtime);
   constexpr std::uint64_t kLastFed = 30;  // the estimator dies after 0.3 s
-  bool mission_sent = false;
-  h.feed([&](std::uint64_t step) {
-    if (!mission_sent) {
-      h.publish("mission/waypoints", mission({{10.0, 0.0}}), step, kNeverAgain);
-      mission_sent = true;
-    }
-    if (step <= kLastFed) {
-      h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, true), step, step + 1);
-    }
-  });
+  feed_realtime_until(h, kLastFed);
   const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
   const auto& status = h.record<idl::ControllerStatus>("control/status");
   h.run({"controller"});
@@ -216,6 +341,38 @@ TEST(WaypointControllerNode, RealTimeStaleEstimateStopsTheRobotAndSaysWhy) {
   }
   EXPECT_GT(tracking, 0) << "the controller tracked while the estimate was fresh";
   EXPECT_GT(stopped, 0);
+}
+
+// Issue 24, finding 5: in real time an estimate older than two of its producer's periods (here
+// 0.01 s: next_step = step + 1) is not extrapolated into a higher command: the controller holds
+// the last one until the estimate is stale. Before: the ramp (1 m/s^2) raised it by 0.01 m/s per
+// step on the frozen pose, 0.3 m/s over the 0.3 s timeout. The bound allows a few fresh steps on
+// a loaded machine (steps run late and bunched), far below that.
+TEST(WaypointControllerNode, RealTimeAFrozenEstimateDoesNotRaiseTheCommand) {
+  Harness h(ScenarioText("waypoint_controller_frozen", 0.01, 1.0)
+                .fact("robot_body: {max_accel_mps2: 1.0}")
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, params: {estimate_timeout_s: 0.3}}"));
+  constexpr std::uint64_t kLastFed = 30;  // the estimator freezes after 0.3 s
+  feed_realtime_until(h, kLastFed);
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  double v_at_last_fed = -1.0;
+  double v_max_after = 0.0;
+  int stale = 0;
+  for (std::size_t i = 0; i < commands.size(); ++i) {
+    const std::uint64_t step = commands[i].header().step();
+    if (step <= kLastFed) {
+      v_at_last_fed = commands[i].v();
+    } else {
+      v_max_after = std::max(v_max_after, commands[i].v());
+      stale += status[i].state() == idl::ESTIMATE_STALE ? 1 : 0;
+    }
+  }
+  ASSERT_GT(v_at_last_fed, 0.05) << "the command ramped up while the estimate was fresh";
+  EXPECT_LE(v_max_after - v_at_last_fed, 0.05 + 1e-9) << "raised on a frozen estimate from " << v_at_last_fed << " m/s";
+  EXPECT_GT(stale, 0) << "then stale: zero";
 }
 
 TEST(WaypointControllerNode, StatusSaysWhyTheCommandIsZero) {

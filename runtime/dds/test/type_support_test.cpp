@@ -55,7 +55,19 @@ TEST(TypeSupport, ABooleanByteOtherThanZeroOrOneIsDroppedAndCounted) {
   idl::PoseEstimate sent;
   SerializedPayload_t payload(type->m_typeSize);
   ASSERT_TRUE(type->serialize(&sent, &payload));
-  payload.data[payload.length - 1] = 7;  // `valid`, the last member
+  idl::PoseEstimate sent_valid;
+  sent_valid.valid(true);
+  SerializedPayload_t valid_payload(type->m_typeSize);
+  ASSERT_TRUE(type->serialize(&sent_valid, &valid_payload));
+  ASSERT_EQ(payload.length, valid_payload.length);
+  std::uint32_t valid_at = payload.length;  // the byte of `valid`: the one the two payloads differ in
+  for (std::uint32_t i = 0; i < payload.length; ++i) {
+    if (payload.data[i] != valid_payload.data[i]) {
+      valid_at = i;
+    }
+  }
+  ASSERT_LT(valid_at, payload.length);
+  payload.data[valid_at] = 7;
   const std::uint64_t before = undecodable_samples(name);
   idl::PoseEstimate received;
   bool decoded = true;

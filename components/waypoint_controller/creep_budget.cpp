@@ -1,0 +1,53 @@
+#include "components/waypoint_controller/creep_budget.hpp"
+
+#include <cmath>
+
+namespace robodds::waypoint_controller {
+
+CreepVerdict CreepBudget::check(double time_s, bool mission_done) {
+  if (had_valid_) {
+    return CreepVerdict::kAfterValidEstimate;
+  }
+  if (mission_done) {
+    return CreepVerdict::kMissionDone;
+  }
+  if (distance_m_ >= limits_.max_distance_m) {
+    return CreepVerdict::kDistanceSpent;
+  }
+  if (!started_) {
+    started_ = true;
+    started_s_ = time_s;
+  }
+  return time_s - started_s_ <= limits_.max_time_s ? CreepVerdict::kAllowed : CreepVerdict::kTimeSpent;
+}
+
+bool CreepBudget::estimator_restarted() {
+  if (restarts_granted_ >= limits_.max_restarts) {
+    return false;
+  }
+  ++restarts_granted_;
+  had_valid_ = false;
+  started_ = false;
+  distance_m_ = 0.0;
+  return true;
+}
+
+void CreepBudget::crept(double v_mps, double period_s) { distance_m_ += std::abs(v_mps) * period_s; }
+
+const char* describe(CreepVerdict verdict) {
+  switch (verdict) {
+    case CreepVerdict::kAllowed:
+      return "";
+    case CreepVerdict::kAfterValidEstimate:
+      return "the estimate was valid before: no creeping after that (zero command)";
+    case CreepVerdict::kMissionDone:
+      return "the mission is done: no creeping";
+    case CreepVerdict::kDistanceSpent:
+      return "creeping reached invalid_estimate_creep_max_m without a valid estimate";
+    case CreepVerdict::kTimeSpent:
+      return "creeping reached invalid_estimate_creep_limit_s without a valid estimate";
+  }
+  return "";
+}
+
+}  // namespace robodds::waypoint_controller

@@ -1,0 +1,60 @@
+#pragma once
+// Issue 24 (finding 3): when a robot may drive without a usable pose estimate. Creeping ahead
+// reveals the heading to a position-fix filter at the start of a run; anywhere else it is blind
+// driving. Pure (std only, time in plain seconds); one budget per robot.
+
+namespace robodds::waypoint_controller {
+
+/// The bounds of the creep before the first valid estimate of a run. No defaults here: the node's
+/// parameter table has them (invalid_estimate_creep_max_m, invalid_estimate_creep_limit_s).
+struct CreepLimits {
+  double max_distance_m = 0.0;  // m: commanded distance (|v| integrated over the steps)
+  double max_time_s = 0.0;      // s: from the first creeping step
+  int max_restarts = 0;         // estimator restarts that may each grant a new budget in a run
+};
+
+/// Why a creep step is refused (kAllowed: it is not).
+enum class CreepVerdict { kAllowed, kAfterValidEstimate, kMissionDone, kDistanceSpent, kTimeSpent };
+
+/// What is left of one robot's creep. Creeping is allowed only until the first valid estimate of
+/// the run (or of an estimator restart, at most max_restarts times), never once the mission is
+/// done, and within both limits: the distance is the commanded
+/// speed integrated over the creeping steps (the controller has no pose to measure it with).
+/// The last allowed step may pass max_distance_m by at most one step's |v|·period.
+class CreepBudget {
+ public:
+  explicit CreepBudget(const CreepLimits& limits) : limits_(limits) {}
+
+  /// The estimate was valid (the controller tracked): no creeping for the rest of the run, or until
+  /// the estimator restarts.
+  void estimate_was_valid() { had_valid_ = true; }
+
+  /// The estimator started again from its latest inputs alone (PoseEstimate.restarts rose): a lost
+  /// filter redrawn knows the robot's position from the fixes but not its heading, as at the start
+  /// of a run. While max_restarts is not used up this grants one new budget (distance and time
+  /// from zero, creeping until the next valid estimate); true when it did. A stale or flickering
+  /// estimate is no restart: it never grants one.
+  bool estimator_restarted();
+
+  /// Whether the robot may creep at `time_s` (s, the step's time); `mission_done`: its last
+  /// way-point was reached. The first allowed call starts the time limit.
+  CreepVerdict check(double time_s, bool mission_done);
+
+  /// The creep command of `v_mps` (m/s) went out and is held for `period_s` (s).
+  void crept(double v_mps, double period_s);
+
+  double distance_m() const { return distance_m_; }
+
+ private:
+  CreepLimits limits_;
+  bool had_valid_ = false;
+  int restarts_granted_ = 0;
+  bool started_ = false;
+  double started_s_ = 0.0;   // s, time of the first creeping step
+  double distance_m_ = 0.0;  // m, commanded so far
+};
+
+/// A short reason for logs ("" for kAllowed).
+const char* describe(CreepVerdict verdict);
+
+}  // namespace robodds::waypoint_controller
