@@ -19,8 +19,8 @@ struct WaypointControllerNodeParams {
   ControllerParams controller;
   bool require_valid_estimate = true;
   double invalid_estimate_speed_mps = 0.0;
-  double invalid_estimate_creep_max_m = 6.0;
-  double invalid_estimate_creep_limit_s = 20.0;
+  double invalid_estimate_creep_max_m = 12.0;
+  double invalid_estimate_creep_limit_s = 40.0;
   int invalid_estimate_creep_restarts = 3;
   double estimate_timeout_s = 0.5;
 };
