@@ -22,6 +22,7 @@ expect_error 2 "$P" -- "$ROBODDS" host --scenario "$S" --group sim --duration 0.
 # announces a 30 s participant lease (its own profile wins over ours: deploy/qos), so the others do
 # not end the run at its SIGKILL 1.5 s later (issue 24, finding 6: integration.host_death) before
 # the restarted host's samples reach them: this part checks the second producer, not the death.
+# Every host loads that file: hosts of one run must load the same QoS files (finding 7's digest).
 S1="$SRC/sim/scenarios/paper1_waypoints.yaml"
 out="$WORK/restart"
 cat >"$WORK/long_lease.xml" <<'XML'
@@ -51,7 +52,7 @@ for g in sensors estimation control evaluation; do
   pid[$g]=$!
   cleanup_pids+=("$!")
 done
-"$ROBODDS" --log warn host --group sim --coordinate --members sim,sensors,estimation,control,evaluation "${C[@]}" \
+ROBODDS_QOS_FILE="$WORK/long_lease.xml" "$ROBODDS" --log warn host --group sim --coordinate --members sim,sensors,estimation,control,evaluation "${C[@]}" \
   --start-timeout 15 >"$out.sim.log" 2>&1 &
 pid[sim]=$!
 cleanup_pids+=("$!")
@@ -66,7 +67,7 @@ wait "${pid[sensors]}" 2>/dev/null || true
 # (Fast-DDS issues 2811 and 5053, PR 4728; fixed upstream after 2.9). It failed 1 run in 6 here
 # and 3 CI runs ("no tick on sim/clock for 25 s after start; ... sim/clock (reader): no writer
 # matched"). docs/deployment.md, "Restarting a killed host".
-"$ROBODDS" --log warn host --group sensors "${C[@]}" --start-timeout 25 \
+ROBODDS_QOS_FILE="$WORK/long_lease.xml" "$ROBODDS" --log warn host --group sensors "${C[@]}" --start-timeout 25 \
   --participant-profile robodds.participant.udp_only >"$out.sensors2.log" 2>&1 &
 cleanup_pids+=("$!")
 restarted=$(date +%s.%N)
