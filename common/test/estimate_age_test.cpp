@@ -33,5 +33,18 @@ TEST(EstimateAge, TheProducersPeriodIsWhatItsHeaderAnnounces) {
   EXPECT_DOUBLE_EQ(producer_period_s(40, std::numeric_limits<std::uint64_t>::max(), 0.01), 0.0) << "its last sample";
 }
 
+TEST(LateEstimateWatch, SaysLateOnceAndKeepsJudging) {
+  LateEstimateWatch watch;
+  std::string warning;
+  EXPECT_FALSE(watch.late(0.015, 10, 11, 0.01, 0.5, warning)) << "within two periods of 0.01 s";
+  EXPECT_TRUE(warning.empty());
+  EXPECT_TRUE(watch.late(0.06, 10, 11, 0.01, 0.5, warning));
+  EXPECT_NE(warning.find("0.06 s old (> 2 periods of 0.01 s)"), std::string::npos) << warning;
+  warning.clear();
+  EXPECT_TRUE(watch.late(0.07, 10, 11, 0.01, 0.5, warning));
+  EXPECT_TRUE(warning.empty()) << "said once";
+  EXPECT_FALSE(watch.late(0.6, 10, 11, 0.01, 0.5, warning)) << "stale, not late";
+}
+
 }  // namespace
 }  // namespace robodds::control

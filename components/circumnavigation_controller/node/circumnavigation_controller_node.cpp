@@ -52,7 +52,7 @@ class CircumnavigationControllerNode : public Component {
     realtime_ = ctx.mode() == TimeMode::kRealtime;
     name_ = ctx.name();
     for (const RobotSpec& robot : ctx.robots()) {
-      robots_.emplace(robot.id, Robot{GuidanceLaw(params.guidance), "(not started)", model::Twist{}, false});
+      robots_.emplace(robot.id, Robot{GuidanceLaw(params.guidance), "(not started)", model::Twist{}, control::LateEstimateWatch{}});
     }
     std::vector<std::uint64_t> all_robots;
     for (const RobotSpec& robot : ctx.scenario().robots) {
@@ -102,7 +102,7 @@ class CircumnavigationControllerNode : public Component {
     GuidanceLaw law;
     std::string last_reason = "(not started)";  // why the last command was zero ("" = steering)
     model::Twist last_command;                   // m/s, rad/s: what the law last gave
-    bool told_late = false;                      // the late-estimate warning was logged
+    control::LateEstimateWatch late;             // of its observer estimates
   };
 
   /// Real time: the observer's estimate is older than two of its periods (by this process's
@@ -111,18 +111,13 @@ class CircumnavigationControllerNode : public Component {
     if (!realtime_) {
       return false;  // lockstep: every estimate is the one of its step
     }
-    const double period_s = control::producer_period_s(estimate.header().step(), estimate.header().next_step(), step_s_);
-    const double age_s = observer_->age_s(id).value_or(estimate_timeout_s_);
-    if (control::classify_estimate_age(age_s, period_s, estimate_timeout_s_) != control::EstimateAge::kLate) {
-      return false;
+    std::string warning;
+    const bool late = robot.late.late(observer_->age_s(id).value_or(estimate_timeout_s_), estimate.header().step(),
+                                      estimate.header().next_step(), step_s_, estimate_timeout_s_, warning);
+    if (!warning.empty()) {
+      log::warn(name_, "robot " + std::to_string(id) + ": estimate on " + observer_->topic() + " " + warning);
     }
-    if (!robot.told_late) {
-      robot.told_late = true;
-      log::warn(name_, "robot " + std::to_string(id) + ": estimate on " + observer_->topic() + " " + std::to_string(age_s) +
-                           " s old (> 2 periods of " + std::to_string(period_s) +
-                           " s): holding the last command until it is fresh or stale (not logged again)");
-    }
-    return true;
+    return late;
   }
 
   /// Why robot `id` must get a zero command, or "" when the law may run.

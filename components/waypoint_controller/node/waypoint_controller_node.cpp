@@ -39,7 +39,7 @@ class WaypointControllerNode : public Component {
       ControllerParams robot_params = params_;
       robot_params.body = system::robot_body(ctx.scenario(), robot.id);  // the robot it drives
       robots_.emplace(robot.id, Robot{WaypointTracker(robot_params, period_s_), CreepBudget(creep_limits), TrackerStatus{},
-                                      CreepVerdict::kAllowed, false});
+                                      CreepVerdict::kAllowed, control::LateEstimateWatch{}, 0});
     }
     const auto keys = ctx.robot_keys();
     estimates_ = &ctx.subscribe<idl::PoseEstimate>("estimate/pose", Subscription::instances(keys));
@@ -112,7 +112,7 @@ class WaypointControllerNode : public Component {
     CreepBudget creep;
     TrackerStatus last_tracked;                  // of its last tracking step, repeated while the estimate is late
     CreepVerdict told = CreepVerdict::kAllowed;  // the last refusal logged
-    bool told_late = false;                      // a late estimate was logged once
+    control::LateEstimateWatch late;             // of its pose estimates
     std::uint32_t restarts_seen = 0;             // the estimator's restart count last seen
   };
 
@@ -156,18 +156,13 @@ class WaypointControllerNode : public Component {
     if (!realtime_) {
       return false;  // lockstep: every estimate is the one of its step
     }
-    const double period_s = control::producer_period_s(estimate.header().step(), estimate.header().next_step(), step_s_);
-    const double age_s = estimates_->age_s(id).value_or(estimate_timeout_s_);
-    if (control::classify_estimate_age(age_s, period_s, estimate_timeout_s_) != control::EstimateAge::kLate) {
-      return false;
+    std::string warning;
+    const bool late = robot.late.late(estimates_->age_s(id).value_or(estimate_timeout_s_), estimate.header().step(),
+                                      estimate.header().next_step(), step_s_, estimate_timeout_s_, warning);
+    if (!warning.empty()) {
+      log::warn("waypoint_controller", "robot " + std::to_string(id) + ": estimate " + warning);
     }
-    if (!robot.told_late) {
-      robot.told_late = true;
-      log::warn("waypoint_controller", "robot " + std::to_string(id) + ": estimate " + std::to_string(age_s) +
-                                           " s old (> 2 periods of " + std::to_string(period_s) +
-                                           " s): holding the last command until it is fresh or stale (not logged again)");
-    }
-    return true;
+    return late;
   }
 
   /// Whether robot `id` may creep at `time_s` (s) (creep_budget.hpp). Says once why it may not.
