@@ -21,11 +21,12 @@ rm -rf "$OUT"/{ideal,pf,kappa,limited,missions_*}  # a sweep refuses a folder th
 # 0.5 m track ("Actuator limits" is on the scenario as shipped). The controller keeps creeping at 0.3 m/s while the estimate is not valid: the filter
 # learns the unknown start heading only from motion, so a robot that waits for it never starts.
 IDEAL="$OUT/paper1_waypoints_ideal.yaml"
-sed -e 's/  - {name: plant, type: plant, params: {[^}]*}}/  - {name: plant, type: plant}/' \
+# The limits are the scenario's robot_body fact (issue 23): without it every component takes the
+# ideal robot's defaults (0.5 m track, no wheel or acceleration limit).
+sed -e '/^facts:/d' -e '/^  robot_body: {/d' \
   -e 's/  - {name: controller, type: waypoint_controller, params: {[^}]*}}/  - {name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3}}/' \
-  -e 's/  - {name: odometry_sensor, type: odometry_sensor, params: {[^}]*}}.*/  - {name: odometry_sensor, type: odometry_sensor}/' \
   -e 's/^duration_s: .*/duration_s: 150.0/' "$ROOT/sim/scenarios/paper1_waypoints.yaml" >"$IDEAL"
-grep -q "{name: plant, type: plant}" "$IDEAL" && grep -q "{name: odometry_sensor, type: odometry_sensor}$" "$IDEAL" && grep -q "type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3}}" "$IDEAL" \
+! grep -q "^  robot_body:" "$IDEAL" && grep -q "type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3}}" "$IDEAL" \
   || { echo "paper1_results.sh: could not take the limits off the plant and the controller in $IDEAL" >&2; exit 1; }
 
 # sweep NAME ARGS...: `robodds sweep ARGS --out OUT/NAME`; a failed run is in its runs.csv (and the table).
