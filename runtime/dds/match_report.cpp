@@ -47,15 +47,19 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
       // Dropped = its lease expired without a goodbye: the host died or its network did.
       log::warn("dds", "participant '" + name + "' dropped: no announcement within its lease (host or network down?)");
       alive_.erase(key);
-      losses_.push_back(PeerLoss{name, true, monotonic_now_ns()});
-      loss_count_ = losses_.size();
+      if (!secure_ || authenticated_.count(key) != 0) {  // an unauthenticated participant is no lost host
+        losses_.push_back(PeerLoss{name, true, monotonic_now_ns()});
+        loss_count_ = losses_.size();
+      }
       ++generation_;
       break;
     case rtps::ParticipantDiscoveryInfo::REMOVED_PARTICIPANT:
       log::debug("dds", "participant '" + name + "' left");
       alive_.erase(key);
-      losses_.push_back(PeerLoss{name, false, monotonic_now_ns()});
-      loss_count_ = losses_.size();
+      if (!secure_ || authenticated_.count(key) != 0) {
+        losses_.push_back(PeerLoss{name, false, monotonic_now_ns()});
+        loss_count_ = losses_.size();
+      }
       ++generation_;
       break;
     default:
@@ -87,6 +91,7 @@ void PeerDirectory::onParticipantAuthentication(dds::DomainParticipant*, rtps::P
   } else {
     authenticated_.erase(key);
   }
+  ++generation_;  // its digest counts from now on (peer_digests)
 }
 
 void PeerDirectory::set_secure(bool secure) {
@@ -181,7 +186,10 @@ std::vector<PeerDigest> PeerDirectory::peer_digests(std::uint64_t run_id) const 
   for (const auto& [key, run] : runs_) {
     // Gone ones too: a host that loaded other files and left at once (it found the difference
     // first) still was a host of this run.
-    if (run.run_id == run_id && !run.digest.empty()) {
+    // Secure runs: a participant that did not authenticate is no host of this run, whatever its
+    // user data says (anyone can announce one: a foreign CA's host would otherwise end the run).
+    const bool trusted = !secure_ || authenticated_.count(key) != 0;
+    if (trusted && run.run_id == run_id && !run.digest.empty()) {
       peers.push_back(PeerDigest{who_locked(key), run.digest});
     }
   }

@@ -1,4 +1,28 @@
-# Helpers for integration tests: real robodds processes over real DDS.
+## write_long_lease_profile FILE: a QoS file with the participant profile "test.long_lease" (a 30 s
+# lease): a test that stops or kills a host on purpose, and checks something else than its loss,
+# gives that host this profile so that the others do not end the run 1.5 s later (issue 24,
+# finding 6). Every host of the run must load the same file (finding 7's digest).
+write_long_lease_profile() {
+  cat >"$1" <<'XML'
+<?xml version="1.0" encoding="UTF-8" ?>
+<dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
+  <profiles>
+    <participant profile_name="test.long_lease">
+      <rtps>
+        <builtin>
+          <discovery_config>
+            <leaseDuration><sec>30</sec><nanosec>0</nanosec></leaseDuration>
+            <leaseAnnouncement><sec>0</sec><nanosec>500000000</nanosec></leaseAnnouncement>
+          </discovery_config>
+        </builtin>
+      </rtps>
+    </participant>
+  </profiles>
+</dds>
+XML
+}
+
+ Helpers for integration tests: real robodds processes over real DDS.
 # Each test gets ROBODDS (binary), SRC (repo root) and DOMAIN (its own domain id).
 set -euo pipefail
 ROBODDS="$1"

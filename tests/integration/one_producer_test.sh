@@ -25,23 +25,7 @@ expect_error 2 "$P" -- "$ROBODDS" host --scenario "$S" --group sim --duration 0.
 # Every host loads that file: hosts of one run must load the same QoS files (finding 7's digest).
 S1="$SRC/sim/scenarios/paper1_waypoints.yaml"
 out="$WORK/restart"
-cat >"$WORK/long_lease.xml" <<'XML'
-<?xml version="1.0" encoding="UTF-8" ?>
-<dds xmlns="http://www.eprosima.com/XMLSchemas/fastRTPS_Profiles">
-  <profiles>
-    <participant profile_name="test.long_lease">
-      <rtps>
-        <builtin>
-          <discovery_config>
-            <leaseDuration><sec>30</sec><nanosec>0</nanosec></leaseDuration>
-            <leaseAnnouncement><sec>0</sec><nanosec>500000000</nanosec></leaseAnnouncement>
-          </discovery_config>
-        </builtin>
-      </rtps>
-    </participant>
-  </profiles>
-</dds>
-XML
+write_long_lease_profile "$WORK/long_lease.xml"
 C=(--scenario "$S1" --run-id "7$$" --domain "$DOMAIN" --out "$out" --duration 400 --input-timeout 30)
 declare -A pid
 for g in sensors estimation control evaluation; do

@@ -8,8 +8,13 @@
 # and say so (before: the signal was ignored, A went on waiting and exited 0).
 source "$(dirname "$0")/lib.sh"
 S="$SRC/sim/scenarios/plant_smoke.yaml"
-"$ROBODDS" --log warn host --scenario "$S" --components evaluator --realtime --duration 600 --domain "$DOMAIN" \
-  --out "$WORK/b" >"$WORK/b.log" 2>&1 &
+# B announces a 30 s lease: stopped, it must stay matched (not be dropped as a lost host after 1.5 s,
+# issue 24 finding 6) so that A's shutdown waits for its acknowledgements. Both load the same files
+# and options (finding 7's digest); B never reaches its end, it is stopped before.
+write_long_lease_profile "$WORK/long_lease.xml"
+export ROBODDS_QOS_FILE="$WORK/long_lease.xml"
+"$ROBODDS" --log warn host --scenario "$S" --components evaluator --realtime --duration 4 --domain "$DOMAIN" \
+  --participant-profile test.long_lease --out "$WORK/b" >"$WORK/b.log" 2>&1 &
 b=$!
 cleanup_pids+=("$b")
 "$ROBODDS" --log warn host --scenario "$S" --components plant,commander --realtime --duration 4 --domain "$DOMAIN" \
