@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -164,6 +165,28 @@ TEST(CircumnavigationControllerNode, SpacesOnlyWithRobotsOfTheSameTarget) {
   EXPECT_NEAR(run(scenario("max_accel_mps2: 1000"), other).back().v(), 10.0, 1e-12);
 }
 
+/// Real time: missions at the first step, robot 1's pose every step, robot 2's pose at
+/// `bearing2_deg` up to `last_peer_pose`, the observer's estimate on the orbit up to
+/// `last_estimate` (then it froze or died).
+void feed_realtime(Harness& h, std::uint64_t last_estimate, std::uint64_t last_peer_pose, double bearing2_deg) {
+  h.set_mode(TimeMode::kRealtime);
+  auto missions_sent = std::make_shared<bool>(false);
+  h.feed([&h, missions_sent, last_estimate, last_peer_pose, bearing2_deg](std::uint64_t step) {
+    if (!*missions_sent) {
+      h.publish("mission/target", task(1, true), step, kNeverAgain);
+      h.publish("mission/target", task(2, true), step, kNeverAgain);
+      *missions_sent = true;
+    }
+    h.publish("estimate/pose", pose_at(1, 0.0), step, step + 1);
+    if (step <= last_peer_pose) {
+      h.publish("estimate/pose", pose_at(2, bearing2_deg), step, step + 1);
+    }
+    if (step <= last_estimate) {
+      h.publish("observer/range_rate", estimate(kRadius, 0.0, true), step, step + 1);
+    }
+  });
+}
+
 // Real time: the observer stops at step 20 (0.4 s), robot 2's pose at step 10 (0.2 s). With
 // estimate_timeout_s 0.2 the commands become zero; with peer_timeout_s 0.1 robot 2 drops out of
 // the spacing first (robot 1 alone: 10 m/s instead of 7 with robot 2 30 deg ahead).
@@ -172,24 +195,9 @@ TEST(CircumnavigationControllerNode, RealTimeStaleEstimateStopsAndStalePeerDrops
                 .robots({1, 2})
                 .component("{name: controller, type: circumnavigation_controller, robots: [1], "
                            "params: {estimate_timeout_s: 0.2, peer_timeout_s: 0.1, max_accel_mps2: 1000}}"));
-  h.set_mode(TimeMode::kRealtime);
   constexpr std::uint64_t kLastEstimate = 20;
   constexpr std::uint64_t kLastPeerPose = 10;
-  bool missions_sent = false;
-  h.feed([&](std::uint64_t step) {
-    if (!missions_sent) {
-      h.publish("mission/target", task(1, true), step, kNeverAgain);
-      h.publish("mission/target", task(2, true), step, kNeverAgain);
-      missions_sent = true;
-    }
-    h.publish("estimate/pose", pose_at(1, 0.0), step, step + 1);
-    if (step <= kLastPeerPose) {
-      h.publish("estimate/pose", pose_at(2, 30.0), step, step + 1);
-    }
-    if (step <= kLastEstimate) {
-      h.publish("observer/range_rate", estimate(kRadius, 0.0, true), step, step + 1);
-    }
-  });
+  feed_realtime(h, kLastEstimate, kLastPeerPose, 30.0);
   const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
   h.run({"controller"});
   int spaced = 0;
@@ -225,21 +233,8 @@ TEST(CircumnavigationControllerNode, RealTimeAFrozenEstimateDoesNotRaiseTheComma
                 .robots({1, 2})
                 .component("{name: controller, type: circumnavigation_controller, robots: [1], "
                            "params: {estimate_timeout_s: 0.3, start_cruising: false}}"));
-  h.set_mode(TimeMode::kRealtime);
   constexpr std::uint64_t kLastFed = 10;
-  bool missions_sent = false;
-  h.feed([&](std::uint64_t step) {
-    if (!missions_sent) {
-      h.publish("mission/target", task(1, true), step, kNeverAgain);
-      h.publish("mission/target", task(2, true), step, kNeverAgain);
-      missions_sent = true;
-    }
-    h.publish("estimate/pose", pose_at(1, 0.0), step, step + 1);
-    h.publish("estimate/pose", pose_at(2, 90.0), step, step + 1);
-    if (step <= kLastFed) {
-      h.publish("observer/range_rate", estimate(kRadius, 0.0, true), step, step + 1);
-    }
-  });
+  feed_realtime(h, kLastFed, kNeverAgain, 90.0);
   const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
   h.run({"controller"});
   double v_at_last_fed = -1.0;
