@@ -36,16 +36,20 @@ std::map<std::string, std::string> entries_of(const RunDigest& digest) {
 
 }  // namespace
 
-std::string digest_label(const std::string& kind, const std::string& name) {
-  std::string label = kind + ":" + name;
+bool digest_label_char(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '.' || c == '_' || c == ':' || c == '-';
+}
+
+std::string sanitised_digest_label(std::string label) {
   for (char& c : label) {
-    const bool ok = std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '.' || c == '_' || c == ':' || c == '-';
-    if (!ok) {
+    if (!digest_label_char(c)) {
       c = '_';
     }
   }
   return label;
 }
+
+std::string digest_label(const std::string& kind, const std::string& name) { return sanitised_digest_label(kind + ":" + name); }
 
 std::string digest_difference(const RunDigest& own, const PeerDigest& peer) {
   for (const DigestEntry& entry : own) {

@@ -30,7 +30,11 @@ struct PeerDigest {
   std::map<std::string, std::string> entries;
 };
 
-/// A label "kind:name" with only [A-Za-z0-9._:-] in it (others become '_'), as announced.
+/// Whether `c` may stand in an announced label: [A-Za-z0-9._:-].
+bool digest_label_char(char c);
+/// `label` with every other character replaced by '_'.
+std::string sanitised_digest_label(std::string label);
+/// A label "kind:name", sanitised (sanitised_digest_label()), as announced.
 std::string digest_label(const std::string& kind, const std::string& name);
 
 /// One phrase naming the first input where `peer` differs from `own` (in `own`'s order, then the

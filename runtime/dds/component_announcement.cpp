@@ -11,17 +11,7 @@ constexpr const char* kPrefix = "robodds-components:";
 constexpr const char* kRunPrefix = "robodds-run:";
 constexpr const char* kDigestPrefix = "robodds-digest:";
 
-bool label_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '.' || c == '_' || c == ':' || c == '-'; }
 bool hex_char(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0 || (c >= 'a' && c <= 'f'); }
-
-std::string sanitised(std::string label) {
-  for (char& c : label) {
-    if (!label_char(c)) {
-      c = '_';
-    }
-  }
-  return label;
-}
 
 bool starts_with(const std::string& text, const char* prefix) { return text.rfind(prefix, 0) == 0; }
 
@@ -39,7 +29,7 @@ bool parse_digest(const std::string& text, std::map<std::string, std::string>& o
     const std::string label = item.substr(0, eq);
     const std::string hex = item.substr(eq + 1);
     for (char c : label) {
-      if (!label_char(c)) {
+      if (!digest_label_char(c)) {
         return false;
       }
     }
@@ -72,7 +62,7 @@ std::vector<std::uint8_t> component_announcement(const std::vector<std::string>&
     if (!digest.empty()) {
       text += std::string("\n") + kDigestPrefix;
       for (std::size_t i = 0; i < digest.size(); ++i) {
-        text += (i == 0 ? "" : ";") + sanitised(digest[i].label) + "=" + digest[i].digest;
+        text += (i == 0 ? "" : ";") + sanitised_digest_label(digest[i].label) + "=" + digest[i].digest;
       }
     }
   }

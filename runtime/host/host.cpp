@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <set>
 #include <thread>
 
 #include "common/number_text.hpp"
@@ -213,7 +214,8 @@ struct Host::Impl {
     PeerWatch peers = peer_watch();
     double next_peer_check_s = 0.0;
     DigestCheck digests(options.digest, options.run_id);
-    std::string other_files;  // degraded: hosts of this run that loaded other files
+    std::set<std::string> told_other_files;  // hosts of this run named as having loaded other files
+    std::string other_files;                  // degraded: what was said of them, "; "-joined
     bool stopped = false;
     while (true) {
       if (options.stop_ends_run && options.stop != nullptr && options.stop->load()) {
@@ -239,7 +241,7 @@ struct Host::Impl {
       last_run = current;
       watch_peers(peers, seconds_since(start), next_peer_check_s);
       peer_losses->check_realtime(peers, elapsed_s, static_cast<double>(last + 1) * step_s - elapsed_s);
-      watch_digests(digests, seconds_since(start), other_files);
+      watch_digests(digests, seconds_since(start), told_other_files, other_files);
       const std::uint64_t first_due = next_due.empty() ? current : *std::min_element(next_due.begin(), next_due.end());
       if (first_due <= current) {
         count_overrun(overruns, first_due, current, due_steps_between(periods, first_due, current), elapsed_s);
@@ -288,7 +290,7 @@ struct Host::Impl {
   /// host outnumbered by hosts that agree on another digest refuses to start (RunConfigError, exit
   /// 2): it is the odd one. Otherwise the run goes on degraded, naming each such host once; their
   /// writers are no producer of the scenario here (refused and counted as unknown_producer).
-  void watch_digests(DigestCheck& digests, double elapsed_s, std::string& other_files) const {
+  void watch_digests(DigestCheck& digests, double elapsed_s, std::set<std::string>& told, std::string& other_files) const {
     const DigestVerdict& v = digests.verdict(*run.bus);
     if (v.difference.empty()) {
       return;
@@ -299,7 +301,7 @@ struct Host::Impl {
                            " on this host's)");
     }
     for (const std::string& host : v.differing_hosts) {
-      if (other_files.find("host " + host + " ") != std::string::npos) {
+      if (!told.insert(host).second) {
         continue;
       }
       const std::string line = "host " + host + " loaded other files than this host";

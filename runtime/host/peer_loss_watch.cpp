@@ -105,23 +105,18 @@ void PeerLossWatch::check_lockstep(std::uint64_t step, bool host_running, bool c
 }
 
 void PeerLossWatch::check_realtime(PeerWatch& watch, double elapsed_s, double remaining_s) {
-  std::vector<PeerLoss> lost;
+  std::vector<Drop> lost;  // a clean goodbye counts at once, a drop once confirmed
   for (const PeerLoss& loss : new_losses()) {
-    const std::string group = group_of_participant(loss.participant, others_);
+    std::string group = group_of_participant(loss.participant, others_);
     if (group.empty() || (!loss.dropped && remaining_s < kEndMarginS)) {
       continue;
     }
-    if (loss.dropped) {
-      pending_.push_back(Drop{loss, group});
-    } else {
-      lost.push_back(loss);
-    }
+    (loss.dropped ? pending_ : lost).push_back(Drop{loss, std::move(group)});
   }
   for (Drop& drop : confirmed_drops()) {
-    lost.push_back(std::move(drop.loss));
+    lost.push_back(std::move(drop));
   }
-  for (const PeerLoss& loss : lost) {
-    const std::string group = group_of_participant(loss.participant, others_);
+  for (const auto& [loss, group] : lost) {
     const double at_s = elapsed_s - static_cast<double>(monotonic_now_ns() - loss.at_ns) * 1e-9;
     const std::string standbys = standby_groups_of(group);
     if (!standbys.empty()) {
