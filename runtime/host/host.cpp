@@ -10,6 +10,7 @@
 #include "runtime/host/digest_check.hpp"
 #include "runtime/host/health_exchange.hpp"
 #include "runtime/host/host_slot.hpp"
+#include "runtime/host/loop_alive.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/lockstep/lockstep_coordinator.hpp"
 #include "runtime/lockstep/lockstep_host.hpp"
@@ -38,6 +39,7 @@ struct Host::Impl {
   std::unique_ptr<LockstepCoordinator> lockstep_coordinator;  // lockstep, when it publishes the ticks
   std::unique_ptr<HealthExchange> health;                     // across processes: run/health
   std::unique_ptr<PeerLossWatch> peer_losses;                 // across processes: hosts that went away
+  std::unique_ptr<LoopAlive> loop_alive;                      // real time across processes: run/alive
 
   Impl(const ComponentRegistry& r, RunContext rc, HostOptions o) : registry(r), run(std::move(rc)), options(std::move(o)) {}
 
@@ -57,9 +59,10 @@ struct Host::Impl {
 
   /// Real time across processes: the scenario's other groups this host exchanges a topic with
   /// (one of them reads what it writes or writes what it reads, run/health included), which it
-  /// must discover within the start timeout (PeerWatch). Only those: a Discovery Server tells a
-  /// client about the participants it shares a topic with, no others. None co-located, alone (a
-  /// component executable) or on a bus that discovers nothing.
+  /// must discover within the start timeout (PeerWatch); not run/alive, which every real-time host
+  /// shares with every other (LoopAlive judges a group only once it heard it). Only those: a
+  /// Discovery Server tells a client about the participants it shares a topic with, no others.
+  /// None co-located, alone (a component executable) or on a bus that discovers nothing.
   PeerWatch peer_watch() const {
     std::vector<std::string> others;
     if (run.single_process || !run.bus->discovered_participants() || run.scenario->groups.size() < 2) {
@@ -133,6 +136,15 @@ struct Host::Impl {
     peer_losses = std::make_unique<PeerLossWatch>(run.single_process ? nullptr : dynamic_cast<const PeerLossSource*>(run.bus),
                                                   *run.scenario, options.member, options.members);
     if (run.mode != TimeMode::kLockstep) {
+      if (!run.single_process && !slots.empty()) {
+        std::vector<std::string> others;
+        for (const GroupSpec& group : run.scenario->groups) {
+          if (group.name != options.member) {
+            others.push_back(group.name);
+          }
+        }
+        loop_alive = std::make_unique<LoopAlive>(run, options.member, options.run_id, std::move(others));
+      }
       return;
     }
     // Both halves of the protocol on this host's one thread: a round trip through DDS per step
@@ -241,6 +253,10 @@ struct Host::Impl {
       last_run = current;
       watch_peers(peers, seconds_since(start), next_peer_check_s);
       peer_losses->check_realtime(peers, elapsed_s, static_cast<double>(last + 1) * step_s - elapsed_s);
+      if (loop_alive) {
+        loop_alive->beat(elapsed_s, current);
+        peer_losses->check_silent_loops(peers, *loop_alive, elapsed_s, static_cast<double>(last + 1) * step_s - elapsed_s);
+      }
       watch_digests(digests, seconds_since(start), told_other_files, other_files);
       const std::uint64_t first_due = next_due.empty() ? current : *std::min_element(next_due.begin(), next_due.end());
       if (first_due <= current) {

@@ -117,16 +117,30 @@ void PeerLossWatch::check_realtime(PeerWatch& watch, double elapsed_s, double re
     lost.push_back(std::move(drop));
   }
   for (const auto& [loss, group] : lost) {
-    const double at_s = elapsed_s - static_cast<double>(monotonic_now_ns() - loss.at_ns) * 1e-9;
-    const std::string standbys = standby_groups_of(group);
-    if (!standbys.empty()) {
-      log::warn(member_, "group '" + group + "' lost at " + shortest_text(std::round(at_s * 100.0) / 100.0) +
-                             " s after the start (" + how_lost(loss) + "); its hot standby in " + standbys + " takes over");
-      continue;
-    }
-    if (watch.lost(group, at_s, how_lost(loss))) {
-      log::warn(member_, "degraded: " + watch.degraded() + "; the run goes on (the components' own input timeouts stop what depended on it)");
-    }
+    report_lost(watch, group, elapsed_s - static_cast<double>(monotonic_now_ns() - loss.at_ns) * 1e-9, how_lost(loss));
+  }
+}
+
+void PeerLossWatch::check_silent_loops(PeerWatch& watch, LoopAlive& alive, double elapsed_s, double remaining_s) {
+  const auto participant_alive = [this](const std::string& group) {
+    return source_ != nullptr && source_->participant_alive(participant_name_of_group(group));
+  };
+  for (const LoopSilence::Silent& silent : alive.silent(elapsed_s, elapsed_s + remaining_s, participant_alive)) {
+    report_lost(watch, silent.group, elapsed_s,
+                "its loop stopped: nothing on run/alive since " + shortest_text(std::round(silent.last_heard_s * 100.0) / 100.0) +
+                    " s while its participant is alive");
+  }
+}
+
+void PeerLossWatch::report_lost(PeerWatch& watch, const std::string& group, double at_s, const std::string& how) const {
+  const std::string standbys = standby_groups_of(group);
+  if (!standbys.empty()) {
+    log::warn(member_, "group '" + group + "' lost at " + shortest_text(std::round(at_s * 100.0) / 100.0) +
+                           " s after the start (" + how + "); its hot standby in " + standbys + " takes over");
+    return;
+  }
+  if (watch.lost(group, at_s, how)) {
+    log::warn(member_, "degraded: " + watch.degraded() + "; the run goes on (the components' own input timeouts stop what depended on it)");
   }
 }
 

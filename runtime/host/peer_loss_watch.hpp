@@ -12,6 +12,7 @@
 #include "runtime/bus/peer_losses.hpp"
 #include "runtime/config/scenario.hpp"
 #include "runtime/health/peer_watch.hpp"
+#include "runtime/host/loop_alive.hpp"
 
 namespace robodds {
 
@@ -52,6 +53,11 @@ class PeerLossWatch {
   /// hot standby in another group is logged as taken over instead.
   void check_realtime(PeerWatch& watch, double elapsed_s, double remaining_s);
 
+  /// Real time, every loop iteration: a group whose loop went silent on run/alive while its
+  /// participant is alive (`alive`, LoopSilence) goes to `watch` as lost now, as check_realtime's
+  /// losses do (or is logged as taken over by its hot standby).
+  void check_silent_loops(PeerWatch& watch, LoopAlive& alive, double elapsed_s, double remaining_s);
+
   /// "'b'" when every component of `group` has a hot standby in another group (those groups,
   /// quoted); "" when one has none.
   std::string standby_groups_of(const std::string& group) const;
@@ -61,6 +67,8 @@ class PeerLossWatch {
     PeerLoss loss;
     std::string group;
   };
+  /// `group` lost at `at_s` (s after step 0), `how`: degraded, or taken over by its standby.
+  void report_lost(PeerWatch& watch, const std::string& group, double at_s, const std::string& how) const;
   std::vector<PeerLoss> new_losses();  // since the last call; one atomic load when none
   /// The drops of pending_ older than kRediscoveryGraceS whose participant is still gone; those
   /// discovered again are logged and forgotten.

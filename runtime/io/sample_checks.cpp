@@ -68,6 +68,8 @@ CheckResult check_tick(const idl::SimTick& s) { return field_check::duration("st
 
 CheckResult check_step_done(const idl::StepDone&) { return std::nullopt; }
 
+CheckResult check_host_alive(const idl::HostAlive&) { return std::nullopt; }  // the header says it all
+
 CheckResult check_host_report(const idl::HostReport& s) {
   if (s.late_steps() > s.ticks()) {  // late steps were run, so they are among the ticks
     return fail(check_reason::kBadSize, "late_steps",

@@ -5,7 +5,7 @@
 // (InputCounts::rejected) and logged once per writer and reason.
 //
 // The runtime checks what it knows: every header, and the content of its own bookkeeping types
-// (SimTick, StepDone, HostReport). The content checks of the system's message types are the
+// (SimTick, StepDone, HostReport, HostAlive). The content checks of the system's message types are the
 // system layer's (system/sample_checks.hpp), installed here with set_content_check() before any
 // run starts; an Input of a type without one refuses to be made (require_content_check()). The
 // table of checks and bounds is in docs/architecture.md, "Input checks".
@@ -77,6 +77,7 @@ CheckResult check_header(const idl::SampleHeader& header, TimeMode mode, std::in
 CheckResult check_tick(const idl::SimTick& s);
 CheckResult check_step_done(const idl::StepDone& s);
 CheckResult check_host_report(const idl::HostReport& s);
+CheckResult check_host_alive(const idl::HostAlive& s);
 
 /// The content check of message type Msg (header excluded; non-finite numbers are caught before).
 template <class Msg>
@@ -98,6 +99,10 @@ constexpr ContentCheck<idl::StepDone> builtin_content_check<idl::StepDone>() {
 template <>
 constexpr ContentCheck<idl::HostReport> builtin_content_check<idl::HostReport>() {
   return &check_host_report;
+}
+template <>
+constexpr ContentCheck<idl::HostAlive> builtin_content_check<idl::HostAlive>() {
+  return &check_host_alive;
 }
 /// One per message type in the program: the runtime's own for its bookkeeping types, else what
 /// the system layer installed (set_content_check()).

@@ -12,6 +12,9 @@ std::vector<TopicInfo>& catalog() {
       make_topic<idl::StepDone>("sim/step_done", QosClass::kLockstep, "every host", "coordinator"),
       make_topic<idl::HostReport>("run/health", QosClass::kMission, "every host across processes (once, at its end)",
                                   "the host of a component that asked for the run's health (summary.json `hosts`, `inputs`, `run.timing`)"),
+      make_topic<idl::HostAlive>("run/alive", QosClass::kState,
+                                 "every real-time host across processes (every 0.2 s, from its loop)",
+                                 "every other real-time host of the run (a silent loop is a lost host)"),
   };
   return topics;
 }

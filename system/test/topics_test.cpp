@@ -12,16 +12,17 @@ namespace {
 
 TEST(RobotTopics, InCatalogBeforeMainAfterTheRuntimesOwn) {
   const std::vector<TopicInfo>& catalog = topic_catalog();
-  ASSERT_GE(catalog.size(), 3u);
+  ASSERT_GE(catalog.size(), 4u);
   EXPECT_EQ(catalog[0].name, "sim/clock");
   EXPECT_EQ(catalog[1].name, "sim/step_done");
   EXPECT_EQ(catalog[2].name, "run/health");
+  EXPECT_EQ(catalog[3].name, "run/alive");
   for (const TopicInfo& topic : robot_topics()) {
     const TopicInfo* found = find_topic(topic.name);
     ASSERT_NE(found, nullptr) << topic.name;
     EXPECT_EQ(found->type_name, topic.type_name);
   }
-  EXPECT_EQ(catalog.size(), 3u + robot_topics().size());
+  EXPECT_EQ(catalog.size(), 4u + robot_topics().size());
 }
 
 TEST(RobotTopics, EveryTypeHasAContentCheck) {

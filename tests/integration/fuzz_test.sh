@@ -23,20 +23,20 @@ COUNT=3000   # payloads per topic: 1000 of each kind (random, body, header)
 COUNT_KEYED=1500  # pass 2 (--key 1): 500 of each kind
 TOPICS=plant/cmd,plant/state,sensor/position,sensor/odometry,estimate/pose,mission/waypoints,control/status
 
-timeout -k 5 90 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --realtime --duration "$DURATION_S" \
+timeout -k 5 90 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --realtime $(rt_priority_flag) --duration "$DURATION_S" \
   --domain "$DOMAIN" --out "$WORK/out" --no-plots >"$WORK/run.log" 2>&1 &
 run_pid=$!
 cleanup_pids+=("$run_pid")
 sleep 2   # let the run's readers exist; robodds-fuzz also waits for a reader of every topic
 start=$(date +%s.%N)
 fuzz_rc=0
-timeout -k 5 60 "$FUZZ" --domain "$DOMAIN" --topics "$TOPICS" --count "$COUNT" --rate 1000 --seed 9 --self-check \
+timeout -k 5 60 $(rt_chrt 10) "$FUZZ" --domain "$DOMAIN" --topics "$TOPICS" --count "$COUNT" --rate 1000 --seed 9 --self-check \
   --qos "$SRC/deploy/qos/robodds_qos.xml" >"$WORK/fuzz.txt" 2>"$WORK/fuzz.log" || fuzz_rc=$?
 cat "$WORK/fuzz.txt"
 [[ $fuzz_rc -eq 0 ]] || fail "robodds-fuzz exited $fuzz_rc: $(cat "$WORK/fuzz.log")"
 # Pass 2: valid-length random bodies of robot 1 (the run's only robot). Plausibility checks and the
 # one-producer rule must keep every one of them out of the loop.
-timeout -k 5 60 "$FUZZ" --domain "$DOMAIN" --topics "$TOPICS" --count "$COUNT_KEYED" --rate 1000 --seed 10 --key 1 \
+timeout -k 5 60 $(rt_chrt 10) "$FUZZ" --domain "$DOMAIN" --topics "$TOPICS" --count "$COUNT_KEYED" --rate 1000 --seed 10 --key 1 \
   --qos "$SRC/deploy/qos/robodds_qos.xml" >"$WORK/fuzz2.txt" 2>"$WORK/fuzz2.log" || fuzz_rc=$?
 cat "$WORK/fuzz2.txt"
 end_ns=$(sed -n 's/^written_until_ns=//p' "$WORK/fuzz2.txt")

@@ -7,7 +7,9 @@
 #     (2 s + a margin for a busy machine; before: they waited 30 s for ticks), each naming
 #     'sensing', and summary.json (written by the evaluation host) says "failed" naming it;
 #   - real time: the others run to their end and exit 3 (degraded); each names 'sensing' and the
-#     time it was dropped, within 2.5 s after the kill; summary.json says "degraded" with that.
+#     time it was dropped, within 2.5 s after the kill; summary.json says "degraded" with that;
+#   - real time, the sensing host's loop frozen while its process lives (its participant stays
+#     alive): the same, named by the silence of its beats on run/alive (LoopSilence).
 source "$(dirname "$0")/lib.sh"
 S="$SRC/sim/scenarios/plant_smoke.yaml"
 now_s() { date +%s.%N; }
@@ -68,38 +70,59 @@ print("ok (lockstep): summary.json failed:", s["reason"][:100])
 PY
 
 # --- real time ---
-DURATION=10
-KILL_AT=4  # s after step 0
-epoch_s=$(($(date +%s) + 3))
-R=(host --scenario "$S" --domain "$DOMAIN" --run-id "$((RUN + 1))" --realtime --epoch-ns "${epoch_s}000000000"
-  --duration "$DURATION" --max-missed-steps 1000000)
-for g in control sim sensing; do start_host "rt_$g" "${R[@]}" --group "$g"; done
-start_host rt_evaluation "${R[@]}" --group evaluation --out "$WORK/realtime"
-sleep "$(echo "$epoch_s + $KILL_AT - $(now_s)" | bc)"
-kill -9 "$(cat "$WORK/rt_sensing.pid")"
-killed=$(now_s)
-kill_s=$(echo "$killed - $epoch_s" | bc)
-wait_exits $((DURATION + 20)) rt_control rt_sim rt_evaluation
-for name in rt_control rt_sim rt_evaluation; do
-  read -r rc ended <"$WORK/$name.exit"
-  [[ $rc -eq 3 ]] || fail "$name exited $rc, expected 3 (degraded): $(tail -3 "$WORK/$name.log")"
-  (( $(echo "$ended - $epoch_s >= $DURATION" | bc) )) || fail "$name ended before the run's end"
-  at=$(grep -oE "lost group 'sensing' at [0-9.]+ s after the start" "$WORK/$name.log" | head -1 | grep -oE "[0-9.]+ s" | cut -d' ' -f1)
-  [[ -n "$at" ]] || fail "$name does not name the lost group: $(tail -3 "$WORK/$name.log")"
-  late=$(echo "$at - $kill_s" | bc)
-  echo "real time: $name lost 'sensing' at $at s, $late s after the kill (at $kill_s s); exit $rc"
-  (( $(echo "$late >= 0 && $late < 2.5" | bc) )) || fail "$name named the loss $late s after the kill (bound 2.5 s)"
-done
-python3 - "$WORK/realtime/summary.json" "$kill_s" <<'PY' || fail "real-time summary.json does not name the lost group"
+# realtime_fault NAME: a 10 s real-time run; at 4 s after step 0 the sensing host is killed
+# (NAME=killed: SIGKILL, its participant's lease expires) or its loop is frozen while its process
+# lives on (NAME=frozen: its main thread, which runs the host's loop, stopped by ptrace; Fast DDS's
+# threads keep its participant alive, so only run/alive's silence tells). Every other host must
+# name 'sensing' as lost within 2.5 s of the fault, with how it was lost (HOW, a regex).
+realtime_fault() {
+  local fault="$1" how="$2"
+  local DURATION=10 FAULT_AT=4 epoch_s fault_s name rc ended at late freezer=""
+  epoch_s=$(($(date +%s) + 3))
+  local R=(host --scenario "$S" --domain "$DOMAIN" --run-id "$((RUN + RANDOM % 1000 + 1))" --realtime --epoch-ns "${epoch_s}000000000"
+    --duration "$DURATION" --max-missed-steps 1000000)
+  for g in control sim sensing; do start_host "${fault}_$g" "${R[@]}" --group "$g"; done
+  start_host "${fault}_evaluation" "${R[@]}" --group evaluation --out "$WORK/$fault"
+  sleep "$(echo "$epoch_s + $FAULT_AT - $(now_s)" | bc)"
+  if [[ $fault == killed ]]; then
+    kill -9 "$(cat "$WORK/${fault}_sensing.pid")"
+    fault_s=$(echo "$(now_s) - $epoch_s" | bc)
+  else
+    python3 "$(dirname "$0")/freeze_thread.py" "$(cat "$WORK/${fault}_sensing.pid")" 30 >"$WORK/freeze.out" 2>&1 &
+    freezer=$!
+    cleanup_pids+=("$freezer")
+    for _ in $(seq 100); do [[ -s "$WORK/freeze.out" ]] && break; sleep 0.05; done
+    grep -q "^frozen " "$WORK/freeze.out" || fail "could not freeze the sensing host's loop: $(cat "$WORK/freeze.out")"
+    fault_s=$(echo "$(cut -d' ' -f2 "$WORK/freeze.out") - $epoch_s" | bc)
+  fi
+  wait_exits $((DURATION + 20)) "${fault}_control" "${fault}_sim" "${fault}_evaluation"
+  for name in "${fault}_control" "${fault}_sim" "${fault}_evaluation"; do
+    read -r rc ended <"$WORK/$name.exit"
+    [[ $rc -eq 3 ]] || fail "$name exited $rc, expected 3 (degraded): $(tail -3 "$WORK/$name.log")"
+    (( $(echo "$ended - $epoch_s >= $DURATION" | bc) )) || fail "$name ended before the run's end"
+    at=$(grep -oE "lost group 'sensing' at [0-9.]+ s after the start \($how" "$WORK/$name.log" | head -1 | grep -oE "at [0-9.]+ s" | cut -d' ' -f2)
+    [[ -n "$at" ]] || fail "$name does not name the lost group 'sensing' ($how): $(grep -m1 "lost group" "$WORK/$name.log" || tail -3 "$WORK/$name.log")"
+    late=$(echo "$at - $fault_s" | bc)
+    echo "real time, $fault: $name lost 'sensing' at $at s, $late s after the fault (at $fault_s s); exit $rc"
+    (( $(echo "$late >= 0 && $late < 2.5" | bc) )) || fail "$name named the loss $late s after the fault (bound 2.5 s)"
+  done
+  python3 - "$WORK/$fault/summary.json" "$fault_s" "$how" <<'PY' || fail "real-time summary.json does not name the lost group"
 import json, re, sys
 s = json.load(open(sys.argv[1]))
-kill_s = float(sys.argv[2])
+fault_s, how = float(sys.argv[2]), sys.argv[3]
 assert s["status"] == "degraded", s["status"]
-m = re.search(r"lost group 'sensing' at ([0-9.]+) s after the start", s["reason"])
-assert m and 0 <= float(m.group(1)) - kill_s < 2.5, s["reason"]
+m = re.search(r"lost group 'sensing' at ([0-9.]+) s after the start \(" + how, s["reason"])
+assert m and 0 <= float(m.group(1)) - fault_s < 2.5, s["reason"]
 # Every survivor reported (each ended after the run's end: checked above from its exit time).
 assert all(s["hosts"][m]["ticks"] > 0 for m in ("control", "sim", "evaluation")), s["hosts"]
 assert s["hosts"]["sensing"] == {"reported": False}, s["hosts"]["sensing"]
-print("ok (real time): summary.json degraded:", m.group(0))
+print("ok (real time):", m.group(0))
 PY
-echo "ok: a killed host is named by every other host, lockstep and real time"
+  # The tracer first: a traced process's end reaches its parent only once its tracer is gone.
+  [[ $fault == frozen ]] && { kill "$freezer" 2>/dev/null || true; wait "$freezer" 2>/dev/null || true; }
+  kill -9 "$(cat "$WORK/${fault}_sensing.pid")" 2>/dev/null || true
+  wait_exits 10 "${fault}_sensing"  # its wrapper writes its exit file: before the cleanup removes $WORK
+}
+realtime_fault killed "its participant 'robodds-sensing' dropped"
+realtime_fault frozen "its loop stopped: nothing on run/alive since [0-9.]+ s while its participant is alive"
+echo "ok: a killed host is named by every other host, lockstep and real time, and a live host whose loop froze in real time"

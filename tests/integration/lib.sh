@@ -1,4 +1,6 @@
-## write_long_lease_profile FILE: a QoS file with the participant profile "test.long_lease" (a 30 s
+# Helpers for integration tests: real robodds processes over real DDS.
+
+# write_long_lease_profile FILE: a QoS file with the participant profile "test.long_lease" (a 30 s
 # lease): a test that stops or kills a host on purpose, and checks something else than its loss,
 # gives that host this profile so that the others do not end the run 1.5 s later (issue 24,
 # finding 6). Every host of the run must load the same file (finding 7's digest).
@@ -22,7 +24,6 @@ write_long_lease_profile() {
 XML
 }
 
- Helpers for integration tests: real robodds processes over real DDS.
 # Each test gets ROBODDS (binary), SRC (repo root) and DOMAIN (its own domain id).
 set -euo pipefail
 ROBODDS="$1"
@@ -54,6 +55,14 @@ rt_priority_flag() {
   if (( (0x${caps:-0} >> 14) & 1 )) || [[ $(ulimit -l) == unlimited ]]; then  # bit 14: CAP_IPC_LOCK
     echo "--rt-priority 50"
   fi
+}
+# rt_chrt PRIORITY: prints "chrt -f PRIORITY" when rt_priority_flag would give --rt-priority, else
+# nothing: for a helper process of a real-time test that has no --rt-priority of its own (e.g.
+# robodds-fuzz, the hostile writer), so that CPU hogs beside the test do not stretch its timing
+# past the run it writes into. Give it a priority below the run's 50: the run still comes first.
+rt_chrt() {
+  [[ -n "$(rt_priority_flag)" ]] && echo "chrt -f $1"
+  return 0
 }
 # expect_error EXPECTED_EXIT PATTERN -- command...: runs command, checks exit code and stderr.
 expect_error() {

@@ -13,16 +13,19 @@ S="$SRC/sim/scenarios/plant_smoke.yaml"
 # and options (finding 7's digest); B never reaches its end, it is stopped before.
 write_long_lease_profile "$WORK/long_lease.xml"
 export ROBODDS_QOS_FILE="$WORK/long_lease.xml"
+# One epoch 3 s ahead for both (started, matched and stepping before B is stopped 2.5 s into the
+# run, also with CPU hogs beside them), and SCHED_FIFO where allowed.
+epoch_s=$(($(date +%s) + 3))
 "$ROBODDS" --log warn host --scenario "$S" --components evaluator --realtime --duration 4 --domain "$DOMAIN" \
-  --participant-profile test.long_lease --out "$WORK/b" >"$WORK/b.log" 2>&1 &
+  --epoch-ns "${epoch_s}000000000" $(rt_priority_flag) --participant-profile test.long_lease --out "$WORK/b" >"$WORK/b.log" 2>&1 &
 b=$!
 cleanup_pids+=("$b")
 "$ROBODDS" --log warn host --scenario "$S" --components plant,commander --realtime --duration 4 --domain "$DOMAIN" \
-  --out "$WORK/a" >"$WORK/a.log" 2>&1 &
+  --epoch-ns "${epoch_s}000000000" $(rt_priority_flag) --out "$WORK/a" >"$WORK/a.log" 2>&1 &
 a=$!
 cleanup_pids+=("$a")
 finish() { kill -9 "$b" 2>/dev/null || true; }  # a stopped process only dies by SIGKILL
-sleep 2.5
+sleep "$(echo "$epoch_s + 2.5 - $(date +%s.%N)" | bc)"
 kill -0 "$a" 2>/dev/null || { finish; fail "host A ended early: $(cat "$WORK/a.log")"; }
 kill -STOP "$b"
 in_shutdown() { grep -qx shutdown-watch /proc/"$a"/task/*/comm 2>/dev/null; }

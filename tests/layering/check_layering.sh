@@ -152,8 +152,8 @@ done
 
 # Rule 7: runtime/ names no topic, message type or component of the system above it.
 # The IDL types the runtime owns: the lockstep bookkeeping (ticks, acknowledgements, host reports)
-# and the structs they are made of.
-RUNTIME_MESSAGE_TYPES=(SampleHeader SimTick StepDone HostReport InputReport ReasonCount StageTiming)
+# and the structs they are made of; run/alive beats (HostAlive).
+RUNTIME_MESSAGE_TYPES=(SampleHeader SimTick StepDone HostReport HostAlive InputReport ReasonCount StageTiming)
 mapfile -t system_topics < <(grep -ohE 'make_topic<[^>]+>\("[^"]+"' system/*.cpp 2>/dev/null | sed -E 's/.*\("//; s/"$//' | sort -u)
 mapfile -t message_types < <(grep -ohE '^[[:space:]]*(@final[[:space:]]+)?(struct|enum)[[:space:]]+[A-Za-z0-9_]+' idl/*.idl 2>/dev/null |
   awk '{print $NF}' | grep -vxF "${RUNTIME_MESSAGE_TYPES[@]/#/-e}" | sort -u)

@@ -9,6 +9,7 @@ namespace {
 const char* const kClock = "sim/clock";
 const char* const kStepDone = "sim/step_done";
 const char* const kHealth = "run/health";
+const char* const kAlive = "run/alive";
 
 /// XML text escaping for the few characters a topic or subject could carry.
 std::string xml_escaped(const std::string& text) {
@@ -47,8 +48,9 @@ std::vector<SecurityIdentity> security_identities(const Scenario& scenario,
                                   "tools, ca); rename the group"));
       }
     }
-    // A host of the group: lockstep acknowledgements out, ticks in; its run/health report out.
-    SecurityIdentity identity{group.name, {kStepDone, kHealth}, {kClock}};
+    // A host of the group: lockstep acknowledgements out, ticks in; its run/health report out;
+    // in real time its run/alive beats out and every other group's in.
+    SecurityIdentity identity{group.name, {kStepDone, kHealth, kAlive}, {kClock, kAlive}};
     for (const std::string& component : group.components) {
       auto it = component_topics.find(component);
       if (it == component_topics.end()) {

@@ -45,6 +45,7 @@ TEST(SampleChecks, RuntimeTopics) {
   t.step_s(-0.01);
   EXPECT_EQ(check_reason_of(t), "negative_duration:step_s");
   EXPECT_EQ(check_reason_of(plausible_sample<idl::StepDone>()), "ok");
+  EXPECT_EQ(check_reason_of(plausible_sample<idl::HostAlive>()), "ok");
 
   auto r = plausible_sample<idl::HostReport>();
   r.ticks(10);

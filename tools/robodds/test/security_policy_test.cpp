@@ -36,14 +36,14 @@ using Topics = std::set<std::string>;
 TEST(SecurityPolicy, EachGroupPublishesAndReadsExactlyWhatItsComponentsDo) {
   const auto ids = plant_smoke_identities();
   // control: the open-loop commander writes plant/cmd and reads nothing.
-  EXPECT_EQ(find(ids, "control").publishes, (Topics{"plant/cmd", "run/health", "sim/step_done"}));
-  EXPECT_EQ(find(ids, "control").subscribes, (Topics{"sim/clock"}));
+  EXPECT_EQ(find(ids, "control").publishes, (Topics{"plant/cmd", "run/alive", "run/health", "sim/step_done"}));
+  EXPECT_EQ(find(ids, "control").subscribes, (Topics{"run/alive", "sim/clock"}));
   // sim: the plant reads the commands and writes the state.
-  EXPECT_EQ(find(ids, "sim").publishes, (Topics{"plant/state", "run/health", "sim/step_done"}));
-  EXPECT_EQ(find(ids, "sim").subscribes, (Topics{"plant/cmd", "sim/clock"}));
+  EXPECT_EQ(find(ids, "sim").publishes, (Topics{"plant/state", "run/alive", "run/health", "sim/step_done"}));
+  EXPECT_EQ(find(ids, "sim").subscribes, (Topics{"plant/cmd", "run/alive", "sim/clock"}));
   // evaluation reads what its `topics` parameter names, and the other hosts' health reports.
   EXPECT_EQ(find(ids, "evaluation").subscribes,
-            (Topics{"plant/cmd", "plant/state", "run/health", "sensor/position", "sim/clock"}));
+            (Topics{"plant/cmd", "plant/state", "run/alive", "run/health", "sensor/position", "sim/clock"}));
   EXPECT_EQ(find(ids, "coordinator").publishes, (Topics{"sim/clock"}));
   EXPECT_EQ(find(ids, "coordinator").subscribes, (Topics{"sim/step_done"}));
   EXPECT_TRUE(find(ids, "tools").publishes.empty());
