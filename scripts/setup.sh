@@ -7,6 +7,7 @@ PACKAGES=(
   libeigen3-dev libceres-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libssl-dev openssl
+  libzstd-dev liblz4-dev  # MCAP chunk compression (runtime/mcap/)
   iproute2 tcpdump procps bc docker-compose python3-matplotlib python3-yaml file time
   stress-ng  # CPU hogs beside real-time runs (docs/deployment.md, Real-time priority)
   cyclonedds-dev cyclonedds-tools libcycloneddsidl0
