@@ -16,6 +16,11 @@ missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# Node.js for the official MCAP and Foxglove readers the tests use (tests/npm/, scripts/npm_setup.sh):
+# Debian's nodejs and npm, each only when its command is missing (a nodesource nodejs bundles npm,
+# and Debian's npm package would conflict with it).
+command -v node >/dev/null || missing+=(nodejs)
+command -v npm >/dev/null || missing+=(npm)
 if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}"
   SUDO=""

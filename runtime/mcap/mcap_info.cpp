@@ -41,7 +41,8 @@ std::string format_info(const ReadReport& r) {
   if (r.valid()) {
     out << "summary:      present, CRCs valid (chunks, data section, summary)\n";
   } else if (r.truncated_at) {
-    out << "summary:      missing: " << r.recovery() << "\n";
+    out << "summary:      missing\n";
+    out << "recovered:    " << r.recovery() << "\n";
   } else if (!r.summary_present) {
     out << "summary:      missing or damaged, " << r.problems.size() << (r.problems.size() == 1 ? " problem" : " problems")
         << " (below)\n";

@@ -37,5 +37,6 @@ std::unique_ptr<Command> add_report_command(CLI::App& app, const CommandEnv& env
 std::unique_ptr<Command> add_deploy_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_sweep_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_security_command(CLI::App& app, const CommandEnv& env);
+std::unique_ptr<Command> add_info_command(CLI::App& app, const CommandEnv& env);
 
 }  // namespace robodds

@@ -45,7 +45,7 @@ TEST(McapInfo, TruncatedFileSaysWhatWasRecovered) {
   r.summary_present = false;
   r.truncated_at = 208;
   const std::string text = format_info(r);
-  EXPECT_NE(text.find("summary:      missing: truncated at byte 208: 2 complete chunks, 1,002 messages recovered; summary missing\n"),
+  EXPECT_NE(text.find("summary:      missing\nrecovered:    truncated at byte 208: 2 complete chunks, 1,002 messages recovered; summary missing\n"),
             std::string::npos)
       << text;
 }
