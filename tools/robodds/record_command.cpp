@@ -169,6 +169,10 @@ class RecordCommand : public Command {
     cmd_->add_option("--max-size", max_size_mb_, "MB per file: split into FILE_0.mcap, FILE_1.mcap, ... (0 = one file)")
         ->check(CLI::Range(0.0, 1e9));
     cmd_->add_option("--compression", compression_, "chunk compression: zstd, lz4 or none");
+    cmd_->add_option("--chunk-size", chunk_kb_,
+                     "KB of records per chunk: a chunk is written when full, so a killed recorder loses at most "
+                     "the open one")
+        ->check(CLI::Range(1.0, 1e6));
     add_dds_options(cmd_, dds_);
   }
 
@@ -188,6 +192,7 @@ class RecordCommand : public Command {
     mcap::WriterOptions options;
     options.compression = mcap::parse_compression(compression_, "--compression");
     options.profile = "robodds";
+    options.chunk_size_bytes = static_cast<std::uint64_t>(chunk_kb_ * 1024);
     options.validate();
     // The file first: an unwritable --out fails before anything joins the domain.
     McapParts parts(out_, static_cast<std::uint64_t>(max_size_mb_ * 1e6), options, topics);
@@ -268,6 +273,7 @@ class RecordCommand : public Command {
   double duration_s_ = 0.0;
   double max_size_mb_ = 0.0;
   std::string compression_ = "zstd";
+  double chunk_kb_ = 1024.0;  // the writer's default, 1 MiB
   DdsArgs dds_;
 };
 
