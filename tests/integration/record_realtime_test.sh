@@ -8,6 +8,8 @@
 #      topics), and every CSV row of plant/state must be in the file with the same values.
 #   B: 16 KB chunks, killed with SIGKILL after the run: `robodds info` must recover its complete
 #      chunks (no summary), losing at most the open chunk.
+#   C: --max-size 0.05 MB, SIGTERM: split into C_0.mcap, C_1.mcap, ..., each whole, holding A's
+#      messages between them.
 # Args: ROBODDS SRC DOMAIN. Needs node and tests/npm/node_modules (scripts/npm_setup.sh). ~15 s.
 source "$(dirname "$0")/lib.sh"
 CHECK="$SRC/tests/npm/check_mcap.mjs"
@@ -20,7 +22,11 @@ cleanup_pids+=("$rec_a")
 "$ROBODDS" record --all --out "$WORK/b.mcap" --chunk-size 16 --compression lz4 --domain "$DOMAIN" >"$WORK/b.log" 2>&1 &
 rec_b=$!
 cleanup_pids+=("$rec_b")
-for log in a b; do  # both joined the domain (the line comes after their readers exist)
+"$ROBODDS" record --all --out "$WORK/c.mcap" --max-size 0.05 --chunk-size 8 --compression none --domain "$DOMAIN" \
+  >"$WORK/c.log" 2>&1 &
+rec_c=$!
+cleanup_pids+=("$rec_c")
+for log in a b c; do  # both joined the domain (the line comes after their readers exist)
   for _ in $(seq 100); do grep -q "^robodds record: 20 topics" "$WORK/$log.log" && break; sleep 0.1; done
   grep -q "^robodds record: 20 topics" "$WORK/$log.log" || fail "recorder $log did not start: $(cat "$WORK/$log.log")"
 done
@@ -33,6 +39,7 @@ sleep 0.5  # the last samples in flight to the recorders
 
 kill -KILL "$rec_b"
 wait "$rec_b" 2>/dev/null || true
+kill -TERM "$rec_c"
 kill -INT "$rec_a"
 rc=0
 timeout -k 2 20 tail --pid="$rec_a" -f /dev/null || fail "recorder A did not finish within 20 s of SIGINT"
@@ -85,5 +92,19 @@ total_a="$(wc -l <"$WORK/a.jsonl")"
 # A 16 KB chunk of these topics holds < 300 messages (records >= 60 bytes): B lost at most that.
 ((chunks_b >= 3 && messages_b > 0 && messages_b <= total_a && messages_b >= total_a - 300)) ||
   fail "B (SIGKILL): $chunks_b chunks, $messages_b messages recovered; A has $total_a: $info_b"
+rc=0
+wait "$rec_c" || rc=$?
+[[ $rc -eq 0 ]] || fail "recorder C exited $rc after SIGTERM: $(cat "$WORK/c.log")"
+[[ ! -e $WORK/c.mcap && -e $WORK/c_0.mcap && -e $WORK/c_2.mcap ]] || fail "C not split into c_0.mcap, c_1.mcap, ...: $(ls "$WORK")"
+messages_c=0
+for part in "$WORK"/c_*.mcap; do
+  info_c="$("$ROBODDS" info "$part" 2>&1)" || fail "robodds info $part: $info_c"
+  grep -q "^summary: *present, CRCs valid" <<<"$info_c" || fail "$part is not a whole file: $info_c"
+  grep -q "^channels: *20" <<<"$info_c" || fail "$part lacks channels: $info_c"
+  n="$(sed -nE 's/^messages: *([0-9,]+).*/\1/p' <<<"$info_c" | tr -d ,)"
+  messages_c=$((messages_c + n))
+done
+((messages_c == total_a)) || fail "C's parts hold $messages_c messages, A $total_a"
+echo "ok: --max-size: $(ls "$WORK"/c_*.mcap | wc -l) whole files, $messages_c messages in all"
 echo "ok: SIGKILLed recorder: $chunks_b complete chunks, $messages_b of $total_a messages recovered"
 echo "ok: record_realtime"
