@@ -14,6 +14,11 @@ for pattern in "summary: +present, CRCs valid" "chunks: +10 \(zstd\)" "messages:
 done
 echo "ok: whole file"
 
+out="$("$ROBODDS" info "$WORK/sample_empty.mcap")" || fail "info on a file without messages failed: $out"
+grep -qE "^messages: +0$" <<<"$out" && grep -qE "^chunks: +0$" <<<"$out" && grep -qE " 1  test/sample .* 0 +-$" <<<"$out" ||
+  fail "file without messages: $out"
+echo "ok: no messages"
+
 # Cut inside the 7th chunk: the 6 before it are recovered.
 head -c 9000 "$F" >"$WORK/cut.mcap"
 rc=0

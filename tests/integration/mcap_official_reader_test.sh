@@ -17,6 +17,9 @@ for compression in none zstd lz4; do
   grep -q '"messages":403,"chunks":10,"topics":{"test/bytes":400,"test/sample":3},"decoded":3' <<<"$out" || fail "$compression: $out"
   echo "ok: $compression: $out"
 done
+out="$(timeout -k 5 60 node "$CHECK" "$WORK/sample_empty.mcap" --counts-only 2>&1)" || fail "empty: $out"
+grep -q '"messages":0,"chunks":0,"topics":{},"decoded":0' <<<"$out" || fail "empty: $out"
+echo "ok: no messages: $out"
 # The decoded values, one JSON line per omgidl message (what a user sees).
 out="$(timeout -k 5 60 node "$CHECK" "$WORK/sample_lz4.mcap")" || fail "lz4 listing: $out"
 [[ $(wc -l <<<"$out") -eq 3 ]] || fail "expected 3 decoded messages: $out"

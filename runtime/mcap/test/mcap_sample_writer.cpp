@@ -3,6 +3,7 @@
 //   sample_none.mcap, sample_zstd.mcap, sample_lz4.mcap: small chunks (several per file), a channel
 //     of opaque bytes (no schema) and an omgidl channel whose three samples are hand-encoded XCDR1
 //     (little-endian, 4-byte encapsulation header): nested struct, sequences, string, double, enum;
+//   sample_empty.mcap: a schema and a channel, no message;
 //   sample_expect.json: what those three samples must decode to.
 // A test tool: built with the tests, not installed.
 #include <cstdio>
@@ -138,6 +139,12 @@ int main(int argc, char** argv) {
         for (std::size_t k = 0; k < sizeof payload; ++k) payload[k] = static_cast<std::uint8_t>(i + k);
         writer.write(bytes_channel, i, t, t, payload, sizeof payload);
       }
+      writer.close();
+    }
+    {
+      // No messages: a schema and a channel, no chunk (a recorder stopped before any sample).
+      robodds::mcap::Writer writer(dir + "/sample_empty.mcap", robodds::mcap::WriterOptions{});
+      writer.add_channel(writer.add_schema("robodds_test::Sample", "omgidl", kIdl), "test/sample", "cdr");
       writer.close();
     }
     std::ofstream expect(dir + "/sample_expect.json");
