@@ -10,11 +10,23 @@
 #      chunks (no summary), losing at most the open chunk.
 #   C: --max-size 0.05 MB, SIGTERM: split into C_0.mcap, C_1.mcap, ..., each whole, holding A's
 #      messages between them.
+# Before that, bad input (unknown topic, unwritable --out, bad --compression): one line, exit 2.
 # Args: ROBODDS SRC DOMAIN. Needs node and tests/npm/node_modules (scripts/npm_setup.sh). ~15 s.
 source "$(dirname "$0")/lib.sh"
 CHECK="$SRC/tests/npm/check_mcap.mjs"
 command -v node >/dev/null || fail "node not found (scripts/setup.sh installs nodejs)"
 [[ -d $SRC/tests/npm/node_modules/@mcap/core ]] || fail "tests/npm/node_modules missing: run scripts/npm_setup.sh"
+
+# Bad input: one line each, exit 2, before joining the domain.
+expect_error 2 "unknown topic 'plant/stat' .*robodds record --list. lists the topics" -- \
+  "$ROBODDS" record plant/state plant/stat --out "$WORK/x.mcap" --domain "$DOMAIN"
+expect_error 2 "$WORK/no/dir/x.mcap: cannot create the MCAP file: No such file or directory" -- \
+  "$ROBODDS" record --all --out "$WORK/no/dir/x.mcap" --domain "$DOMAIN"
+expect_error 2 "unknown compression 'gzip' .accepted: none, zstd, lz4." -- \
+  "$ROBODDS" record --all --out "$WORK/x.mcap" --compression gzip --domain "$DOMAIN"
+expect_error 2 "name the topics to record or give --all .not both." -- "$ROBODDS" record --out "$WORK/x.mcap"
+"$ROBODDS" record --list | grep -qE "^plant/state +robodds::idl::RobotState +monitor" || fail "record --list"
+echo "ok: bad input"
 
 "$ROBODDS" record --all --out "$WORK/a.mcap" --domain "$DOMAIN" >"$WORK/a.log" 2>&1 &
 rec_a=$!

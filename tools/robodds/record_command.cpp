@@ -191,7 +191,6 @@ class RecordCommand : public Command {
     }
     mcap::WriterOptions options;
     options.compression = mcap::parse_compression(compression_, "--compression");
-    options.profile = "robodds";
     options.chunk_size_bytes = static_cast<std::uint64_t>(chunk_kb_ * 1024);
     options.validate();
     // The file first: an unwritable --out fails before anything joins the domain.
