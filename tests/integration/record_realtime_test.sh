@@ -6,8 +6,9 @@
 #      tests/npm/check_mcap.mjs) must read and decode every message, the message counts per topic
 #      must be the run's CSV row counts (plant/state, plant/cmd, sensor/position: the evaluator's
 #      topics), and every CSV row of plant/state must be in the file with the same values.
-#   B: 16 KB chunks, killed with SIGKILL after the run: `robodds info` must recover its complete
-#      chunks (no summary), losing at most the open chunk.
+#   B: 16 KB chunks, killed with SIGKILL 3 s into the run: the run must complete all the same
+#      (status completed: a recorder is no host of the run), and `robodds info` must recover the
+#      complete chunks of B's file (no summary).
 #   C: --max-size 0.05 MB, SIGTERM: split into C_0.mcap, C_1.mcap, ..., each whole, holding A's
 #      messages between them.
 # Before that, bad input (unknown topic, unwritable --out, bad --compression): one line, exit 2.
@@ -43,13 +44,15 @@ for log in a b c; do  # both joined the domain (the line comes after their reade
   grep -q "^robodds record: 20 topics" "$WORK/$log.log" || fail "recorder $log did not start: $(cat "$WORK/$log.log")"
 done
 
+(sleep 3; kill -KILL "$rec_b") &
+cleanup_pids+=("$!")
 rc=0
 timeout -k 5 60 "$ROBODDS" run "$SRC/sim/scenarios/plant_smoke.yaml" --realtime --deploy processes --duration 5 \
   --domain "$DOMAIN" --out "$WORK/out" --no-plots >"$WORK/run.log" 2>&1 || rc=$?
 [[ $rc -eq 0 ]] || fail "robodds run exited $rc: $(tail -20 "$WORK/run.log")"
 sleep 0.5  # the last samples in flight to the recorders
 
-kill -KILL "$rec_b"
+grep -q '"status": "completed"' "$WORK/out/summary.json" || fail "the run did not complete beside a killed recorder: $(cat "$WORK/out/summary.json")"
 wait "$rec_b" 2>/dev/null || true
 kill -TERM "$rec_c"
 kill -INT "$rec_a"
@@ -101,8 +104,9 @@ recovered="$(sed -nE 's/.* ([0-9,]+) complete chunks, ([0-9,]+) messages recover
 [[ -n $recovered ]] || fail "robodds info did not say what it recovered from B: $info_b"
 read -r chunks_b messages_b <<<"$recovered"
 total_a="$(wc -l <"$WORK/a.jsonl")"
-# A 16 KB chunk of these topics holds < 300 messages (records >= 60 bytes): B lost at most that.
-((chunks_b >= 3 && messages_b > 0 && messages_b <= total_a && messages_b >= total_a - 300)) ||
+# B recorded the first ~1.5 s of the run (3 s after the launch, which starts 5 processes first),
+# ~480 messages/s, less its open chunk (a 16 KB chunk of these topics holds < 300 messages).
+((chunks_b >= 3 && messages_b >= 200 && messages_b < total_a)) ||
   fail "B (SIGKILL): $chunks_b chunks, $messages_b messages recovered; A has $total_a: $info_b"
 rc=0
 wait "$rec_c" || rc=$?
