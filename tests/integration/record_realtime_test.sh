@@ -11,6 +11,7 @@
 #      complete chunks of B's file (no summary).
 #   C: --max-size 0.05 MB, SIGTERM: split into C_0.mcap, C_1.mcap, ..., each whole, holding A's
 #      messages between them.
+#   D: --duration 2: exits 0 by itself with a whole file.
 # Before that, bad input (unknown topic, unwritable --out, bad --compression): one line, exit 2.
 # Args: ROBODDS SRC DOMAIN. Needs node and tests/npm/node_modules (scripts/npm_setup.sh). ~15 s.
 source "$(dirname "$0")/lib.sh"
@@ -39,6 +40,9 @@ cleanup_pids+=("$rec_b")
   >"$WORK/c.log" 2>&1 &
 rec_c=$!
 cleanup_pids+=("$rec_c")
+"$ROBODDS" record plant/state --out "$WORK/d.mcap" --duration 2 --domain "$DOMAIN" >"$WORK/d.log" 2>&1 &
+rec_d=$!
+cleanup_pids+=("$rec_d")
 for log in a b c; do  # both joined the domain (the line comes after their readers exist)
   for _ in $(seq 100); do grep -q "^robodds record: 20 topics" "$WORK/$log.log" && break; sleep 0.1; done
   grep -q "^robodds record: 20 topics" "$WORK/$log.log" || fail "recorder $log did not start: $(cat "$WORK/$log.log")"
@@ -122,5 +126,12 @@ for part in "$WORK"/c_*.mcap; do
 done
 ((messages_c == total_a)) || fail "C's parts hold $messages_c messages, A $total_a"
 echo "ok: --max-size: $(ls "$WORK"/c_*.mcap | wc -l) whole files, $messages_c messages in all"
+timeout -k 2 10 tail --pid="$rec_d" -f /dev/null || fail "recorder D did not stop by itself (--duration 2)"
+rc=0
+wait "$rec_d" || rc=$?
+[[ $rc -eq 0 ]] || fail "recorder D (--duration 2) exited $rc: $(cat "$WORK/d.log")"
+info_d="$("$ROBODDS" info "$WORK/d.mcap" 2>&1)" || fail "robodds info on D: $info_d"
+grep -q "^summary: *present, CRCs valid" <<<"$info_d" && grep -q "^channels: *1$" <<<"$info_d" || fail "D: $info_d"
+echo "ok: --duration 2: a whole file of one channel, $(sed -nE 's/^duration: *//p' <<<"$info_d") of log times"
 echo "ok: SIGKILLed recorder: $chunks_b complete chunks, $messages_b of $total_a messages recovered"
 echo "ok: record_realtime"
