@@ -7,6 +7,7 @@ PACKAGES=(
   libeigen3-dev libceres-dev libyaml-cpp-dev libcli11-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libssl-dev openssl
+  libzstd-dev liblz4-dev  # MCAP chunk compression (runtime/mcap/)
   iproute2 tcpdump procps bc docker-compose python3-matplotlib python3-yaml file time
   stress-ng  # CPU hogs beside real-time runs (docs/deployment.md, Real-time priority)
   cyclonedds-dev cyclonedds-tools libcycloneddsidl0
@@ -15,6 +16,11 @@ missing=()
 for p in "${PACKAGES[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# Node.js for the official MCAP and Foxglove readers the tests use (tests/npm/, scripts/npm_setup.sh):
+# Debian's nodejs and npm, each only when its command is missing (a nodesource nodejs bundles npm,
+# and Debian's npm package would conflict with it).
+command -v node >/dev/null || missing+=(nodejs)
+command -v npm >/dev/null || missing+=(npm)
 if ((${#missing[@]})); then
   echo "setup: installing ${missing[*]}"
   SUDO=""

@@ -66,26 +66,35 @@ void note_undecodable(const std::string& type_name, const std::string& reason) {
 template <class Generated>
 class GuardedType : public Generated {
  public:
+  explicit GuardedType(bool count_undecodable) : count_(count_undecodable) {}
   bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t* payload, void* data) override {
     try {
       if (Generated::deserialize(payload, data)) {
         return true;
       }
-      note_undecodable(Generated::getName(), "payload shorter than the type");
+      note("payload shorter than the type");
     } catch (const eprosima::fastcdr::exception::Exception& e) {
-      note_undecodable(Generated::getName(), std::string("Fast CDR: ") + e.what());
+      note(std::string("Fast CDR: ") + e.what());
     }
     return false;
   }
+
+ private:
+  void note(const std::string& reason) {
+    if (count_) {
+      note_undecodable(Generated::getName(), reason);
+    }
+  }
+  bool count_;
 };
 
 }  // namespace
 
-eprosima::fastdds::dds::TopicDataType* make_type_support(const std::string& type_name) {
+eprosima::fastdds::dds::TopicDataType* make_type_support(const std::string& type_name, bool count_undecodable) {
   eprosima::fastdds::dds::TopicDataType* type = nullptr;
 #define ROBODDS_MAKE_TYPE(T)                          \
   if (type == nullptr && type_name == idl::type_name<idl::T>()) { \
-    type = new GuardedType<idl::T##PubSubType>();     \
+    type = new GuardedType<idl::T##PubSubType>(count_undecodable); \
   }
   ROBODDS_FOR_EACH_TOPIC_TYPE(ROBODDS_MAKE_TYPE)
 #undef ROBODDS_MAKE_TYPE

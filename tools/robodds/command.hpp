@@ -32,10 +32,12 @@ std::unique_ptr<Command> add_run_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_host_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_topics_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_echo_command(CLI::App& app, const CommandEnv& env);
+std::unique_ptr<Command> add_record_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_components_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_report_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_deploy_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_sweep_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_security_command(CLI::App& app, const CommandEnv& env);
+std::unique_ptr<Command> add_info_command(CLI::App& app, const CommandEnv& env);
 
 }  // namespace robodds

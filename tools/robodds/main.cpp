@@ -20,8 +20,9 @@ int main(int argc, char** argv) {
   register_builtin_components(registry);
   const CommandEnv env{registry, stop, log_level};
   std::vector<std::unique_ptr<Command>> commands;
-  for (auto add : {add_run_command, add_host_command, add_topics_command, add_echo_command, add_components_command,
-                   add_report_command, add_deploy_command, add_sweep_command, add_security_command}) {
+  for (auto add : {add_run_command, add_host_command, add_topics_command, add_echo_command, add_record_command,
+                   add_components_command, add_report_command, add_deploy_command, add_sweep_command, add_security_command,
+                   add_info_command}) {
     commands.push_back(add(app, env));
   }
   const int code = cli::parse_and_run(app, argc, argv, [&] {

@@ -6,9 +6,11 @@
 //                [--key ID] [--kinds random,body,header] [--qos FILE]... [--participant-profile P]
 //                [--match-timeout S]
 //
-// For every topic it registers a TopicDataType under the topic's IDL type name (topic catalog)
-// whose "serialization" copies caller-given bytes, and writes with the topic's real-time QoS
-// profile (so reliable, deadline and liveliness readers match). Payload kinds, in turn:
+// For every topic it registers the runtime's raw type support (runtime/dds/raw_type.hpp: the
+// "serialization" copies caller-given bytes; a payload that decodes is written as the instance
+// it encodes, one that does not as no instance) under the topic's IDL type name (topic catalog),
+// and writes with the topic's real-time QoS profile (so reliable, deadline and liveliness readers
+// match). Payload kinds, in turn:
 //   random      random length 0..2*max (max: the type's largest serialized size incl. the 4-byte
 //               encapsulation) and random bytes: mostly not even a valid encapsulation header;
 //   body        a valid XCDR1 little-endian encapsulation header and random bytes, exactly as long
@@ -44,8 +46,6 @@
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
-#include <cstring>
-#include <functional>
 #include <iostream>
 #include <memory>
 #include <random>
@@ -57,6 +57,7 @@
 #include "runtime/dds/dds_bus.hpp"
 #include "runtime/dds/participant.hpp"
 #include "runtime/dds/qos_files.hpp"
+#include "runtime/dds/raw_type.hpp"
 #include "runtime/dds/type_support.hpp"
 #include "runtime/dds/undecodable.hpp"
 #include "runtime/base/error.hpp"
@@ -72,66 +73,6 @@ namespace {
 namespace dds = eprosima::fastdds::dds;
 namespace rtps = eprosima::fastrtps::rtps;
 using eprosima::fastrtps::types::ReturnCode_t;
-
-/// The caller's bytes, written as they are.
-struct RawSample {
-  std::vector<unsigned char> bytes;
-};
-
-/// A TopicDataType that registers a robodds type name but "serializes" raw bytes. Keyed (a
-/// keyed reader does not match a writer of an unkeyed topic); the instance handle is taken
-/// from the payload bytes where the real type would have its key, or left undefined
-/// (all zero), in which case the reader computes the key by decoding the payload itself.
-class RawType : public dds::TopicDataType {
- public:
-  RawType(const std::string& type_name, std::uint32_t max_size) {
-    setName(type_name.c_str());
-    m_typeSize = max_size;
-    m_isGetKeyDefined = true;
-    auto_fill_type_object(false);
-    auto_fill_type_information(false);
-  }
-
-  bool serialize(void* data, rtps::SerializedPayload_t* payload) override {
-    const auto& bytes = static_cast<RawSample*>(data)->bytes;
-    if (bytes.size() > payload->max_size) {
-      return false;
-    }
-    if (!bytes.empty()) {
-      std::memcpy(payload->data, bytes.data(), bytes.size());
-    }
-    payload->length = static_cast<std::uint32_t>(bytes.size());
-    payload->encapsulation = CDR_LE;
-    return true;
-  }
-
-  bool deserialize(rtps::SerializedPayload_t* payload, void* data) override {
-    auto& bytes = static_cast<RawSample*>(data)->bytes;
-    bytes.assign(payload->data, payload->data + payload->length);
-    return true;
-  }
-
-  std::function<std::uint32_t()> getSerializedSizeProvider(void* data) override {
-    const auto size = static_cast<std::uint32_t>(static_cast<RawSample*>(data)->bytes.size());
-    return [size]() { return size; };
-  }
-
-  void* createData() override { return new RawSample(); }
-  void deleteData(void* data) override { delete static_cast<RawSample*>(data); }
-
-  bool getKey(void* data, rtps::InstanceHandle_t* handle, bool /*force_md5*/) override {
-    const auto& bytes = static_cast<RawSample*>(data)->bytes;
-    std::memset(handle->value, 0, 16);
-    // Bytes 4..7 hold robot_id (little endian) in every robot-keyed type; the real type
-    // support spells it big endian into the first four bytes of the key hash.
-    if (bytes.size() >= 8) {
-      for (int i = 0; i < 4; ++i) {
-        handle->value[i] = bytes[7 - i];
-      }
-    }
-    return true;
-  }
-};
 
 struct Options {
   int domain = -1;
@@ -247,8 +188,8 @@ void measure(Target& target) {
   real->deleteData(sample);
 }
 
-RawSample make_payload(int kind, const Target& target, std::int64_t key, std::mt19937_64& rng) {
-  RawSample s;
+robodds::RawPayload make_payload(int kind, const Target& target, std::int64_t key, std::mt19937_64& rng) {
+  robodds::RawPayload s;
   std::uniform_int_distribution<int> byte(0, 255);
   std::size_t size = 0;
   if (kind == 0) {
@@ -311,7 +252,7 @@ int run(const Options& o) {
     throw robodds::RunError("could not create a publisher");
   }
   for (Target& t : targets) {
-    dds::TypeSupport support(new RawType(t.topic->type_name, 2 * t.max_size + 8));
+    dds::TypeSupport support(new robodds::RawPayloadType(t.topic->type_name, 2 * t.max_size + 8));
     if (support.register_type(participant.get()) != ReturnCode_t::RETCODE_OK) {
       throw robodds::RunError("could not register type " + t.topic->type_name);
     }
@@ -355,7 +296,7 @@ int run(const Options& o) {
   for (std::uint64_t i = 0; i < o.count; ++i) {
     const int kind = kinds[i % kinds.size()];
     for (Target& t : targets) {
-      RawSample sample = make_payload(kind, t, o.key, rng);
+      robodds::RawPayload sample = make_payload(kind, t, o.key, rng);
       if (t.writer->write(&sample)) {  // DataWriter::write(void*) returns bool in 2.9
         ++t.written[kind];
       } else {
