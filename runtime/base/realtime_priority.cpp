@@ -104,6 +104,23 @@ std::string mlock_refusal(int priority, int error, const RtPermissions& p) {
          "or set memlock unlimited in /etc/security/limits.conf";
 }
 
+int communication_priority(int priority) { return priority > kMinRtPriority ? priority - 1 : kMinRtPriority; }
+
+namespace {
+int applied_priority = 0;  // the --rt-priority this process applied (0: none); set once at start-up
+}  // namespace
+
+void raise_loop_thread() {
+  if (applied_priority == 0) {
+    return;
+  }
+  sched_param param{};
+  param.sched_priority = applied_priority;
+  if (sched_setscheduler(0, SCHED_FIFO, &param) != 0) {
+    throw ConfigError(sched_refusal(applied_priority, errno, current_rt_permissions()));
+  }
+}
+
 std::string apply_rt_priority(int priority) {
   if (priority < kMinRtPriority || priority > kMaxRtPriority) {
     throw ConfigError(option_with(priority) + ": " + rt_priority_problem(std::to_string(priority)));
@@ -112,7 +129,7 @@ std::string apply_rt_priority(int priority) {
   sched_param old_param{};
   sched_getparam(0, &old_param);
   sched_param param{};
-  param.sched_priority = priority;
+  param.sched_priority = communication_priority(priority);
   // The calling thread first: a thread it creates from now on inherits the policy (Fast DDS 2.9
   // starts its threads with default attributes, PTHREAD_INHERIT_SCHED). Then any thread that
   // already runs (sched_setscheduler acts on one thread on Linux, not on the process).
@@ -131,6 +148,7 @@ std::string apply_rt_priority(int priority) {
     }
     throw ConfigError(mlock_refusal(priority, error, current_rt_permissions()));
   }
+  applied_priority = priority;
   const RtPermissions permissions = current_rt_permissions();
   if (!permissions.cap_ipc_lock && permissions.memlock_limit) {
     // MCL_FUTURE counts every later mapping (thread stacks, DDS buffers) against the limit:

@@ -1,5 +1,6 @@
 #pragma once
-// --rt-priority N: the process's threads run SCHED_FIFO at priority N and its memory is locked
+// --rt-priority N: the real-time loop runs SCHED_FIFO at priority N, the process's other threads
+// at N - 1 (communication_priority), and its memory is locked
 // (mlockall), so a busy machine (other jobs, CPU hogs) cannot delay a real-time loop by
 // preempting it or paging it out. Operating-system code, no DDS: applied at process start,
 // before the DDS participant exists, so every thread Fast DDS creates later inherits the policy.
@@ -36,12 +37,25 @@ RtPermissions current_rt_permissions();
 std::string sched_refusal(int priority, int error, const RtPermissions& permissions);
 std::string mlock_refusal(int priority, int error, const RtPermissions& permissions);
 
-/// SCHED_FIFO at `priority` for every thread of this process (those that exist now, and through
-/// inheritance every one created later) and mlockall(MCL_CURRENT | MCL_FUTURE). ConfigError with
+/// The priority of every thread but the real-time loop's under --rt-priority N: one below N
+/// (N = 1: 1 too). The loop outranks its own process's Fast DDS threads: SCHED_FIFO threads of
+/// one priority never preempt each other, so at one priority a burst on a receive thread (a flood
+/// of foreign keys, issue 24 finding 4) held the loop off its CPU until the burst ended (51 missed
+/// steps in integration.key_flood beside eight CPU hogs). Both still outrank every SCHED_OTHER job.
+int communication_priority(int priority);
+
+/// SCHED_FIFO at communication_priority(`priority`) for every thread of this process (those that
+/// exist now, and through inheritance every one created later) and mlockall(MCL_CURRENT |
+/// MCL_FUTURE); the real-time loop raises its own thread to `priority` (raise_loop_thread()). ConfigError with
 /// sched_refusal()/mlock_refusal() when the system refuses (nothing is left half applied: a
 /// refused mlockall puts the threads back on their policy); ConfigError for a priority out of range.
 /// Returns a warning for the caller to log (empty: none): memory locked under a finite
 /// RLIMIT_MEMLOCK without CAP_IPC_LOCK, where MCL_FUTURE makes allocations past it fail.
 std::string apply_rt_priority(int priority);
+
+/// From a real-time loop's thread, once, before its first step: that thread to SCHED_FIFO at the
+/// priority apply_rt_priority() was given (above this process's other threads). Nothing when
+/// apply_rt_priority() did not run in this process. ConfigError with sched_refusal() if refused.
+void raise_loop_thread();
 
 }  // namespace robodds

@@ -7,6 +7,7 @@
 
 #include "common/number_text.hpp"
 #include "runtime/base/error.hpp"
+#include "runtime/base/realtime_priority.hpp"
 #include "runtime/host/digest_check.hpp"
 #include "runtime/host/health_exchange.hpp"
 #include "runtime/host/host_slot.hpp"
@@ -213,6 +214,7 @@ struct Host::Impl {
     const double step_s = run.scenario->step_s;
     // Before the clock: what a component does once at the start must not make step 0 late.
     start_components();
+    raise_loop_thread();  // --rt-priority: this loop above the process's Fast DDS threads
     const std::int64_t epoch_ns = options.realtime_epoch_ns != 0 ? options.realtime_epoch_ns : wall_clock_now_ns();
     const Clock::time_point start = Clock::now();
     std::vector<std::uint64_t> next_due(slots.size(), 0);

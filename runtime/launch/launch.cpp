@@ -231,7 +231,8 @@ void apply_rt_priority_option(const std::optional<int>& priority, const std::str
   }
   if (announce) {
     log::info(who, std::string(kRtPriorityOption) + " " + std::to_string(*priority) + ": SCHED_FIFO priority " +
-                       std::to_string(*priority) + ", memory locked");
+                       std::to_string(*priority) + " for the real-time loop, " +
+                       std::to_string(communication_priority(*priority)) + " for the other threads, memory locked");
   }
 }
 

@@ -30,17 +30,17 @@ expect_error 2 "name the topics to record or give --all .not both." -- "$ROBODDS
 "$ROBODDS" record --list | grep -qE "^plant/state +robodds::idl::RobotState +monitor" || fail "record --list"
 echo "ok: bad input"
 
-"$ROBODDS" record --all --out "$WORK/a.mcap" --domain "$DOMAIN" >"$WORK/a.log" 2>&1 &
+$(rt_chrt 10) "$ROBODDS" record --all --out "$WORK/a.mcap" --domain "$DOMAIN" >"$WORK/a.log" 2>&1 &
 rec_a=$!
 cleanup_pids+=("$rec_a")
-"$ROBODDS" record --all --out "$WORK/b.mcap" --chunk-size 16 --compression lz4 --domain "$DOMAIN" >"$WORK/b.log" 2>&1 &
+$(rt_chrt 10) "$ROBODDS" record --all --out "$WORK/b.mcap" --chunk-size 16 --compression lz4 --domain "$DOMAIN" >"$WORK/b.log" 2>&1 &
 rec_b=$!
 cleanup_pids+=("$rec_b")
-"$ROBODDS" record --all --out "$WORK/c.mcap" --max-size 0.05 --chunk-size 8 --compression none --domain "$DOMAIN" \
+$(rt_chrt 10) "$ROBODDS" record --all --out "$WORK/c.mcap" --max-size 0.05 --chunk-size 8 --compression none --domain "$DOMAIN" \
   >"$WORK/c.log" 2>&1 &
 rec_c=$!
 cleanup_pids+=("$rec_c")
-"$ROBODDS" record plant/state --out "$WORK/d.mcap" --duration 2 --domain "$DOMAIN" >"$WORK/d.log" 2>&1 &
+$(rt_chrt 10) "$ROBODDS" record plant/state --out "$WORK/d.mcap" --duration 2 --domain "$DOMAIN" >"$WORK/d.log" 2>&1 &
 rec_d=$!
 cleanup_pids+=("$rec_d")
 for log in a b c; do  # both joined the domain (the line comes after their readers exist)
@@ -51,7 +51,7 @@ done
 (sleep 3; kill -KILL "$rec_b") &
 cleanup_pids+=("$!")
 rc=0
-timeout -k 5 60 "$ROBODDS" run "$SRC/sim/scenarios/plant_smoke.yaml" --realtime --deploy processes --duration 5 \
+timeout -k 5 60 "$ROBODDS" run "$SRC/sim/scenarios/plant_smoke.yaml" --realtime $(rt_priority_flag) --deploy processes --duration 5 \
   --domain "$DOMAIN" --out "$WORK/out" --no-plots >"$WORK/run.log" 2>&1 || rc=$?
 [[ $rc -eq 0 ]] || fail "robodds run exited $rc: $(tail -20 "$WORK/run.log")"
 sleep 0.5  # the last samples in flight to the recorders

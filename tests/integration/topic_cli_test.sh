@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `robodds topics` lists the live topics with type and QoS; `robodds echo` prints samples readably.
 source "$(dirname "$0")/lib.sh"
-"$ROBODDS" host --scenario "$SRC/sim/scenarios/plant_smoke.yaml" --components plant,commander,position_sensor --realtime \
+"$ROBODDS" host --scenario "$SRC/sim/scenarios/plant_smoke.yaml" --components plant,commander,position_sensor --realtime $(rt_priority_flag) \
   --duration 30 --domain "$DOMAIN" >"$WORK/host.log" 2>&1 &
 cleanup_pids+=("$!")
 sleep 1

@@ -31,6 +31,19 @@ TEST(RtPriority, RefusesEverythingElseNamingTheOption) {
   }
 }
 
+TEST(RtPriority, CommunicationThreadsOneBelowTheLoop) {
+  EXPECT_EQ(communication_priority(50), 49);
+  EXPECT_EQ(communication_priority(99), 98);
+  EXPECT_EQ(communication_priority(2), 1);
+  EXPECT_EQ(communication_priority(1), 1);  // nothing lower for SCHED_FIFO
+}
+
+TEST(RtPriority, RaisingTheLoopWithoutAnAppliedPriorityChangesNothing) {
+  const int policy = sched_getscheduler(0);
+  raise_loop_thread();
+  EXPECT_EQ(sched_getscheduler(0), policy);
+}
+
 TEST(RtPriority, ApplyRefusesAPriorityOutOfRangeBeforeTouchingTheScheduler) {
   const int policy = sched_getscheduler(0);
   EXPECT_THROW(apply_rt_priority(0), ConfigError);
