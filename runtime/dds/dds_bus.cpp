@@ -1,4 +1,5 @@
 #include "runtime/dds/dds_bus.hpp"
+#include "runtime/dds/participant_topics.hpp"
 
 #include "runtime/dds/component_announcement.hpp"
 
@@ -466,27 +467,7 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
   }
 
   dds::Topic* ensure_topic(const std::string& topic, const std::string& type_name) {
-    auto it = topics_.find(topic);
-    if (it != topics_.end()) {
-      return it->second;
-    }
-    if (registered_types_.count(type_name) == 0) {
-      dds::TopicDataType* type = make_type_support(type_name);
-      if (type == nullptr) {
-        throw ConfigError("topic " + topic + ": unknown type " + type_name);
-      }
-      dds::TypeSupport support(type);
-      if (support.register_type(participant_.get()) != ReturnCode_t::RETCODE_OK) {
-        throw RunError("could not register type " + type_name);
-      }
-      registered_types_.insert(type_name);
-    }
-    dds::Topic* created = participant_->create_topic(topic, type_name, dds::TOPIC_QOS_DEFAULT);
-    if (created == nullptr) {
-      throw RunError("could not create topic " + topic);
-    }
-    topics_[topic] = created;
-    return created;
+    return topics_.ensure(*participant_, topic, type_name, [](const std::string& name) { return make_type_support(name); });
   }
 
   // What the participant and its entities call into: declared before participant_, so that they
@@ -496,8 +477,7 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
   mutable std::mutex mutex_;
   std::map<std::string, std::unique_ptr<WriterListener>> writer_listeners_;
   std::map<std::string, PendingReader> readers_;
-  std::set<std::string> registered_types_;
-  std::map<std::string, dds::Topic*> topics_;
+  ParticipantTopics topics_;
   std::map<std::string, std::shared_ptr<DdsWriter>> writers_;
   std::map<std::string, std::uint32_t> exclusive_;  // topic -> ownership strength of its writers here
   ParticipantPtr participant_;

@@ -1,4 +1,5 @@
 #include "runtime/dds/raw_bus.hpp"
+#include "runtime/dds/participant_topics.hpp"
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
@@ -199,34 +200,15 @@ class FastDdsRawBus : public RawBus {
   }
 
   dds::Topic* ensure_topic(const std::string& topic, const std::string& type_name) {
-    auto it = topics_.find(topic);
-    if (it != topics_.end()) {
-      if (it->second->get_type_name() != type_name) {
-        throw ConfigError("topic " + topic + " is used with two types: " + it->second->get_type_name() + " and " + type_name);
-      }
-      return it->second;
-    }
-    if (registered_types_.count(type_name) == 0) {
-      dds::TypeSupport support(new RawPayloadType(type_name));  // ConfigError for a type we do not know
-      if (support.register_type(participant_.get()) != ReturnCode_t::RETCODE_OK) {
-        throw RunError("could not register type " + type_name);
-      }
-      registered_types_.insert(type_name);
-    }
-    dds::Topic* created = participant_->create_topic(topic, type_name, dds::TOPIC_QOS_DEFAULT);
-    if (created == nullptr) {
-      throw RunError("could not create topic " + topic);
-    }
-    topics_[topic] = created;
-    return created;
+    // RawPayloadType throws ConfigError for a type we do not know.
+    return topics_.ensure(*participant_, topic, type_name, [](const std::string& name) { return new RawPayloadType(name); });
   }
 
   // Declared before participant_: the readers' listeners outlive it (members die in reverse order).
   std::mutex mutex_;
   std::map<std::string, Reader> readers_;
   std::map<std::string, std::shared_ptr<FastDdsRawWriter>> writers_;
-  std::set<std::string> registered_types_;
-  std::map<std::string, dds::Topic*> topics_;
+  ParticipantTopics topics_;
   ParticipantPtr participant_;
   dds::Publisher* publisher_ = nullptr;    // owned by participant_
   dds::Subscriber* subscriber_ = nullptr;  // owned by participant_
