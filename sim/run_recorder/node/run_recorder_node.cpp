@@ -2,14 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <condition_variable>
 #include <cstdint>
+#include <deque>
+#include <exception>
 #include <memory>
+#include <mutex>
 #include <set>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "robodds/idl/robodds.h"
 #include "robodds/idl/robodds_visit.hpp"
+#include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/bus/sample_codec.hpp"
 #include "runtime/component/registry.hpp"
@@ -22,7 +28,7 @@
 namespace robodds::run_recorder {
 namespace {
 
-/// What one recorded topic needs each step: where its samples are written.
+/// Where the samples of a step are written: the file, the codec and how log times are made.
 struct Sink {
   mcap::Writer* writer = nullptr;
   const SampleCodec* codec = nullptr;
@@ -30,12 +36,139 @@ struct Sink {
   double step_s = 0.0;
 };
 
+/// The samples one topic gave at one step, written later by the writer thread.
+class Batch {
+ public:
+  virtual ~Batch() = default;
+  virtual void write(const Sink& sink) = 0;
+  virtual std::size_t size() const = 0;
+};
+
+template <class Msg>
+class TypedBatch : public Batch {
+ public:
+  TypedBatch(const std::string* type_name, std::uint16_t channel, std::uint32_t* sequence, std::int64_t taken_ns,
+             std::vector<Msg> samples)
+      : type_name_(type_name), channel_(channel), sequence_(sequence), taken_ns_(taken_ns), samples_(std::move(samples)) {}
+
+  void write(const Sink& sink) override {
+    for (const Msg& sample : samples_) {
+      const std::vector<std::uint8_t> bytes = sink.codec->serialize(*type_name_, &sample);
+      // Lockstep: the sim time of the sample's step (ns), as its stamp: the same in every
+      // deployment. Real time: when the recorder took it (at most one of its steps after arrival).
+      const std::int64_t log_ns =
+          sink.mode == TimeMode::kRealtime
+              ? taken_ns_
+              : static_cast<std::int64_t>(std::llround(static_cast<double>(sample.header().step()) * sink.step_s * 1e9));
+      sink.writer->write(channel_, ++*sequence_, static_cast<std::uint64_t>(log_ns),
+                         static_cast<std::uint64_t>(sample.header().stamp_ns()), bytes.data(), bytes.size());
+    }
+  }
+  std::size_t size() const override { return samples_.size(); }
+
+ private:
+  const std::string* type_name_;
+  std::uint16_t channel_;
+  std::uint32_t* sequence_;  // the topic's, touched by the writer thread only
+  std::int64_t taken_ns_;
+  std::vector<Msg> samples_;
+};
+
+/// Serializing, framing and compressing take about four times what taking the samples does
+/// (docs/performance.md, "Recording in the run"), so a thread of its own does them, in the order
+/// the steps queued their batches (one consumer: the file's order is the queue's). At most
+/// kMaxQueued batches wait: past that the step waits for the writer (lockstep loses nothing).
+class WriterThread {
+ public:
+  static constexpr std::size_t kMaxQueued = 4096;
+
+  explicit WriterThread(Sink sink) : sink_(sink), thread_([this] { loop(); }) {}
+  ~WriterThread() {
+    try {
+      finish();
+    } catch (const std::exception&) {
+      // said by close() already, or the run is being torn down after another error
+    }
+  }
+
+  /// Queues `batch`; rethrows (as RunError) what the writer thread failed with.
+  void push(std::unique_ptr<Batch> batch) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    room_.wait(lock, [this] { return queue_.size() < kMaxQueued || failed_; });
+    rethrow_locked();
+    queue_.push_back(std::move(batch));
+    ready_.notify_one();
+  }
+
+  /// Writes what is queued and stops the thread; rethrows its failure (once).
+  void finish() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      done_ = true;
+      ready_.notify_one();
+    }
+    if (thread_.joinable()) {
+      thread_.join();
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    rethrow_locked();
+  }
+
+ private:
+  void loop() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    for (;;) {
+      ready_.wait(lock, [this] { return !queue_.empty() || done_; });
+      if (queue_.empty()) {
+        return;  // done, and everything written
+      }
+      std::deque<std::unique_ptr<Batch>> taken;
+      taken.swap(queue_);
+      room_.notify_all();
+      lock.unlock();
+      std::string error;
+      try {
+        for (const auto& batch : taken) {
+          batch->write(sink_);
+        }
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+      lock.lock();
+      if (!error.empty()) {
+        failed_ = true;
+        error_ = error;
+        queue_.clear();
+        room_.notify_all();
+        return;
+      }
+    }
+  }
+
+  void rethrow_locked() {
+    if (failed_ && !error_.empty()) {
+      const std::string error = error_;
+      error_.clear();  // said once
+      throw RunError("run_recorder: " + error);
+    }
+  }
+
+  Sink sink_;
+  std::mutex mutex_;
+  std::condition_variable ready_, room_;
+  std::deque<std::unique_ptr<Batch>> queue_;
+  bool done_ = false;
+  bool failed_ = false;
+  std::string error_;
+  std::thread thread_;  // last: it starts once everything above exists
+};
+
 class TopicStreamBase {
  public:
   virtual ~TopicStreamBase() = default;
-  /// Writes the samples the lockstep rule lets it read now, instance by instance in key order,
-  /// each instance's in its producer's order.
-  virtual void collect(const Sink& sink, std::uint16_t channel) = 0;
+  /// Takes the samples the lockstep rule lets it read now, instance by instance in key order,
+  /// each instance's in its producer's order, as one batch (null: none).
+  virtual std::unique_ptr<Batch> collect(std::uint16_t channel, std::int64_t taken_ns) = 0;
   virtual std::uint64_t messages() const = 0;
 };
 
@@ -45,35 +178,28 @@ class TopicStream : public TopicStreamBase {
   TopicStream(Input<Msg>* input, std::string type_name, std::vector<std::uint64_t> keys, bool by_robot)
       : input_(input), type_name_(std::move(type_name)), keys_(std::move(keys)), by_robot_(by_robot) {}
 
-  void collect(const Sink& sink, std::uint16_t channel) override {
-    samples_.clear();
+  std::unique_ptr<Batch> collect(std::uint16_t channel, std::int64_t taken_ns) override {
+    std::vector<Msg> samples;
     if (by_robot_) {
-      input_->take_new_of_robots(keys_, samples_);
+      input_->take_new_of_robots(keys_, samples);
     } else {
-      input_->take_new(keys_, samples_);
+      input_->take_new(keys_, samples);
     }
-    // Real time: when the recorder took it (at most one of its steps after it arrived).
-    const std::int64_t now_ns = sink.mode == TimeMode::kRealtime && !samples_.empty() ? wall_clock_now_ns() : 0;
-    for (const Msg& sample : samples_) {
-      const std::vector<std::uint8_t> bytes = sink.codec->serialize(type_name_, &sample);
-      // Lockstep: the sim time of the sample's step (ns), as its stamp: the same in every deployment.
-      const std::int64_t log_ns =
-          sink.mode == TimeMode::kRealtime
-              ? now_ns
-              : static_cast<std::int64_t>(std::llround(static_cast<double>(sample.header().step()) * sink.step_s * 1e9));
-      sink.writer->write(channel, ++sequence_, static_cast<std::uint64_t>(log_ns),
-                         static_cast<std::uint64_t>(sample.header().stamp_ns()), bytes.data(), bytes.size());
+    if (samples.empty()) {
+      return nullptr;
     }
+    messages_ += samples.size();
+    return std::make_unique<TypedBatch<Msg>>(&type_name_, channel, &sequence_, taken_ns, std::move(samples));
   }
-  std::uint64_t messages() const override { return sequence_; }
+  std::uint64_t messages() const override { return messages_; }
 
  private:
   Input<Msg>* input_;
   std::string type_name_;
   std::vector<std::uint64_t> keys_;
   bool by_robot_;
-  std::vector<Msg> samples_;  // reused step after step
-  std::uint32_t sequence_ = 0;
+  std::uint64_t messages_ = 0;
+  std::uint32_t sequence_ = 0;  // the channel's, written by the writer thread
 };
 
 /// How the recorder waits for a topic's instances, from its key: one per robot that has a
@@ -172,9 +298,14 @@ class RunRecorderNode : public Component {
 
   void on_step(const StepInfo&) override {
     open();
-    const Sink sink{writer_.get(), codec_, mode_, step_s_};
+    if (!writer_thread_) {
+      return;
+    }
+    const std::int64_t taken_ns = mode_ == TimeMode::kRealtime ? wall_clock_now_ns() : 0;
     for (std::size_t i = 0; i < streams_.size(); ++i) {
-      streams_[i]->collect(sink, channels_[i]);
+      if (std::unique_ptr<Batch> batch = streams_[i]->collect(channels_[i], taken_ns)) {
+        writer_thread_->push(std::move(batch));
+      }
     }
   }
 
@@ -184,7 +315,13 @@ class RunRecorderNode : public Component {
   }
 
   /// A failed run: the samples so far stay, in a complete file.
-  void on_abort(const std::string&) override { close(); }
+  void on_abort(const std::string&) override {
+    try {
+      close();
+    } catch (const std::exception& e) {
+      log::warn(name_, e.what());  // the run failed already: its reason stays the first error
+    }
+  }
 
  private:
   /// Creates the file with its schemas and channels, once; not at configure (a run that never
@@ -195,13 +332,21 @@ class RunRecorderNode : public Component {
     }
     writer_ = std::make_unique<mcap::Writer>(file_, options_);
     channels_ = mcap::add_topic_channels(*writer_, topics_);
+    writer_thread_ = std::make_unique<WriterThread>(Sink{writer_.get(), codec_, mode_, step_s_});
   }
 
   void close() {
     if (!writer_) {
       return;
     }
-    writer_->close();
+    std::string failure;
+    try {
+      std::unique_ptr<WriterThread> thread = std::move(writer_thread_);
+      thread->finish();  // everything queued written
+    } catch (const RunError& e) {
+      failure = e.what();
+    }
+    writer_->close();  // a whole file of what was written, also after a failure
     std::uint64_t messages = 0;
     for (const auto& stream : streams_) {
       messages += stream->messages();
@@ -210,6 +355,9 @@ class RunRecorderNode : public Component {
                          std::to_string(writer_->file_bytes()) + " bytes -> " + file_);
     writer_.reset();
     streams_.clear();
+    if (!failure.empty()) {
+      throw RunError(failure);
+    }
   }
 
   mcap::WriterOptions options_;
@@ -222,6 +370,7 @@ class RunRecorderNode : public Component {
   std::vector<std::unique_ptr<TopicStreamBase>> streams_;  // parallel to topics_
   std::vector<std::uint16_t> channels_;                    // parallel to topics_
   std::unique_ptr<mcap::Writer> writer_;
+  std::unique_ptr<WriterThread> writer_thread_;  // after writer_: stopped before it is closed
 };
 
 }  // namespace
