@@ -246,10 +246,10 @@ class RunRecorderNode : public Component {
     }
     for (const std::string& name : params.topics) {
       if (find_topic(name) == nullptr) {
-        ctx.params().fail("topics: unknown topic '" + name + "' (`robodds record --list` lists the topics)");
+        ctx.params().fail("topics (robodds run --record-topics): unknown topic '" + name + "' (`robodds record --list` lists the topics)");
       }
       if (producers->count(name) == 0) {
-        ctx.params().fail("topics: no component of the scenario publishes '" + name + "'");
+        ctx.params().fail("topics (robodds run --record-topics): no component of the scenario publishes '" + name + "'");
       }
       names.insert(name);
     }
