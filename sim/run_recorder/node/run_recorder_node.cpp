@@ -180,6 +180,7 @@ class TopicStream : public TopicStreamBase {
 
   std::unique_ptr<Batch> collect(std::uint16_t channel, std::int64_t taken_ns) override {
     std::vector<Msg> samples;
+    samples.reserve(last_size_);  // one allocation per step, not one per doubling
     if (by_robot_) {
       input_->take_new_of_robots(keys_, samples);
     } else {
@@ -188,6 +189,7 @@ class TopicStream : public TopicStreamBase {
     if (samples.empty()) {
       return nullptr;
     }
+    last_size_ = samples.size();
     messages_ += samples.size();
     return std::make_unique<TypedBatch<Msg>>(&type_name_, channel, &sequence_, taken_ns, std::move(samples));
   }
@@ -199,6 +201,7 @@ class TopicStream : public TopicStreamBase {
   std::vector<std::uint64_t> keys_;
   bool by_robot_;
   std::uint64_t messages_ = 0;
+  std::size_t last_size_ = 0;   // samples of the last non-empty step
   std::uint32_t sequence_ = 0;  // the channel's, written by the writer thread
 };
 
