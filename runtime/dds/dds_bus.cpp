@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/dds/dds_sample_codec.hpp"
 #include "runtime/dds/key_filter.hpp"
 #include "runtime/dds/listeners.hpp"
 #include "runtime/dds/match_report.hpp"
@@ -509,6 +510,9 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
 
 }  // namespace
 
-std::unique_ptr<DdsBus> make_dds_bus(const DdsOptions& options) { return std::make_unique<FastDdsBus>(options); }
+std::unique_ptr<DdsBus> make_dds_bus(const DdsOptions& options) {
+  install_dds_sample_codec();  // before any component is configured: a recorder or a replay source needs it
+  return std::make_unique<FastDdsBus>(options);
+}
 
 }  // namespace robodds

@@ -19,6 +19,7 @@
 #include <set>
 
 #include "runtime/base/error.hpp"
+#include "runtime/dds/dds_sample_codec.hpp"
 #include "runtime/dds/participant.hpp"
 #include "runtime/dds/qos_files.hpp"
 #include "runtime/dds/raw_type.hpp"
@@ -235,6 +236,9 @@ class FastDdsRawBus : public RawBus {
 
 }  // namespace
 
-std::unique_ptr<RawBus> make_raw_bus(const DdsOptions& options) { return std::make_unique<FastDdsRawBus>(options); }
+std::unique_ptr<RawBus> make_raw_bus(const DdsOptions& options) {
+  install_dds_sample_codec();  // a tool that sets up DDS can also encode and decode samples
+  return std::make_unique<FastDdsRawBus>(options);
+}
 
 }  // namespace robodds
