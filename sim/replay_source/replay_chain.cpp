@@ -34,4 +34,17 @@ std::string chain_problem(std::vector<ChainLink> links, std::uint64_t last_step)
   return {};
 }
 
+std::vector<std::string> late_topics(const std::vector<ChainLink>& links) {
+  std::map<std::string, std::uint64_t> first;  // topic -> its earliest step
+  for (const ChainLink& l : links) {
+    const auto it = first.find(l.topic);
+    if (it == first.end() || l.step < it->second) first[l.topic] = l.step;
+  }
+  std::vector<std::string> out;
+  for (const auto& [topic, step] : first) {
+    if (step > 0) out.push_back(topic + ": its first recorded sample is of step " + std::to_string(step));
+  }
+  return out;
+}
+
 }  // namespace robodds::replay_source

@@ -12,6 +12,7 @@ namespace robodds::replay_source {
 
 /// One recorded sample's place in its stream.
 struct ChainLink {
+  std::string topic;   // e.g. "sensor/position"
   std::string stream;  // topic and instance, e.g. "sensor/position (robot_id=1)"
   std::uint64_t step = 0;
   std::uint64_t next_step = 0;  // kNeverAgain (2^64 - 1): the last of its instance
@@ -24,5 +25,10 @@ struct ChainLink {
 /// announced step lies inside the recording and never came has ended (its producer moved the robot
 /// to another key, e.g. a new target): not a problem, as in the original run.
 std::string chain_problem(std::vector<ChainLink> links, std::uint64_t last_step);
+
+/// "TOPIC: its first recorded sample is of step N" for each topic none of whose samples is of
+/// step 0: a recorder that joined after the run started (a warning: a topic may also start late
+/// on purpose).
+std::vector<std::string> late_topics(const std::vector<ChainLink>& links);
 
 }  // namespace robodds::replay_source

@@ -39,7 +39,7 @@ class TypedStream : public Stream {
 
   ChainLink add(const std::uint8_t* data, std::size_t size) override {
     auto sample = std::static_pointer_cast<Msg>(sample_codec().deserialize(idl::type_name<Msg>(), data, size));
-    const ChainLink link{topic_ + " (" + idl::instance_label(*sample) + ")", sample->header().step(), sample->header().next_step()};
+    const ChainLink link{topic_, topic_ + " (" + idl::instance_label(*sample) + ")", sample->header().step(), sample->header().next_step()};
     by_step_[link.step].push_back(std::move(sample));
     return link;
   }
@@ -68,8 +68,7 @@ class ReplaySourceNode : public Component {
     }
     params_ = read_params(ctx.params(), replay_source_param_table());
     last_step_ = ctx.scenario().last_step();
-    // Channels are checked here, before anything runs (the index only, no message kept); the
-    // samples are decoded in on_start(), once the run's sample codec is installed.
+    // Channels are checked here, before anything runs (the index only, no message kept).
     const mcap::ReadReport report = mcap::scan_mcap(params_.file, mcap::OnDamage::kRecover, nullptr);
     if (!report.problems.empty()) {
       throw ConfigError(name_ + ".file: " + report.problems.front() + " (the file is damaged; `robodds info " + params_.file +
@@ -85,7 +84,8 @@ class ReplaySourceNode : public Component {
       if (channel == nullptr) {
         std::string names;
         for (const std::string& n : in_file) names += (names.empty() ? "" : ", ") + n;
-        throw ConfigError(name_ + ".topics: " + params_.file + " has no topic '" + topic + "' (its topics: " + names + ")");
+        throw ConfigError(name_ + ".topics: " + params_.file + " has no topic '" + topic + "' (" +
+                          (names.empty() ? std::string("it holds no channel") : "its topics: " + names) + ")");
       }
       const TopicInfo& info = replayable_topic(params_.file, report, *channel, "replay_source takes only robodds topics");
       if (streams_.count(topic) != 0) {
@@ -96,9 +96,35 @@ class ReplaySourceNode : public Component {
         streams_[topic] = std::make_unique<TypedStream<Msg>>(topic, ctx.advertise<Msg>(topic));
       });
     }
+    // The samples are decoded with the run's sample codec, which runtime/dds installs when it sets
+    // up DDS: before the run's own configure, after the dry configure of the producer check (no
+    // DDS yet: it only needs the topics above). Decoded here when possible, so that a recording
+    // that cannot drive the run stops it before it starts (a ConfigError, exit 2), else in on_start().
+    if (codec_installed()) load();
   }
 
   void on_start() override {
+    if (!loaded_) load();
+  }
+
+  void on_step(const StepInfo& info) override {
+    for (auto& [topic, stream] : streams_) {
+      stream->publish(info.step);
+    }
+  }
+
+ private:
+  static bool codec_installed() {
+    try {
+      sample_codec();
+      return true;
+    } catch (const ConfigError&) {  // "no sample codec installed"
+      return false;
+    }
+  }
+
+  void load() {
+    loaded_ = true;
     const mcap::McapContents contents = read_recording(params_.file);
     if (contents.report.truncated_at) {
       log::warn(name_, params_.file + ": " + contents.report.recovery() + "; replaying what was recovered");
@@ -119,22 +145,20 @@ class ReplaySourceNode : public Component {
                           std::to_string(m.channel_id) + " does not decode: " + e.what());
       }
     }
+    for (const std::string& late : late_topics(links)) {
+      // A consumer would wait for the missing first samples until its input timeout: say why first.
+      log::warn(name_, params_.file + ": " + late + ", not 0: was the recorder started after the run?");
+    }
     const std::string problem = chain_problem(std::move(links), last_step_);
     if (!problem.empty()) {
       throw ConfigError(name_ + ": " + params_.file + " cannot drive this run: " + problem);
     }
   }
 
-  void on_step(const StepInfo& info) override {
-    for (auto& [topic, stream] : streams_) {
-      stream->publish(info.step);
-    }
-  }
-
- private:
   std::string name_;
   ReplaySourceParams params_;
   std::uint64_t last_step_ = 0;
+  bool loaded_ = false;
   std::map<std::string, std::unique_ptr<Stream>> streams_;  // by topic: a fixed publishing order
 };
 
