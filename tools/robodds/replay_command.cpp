@@ -206,14 +206,23 @@ class ReplayCommand : public Command {
 
   void wait_for_readers(const std::map<std::uint16_t, Replayed>& channels) const {
     if (wait_readers_s_ <= 0) return;
-    const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(wait_readers_s_));
+    std::printf("robodds replay: waiting up to %s s (--wait-readers) for a reader of each topic\n", number(wait_readers_s_).c_str());
+    std::fflush(stdout);
+    const auto start = Clock::now();
+    const auto deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(wait_readers_s_));
     std::set<std::string> missing;
     do {
       missing.clear();
       for (const auto& [id, c] : channels) {
         if (c.writer->matched_readers() == 0) missing.insert(c.topic->name);
       }
-      if (missing.empty() || env_.stop) return;
+      if (missing.empty()) {
+        std::printf("robodds replay: every topic has a reader (after %.2f s)\n",
+                    std::chrono::duration<double>(Clock::now() - start).count());
+        std::fflush(stdout);
+        return;
+      }
+      if (env_.stop) return;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     } while (Clock::now() < deadline);
     std::fprintf(stderr, "robodds replay: warning: no reader of %s after %s s (--wait-readers); replaying anyway\n",
