@@ -32,7 +32,15 @@ timeout -k 5 120 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --dur
 sleep 0.5
 kill -INT "$rec"
 wait "$rec" || fail "the recorder failed: $(cat "$WORK/rec.log")"
-"$ROBODDS" info "$WORK/rec.mcap" | grep -E "^(messages|summary|duration):" || fail "robodds info on the recording"
+info="$("$ROBODDS" info "$WORK/rec.mcap")" || fail "robodds info on the recording: $info"
+# The recording holds every sample the run's evaluator recorded (its CSV rows): else the recorder
+# beside the run lost some (best effort), which is what this says rather than a re-run that differs.
+for topic in sensor/position sensor/odometry; do
+  csv_rows=$(($(wc -l <"$WORK/orig/${topic//\//_}.csv") - 1))
+  recorded="$(awk -v t="$topic" '$2 == t {print $(NF-1)}' <<<"$info" | tr -d ,)"
+  [[ $recorded == "$csv_rows" ]] || fail "the recorder beside the run got $recorded samples of $topic, the run had $csv_rows: $info"
+done
+echo "ok: the recording holds every sensor sample of the run ($(grep -E '^messages:' <<<"$info"))"
 
 # The re-run: the recording's sensor topics drive the PF estimator alone.
 write_scenario() {  # FILE COMPONENTS_YAML
