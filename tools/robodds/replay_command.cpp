@@ -79,7 +79,7 @@ class ReplayCommand : public Command {
       throw ConfigError("--rate and --fast exclude each other");
     }
     if (end_s_ >= 0 && end_s_ < start_s_) {
-      throw ConfigError("--end " + std::to_string(end_s_) + " is before --start " + std::to_string(start_s_));
+      throw ConfigError("--end " + number(end_s_) + " is before --start " + number(start_s_));
     }
     // The whole file first: a bad file or option fails before anything joins the domain.
     const mcap::McapContents contents = replay_source::read_recording(path_);
