@@ -7,7 +7,7 @@
 # schema is not ours (robodds-mcap-sample-writer's file), a truncated file (a warning, replays what
 # was recovered, exit 0), a corrupted file, a missing file; and a replay onto a domain where a
 # replayed topic already has a writer (a running plant_smoke): a warning naming the topic and the
-# other participant, the replay goes on.
+# other participant, the replay goes on. --start 1 --end 2 replays the messages of that second.
 # Args: ROBODDS SRC DOMAIN SAMPLE_WRITER. Uses domains DOMAIN and DOMAIN+1. Needs node and
 # tests/npm/node_modules (scripts/npm_setup.sh). ~25 s.
 source "$(dirname "$0")/lib.sh"
@@ -65,6 +65,18 @@ ratio = span(b) / span(a)
 print(f"ok: log-time span {span(a):.3f} s recorded, {span(b):.3f} s replayed at --rate 2 (ratio {ratio:.3f})")
 assert 0.4 <= ratio <= 0.6, f"replayed span / recorded span = {ratio:.3f}, expected 0.5 (--rate 2)"
 PY
+
+# --start/--end: the messages whose log time is 1 to 2 s after the file's first.
+out="$(timeout -k 5 60 "$ROBODDS" replay "$WORK/a.mcap" --start 1 --end 2 --domain "$DOMAIN2" "${QUICK[@]}" 2>&1)" ||
+  fail "replay --start 1 --end 2: $out"
+expected="$(python3 -c '
+import json, sys
+t = [int(json.loads(line)["log_time"]) for line in open(sys.argv[1])]
+print(sum(1 for x in t if min(t) + 1e9 <= x <= min(t) + 2e9))' "$WORK/a.jsonl")"
+grep -qE "^robodds replay: [0-9]+ messages in .* \(recorded span 0\.9[0-9]+ s\)" <<<"$out" &&
+  grep -qE "^robodds replay: .*a\.mcap: $expected messages on 3 topics" <<<"$out" ||
+  fail "--start 1 --end 2: expected $expected messages within 1 s of log time: $out"
+echo "ok: --start 1 --end 2: $expected messages"
 
 # Bad input: one line each.
 expect_error 2 "--topics: unknown topic 'plant/stat': not in .*a\.mcap \(its topics: plant/cmd, plant/state, sensor/position\)" -- \
