@@ -125,6 +125,10 @@ class ComponentContext {
   std::uint64_t seed_for(const std::string& stream) const;
   double step_s() const { return run_.scenario->step_s; }
   TimeMode mode() const { return run_.mode; }
+  /// Who the scenario lets publish each topic instance (RunContext::assigned_producers): what a
+  /// recorder of every published topic subscribes to. Null outside a scenario run, and while
+  /// scenario_producers() configures the components to find them.
+  const AssignedProducers* assigned_producers() const { return run_.assigned_producers.get(); }
   /// Makes this component the one that records the run (configure() only; a recorder such as the
   /// evaluator) and gives it what only a recorder needs: where to write, how the run is deployed
   /// and, at its end, the run's figures with every host's health. Across processes its host then

@@ -118,7 +118,7 @@ bool LockstepArgs::operator==(const LockstepArgs& o) const {
 }
 
 bool HostArgs::operator==(const HostArgs& o) const {
-  return scenario == o.scenario && group == o.group && components == o.components && params == o.params && sets == o.sets &&
+  return scenario == o.scenario && group == o.group && components == o.components && params == o.params && sets == o.sets && added_components == o.added_components &&
          member == o.member && coordinate == o.coordinate && members == o.members && run_id == o.run_id && out == o.out &&
          deploy == o.deploy && realtime == o.realtime && epoch_ns == o.epoch_ns && duration_s == o.duration_s &&
          seed == o.seed && log_level == o.log_level && max_missed_steps == o.max_missed_steps &&
@@ -133,6 +133,9 @@ std::vector<std::string> to_argv(const HostArgs& args, const ArgPlaceholders& pl
   w.option("--group", args.group, args.group.empty());
   w.option("--components", join(args.components), args.components.empty());
   w.option("--params", args.params, args.params.empty());
+  for (const std::string& added : args.added_components) {
+    w.option("--add-component", added, false);
+  }
   for (const std::string& assignment : args.sets) {
     w.option("--set", assignment, false);
   }
@@ -296,6 +299,9 @@ HostArgOptions add_host_options(CLI::App* app, HostArgs& args) {
   app->add_option("--params", args.params,
                   "YAML map component.parameter -> value over the scenario's (with --type: the component's own keys)");
   app->add_option("--set", args.sets, "component.parameter=value over the scenario's and --params (repeatable; with --scenario)");
+  app->add_option("--add-component", args.added_components,
+                  "GROUP:NAME:TYPE: adds a component to the scenario's group before --set (repeatable; what `robodds run "
+                  "--record` gives its hosts)");
   app->add_option("--member", args.member, "name in acknowledgements (default: the group, or the instance name)");
   app->add_flag("--coordinate", args.coordinate, "also publish ticks (a standalone lockstep host)");
   app->add_option("--members", args.members,

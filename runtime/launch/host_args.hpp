@@ -44,6 +44,7 @@ struct HostArgs {
   std::vector<std::string> components;  // ... or these component instances
   std::string params;                   // YAML map component.parameter -> value (over the scenario's)
   std::vector<std::string> sets;        // "component.parameter=value", over the scenario's and --params
+  std::vector<std::string> added_components;  // "GROUP:NAME:TYPE" added to the scenario before --set (added_components.hpp)
   std::string member;                   // name in acknowledgements (empty: the group)
   bool coordinate = false;              // also publish ticks (a standalone lockstep host)
   std::vector<std::string> members;     // with coordinate: groups whose acknowledgements to wait for

@@ -15,6 +15,7 @@
 #include "common/number_parse.hpp"
 #include "common/number_text.hpp"
 #include "runtime/bus/colocated_bus.hpp"
+#include "runtime/launch/added_components.hpp"
 #include "runtime/dds/security_files.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/launch/failed_summary.hpp"
@@ -121,6 +122,7 @@ std::vector<std::string> child_argv(const Scenario& scenario, const LaunchOption
   args.seed = scenario.seed;
   args.duration_s = scenario.duration_s;
   args.sets = launch.sets;
+  args.added_components = launch.added_components;
   args.log_level = launch.log_level;
   args.max_missed_steps = launch.max_missed_steps;
   args.rt_priority = launch.rt_priority;  // each child applies it before its participant exists
@@ -374,6 +376,7 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
     throw ConfigError("robodds host: --robot, --name and --step describe a component without a scenario (--type); the scenario has its own");
   }
   Scenario scenario = load_scenario(args.scenario);
+  add_components(scenario, args.added_components);  // before the overrides: --set may name them
   apply_run_overrides(scenario, args.duration_s, args.seed);
   if (!args.params.empty()) {
     apply_param_overrides(scenario, load_param_file(args.params), args.params);

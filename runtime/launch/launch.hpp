@@ -29,6 +29,7 @@ const char* to_string(Deploy deploy);
 struct LaunchOptions {
   std::string scenario_file;  // given to the child hosts (they load it themselves)
   std::vector<std::string> sets;  // --set assignments, already applied to the scenario; the child hosts apply them too
+  std::vector<std::string> added_components;  // "GROUP:NAME:TYPE", already added to the scenario; the child hosts add them too
   Deploy deploy = Deploy::kColocated;
   bool realtime = false;      // wall-clock timers instead of lockstep
   std::string out_dir;        // where the evaluator writes

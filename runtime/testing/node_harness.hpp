@@ -125,6 +125,10 @@ class NodeHarness {
   /// RunContext::deploy_label of run() (default empty: the evaluator writes no "run" section).
   void set_deploy_label(std::string label) { deploy_label_ = std::move(label); }
 
+  /// RunContext::assigned_producers of run() (default none: the first writer rule).
+  void assign_producers(AssignedProducers producers) {
+    assigned_ = std::make_shared<const AssignedProducers>(std::move(producers));
+  }
   /// Runs `feed(step)` at every step, before the components under test.
   void feed(std::function<void(std::uint64_t step)> feed) { feed_ = std::move(feed); }
 
@@ -169,6 +173,7 @@ class NodeHarness {
     run.output_dir = output_dir_;
     run.single_process = true;
     run.deploy_label = deploy_label_;
+    run.assigned_producers = assigned_;
     HostOptions options = options_;
     options.components = {"feeder"};
     options.components.insert(options.components.end(), components.begin(), components.end());
@@ -196,6 +201,7 @@ class NodeHarness {
   HostOptions options_;
   TimeMode mode_ = TimeMode::kLockstep;
   std::string deploy_label_;
+  std::shared_ptr<const AssignedProducers> assigned_;
   Notifier notifier_;
   MemoryBus bus_;
   std::string output_dir_;

@@ -16,13 +16,13 @@
 #include <string>
 #include <vector>
 
-#include "idl/idl_schema.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/dds/raw_bus.hpp"
 #include "runtime/io/notifier.hpp"
 #include "runtime/launch/launch.hpp"
 #include "runtime/mcap/mcap_writer.hpp"
+#include "runtime/mcap/topic_channels.hpp"
 #include "runtime/topics/topic_catalog.hpp"
 #include "tools/robodds/command.hpp"
 
@@ -129,19 +129,9 @@ class McapParts {
   void open_part() {
     writer_ = std::make_unique<mcap::Writer>(part_path(out_, max_bytes_ > 0, part_), options_);
     channels_.assign(topics_.size(), Channel{});
-    std::map<std::string, std::uint16_t> schemas;
+    const std::vector<std::uint16_t> ids = mcap::add_topic_channels(*writer_, topics_);
     for (std::size_t i = 0; i < topics_.size(); ++i) {
-      const TopicInfo& topic = *topics_[i];
-      auto it = schemas.find(topic.type_name);
-      if (it == schemas.end()) {
-        it = schemas.emplace(topic.type_name, writer_->add_schema(idl_schema_name(topic.type_name), "omgidl",
-                                                                   idl_schema_text(topic.type_name)))
-                 .first;
-      }
-      // What a replay needs to publish it as the run did: the topic's real-time QoS profile and key.
-      const std::map<std::string, std::string> metadata = {
-          {"qos_profile", qos_profile_for(topic, TimeMode::kRealtime, false)}, {"key", topic.key}};
-      channels_[i].id = writer_->add_channel(it->second, topic.name, "cdr", metadata);
+      channels_[i].id = ids[i];
     }
   }
 

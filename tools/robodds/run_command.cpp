@@ -1,10 +1,18 @@
 // `robodds run SCENARIO`: the whole scenario, co-located or one process per group, then the
 // summary table and the plots.
-#include <chrono>
-#include <cstdio>
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "runtime/base/error.hpp"
+#include "runtime/launch/added_components.hpp"
 #include "runtime/launch/launch.hpp"
+#include "runtime/mcap/compression.hpp"
 #include "runtime/base/log.hpp"
 #include "tools/robodds/command.hpp"
 #include "tools/robodds/summary_table.hpp"
@@ -28,6 +36,37 @@ void show_progress(std::uint64_t step, std::uint64_t last) {
                step == last ? "\n" : "");
 }
 
+/// The recorder `--record` adds: its instance name (and type).
+constexpr const char* kRecorderName = "run_recorder";
+
+/// The group the recorder joins: the evaluator's (it records the run already; its host waits
+/// for every published topic at the end anyway), else the scenario's last group.
+std::string recording_group(const Scenario& scenario) {
+  for (const GroupSpec& group : scenario.groups) {
+    for (const std::string& name : group.components) {
+      if (scenario.component(name).type == "evaluator") {
+        return group.name;
+      }
+    }
+  }
+  if (scenario.groups.empty()) {
+    throw ConfigError("--record: " + scenario.file + " has no group to add the recorder to");
+  }
+  return scenario.groups.back().name;
+}
+
+/// `path` made absolute (the child hosts of --deploy processes write it), after checking it can
+/// be written: one line before the run starts (exit 2), not a failed run.
+std::string checked_record_path(const std::string& path) {
+  const std::string absolute = std::filesystem::absolute(path).lexically_normal().string();
+  const int fd = ::open(absolute.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    throw ConfigError("--record " + path + ": cannot write it (" + std::strerror(errno) + ")");
+  }
+  ::close(fd);
+  return absolute;
+}
+
 class RunCommand : public Command {
  public:
   RunCommand(CLI::App& app, const CommandEnv& env) : env_(env) {
@@ -45,6 +84,12 @@ class RunCommand : public Command {
     add_dds_options(cmd_, dds_);
     add_lockstep_options(cmd_, lockstep_);
     cmd_->add_flag("--no-plots", no_plots_, "do not draw the PNG plots at the end");
+    cmd_->add_option("--record", record_,
+                     "record the topics the scenario's components publish into this MCAP file, from inside the run "
+                     "(lockstep: sim times, the same file co-located and across processes; docs/record-replay.md)");
+    cmd_->add_option("--record-compression", record_compression_, "with --record: chunk compression zstd, lz4 or none");
+    cmd_->add_option("--record-topics", record_topics_, "with --record: only these topics (comma separated; default all published)")
+        ->delimiter(',');
   }
 
   bool parsed() const override { return cmd_->parsed(); }
@@ -55,11 +100,14 @@ class RunCommand : public Command {
     // the plots' python3 on SCHED_OTHER: ProcessGroup::spawn).
     apply_rt_priority_option(rt_priority_, "run", true);
     Scenario scenario = load_scenario(scenario_file_);
+    const std::vector<std::string> added = record_components(scenario);
+    add_components(scenario, added);
     apply_run_overrides(scenario, duration_s_, seed_);
     apply_param_overrides(scenario, parse_param_assignments(sets_), "--set");
     LaunchOptions launch;
     launch.scenario_file = scenario_file_;
     launch.sets = sets_;
+    launch.added_components = added;
     launch.deploy = deploy_ == "processes" ? Deploy::kProcesses : Deploy::kColocated;
     launch.realtime = realtime_;
     launch.out_dir = out_dir_.empty() ? "out/" + scenario.name : out_dir_;
@@ -87,6 +135,29 @@ class RunCommand : public Command {
   }
 
  private:
+  /// With --record: the recorder to add (and its parameters appended to the --set list, which
+  /// every child host applies too); nothing otherwise.
+  std::vector<std::string> record_components(const Scenario& scenario) {
+    if (record_.empty()) {
+      if (!record_topics_.empty() || record_compression_ != "zstd") {
+        throw ConfigError("--record-topics and --record-compression go with --record FILE.mcap");
+      }
+      return {};
+    }
+    mcap::parse_compression(record_compression_, "--record-compression");
+    const std::string recorder = kRecorderName;
+    sets_.push_back(recorder + ".file=" + checked_record_path(record_));
+    sets_.push_back(recorder + ".compression=" + record_compression_);
+    if (!record_topics_.empty()) {
+      std::string list;
+      for (const std::string& topic : record_topics_) {
+        list += (list.empty() ? "" : ", ") + topic;
+      }
+      sets_.push_back(recorder + ".topics=[" + list + "]");
+    }
+    return {added_component_spec(recording_group(scenario), recorder, kRecorderName)};
+  }
+
   const CommandEnv& env_;
   CLI::App* cmd_ = nullptr;
   std::string scenario_file_;
@@ -99,6 +170,9 @@ class RunCommand : public Command {
   std::optional<std::uint64_t> max_missed_steps_;
   std::optional<int> rt_priority_;
   bool no_plots_ = false;
+  std::string record_;
+  std::string record_compression_ = "zstd";
+  std::vector<std::string> record_topics_;
   DdsArgs dds_;
   LockstepArgs lockstep_;
 };
