@@ -2,45 +2,56 @@
 # Issue 25's replay acceptance, in lockstep: paper1_waypoints (60 s of it) is recorded, then its PF
 # estimator alone is re-run on the recorded sensor topics through the replay_source component
 # (replay + pf_estimator + evaluator, co-located): estimate_pose.csv must be byte-identical to the
-# original run's; with a changed PF parameter (num_particles) it must differ (the use case: tune an algorithm
-# on recorded data). Then bad input, one line each: a scenario that runs replay_source beside the
-# original producer of a replayed topic (the one-producer check refuses it), a topic the file does
-# not hold, a run longer than the recording, and replay_source in real time.
+# original run's, on a recording made from inside the run (`robodds run --record`) and on one made
+# by `robodds record` beside the run (across processes); with a changed PF parameter
+# (num_particles) it must differ (the use case: tune an algorithm on recorded data). Then bad
+# input, one line each: a scenario that runs replay_source beside the original producer of a
+# replayed topic (the one-producer check refuses it), a topic the file does not hold, a run longer
+# than the recording, and replay_source in real time.
 # Args: ROBODDS SRC DOMAIN. Uses domains DOMAIN and DOMAIN+1. ~25 s.
 source "$(dirname "$0")/lib.sh"
 DOMAIN2=$((DOMAIN + 1))
 DURATION=60
 TOPICS=(sensor/position sensor/odometry mission/waypoints)
 
-# The original run, recorded by `robodds record` beside it. Across processes (--deploy processes):
-# a co-located lockstep run starts stepping at once and is over in < 1 s, before the recorder has
-# discovered its writers (a recorder beside it lost the first ~20 samples: the re-run then waits at
-# step 0 and replay_source warns that the recorder started late); the hosts' own discovery before a
-# run across processes gives the recorder that time. The recorder reads best effort (the monitor
-# profile); on one machine it gets every sample after that, and a recording that lost one in the
-# middle is refused by replay_source's completeness check (one line naming the stream and the step).
-# (`robodds run --record`, recording from inside the run, is another branch's work.)
-"$ROBODDS" record "${TOPICS[@]}" --out "$WORK/rec.mcap" --domain "$DOMAIN" >"$WORK/rec.log" 2>&1 &
+# The original run, co-located, recorded from inside (`robodds run --record`: every sample the
+# scenario's components publish, at its sim step).
+rc=0
+timeout -k 5 120 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --duration "$DURATION" --domain "$DOMAIN" \
+  --out "$WORK/orig" --no-plots --record "$WORK/rec.mcap" >"$WORK/orig.log" 2>&1 || rc=$?
+[[ $rc -eq 0 ]] || fail "the original run exited $rc: $(tail -20 "$WORK/orig.log")"
+
+# The same run across processes, recorded by `robodds record` beside it. A co-located lockstep run
+# steps at once and is over in < 1 s, before a recorder beside it has discovered its writers (it lost
+# the first 23 / 56 samples in two tries: replay_source then warns that the recorder started late
+# and the re-run waits at step 0); the hosts' own discovery before a run across processes gives it
+# that time. The recorder reads best effort (the monitor profile); on one machine it gets every
+# sample after that; a recording that lost one in the middle is refused by replay_source's chain
+# check (one line naming the stream and the step).
+"$ROBODDS" record "${TOPICS[@]}" --out "$WORK/beside.mcap" --domain "$DOMAIN" >"$WORK/rec.log" 2>&1 &
 rec=$!
 cleanup_pids+=("$rec")
 for _ in $(seq 100); do grep -qE "^robodds record: [0-9]+ topics" "$WORK/rec.log" && break; sleep 0.1; done
-sleep 1  # its readers matched (discovery) before the run's writers start
+sleep 1  # its readers announced before the hosts start
 rc=0
-timeout -k 5 120 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --duration "$DURATION" --deploy processes --domain "$DOMAIN" \
-  --out "$WORK/orig" --no-plots >"$WORK/orig.log" 2>&1 || rc=$?
-[[ $rc -eq 0 ]] || fail "the original run exited $rc: $(tail -20 "$WORK/orig.log")"
+timeout -k 5 120 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --duration "$DURATION" --deploy processes \
+  --domain "$DOMAIN" --out "$WORK/orig_processes" --no-plots >"$WORK/orig_processes.log" 2>&1 || rc=$?
+[[ $rc -eq 0 ]] || fail "the original run across processes exited $rc: $(tail -20 "$WORK/orig_processes.log")"
 sleep 0.5
 kill -INT "$rec"
 wait "$rec" || fail "the recorder failed: $(cat "$WORK/rec.log")"
-info="$("$ROBODDS" info "$WORK/rec.mcap")" || fail "robodds info on the recording: $info"
-# The recording holds every sample the run's evaluator recorded (its CSV rows): else the recorder
-# beside the run lost some (best effort), which is what this says rather than a re-run that differs.
-for topic in sensor/position sensor/odometry; do
-  csv_rows=$(($(wc -l <"$WORK/orig/${topic//\//_}.csv") - 1))
-  recorded="$(awk -v t="$topic" '$2 == t {print $(NF-1)}' <<<"$info" | tr -d ,)"
-  [[ $recorded == "$csv_rows" ]] || fail "the recorder beside the run got $recorded samples of $topic, the run had $csv_rows: $info"
+cmp -s "$WORK/orig/estimate_pose.csv" "$WORK/orig_processes/estimate_pose.csv" || fail "co-located and processes runs differ"
+for file in rec beside; do
+  info="$("$ROBODDS" info "$WORK/$file.mcap")" || fail "robodds info on $file.mcap: $info"
+  # The recording holds every sample the run's evaluator recorded (its CSV rows): else the recorder
+  # lost some, which is what this says rather than a re-run that differs.
+  for topic in sensor/position sensor/odometry; do
+    csv_rows=$(($(wc -l <"$WORK/orig/${topic//\//_}.csv") - 1))
+    recorded="$(awk -v t="$topic" '$2 == t {print $(NF-1)}' <<<"$info" | tr -d ,)"
+    [[ $recorded == "$csv_rows" ]] || fail "$file.mcap has $recorded samples of $topic, the run had $csv_rows: $info"
+  done
+  echo "ok: $file.mcap holds every sensor sample of the run ($(grep -E '^messages:' <<<"$info" | tr -s ' '))"
 done
-echo "ok: the recording holds every sensor sample of the run ($(grep -E '^messages:' <<<"$info"))"
 
 # The re-run: the recording's sensor topics drive the PF estimator alone.
 write_scenario() {  # FILE COMPONENTS_YAML
@@ -58,15 +69,23 @@ components:
 $2
 EOF
 }
-REPLAY="  - {name: replay, type: replay_source, params: {file: $WORK/rec.mcap, topics: [sensor/position, sensor/odometry]}}"
-write_scenario "$WORK/replay.yaml" "$REPLAY
-  - {name: estimator, type: pf_estimator}
+replay_of() {  # FILE.mcap: the replay_source line of a scenario
+  echo "  - {name: replay, type: replay_source, params: {file: $1, topics: [sensor/position, sensor/odometry]}}"
+}
+REPLAY="$(replay_of "$WORK/rec.mcap")"
+ESTIMATOR="  - {name: estimator, type: pf_estimator}
   - {name: evaluator, type: evaluator, params: {topics: [estimate/pose]}}"
-for variant in same changed; do
+write_scenario "$WORK/replay.yaml" "$REPLAY
+$ESTIMATOR"
+write_scenario "$WORK/replay_beside.yaml" "$(replay_of "$WORK/beside.mcap")
+$ESTIMATOR"
+for variant in same changed beside; do
   sets=()
+  scenario="$WORK/replay.yaml"
   [[ $variant == changed ]] && sets=(--set estimator.num_particles=500 --set estimator.resample_threshold=250)
+  [[ $variant == beside ]] && scenario="$WORK/replay_beside.yaml"
   rc=0
-  timeout -k 5 120 "$ROBODDS" run "$WORK/replay.yaml" --domain "$DOMAIN2" --out "$WORK/$variant" --no-plots "${sets[@]}" \
+  timeout -k 5 120 "$ROBODDS" run "$scenario" --domain "$DOMAIN2" --out "$WORK/$variant" --no-plots "${sets[@]}" \
     >"$WORK/$variant.log" 2>&1 || rc=$?
   [[ $rc -eq 0 ]] || fail "the re-run ($variant) exited $rc: $(tail -20 "$WORK/$variant.log")"
 done
@@ -75,6 +94,9 @@ rows="$(wc -l <"$WORK/orig/estimate_pose.csv")"
 cmp "$WORK/orig/estimate_pose.csv" "$WORK/same/estimate_pose.csv" ||
   fail "the PF re-run on the recording does not reproduce estimate_pose.csv"
 echo "ok: the PF estimator re-run on the recording: estimate_pose.csv byte-identical ($rows lines)"
+cmp "$WORK/orig/estimate_pose.csv" "$WORK/beside/estimate_pose.csv" ||
+  fail "the PF re-run on robodds record's recording does not reproduce estimate_pose.csv"
+echo "ok: the same on robodds record's recording beside the run across processes"
 cmp -s "$WORK/orig/estimate_pose.csv" "$WORK/changed/estimate_pose.csv" &&
   fail "with num_particles 500 the re-run gave the same estimate_pose.csv"
 [[ $(wc -l <"$WORK/changed/estimate_pose.csv") -eq $rows ]] || fail "the changed re-run has another number of rows"
