@@ -8,9 +8,11 @@
 #include <chrono>
 #include <map>
 #include <mutex>
+#include <set>
 #include <thread>
 
 #include "runtime/base/error.hpp"
+#include "runtime/dds/text.hpp"
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;
@@ -24,6 +26,13 @@ std::string qos_text(bool reliable, bool transient_local) {
 
 class DiscoveryListener : public dds::DomainParticipantListener {
  public:
+  void on_participant_discovery(dds::DomainParticipant*, rtps::ParticipantDiscoveryInfo&& info) override {
+    if (info.status != rtps::ParticipantDiscoveryInfo::DISCOVERED_PARTICIPANT) {
+      return;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    participant_names_[guid_prefix_text(info.info.m_guid.guidPrefix)] = info.info.m_participantName.to_string();
+  }
   void on_publisher_discovery(dds::DomainParticipant*, rtps::WriterDiscoveryInfo&& info) override {
     if (info.status != rtps::WriterDiscoveryInfo::DISCOVERED_WRITER) {
       return;
@@ -31,6 +40,7 @@ class DiscoveryListener : public dds::DomainParticipantListener {
     std::lock_guard<std::mutex> lock(mutex_);
     DiscoveredTopic& t = entry(info.info.topicName().to_string(), info.info.typeName().to_string());
     ++t.writers;
+    writer_prefixes_[t.name].insert(guid_prefix_text(info.info.guid().guidPrefix));
     if (t.writer_qos.empty()) {
       t.writer_qos = qos_text(info.info.m_qos.m_reliability.kind == dds::RELIABLE_RELIABILITY_QOS,
                               info.info.m_qos.m_durability.kind == dds::TRANSIENT_LOCAL_DURABILITY_QOS);
@@ -53,6 +63,13 @@ class DiscoveryListener : public dds::DomainParticipantListener {
     std::vector<DiscoveredTopic> out;
     for (auto& [name, t] : topics_) {
       out.push_back(t);
+      // Named at the end: a participant's name may arrive after its first endpoints.
+      std::set<std::string> participants;
+      for (const std::string& prefix : writer_prefixes_[name]) {
+        const auto it = participant_names_.find(prefix);
+        participants.insert(it == participant_names_.end() || it->second.empty() ? prefix : it->second);
+      }
+      out.back().writer_participants.assign(participants.begin(), participants.end());
     }
     return out;
   }
@@ -66,6 +83,8 @@ class DiscoveryListener : public dds::DomainParticipantListener {
   }
   std::mutex mutex_;
   std::map<std::string, DiscoveredTopic> topics_;
+  std::map<std::string, std::set<std::string>> writer_prefixes_;  // topic -> GUID prefixes of its writers
+  std::map<std::string, std::string> participant_names_;          // GUID prefix -> name
 };
 
 }  // namespace

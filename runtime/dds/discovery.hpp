@@ -1,5 +1,5 @@
 #pragma once
-// Topic discovery for `robodds topics`: which topics exist on a domain, with type and QoS.
+// Topic discovery for `robodds topics` and `robodds replay`: which topics exist on a domain, with type and QoS.
 
 #include <string>
 #include <vector>
@@ -15,6 +15,9 @@ struct DiscoveredTopic {
   int readers = 0;
   std::string writer_qos;  // e.g. "RELIABLE/TRANSIENT_LOCAL" (first writer seen)
   std::string reader_qos;
+  /// The participants whose writers of the topic were seen (their names, or their GUID prefix if
+  /// unnamed), sorted, each once: who else publishes it (robodds replay).
+  std::vector<std::string> writer_participants;
 };
 
 /// Listens on the domain for `seconds` and returns the topics seen, sorted by name.

@@ -1,0 +1,50 @@
+#include "sim/replay_source/replay_chain.hpp"
+
+#include <algorithm>
+#include <limits>
+#include <map>
+
+namespace robodds::replay_source {
+
+std::string chain_problem(std::vector<ChainLink> links, std::uint64_t last_step) {
+  std::uint64_t recorded_until = 0;
+  for (const ChainLink& l : links) recorded_until = std::max(recorded_until, l.step);
+  std::stable_sort(links.begin(), links.end(), [](const ChainLink& a, const ChainLink& b) {
+    return a.stream != b.stream ? a.stream < b.stream : a.step < b.step;
+  });
+  constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    const ChainLink& l = links[i];
+    const bool last_of_stream = i + 1 == links.size() || links[i + 1].stream != l.stream;
+    if (!last_of_stream) {
+      const ChainLink& next = links[i + 1];
+      if (next.step == l.step) {
+        return l.stream + ": two samples of step " + std::to_string(l.step) + " (two runs in one file?)";
+      }
+      if (next.step != l.next_step) {
+        return l.stream + ": the sample of step " + std::to_string(l.step) + " announces step " +
+               std::to_string(l.next_step) + " but the next one recorded is of step " + std::to_string(next.step) +
+               " (samples were lost while recording)";
+      }
+    } else if (l.next_step != kNever && l.next_step > recorded_until && l.next_step <= last_step) {
+      return l.stream + ": the recording ends at step " + std::to_string(recorded_until) + " but the run goes to step " +
+             std::to_string(last_step) + " (shorten the run with --duration or record longer)";
+    }
+  }
+  return {};
+}
+
+std::vector<std::string> late_topics(const std::vector<ChainLink>& links) {
+  std::map<std::string, std::uint64_t> first;  // topic -> its earliest step
+  for (const ChainLink& l : links) {
+    const auto it = first.find(l.topic);
+    if (it == first.end() || l.step < it->second) first[l.topic] = l.step;
+  }
+  std::vector<std::string> out;
+  for (const auto& [topic, step] : first) {
+    if (step > 0) out.push_back(topic + ": its first recorded sample is of step " + std::to_string(step));
+  }
+  return out;
+}
+
+}  // namespace robodds::replay_source

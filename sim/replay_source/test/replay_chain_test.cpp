@@ -1,0 +1,47 @@
+// The completeness check of a recording for a lockstep re-run (replay_chain.hpp).
+#include "sim/replay_source/replay_chain.hpp"
+
+#include <gtest/gtest.h>
+
+#include <limits>
+
+namespace robodds::replay_source {
+namespace {
+
+constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
+
+TEST(ChainProblem, AWholeRecordingHasNone) {
+  EXPECT_EQ(chain_problem({{"a", "a", 0, 10}, {"a", "a", 10, 20}, {"a", "a", 20, 30}, {"m", "m", 0, kNever}}, 25), "");
+  EXPECT_EQ(chain_problem({{"a", "a", 10, 20}, {"a", "a", 0, 10}}, 15), "") << "order in the file does not matter";
+  EXPECT_EQ(chain_problem({}, 100), "");
+}
+
+TEST(ChainProblem, ALostSampleIsNamed) {
+  EXPECT_EQ(chain_problem({{"sensor/position", "sensor/position (robot_id=1)", 0, 10}, {"sensor/position", "sensor/position (robot_id=1)", 20, 30}}, 25),
+            "sensor/position (robot_id=1): the sample of step 0 announces step 10 but the next one recorded is of step 20 "
+            "(samples were lost while recording)");
+}
+
+TEST(ChainProblem, TwoSamplesOfOneStep) {
+  EXPECT_EQ(chain_problem({{"a", "a", 0, 10}, {"a", "a", 0, 10}}, 5), "a: two samples of step 0 (two runs in one file?)");
+}
+
+TEST(ChainProblem, ARunLongerThanTheRecording) {
+  EXPECT_EQ(chain_problem({{"a", "a", 0, 10}, {"a", "a", 10, 20}}, 20),
+            "a: the recording ends at step 10 but the run goes to step 20 (shorten the run with --duration or record longer)");
+  EXPECT_EQ(chain_problem({{"a", "a", 0, 10}, {"a", "a", 10, 20}}, 19), "") << "the announced step is past the run's end";
+}
+
+TEST(ChainProblem, AnInstanceThatEndsInsideTheRecordingEnded) {
+  // Robot 1's range to target 1 stops at step 10 (it moved to target 2); the recording goes on.
+  EXPECT_EQ(chain_problem({{"r", "r (1,1)", 0, 10}, {"r", "r (1,2)", 10, 20}, {"r", "r (1,2)", 20, 30}}, 25), "");
+}
+
+TEST(LateTopics, ATopicWithoutAStepZeroSampleIsNamed) {
+  EXPECT_EQ(late_topics({{"p", "p (1)", 0, 10}, {"o", "o (1)", 37, 38}, {"o", "o (2)", 40, 41}}),
+            (std::vector<std::string>{"o: its first recorded sample is of step 37"}));
+  EXPECT_TRUE(late_topics({{"p", "p (1)", 0, 10}, {"p", "p (2)", 50, 60}}).empty()) << "one instance at step 0 is enough";
+}
+
+}  // namespace
+}  // namespace robodds::replay_source

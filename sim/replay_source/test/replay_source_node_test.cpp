@@ -1,0 +1,111 @@
+// The replay_source node on the in-memory bus, on recordings written here with our MCAP writer and
+// the DDS sample codec (the bytes a recorder gets off the wire): each sample published at its
+// recorded step with its recorded next_step; a recording that cannot drive the run, a topic not in
+// it, a schema that is not ours and real time are ConfigErrors naming why.
+#include "sim/replay_source/node/replay_source_node.hpp"
+
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "idl/idl_schema.hpp"
+#include "robodds/idl/robodds.h"
+#include "runtime/base/error.hpp"
+#include "runtime/bus/sample_codec.hpp"
+#include "runtime/component/registry.hpp"
+#include "runtime/dds/dds_sample_codec.hpp"
+#include "runtime/mcap/mcap_writer.hpp"
+#include "runtime/testing/node_test_scenario.hpp"
+#include "tests/support/temp_file.hpp"
+
+ROBODDS_DECLARE_COMPONENT(replay_source);
+
+namespace robodds::replay_source {
+namespace {
+
+using robodds::testing::ScenarioText;
+using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_replay_source>;
+
+struct Fix {
+  std::uint64_t step, next_step;
+  double x;
+};
+
+/// A recording of sensor/position (robot 1) with these fixes, under schema `schema_name`.
+std::string recording(const std::vector<Fix>& fixes, const std::string& schema_name = "robodds::idl::PositionMeasurement") {
+  install_dds_sample_codec();
+  const std::string path = test_support::write_test_file("rec.mcap", "");
+  mcap::Writer writer(path, mcap::WriterOptions{});
+  const std::string type = "robodds::idl::PositionMeasurement";
+  const auto schema = writer.add_schema(schema_name, "omgidl", idl_schema_text(type));
+  const auto channel = writer.add_channel(schema, "sensor/position", "cdr", {});
+  std::uint32_t sequence = 0;
+  for (const Fix& f : fixes) {
+    idl::PositionMeasurement m;
+    m.robot_id(1);
+    m.header().step(f.step);
+    m.header().next_step(f.next_step);
+    m.header().stamp_ns(static_cast<std::int64_t>(f.step) * 10'000'000);
+    m.x(f.x);
+    const std::vector<std::uint8_t> bytes = sample_codec().serialize(type, &m);
+    writer.write(channel, ++sequence, 1000 + f.step, 1000 + f.step, bytes.data(), bytes.size());
+  }
+  writer.close();
+  return path;
+}
+
+std::string scenario(const std::string& file, const std::string& topics = "[sensor/position]") {
+  return ScenarioText("replay_node", 0.01, 0.04)  // steps 0..4
+      .robots({1})
+      .component("{name: replay, type: replay_source, params: {file: " + file + ", topics: " + topics + "}}");
+}
+
+TEST(ReplaySourceNode, PublishesEachSampleAtItsRecordedStepWithItsNextStep) {
+  Harness h(scenario(recording({{0, 2, 10.0}, {2, 4, 12.0}, {4, 6, 14.0}})));
+  const auto& fixes = h.record<idl::PositionMeasurement>("sensor/position");
+  h.run({"replay"});
+  ASSERT_EQ(fixes.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(fixes[i].header().step(), 2 * i);
+    EXPECT_EQ(fixes[i].header().next_step(), 2 * i + 2) << "the recorded next_step, not the source's period (1 step)";
+    EXPECT_EQ(fixes[i].header().stamp_ns(), static_cast<std::int64_t>(2 * i) * 10'000'000);
+    EXPECT_DOUBLE_EQ(fixes[i].x(), 10.0 + 2.0 * static_cast<double>(i));
+    EXPECT_EQ(fixes[i].robot_id(), 1u);
+  }
+}
+
+TEST(ReplaySourceNode, ALostSampleStopsTheRunBeforeItStarts) {
+  Harness h(scenario(recording({{0, 2, 10.0}, {4, 6, 14.0}})));
+  EXPECT_NE(h.run_error<ConfigError>({"replay"}).find(
+                "sensor/position (robot_id=1): the sample of step 0 announces step 2 but the next one recorded is of step 4"),
+            std::string::npos);
+}
+
+TEST(ReplaySourceNode, ARecordingShorterThanTheRunIsRefused) {
+  Harness h(scenario(recording({{0, 2, 10.0}, {2, 4, 12.0}})));
+  EXPECT_NE(h.run_error<ConfigError>({"replay"}).find("the recording ends at step 2 but the run goes to step 4"), std::string::npos);
+}
+
+TEST(ReplaySourceNode, ATopicNotInTheFileIsNamed) {
+  Harness h(scenario(recording({{0, kNeverAgain, 1.0}}), "[sensor/odometry]"));
+  EXPECT_NE(h.run_error<ConfigError>({"replay"}).find("replay.topics: "), std::string::npos);
+  EXPECT_NE(h.run_error<ConfigError>({"replay"}).find("has no topic 'sensor/odometry' (its topics: sensor/position)"),
+            std::string::npos);
+}
+
+TEST(ReplaySourceNode, ASchemaThatIsNotOursIsNamed) {
+  Harness h(scenario(recording({{0, kNeverAgain, 1.0}}, "their::Position")));
+  EXPECT_NE(h.run_error<ConfigError>({"replay"}).find(
+                "channel 'sensor/position' has schema 'their::Position' (omgidl), a schema that is not ours"),
+            std::string::npos);
+}
+
+TEST(ReplaySourceNode, RealTimeIsRefused) {
+  Harness h(scenario(recording({{0, kNeverAgain, 1.0}})));
+  h.set_mode(TimeMode::kRealtime);
+  EXPECT_NE(h.run_error<ConfigError>({"replay"}).find("replay_source runs in lockstep only"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace robodds::replay_source
