@@ -7,6 +7,7 @@
 
 #include "runtime/base/error.hpp"
 #include "tests/support/temp_file.hpp"
+#include "tests/support/error_of.hpp"
 
 namespace robodds {
 namespace {
@@ -32,14 +33,7 @@ const params::ParamTable<Example>& example_table() {
   return table;
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::function<void()>& f) { return test_support::error_of<ConfigError>(f); }
 
 FlatParams defaults() { return default_params(example_table().doc(), "defaults of example"); }
 

@@ -8,20 +8,14 @@
 #include "common/param_checks.hpp"
 #include "runtime/base/error.hpp"
 #include "tests/support/temp_file.hpp"
+#include "tests/support/error_of.hpp"
 
 namespace robodds {
 namespace {
 
 using test_support::write_test_file;
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::function<void()>& f) { return test_support::error_of<ConfigError>(f); }
 
 TEST(Params, ReadsTypedValuesAndNestedKeys) {
   const std::string file = write_test_file("p1.yaml", "rate_hz: 10\nname: abc\nflag: true\ngains: {kd: 1.5}\nlist: [1, 2]\npts: [[1, 2], [3, 4]]\n");

@@ -15,6 +15,7 @@
 #include "robodds/idl/robodds_visit.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/dds/type_support.hpp"
+#include "tests/support/error_of.hpp"
 
 namespace robodds {
 namespace {
@@ -31,14 +32,7 @@ std::vector<std::uint8_t> type_support_bytes(const Msg& sample) {
   return std::vector<std::uint8_t>(payload.data, payload.data + payload.length);
 }
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const ConfigError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::function<void()>& f) { return test_support::error_of<ConfigError>(f); }
 
 TEST(DdsSampleCodec, SerializesAsTheTypeSupportDoes) {
   const auto codec = make_dds_sample_codec();

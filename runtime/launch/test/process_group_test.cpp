@@ -14,18 +14,12 @@
 #include <unistd.h>
 
 #include "runtime/base/error.hpp"
+#include "tests/support/error_of.hpp"
 
 namespace robodds {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const RunError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string error_of(const std::function<void()>& f) { return test_support::error_of<RunError>(f); }
 
 TEST(ProcessGroup, LogFileTakesStdoutAndStderr) {
   const std::string log = "/tmp/robodds_process_group_log_" + std::to_string(getpid()) + ".txt";
