@@ -254,10 +254,11 @@ struct Host::Impl {
       }
       last_run = current;
       watch_peers(peers, seconds_since(start), next_peer_check_s);
-      peer_losses->check_realtime(peers, elapsed_s, static_cast<double>(last + 1) * step_s - elapsed_s);
+      const double remaining_s = static_cast<double>(last + 1) * step_s - elapsed_s;  // s to the run's end
+      peer_losses->check_realtime(peers, elapsed_s, remaining_s);
       if (loop_alive) {
         loop_alive->beat(elapsed_s, current);
-        peer_losses->check_silent_loops(peers, *loop_alive, elapsed_s, static_cast<double>(last + 1) * step_s - elapsed_s);
+        peer_losses->check_silent_loops(peers, *loop_alive, elapsed_s, remaining_s);
       }
       watch_digests(digests, seconds_since(start), told_other_files, other_files);
       const std::uint64_t first_due = next_due.empty() ? current : *std::min_element(next_due.begin(), next_due.end());
