@@ -70,6 +70,10 @@ struct RunFigures {
 /// the component names that may publish it (its producer, and a declared hot standby).
 using AssignedProducers = std::map<std::string, std::map<std::uint32_t, std::vector<std::string>>>;
 
+/// The instances (instance_key values) a topic is published for, as its producers declare them at
+/// configure (ComponentContext::publishes_instances()): topic -> keys in ascending order.
+using ProducedInstances = std::map<std::string, std::vector<std::uint64_t>>;
+
 /// What the host knows about the run, shared by all components of a process.
 struct RunContext {
   const Scenario* scenario = nullptr;
@@ -89,6 +93,10 @@ struct RunContext {
   /// runtime/host/producer_check.hpp); an input refuses every other writer (unknown_producer).
   /// Null: the first writer of an instance is its producer (a component run without a scenario).
   std::shared_ptr<const AssignedProducers> assigned_producers;
+  /// A scenario run: the instances the components declare for the topics they publish
+  /// (produced_instances() of runtime/host/producer_check.hpp; pair-keyed topics such as
+  /// sensor/uwb), what a recorder of the run waits for. Null outside a scenario run.
+  std::shared_ptr<const ProducedInstances> produced_instances;
 };
 
 /// What the component that records the run sees of it (ComponentContext::record_run()).
@@ -129,6 +137,19 @@ class ComponentContext {
   /// recorder of every published topic subscribes to. Null outside a scenario run, and while
   /// scenario_producers() configures the components to find them.
   const AssignedProducers* assigned_producers() const { return run_.assigned_producers.get(); }
+  /// The instances the scenario's components declared for the topics they publish
+  /// (RunContext::produced_instances); null outside a scenario run.
+  const ProducedInstances* produced_instances() const { return run_.produced_instances.get(); }
+  /// Declares, at configure, the instances (instance_key values) this component publishes `topic`
+  /// for, when they are not simply its robots: a topic keyed by a pair of robots (robot_id,
+  /// peer_id) whose pairs the component chooses. Only the producer knows them before the run; a
+  /// recorder of the run (robodds run --record) waits for exactly these at each due step.
+  void publishes_instances(const std::string& topic, std::vector<std::uint64_t> keys) {
+    std::vector<std::uint64_t>& all = declared_instances_[topic];
+    all.insert(all.end(), keys.begin(), keys.end());
+  }
+  /// What publishes_instances() declared: topic -> keys, in the order declared.
+  const ProducedInstances& declared_instances() const { return declared_instances_; }
   /// Makes this component the one that records the run (configure() only; a recorder such as the
   /// evaluator) and gives it what only a recorder needs: where to write, how the run is deployed
   /// and, at its end, the run's figures with every host's health. Across processes its host then
@@ -236,6 +257,7 @@ class ComponentContext {
   std::vector<std::shared_ptr<void>> outputs_;
   std::vector<std::shared_ptr<ReaderHandle>> readers_;
   bool records_run_ = false;
+  ProducedInstances declared_instances_;
   RunRecording recording_;
   ComputeTimes compute_times_;
 };

@@ -1,5 +1,6 @@
 #include "runtime/host/producer_check.hpp"
 
+#include <algorithm>
 #include <memory>
 #include <vector>
 
@@ -40,26 +41,58 @@ std::string instance_text(const TopicInfo& topic, std::uint32_t robot) {
 
 }  // namespace
 
+namespace {
+
+/// Configures `spec` on its own RecordingBus (nothing runs) and returns what it declared.
+ComponentTopics dry_configure(const ComponentRegistry& registry, const Scenario& scenario, const ComponentSpec& spec,
+                              TimeMode mode) {
+  const ComponentType& type = registry.get(spec.type);
+  RecordingBus bus;
+  Notifier notifier;
+  RunContext run;
+  run.scenario = &scenario;
+  run.bus = &bus;
+  run.notifier = &notifier;
+  run.mode = mode;
+  StepState state;
+  state.mode = mode;
+  ComponentContext context(run, spec, scenario_component_params(type, spec), &state);
+  std::unique_ptr<Component> component = type.create();
+  component->configure(context);
+  return ComponentTopics{bus.topics, bus.read_topics, context.records_run(), context.declared_instances()};
+}
+
+}  // namespace
+
 std::map<std::string, ComponentTopics> scenario_component_topics(const ComponentRegistry& registry, const Scenario& scenario,
                                                                  TimeMode mode) {
   std::map<std::string, ComponentTopics> topics;
   for (const ComponentSpec& spec : scenario.components) {
-    const ComponentType& type = registry.get(spec.type);
-    RecordingBus bus;
-    Notifier notifier;
-    RunContext run;
-    run.scenario = &scenario;
-    run.bus = &bus;
-    run.notifier = &notifier;
-    run.mode = mode;
-    StepState state;
-    state.mode = mode;
-    ComponentContext context(run, spec, scenario_component_params(type, spec), &state);
-    std::unique_ptr<Component> component = type.create();
-    component->configure(context);
-    topics[spec.name] = ComponentTopics{bus.topics, bus.read_topics, context.records_run()};
+    topics[spec.name] = dry_configure(registry, scenario, spec, mode);
   }
   return topics;
+}
+
+ProducedInstances produced_instances(const ComponentRegistry& registry, const Scenario& scenario,
+                                     const ScenarioProducers& producers, TimeMode mode) {
+  std::map<std::string, std::set<std::uint64_t>> found;
+  for (const ComponentSpec& spec : scenario.components) {
+    const auto it = producers.find(spec.name);
+    const bool pair_keyed = it != producers.end() && std::any_of(it->second.begin(), it->second.end(), [](const std::string& t) {
+                              return topic_info(t).key.find(',') != std::string::npos;
+                            });
+    if (!pair_keyed) {
+      continue;  // its instances are its robots (or the one of an unkeyed topic): nothing to declare
+    }
+    for (const auto& [topic, keys] : dry_configure(registry, scenario, spec, mode).instances) {
+      found[topic].insert(keys.begin(), keys.end());
+    }
+  }
+  ProducedInstances out;
+  for (const auto& [topic, keys] : found) {
+    out[topic].assign(keys.begin(), keys.end());  // std::set: ascending, once each
+  }
+  return out;
 }
 
 ScenarioProducers scenario_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode) {

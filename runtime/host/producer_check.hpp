@@ -34,10 +34,18 @@ struct ComponentTopics {
   std::set<std::string> publishes;
   std::set<std::string> subscribes;
   bool wants_run_health = false;  // its host reads run/health across processes
+  ProducedInstances instances;     // ComponentContext::publishes_instances(): topic -> keys
 };
 /// Component instance name -> its topics, in time mode `mode`.
 std::map<std::string, ComponentTopics> scenario_component_topics(const ComponentRegistry& registry, const Scenario& scenario,
                                                                  TimeMode mode);
+
+/// The instances the components of `scenario` declare for the topics they publish
+/// (ComponentContext::publishes_instances(), RunContext::produced_instances): each topic's keys
+/// over all its producers, ascending, once each. Only the components that publish a topic keyed by
+/// two members (the ones that may declare) are configured again, on a MemoryBus, in time mode `mode`.
+ProducedInstances produced_instances(const ComponentRegistry& registry, const Scenario& scenario,
+                                     const ScenarioProducers& producers, TimeMode mode);
 
 /// ConfigError (one line naming the scenario file, the topic, the instance and both components)
 /// if two components that are not standbys publish one topic for one instance. Instances: a

@@ -314,6 +314,9 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   }
   if (assign) {
     run.assigned_producers = std::make_shared<const AssignedProducers>(assigned_producers(scenario, *producers));
+    // The same in every host (found from the scenario): a recorder of the run waits for these.
+    run.produced_instances =
+        std::make_shared<const ProducedInstances>(produced_instances(registry, scenario, *producers, run.mode));
   }
   if (has_standby) {  // hot standby: the topics it writes use exclusive ownership
     run.exclusive_topics = exclusive_topics(scenario, *producers);

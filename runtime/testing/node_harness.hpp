@@ -129,6 +129,10 @@ class NodeHarness {
   void assign_producers(AssignedProducers producers) {
     assigned_ = std::make_shared<const AssignedProducers>(std::move(producers));
   }
+  /// RunContext::produced_instances of run() (default none).
+  void produce_instances(ProducedInstances instances) {
+    produced_ = std::make_shared<const ProducedInstances>(std::move(instances));
+  }
   /// Runs `feed(step)` at every step, before the components under test.
   void feed(std::function<void(std::uint64_t step)> feed) { feed_ = std::move(feed); }
 
@@ -174,6 +178,7 @@ class NodeHarness {
     run.single_process = true;
     run.deploy_label = deploy_label_;
     run.assigned_producers = assigned_;
+    run.produced_instances = produced_;
     HostOptions options = options_;
     options.components = {"feeder"};
     options.components.insert(options.components.end(), components.begin(), components.end());
@@ -202,6 +207,7 @@ class NodeHarness {
   TimeMode mode_ = TimeMode::kLockstep;
   std::string deploy_label_;
   std::shared_ptr<const AssignedProducers> assigned_;
+  std::shared_ptr<const ProducedInstances> produced_;
   Notifier notifier_;
   MemoryBus bus_;
   std::string output_dir_;

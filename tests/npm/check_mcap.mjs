@@ -6,7 +6,7 @@
 // - the summary's statistics and chunk indexes must agree with those messages (counts per channel,
 //   start/end times, chunk, channel and schema counts) and the data section CRC with the bytes;
 // - McapStreamReader reads the file again front to back (record structure, chunk CRCs) and must
-//   find the same messages;
+//   find the same messages (channel, sequence, times, payload) as the indexed reader;
 // - every message whose schema encoding is omgidl (message encoding cdr) is decoded with
 //   @foxglove/omgidl-parser + @foxglove/omgidl-serialization, the decoder Foxglove uses.
 // Prints one JSON line per message ({topic, log_time, publish_time, value}; times as strings of
@@ -57,6 +57,9 @@ function crc32(bytes) {
   return (c ^ 0xffffffff) >>> 0;
 }
 
+// A message's identity for comparing the two readers: channel, sequence, times, payload CRC and size.
+const messageKey = (m) => `${m.channelId}/${m.sequence}/${m.logTime}/${m.publishTime}/${crc32(m.data)}/${m.data.length}`;
+
 // JSON-friendly values: typed arrays as arrays, bigints as numbers when exact, else strings.
 function plain(value) {
   if (typeof value === "bigint") return Number.isSafeInteger(Number(value)) ? Number(value) : value.toString();
@@ -98,11 +101,13 @@ async function main() {
     let last;
     let previous = -1n;
     const decoded = [];
+    const indexed = []; // messageKey() of each message read through the indexes
     const readers = new Map(); // schema id -> MessageReader
     for await (const m of reader.readMessages({ validateCrcs: true })) {
       if (m.logTime < previous) fail(`messages out of log-time order at ${m.logTime}`);
       previous = m.logTime;
       total += 1n;
+      indexed.push(messageKey(m));
       counts.set(m.channelId, (counts.get(m.channelId) ?? 0n) + 1n);
       first = first === undefined || m.logTime < first ? m.logTime : first;
       last = last === undefined || m.logTime > last ? m.logTime : last;
@@ -165,12 +170,22 @@ async function main() {
     stream.append(await readFile(file));
     let streamed = 0n;
     let footer = false;
+    const inFile = [];
     for (let record; (record = stream.nextRecord()); ) {
-      if (record.type === "Message") streamed += 1n;
+      if (record.type === "Message") {
+        streamed += 1n;
+        inFile.push(messageKey(record));
+      }
       if (record.type === "Footer") footer = true;
     }
     if (!stream.done() || !footer) fail("the streaming reader did not reach the footer and closing magic");
     if (streamed !== total) fail(`the streaming reader found ${streamed} messages, the indexed reader ${total}`);
+    // The message indexes led to the records themselves: the same messages, field for field.
+    indexed.sort();
+    inFile.sort();
+    for (let i = 0; i < inFile.length; ++i) {
+      if (indexed[i] !== inFile[i]) fail(`the indexes lead to message ${indexed[i]}, the records hold ${inFile[i]}`);
+    }
 
     if (expectPath !== undefined) {
       const expected = JSON.parse(await readFile(expectPath, "utf8"));

@@ -46,6 +46,7 @@ class UwbRelativeEstimatorNode : public Component {
     const model::UwbArray array = system::uwb_array(ctx.scenario());  // the one the sensor measures with
     const Scenario& scenario = ctx.scenario();
     std::vector<std::uint64_t> uwb_keys;
+    std::vector<std::uint64_t> published;  // (robot, peer) keys of the estimates, for ctx.publishes_instances
     std::set<std::uint64_t> odometry_ids;
     for (const RobotSpec& robot : ctx.robots()) {
       if (robots_.count(robot.id) != 0) {
@@ -60,6 +61,7 @@ class UwbRelativeEstimatorNode : public Component {
         }
         setups.push_back(PeerSetup{peer, array, start});
         uwb_keys.push_back(pair_key(robot.id, peer));
+        published.push_back(pair_key(robot.id, peer));
         odometry_ids.insert(peer);
       }
       if (params_.peer_links) {
@@ -87,6 +89,7 @@ class UwbRelativeEstimatorNode : public Component {
                                               Subscription::instances({odometry_ids.begin(), odometry_ids.end()}));
     for (std::size_t s = 0; s < kStageCount; ++s) {
       outputs_[s] = &ctx.advertise<idl::RelativePoseEstimate>(kStageTopics[s]);
+      ctx.publishes_instances(kStageTopics[s], published);  // every stage of every peer, every epoch
     }
     for (const std::uint64_t id : odometry_ids) {
       increments_[static_cast<std::uint32_t>(id)] = model::Pose2{};

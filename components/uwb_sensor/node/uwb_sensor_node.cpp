@@ -60,6 +60,14 @@ class UwbSensorNode : public Component {
     }
     truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(everyone));
     out_ = &ctx.advertise<idl::UwbRanges>("sensor/uwb");
+    std::vector<std::uint64_t> keys;  // lockstep publishes every direction at every due step
+    for (const auto& [direction, streams] : directions_) {
+      idl::UwbRanges key;
+      key.robot_id(direction.first);
+      key.peer_id(direction.second);
+      keys.push_back(idl::instance_key(key));
+    }
+    ctx.publishes_instances("sensor/uwb", std::move(keys));
   }
 
   void on_step(const StepInfo& info) override {

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <map>
+#include <vector>
 
 #include "runtime/base/error.hpp"
 #include "runtime/bus/memory_bus.hpp"
@@ -27,11 +29,31 @@ class Estimator : public Component {
   void on_step(const StepInfo&) override {}
 };
 
+/// Publishes sensor/uwb (key robot_id, peer_id) for (each of its robots, each other robot), and
+/// declares those pairs, as uwb_sensor does.
+class Ranger : public Component {
+ public:
+  void configure(ComponentContext& ctx) override {
+    ctx.advertise<idl::UwbRanges>("sensor/uwb");
+    std::vector<std::uint64_t> keys;
+    for (const RobotSpec& robot : ctx.robots()) {
+      for (const RobotSpec& peer : ctx.scenario().robots) {
+        if (peer.id != robot.id) {
+          keys.push_back((std::uint64_t{robot.id} << 32) | peer.id);
+        }
+      }
+    }
+    ctx.publishes_instances("sensor/uwb", keys);
+  }
+  void on_step(const StepInfo&) override {}
+};
+
 ComponentRegistry test_registry() {
   ComponentRegistry registry;
   const auto no_params = [] { return params::ParamDoc{}; };
   registry.add({"commander", "plant/cmd", "none", [] { return std::make_unique<Commander>(); }, no_params, nullptr});
   registry.add({"estimator", "estimate/pose", "none", [] { return std::make_unique<Estimator>(); }, no_params, nullptr});
+  registry.add({"ranger", "sensor/uwb", "none", [] { return std::make_unique<Ranger>(); }, no_params, nullptr});
   return registry;
 }
 
@@ -56,6 +78,16 @@ TEST(ScenarioProducers, DryConfigureRecordsTheAdvertisedTopics) {
   const ScenarioProducers producers = scenario_producers(test_registry(), scenario, TimeMode::kLockstep);
   EXPECT_EQ(producers.at("a"), std::set<std::string>{"plant/cmd"});
   EXPECT_EQ(producers.at("e"), std::set<std::string>{"estimate/pose"});
+}
+
+TEST(ProducedInstances, AreThePairsTheProducersDeclareInKeyOrder) {
+  const Scenario scenario = load_scenario(write_test_file(
+      "pairs.yaml", scenario_text("  - {name: r2, type: ranger, robots: [2]}\n  - {name: r1, type: ranger, robots: [1]}\n"
+                                  "  - {name: a, type: commander}\n")));
+  const ScenarioProducers producers = scenario_producers(test_registry(), scenario, TimeMode::kRealtime);
+  const ProducedInstances instances = produced_instances(test_registry(), scenario, producers, TimeMode::kRealtime);
+  ASSERT_EQ(instances.size(), 1u) << "plant/cmd's instances are its robots: nothing declared";
+  EXPECT_EQ(instances.at("sensor/uwb"), (std::vector<std::uint64_t>{(1ull << 32) | 2, (2ull << 32) | 1}));
 }
 
 TEST(OneProducerPerInstance, TwoCommandersOfOneRobotAreOneErrorNamingFileTopicInstanceAndBoth) {

@@ -206,12 +206,13 @@ class TopicStream : public TopicStreamBase {
 };
 
 /// How the recorder waits for a topic's instances, from its key: one per robot that has a
-/// producer, one per robot whatever its target, or the one instance of an unkeyed topic. Other
-/// keys (a pair of robots, a string) name instances that only the producer knows before the run:
-/// the gate cannot wait for them, so such topics are not recorded.
-enum class Gate { kRobots, kRobotStreams, kUnkeyed, kUnsupported };
+/// producer, one per robot whatever its target, the instances its producers declared at configure
+/// (a pair of robots: ComponentContext::publishes_instances()), or the one instance of an unkeyed
+/// topic. A topic keyed otherwise (a string) whose producers declared nothing names instances only
+/// the producer knows: the gate cannot wait for them, so it is not recorded.
+enum class Gate { kRobots, kRobotStreams, kDeclared, kUnkeyed, kUnsupported };
 
-Gate gate_of(const TopicInfo& topic) {
+Gate gate_of(const TopicInfo& topic, const ProducedInstances* declared) {
   if (topic.key == "robot_id") {
     return Gate::kRobots;
   }
@@ -220,6 +221,12 @@ Gate gate_of(const TopicInfo& topic) {
   }
   if (topic.key == "-") {
     return Gate::kUnkeyed;
+  }
+  if (declared != nullptr) {
+    const auto it = declared->find(topic.name);
+    if (it != declared->end() && !it->second.empty()) {
+      return Gate::kDeclared;
+    }
   }
   return Gate::kUnsupported;
 }
@@ -260,18 +267,22 @@ class RunRecorderNode : public Component {
     std::vector<std::string> skipped;
     for (const std::string& name : names) {
       const TopicInfo& topic = topic_info(name);
-      const Gate gate = gate_of(topic);
+      const Gate gate = gate_of(topic, ctx.produced_instances());
       if (gate == Gate::kUnsupported) {
         if (!every) {
           ctx.params().fail("topics: '" + name + "' is keyed (" + topic.key +
-                            "): its instances are not known before the run, so a lockstep recording cannot wait for them");
+                            ") and its producers declare no instances: a lockstep recording cannot wait for them");
         }
         skipped.push_back(name);
         continue;
       }
       std::vector<std::uint64_t> keys;
-      for (const auto& [robot, components] : producers->at(name)) {
-        keys.push_back(robot);  // std::map: robot ids in order
+      if (gate == Gate::kDeclared) {
+        keys = ctx.produced_instances()->at(name);  // ascending: the order of each step's samples
+      } else {
+        for (const auto& [robot, components] : producers->at(name)) {
+          keys.push_back(robot);  // std::map: robot ids in order
+        }
       }
       idl::dispatch_type(topic.type_name, [&](auto tag) {
         using Msg = typename decltype(tag)::type;
@@ -287,7 +298,7 @@ class RunRecorderNode : public Component {
       for (const std::string& name : skipped) {
         list += (list.empty() ? "" : ", ") + name;
       }
-      log::info(ctx.name(), "not recorded (keyed by a pair of robots or a string: instances unknown before the run): " + list);
+      log::info(ctx.name(), "not recorded (keyed, and their producers declare no instances before the run): " + list);
     }
     codec_ = &sample_codec();  // installed where DDS was set up; a ConfigError here, before the run, if not
     name_ = ctx.name();

@@ -7,6 +7,7 @@
 
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "robodds/idl/robodds.h"
@@ -39,6 +40,9 @@ class SpellingCodec : public SampleCodec {
       text += spelled(*static_cast<const idl::RobotState*>(sample));
     } else if (type_name == idl::type_name<idl::VelocityCommand>()) {
       text += spelled(*static_cast<const idl::VelocityCommand*>(sample));
+    } else if (type_name == idl::type_name<idl::UwbRanges>()) {
+      const auto& m = *static_cast<const idl::UwbRanges*>(sample);
+      text += spelled(m) + " peer " + std::to_string(m.peer_id());
     }
     return std::vector<std::uint8_t>(text.begin(), text.end());
   }
@@ -93,6 +97,66 @@ TEST(RunRecorderNode, RecordsEveryPublishedTopicInTopicThenInstanceOrderWithSimT
         EXPECT_EQ(m.publish_time, step * 10'000'000u) << "the sample's stamp";
       }
     }
+  }
+  std::remove(file.c_str());
+}
+
+std::uint64_t pair(std::uint32_t robot, std::uint32_t peer) {
+  idl::UwbRanges key;
+  key.robot_id(robot);
+  key.peer_id(peer);
+  return idl::instance_key(key);
+}
+
+/// Feeds sensor/uwb for the pairs (1, 2), (2, 1), (1, 3) every step, out of key order.
+void feed_pairs(Harness& h, bool declare) {
+  h.feed([&h](std::uint64_t step) {
+    for (const auto& [robot, peer] : {std::pair{2u, 1u}, std::pair{1u, 3u}, std::pair{1u, 2u}}) {
+      idl::UwbRanges m;
+      m.robot_id(robot);
+      m.peer_id(peer);
+      h.publish("sensor/uwb", m, step, step + 1);
+    }
+  });
+  h.assign_producers({{"sensor/uwb", {{1, {"feeder"}}, {2, {"feeder"}}}}});
+  if (declare) {
+    h.produce_instances({{"sensor/uwb", {pair(1, 2), pair(1, 3), pair(2, 1)}}});
+  }
+}
+
+TEST(RunRecorderNode, RecordsPairKeyedTopicsForTheInstancesTheirProducersDeclare) {
+  set_sample_codec(std::make_shared<SpellingCodec>());
+  const std::string file = file_in_temp("run_recorder_pairs.mcap");
+  Harness h(ScenarioText("run_recorder_node", 0.01, 0.03)
+                .robots({1, 2, 3})
+                .component("{name: rec, type: run_recorder, params: {file: " + file + "}}"));
+  feed_pairs(h, true);
+  h.run({"rec"});
+  const mcap::McapContents contents = mcap::read_mcap(file);
+  ASSERT_EQ(contents.report.channels.size(), 1u);
+  EXPECT_EQ(contents.report.channels[0].metadata.at("key"), "robot_id, peer_id");
+  ASSERT_EQ(contents.messages.size(), 4u * 3u) << "steps 0..3, three pairs: nothing lost";
+  std::size_t i = 0;
+  for (std::uint64_t step = 0; step <= 3; ++step) {
+    for (const auto& [robot, peer] : {std::pair{1, 2}, std::pair{1, 3}, std::pair{2, 1}}) {  // key order
+      const mcap::Message& m = contents.messages[i++];
+      EXPECT_EQ(std::string(m.data.begin(), m.data.end()), "robodds::idl::UwbRanges robot " + std::to_string(robot) + " step " +
+                                                               std::to_string(step) + " peer " + std::to_string(peer));
+      EXPECT_EQ(m.log_time, step * 10'000'000u);
+    }
+  }
+  std::remove(file.c_str());
+}
+
+TEST(RunRecorderNode, APairKeyedTopicWithoutDeclaredInstancesIsNotRecordedAndNamingItIsRefused) {
+  set_sample_codec(std::make_shared<SpellingCodec>());
+  const std::string file = file_in_temp("run_recorder_undeclared.mcap");
+  {
+    Harness h(ScenarioText("run_recorder_node", 0.01, 0.03).robots({1, 2, 3}).component(
+        "{name: rec, type: run_recorder, params: {file: " + file + ", topics: [sensor/uwb]}}"));
+    feed_pairs(h, false);
+    EXPECT_NE(h.run_error<ConfigError>({"rec"}).find("'sensor/uwb' is keyed (robot_id, peer_id) and its producers declare no instances"),
+              std::string::npos);
   }
   std::remove(file.c_str());
 }

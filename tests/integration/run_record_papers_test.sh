@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# `robodds run --record` of papers 2 and 3 in lockstep, checked by the official reader (issue 25):
+#   - paper2_circumnavigation (20 s, its target switch and robot 4's leave moved from 1000 s to
+#     10 s) and paper3_exp2 (20 s), the evaluator told to record every topic the run publishes
+#     that it can write to CSV (--set evaluator.topics=[...]);
+#   - each file passes tests/npm/check_mcap.mjs (@mcap/core: CRCs, footer, summary, chunk and
+#     message indexes; statistics and chunk indexes against the messages; the streaming reader
+#     finds the same messages) and every message decodes with Foxglove's omgidl decoder to the
+#     values of the run's CSVs (recording_matches_csvs.py: counts, every column, log and publish
+#     times);
+#     (paper 3's evaluator serves robot 1: a second run with one of robots 2 and 3 gives their rows);
+#   - paper 3's pair-keyed topics are in the file: the five estimate/relative_pose* (in the CSVs)
+#     and sensor/uwb (no CSV: every direction at every 50 Hz step, shape, ranges near the true
+#     distance of plant_state.csv);
+#   - paper 3 recorded co-located and with --deploy processes gives byte-identical files;
+#   - the checks can fail: a flipped payload byte fails the official reader, a changed CSV value
+#     fails the comparison.
+# Args: ROBODDS SRC DOMAIN. Needs node and tests/npm/node_modules (scripts/npm_setup.sh). ~20 s.
+source "$(dirname "$0")/lib.sh"
+CHECK="$SRC/tests/npm/check_mcap.mjs"
+MATCH="$SRC/tests/integration/recording_matches_csvs.py"
+command -v node >/dev/null || fail "node not found (scripts/setup.sh installs nodejs)"
+[[ -d $SRC/tests/npm/node_modules/@mcap/core ]] || fail "tests/npm/node_modules missing: run scripts/npm_setup.sh"
+
+# Paper 2 with its events early enough for a 20 s run.
+sed 's/time_s: 1000\.0/time_s: 10.0/' "$SRC/sim/scenarios/paper2_circumnavigation.yaml" >"$WORK/paper2.yaml"
+grep -q "time_s: 10.0, robots: \[4\], leave: true" "$WORK/paper2.yaml" || fail "paper2_circumnavigation.yaml's events changed: update this test"
+PAPER2_TOPICS="[plant/state, plant/cmd, estimate/pose, mission/target, sensor/range, observer/range_rate, observer/range_rate_linear]"
+PAPER3_TOPICS="[plant/state, plant/cmd, estimate/pose, sensor/odometry, estimate/relative_pose, estimate/relative_pose_uwb, estimate/relative_pose_window, estimate/relative_pose_pf_baseline, estimate/relative_pose_odometry]"
+
+record() {  # record NAME SCENARIO DEPLOY TOPICS
+  local rc=0
+  timeout -k 5 120 "$ROBODDS" run "$2" --deploy "$3" --duration 20 --domain "$DOMAIN" --out "$WORK/$1" --no-plots \
+    --set "evaluator.topics=$4" --record "$WORK/$1.mcap" >"$WORK/$1.log" 2>&1 || rc=$?
+  [[ $rc -eq 0 ]] || fail "robodds run $2 --deploy $3 --record exited $rc: $(tail -20 "$WORK/$1.log")"
+  grep -q '"status": "completed"' "$WORK/$1/summary.json" || fail "$1: the run did not complete"
+  ! grep -q "not recorded" "$WORK/$1.log" || fail "$1: the recorder left topics out: $(grep "not recorded" "$WORK/$1.log")"
+}
+official() {  # official NAME: the official reader's JSON lines in NAME.jsonl
+  timeout -k 5 60 node "$CHECK" "$WORK/$1.mcap" >"$WORK/$1.jsonl" 2>"$WORK/$1.check" ||
+    fail "official reader on $1.mcap: $(tail -3 "$WORK/$1.check")"
+}
+
+record paper2 "$WORK/paper2.yaml" colocated "$PAPER2_TOPICS"
+official paper2
+python3 "$MATCH" "$WORK/paper2.jsonl" "$WORK/paper2" 20000000 || fail "paper 2: the recording does not hold what the CSVs hold"
+grep -q '"topic":"mission/target".*"robot_id":4' "$WORK/paper2.jsonl" || fail "paper 2: no mission/target of robot 4"
+
+record paper3 "$SRC/sim/scenarios/paper3_exp2.yaml" colocated "$PAPER3_TOPICS"
+# Its evaluator serves robot 1 (the relative poses are robot 1's): the same run with an evaluator
+# of robots 2 and 3 writes their rows of the robot-keyed topics (lockstep: the same samples).
+python3 - "$SRC/sim/scenarios/paper3_exp2.yaml" "$WORK/paper3_robots23.yaml" <<'PY'
+import sys
+text = open(sys.argv[1]).read()
+old = "    type: evaluator\n    robots: [1]\n"
+assert old in text, "paper3_exp2.yaml's evaluator changed: update run_record_papers_test.sh"
+open(sys.argv[2], "w").write(text.replace(old, "    type: evaluator\n    robots: [2, 3]\n"))
+PY
+timeout -k 5 120 "$ROBODDS" run "$WORK/paper3_robots23.yaml" --duration 20 --domain "$DOMAIN" --out "$WORK/paper3_robots23" \
+  --no-plots --set "evaluator.topics=[plant/state, plant/cmd, estimate/pose, sensor/odometry]" >"$WORK/paper3_robots23.log" 2>&1 ||
+  fail "paper 3 with the evaluator of robots 2 and 3: $(tail -5 "$WORK/paper3_robots23.log")"
+record paper3_processes "$SRC/sim/scenarios/paper3_exp2.yaml" processes "$PAPER3_TOPICS"
+cmp "$WORK/paper3.mcap" "$WORK/paper3_processes.mcap" ||
+  fail "paper 3: the recordings co-located and across processes differ (lockstep must give the same bytes)"
+echo "ok: paper3: co-located and --deploy processes recordings byte-identical ($(stat -c %s "$WORK/paper3.mcap") bytes)"
+official paper3
+python3 "$MATCH" "$WORK/paper3.jsonl" "$WORK/paper3:$WORK/paper3_robots23" 10000000 --no-csv sensor/uwb ||
+  fail "paper 3: the recording does not hold what the CSVs hold"
+python3 - "$WORK/paper3.jsonl" "$WORK/paper3/plant_state.csv" <<'PY' || fail "paper 3: sensor/uwb in the file is not what the sensors published"
+import csv, json, math, sys
+STEP_NS, STEPS = 10_000_000, 2000  # paper3_exp2: step_s 0.01, 20 s; UWB at 50 Hz: every 2nd step
+truth = {(int(r["robot_id"]), int(r["header.step"])): (float(r["x"]), float(r["y"])) for r in csv.DictReader(open(sys.argv[2]))}
+uwb = [m for m in map(json.loads, open(sys.argv[1])) if m["topic"] == "sensor/uwb"]
+directions = {(1, 2), (1, 3), (2, 1), (2, 3)}  # uwb1 serves robot 1, uwb2 robot 2; every other robot is a peer
+seen = {}
+for m in uwb:
+    v = m["value"]
+    pair, step = (v["robot_id"], v["peer_id"]), v["header"]["step"]
+    assert pair in directions, f"sensor/uwb of {pair}"
+    assert int(m["log_time"]) == step * STEP_NS and step % 2 == 0, f"sensor/uwb {pair}: step {step}, log_time {m['log_time']}"
+    seen.setdefault(pair, []).append(step)
+    ranges = v["ranges"]
+    assert len(ranges) == v["rows"] * v["cols"], f"sensor/uwb {pair} step {step}: {len(ranges)} ranges for {v['rows']} x {v['cols']}"
+    if ranges:  # empty: out of range or a lost frame
+        (ax, ay), (bx, by) = truth[(pair[0], step)], truth[(pair[1], step)]
+        d = math.hypot(bx - ax, by - ay)
+        mean = sum(ranges) / len(ranges)
+        assert abs(mean - d) < 1.5, f"sensor/uwb {pair} step {step}: mean range {mean} m, true distance {d} m"
+for pair in directions:
+    assert seen.get(pair) == list(range(0, STEPS + 1, 2)), f"sensor/uwb {pair}: not every 50 Hz step, in order"
+print(f"ok: sensor/uwb: {len(uwb)} messages, every direction at every 50 Hz step, ranges near the true distances")
+PY
+grep -q "channels: *10" <("$ROBODDS" info "$WORK/paper3.mcap") || fail "paper 3: not 10 channels: $("$ROBODDS" info "$WORK/paper3.mcap")"
+
+# The checks can fail: one payload byte flipped (the last message's last byte, in the last chunk,
+# uncompressed), one CSV double changed by one bit.
+"$ROBODDS" run "$SRC/sim/scenarios/paper3_exp2.yaml" --duration 0.5 --domain "$DOMAIN" --out "$WORK/flip" --no-plots \
+  --set "evaluator.topics=$PAPER3_TOPICS" --record "$WORK/flip.mcap" --record-compression none >"$WORK/flip.log" 2>&1 ||
+  fail "the short paper 3 run failed: $(tail -5 "$WORK/flip.log")"
+python3 - "$WORK/flip.mcap" <<'PY'
+import struct, sys
+data = bytearray(open(sys.argv[1], "rb").read())
+offset, last_chunk_end = 8, None  # after the magic: opcode (1 byte), length (8), body
+while data[offset] != 0x0F:  # up to Data End
+    end = offset + 9 + struct.unpack_from("<Q", data, offset + 1)[0]
+    if data[offset] == 0x06:  # Chunk: uncompressed here, its records end with the last message's payload
+        last_chunk_end = end
+    offset = end
+data[last_chunk_end - 1] ^= 0x01
+open(sys.argv[1], "wb").write(data)
+PY
+if node "$CHECK" "$WORK/flip.mcap" >/dev/null 2>"$WORK/flip.check"; then fail "the official reader accepted a flipped byte"; fi
+grep -q "CRC" "$WORK/flip.check" || fail "the flipped byte was refused for another reason: $(cat "$WORK/flip.check")"
+echo "ok: a flipped byte is refused by the official reader: $(head -c 200 "$WORK/flip.check")"
+python3 - "$WORK/paper2/observer_range_rate.csv" <<'PY'
+import math, sys
+lines = open(sys.argv[1]).read().split("\n")
+column = lines[0].split(",").index("range_rate")
+cells = lines[5].split(",")
+cells[column] = repr(math.nextafter(float(cells[column]), math.inf))  # the next double: one bit
+lines[5] = ",".join(cells)
+open(sys.argv[1], "w").write("\n".join(lines))
+PY
+if python3 "$MATCH" "$WORK/paper2.jsonl" "$WORK/paper2" 20000000 >/dev/null 2>"$WORK/changed.check"; then
+  fail "a changed CSV value passed the comparison"
+fi
+echo "ok: a changed CSV value is found: $(cat "$WORK/changed.check")"
+echo "ok: run_record_papers"
