@@ -7,8 +7,8 @@
 #     and with --deploy processes give byte-identical files (cmp);
 #   - paper1_waypoints' file read by the official reader with Foxglove's omgidl decoder
 #     (tests/npm/check_mcap.mjs): every topic the evaluator records has as many messages as CSV
-#     rows, each row's values equal the decoded message's, log_time = the sample's step x step_s
-#     (ns) and publish_time = its stamp.
+#     rows, every column of each row equals the decoded message's field, log_time = the sample's
+#     step x step_s (ns) and publish_time = its stamp (recording_matches_csvs.py).
 # Args: ROBODDS SRC DOMAIN. Needs node and tests/npm/node_modules (scripts/npm_setup.sh). ~15 s.
 source "$(dirname "$0")/lib.sh"
 CHECK="$SRC/tests/npm/check_mcap.mjs"
@@ -46,45 +46,6 @@ info="$("$ROBODDS" info "$WORK/paper1_colocated.mcap" 2>&1)" || fail "robodds in
 grep -q "^summary: *present, CRCs valid" <<<"$info" || fail "not a whole file: $info"
 official="$(timeout -k 5 60 node "$CHECK" "$WORK/paper1_colocated.mcap" 2>&1)" || fail "official reader: $(tail -3 <<<"$official")"
 echo "$official" >"$WORK/paper1.jsonl"
-python3 - "$WORK/paper1.jsonl" "$WORK/paper1_colocated" <<'PY' || fail "the recording does not hold what the run's CSVs hold"
-import csv, glob, json, os, sys
-STEP_NS = 10_000_000  # paper1_waypoints: step_s 0.01
-messages = [json.loads(line) for line in open(sys.argv[1])]
-by_topic = {}
-for m in messages:
-    by_topic.setdefault(m["topic"], []).append(m)
-
-def flat(value, prefix, out):
-    if isinstance(value, dict):
-        for k, v in value.items():
-            flat(v, f"{prefix}.{k}" if prefix else k, out)
-    elif isinstance(value, list):
-        for i, v in enumerate(value):
-            flat(v, f"{prefix}[{i}]", out)
-    else:
-        out[prefix] = value
-    return out
-
-csvs = sorted(glob.glob(os.path.join(sys.argv[2], "*.csv")))
-assert len(csvs) == 7, csvs
-for path in csvs:
-    rows = list(csv.DictReader(open(path)))
-    topic = next(t for t in by_topic if t.replace("/", "_") + ".csv" == os.path.basename(path))
-    recorded = by_topic[topic]
-    assert len(recorded) == len(rows), f"{topic}: {len(recorded)} messages in the file, {len(rows)} CSV rows"
-    decoded = {(m["value"]["robot_id"], m["value"]["header"]["step"]): m for m in recorded}
-    compared = 0
-    for r in rows:
-        m = decoded[(int(r["robot_id"]), int(r["header.step"]))]
-        values = flat(m["value"], "", {})
-        for column, text in r.items():
-            if column in values and not isinstance(values[column], str):
-                assert float(text) == float(values[column]), f"{topic} {column}: CSV {text}, file {values[column]}"
-                compared += 1
-        step = int(r["header.step"])
-        assert int(m["log_time"]) == step * STEP_NS, f"{topic}: log_time {m['log_time']} at step {step}"
-        assert int(m["publish_time"]) == int(r["header.stamp_ns"]), f"{topic}: publish_time {m['publish_time']}"
-    print(f"ok: {topic}: {len(rows)} messages = CSV rows, {compared} values equal (official decoder), log_time = step x step_s")
-assert len(by_topic) == len(csvs), f"{len(by_topic)} channels with messages, {len(csvs)} CSVs: {sorted(by_topic)}"
-PY
+python3 "$SRC/tests/integration/recording_matches_csvs.py" "$WORK/paper1.jsonl" "$WORK/paper1_colocated" 10000000 ||
+  fail "the recording does not hold what the run's CSVs hold"
 echo "ok: run_record"
