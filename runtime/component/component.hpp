@@ -94,8 +94,8 @@ struct RunContext {
   /// Null: the first writer of an instance is its producer (a component run without a scenario).
   std::shared_ptr<const AssignedProducers> assigned_producers;
   /// A scenario run: the instances the components declare for the topics they publish
-  /// (produced_instances() of runtime/host/producer_check.hpp; pair-keyed topics such as
-  /// sensor/uwb), what a recorder of the run waits for. Null outside a scenario run.
+  /// (produced_instances() of runtime/host/producer_check.hpp; topics keyed by two members),
+  /// what a recorder of the run waits for. Null outside a scenario run.
   std::shared_ptr<const ProducedInstances> produced_instances;
 };
 
@@ -141,8 +141,8 @@ class ComponentContext {
   /// (RunContext::produced_instances); null outside a scenario run.
   const ProducedInstances* produced_instances() const { return run_.produced_instances.get(); }
   /// Declares, at configure, the instances (instance_key values) this component publishes `topic`
-  /// for, when they are not simply its robots: a topic keyed by a pair of robots (robot_id,
-  /// peer_id) whose pairs the component chooses. Only the producer knows them before the run; a
+  /// for, when they are not simply its robots: a topic keyed (robot_id, X) whose X the component
+  /// chooses (e.g. the other robots it measures). Only the producer knows them before the run; a
   /// recorder of the run (robodds run --record) waits for exactly these at each due step.
   void publishes_instances(const std::string& topic, std::vector<std::uint64_t> keys) {
     std::vector<std::uint64_t>& all = declared_instances_[topic];

@@ -39,10 +39,6 @@ std::string instance_text(const TopicInfo& topic, std::uint32_t robot) {
   return first + "=" + std::to_string(robot) + (pair ? " (every pair of that robot)" : "");
 }
 
-}  // namespace
-
-namespace {
-
 /// Configures `spec` on its own RecordingBus (nothing runs) and returns what it declared.
 ComponentTopics dry_configure(const ComponentRegistry& registry, const Scenario& scenario, const ComponentSpec& spec,
                               TimeMode mode) {
@@ -78,10 +74,10 @@ ProducedInstances produced_instances(const ComponentRegistry& registry, const Sc
   std::map<std::string, std::set<std::uint64_t>> found;
   for (const ComponentSpec& spec : scenario.components) {
     const auto it = producers.find(spec.name);
-    const bool pair_keyed = it != producers.end() && std::any_of(it->second.begin(), it->second.end(), [](const std::string& t) {
+    const bool two_member_key = it != producers.end() && std::any_of(it->second.begin(), it->second.end(), [](const std::string& t) {
                               return topic_info(t).key.find(',') != std::string::npos;
                             });
-    if (!pair_keyed) {
+    if (!two_member_key) {
       continue;  // its instances are its robots (or the one of an unkeyed topic): nothing to declare
     }
     for (const auto& [topic, keys] : dry_configure(registry, scenario, spec, mode).instances) {

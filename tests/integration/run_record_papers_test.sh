@@ -12,7 +12,7 @@
 #   - paper 3's pair-keyed topics are in the file: the five estimate/relative_pose* (in the CSVs)
 #     and sensor/uwb (no CSV: every direction at every 50 Hz step, shape, ranges near the true
 #     distance of plant_state.csv);
-#   - paper 3 recorded co-located and with --deploy processes gives byte-identical files;
+#   - each recorded co-located and with --deploy processes gives byte-identical files;
 #   - the checks can fail: a flipped payload byte fails the official reader, a changed CSV value
 #     fails the comparison.
 # Args: ROBODDS SRC DOMAIN. Needs node and tests/npm/node_modules (scripts/npm_setup.sh). ~20 s.
@@ -42,6 +42,10 @@ official() {  # official NAME: the official reader's JSON lines in NAME.jsonl
 }
 
 record paper2 "$WORK/paper2.yaml" colocated "$PAPER2_TOPICS"
+record paper2_processes "$WORK/paper2.yaml" processes "$PAPER2_TOPICS"
+cmp "$WORK/paper2.mcap" "$WORK/paper2_processes.mcap" ||
+  fail "paper 2: the recordings co-located and across processes differ (lockstep must give the same bytes)"
+echo "ok: paper2: co-located and --deploy processes recordings byte-identical ($(stat -c %s "$WORK/paper2.mcap") bytes)"
 official paper2
 python3 "$MATCH" "$WORK/paper2.jsonl" "$WORK/paper2" 20000000 || fail "paper 2: the recording does not hold what the CSVs hold"
 grep -q '"topic":"mission/target".*"robot_id":4' "$WORK/paper2.jsonl" || fail "paper 2: no mission/target of robot 4"
