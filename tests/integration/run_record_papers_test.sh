@@ -7,15 +7,16 @@
 #     message indexes; statistics and chunk indexes against the messages; the streaming reader
 #     finds the same messages) and every message decodes with Foxglove's omgidl decoder to the
 #     values of the run's CSVs (recording_matches_csvs.py: counts, every column, log and publish
-#     times);
-#     (paper 3's evaluator serves robot 1: a second run with one of robots 2 and 3 gives their rows);
+#     times; paper 3's evaluator serves robot 1, so a second run with an evaluator of robots 2 and
+#     3 gives their rows);
 #   - paper 3's pair-keyed topics are in the file: the five estimate/relative_pose* (in the CSVs)
 #     and sensor/uwb (no CSV: every direction at every 50 Hz step, shape, ranges near the true
 #     distance of plant_state.csv);
 #   - each recorded co-located and with --deploy processes gives byte-identical files;
 #   - the checks can fail: a flipped payload byte fails the official reader, a changed CSV value
 #     fails the comparison.
-# Args: ROBODDS SRC DOMAIN. Needs node and tests/npm/node_modules (scripts/npm_setup.sh). ~20 s.
+# Args: ROBODDS SRC DOMAIN. Needs node and tests/npm/node_modules (scripts/npm_setup.sh). 11-18 s on
+# a loaded 2-vCPU machine.
 source "$(dirname "$0")/lib.sh"
 CHECK="$SRC/tests/npm/check_mcap.mjs"
 MATCH="$SRC/tests/integration/recording_matches_csvs.py"
