@@ -236,7 +236,7 @@ def last_errors(out_dir, processes):
     return " | ".join(lines)
 
 
-def run_natively(robodds, src, config, out_dir, timeout_s=120):
+def run_natively(robodds, src, config, out_dir, timeout_s=600):
     """Each robodds service as a local process: the containers' commands, without containers."""
     processes = {}
     try:
@@ -261,6 +261,8 @@ def run_natively(robodds, src, config, out_dir, timeout_s=120):
         while processes["coordinator"].poll() is None and time.time() < deadline:
             time.sleep(0.1)
         code = processes["coordinator"].poll()
+        if code is None:  # paper1_waypoints' lockstep run: ~20 s idle, 5-8 times that beside CPU hogs
+            fail(f"native run: the coordinator still running after {timeout_s} s; " + last_errors(out_dir, processes))
         if code != 0:
             fail(f"native run: coordinator exited with {code}; " + last_errors(out_dir, processes))
         for name, p in processes.items():

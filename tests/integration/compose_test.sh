@@ -102,7 +102,7 @@ done
 for variant in plant_smoke.yml plant_smoke.host-network.yml paper1_waypoints.yml; do
   scenario="${variant%%.*}"
   mkdir -p "$WORK/$variant"
-  ROBODDS_DOMAIN_ID="$DOMAIN" ROBODDS_RUN_ID="$RANDOM$$" timeout -k 5 300 "${CHECK[@]}" "$COMPOSE_DIR/$variant" --run "$WORK/$variant"
+  ROBODDS_DOMAIN_ID="$DOMAIN" ROBODDS_RUN_ID="$RANDOM$$" timeout -k 5 700 "${CHECK[@]}" "$COMPOSE_DIR/$variant" --run "$WORK/$variant"
   for csv in "$WORK/colocated/$scenario"/*.csv; do
     cmp -s "$csv" "$WORK/$variant/$scenario/$(basename "$csv")" || fail "$variant: $(basename "$csv") differs from the co-located run"
   done

@@ -105,17 +105,21 @@ out="$(timeout -k 5 60 "$ROBODDS" replay "$WORK/cut.mcap" --domain "$DOMAIN2" "$
 echo "ok: truncated file: one warning, replays what was recovered"
 
 # A producer already on the domain: a run publishes plant/state; the replay names it and goes on.
-timeout -k 5 60 "$ROBODDS" run "$SRC/sim/scenarios/plant_smoke.yaml" --realtime --duration 6 --domain "$DOMAIN2" \
-  --out "$WORK/out2" --no-plots >"$WORK/run2.log" 2>&1 &
+# The replay starts once the run publishes (on a busy machine its start takes seconds), and waits
+# for the run's reader as long as a user's replay would (--wait-readers ends when it is found).
+timeout -k 5 60 "$ROBODDS" run "$SRC/sim/scenarios/plant_smoke.yaml" --realtime --duration 20 --domain "$DOMAIN2" \
+  --out "$WORK/out2" --no-plots $(rt_priority_flag) >"$WORK/run2.log" 2>&1 &
 run2=$!
 cleanup_pids+=("$run2")
-sleep 2
+timeout -k 2 30 "$ROBODDS" echo plant/state --count 1 --timeout 25 --domain "$DOMAIN2" >/dev/null ||
+  fail "the run on domain $DOMAIN2 published no plant/state within 25 s: $(tail -5 "$WORK/run2.log")"
 rc=0
-out="$(timeout -k 5 60 "$ROBODDS" replay "$WORK/a.mcap" --topics plant/state --end 0.5 --wait-readers 2 --domain "$DOMAIN2" 2>&1)" || rc=$?
+out="$(timeout -k 5 60 "$ROBODDS" replay "$WORK/a.mcap" --topics plant/state --end 0.5 --wait-readers 10 --domain "$DOMAIN2" 2>&1)" || rc=$?
 [[ $rc -eq 0 ]] || fail "replay beside a producer: exit $rc: $out"
 [[ $(grep -c "warning" <<<"$out") -eq 1 ]] &&
   grep -qE "^robodds replay: warning: plant/state already has a writer on domain $DOMAIN2 \(participant '[^']+'\): the run's one-producer rule will refuse one of them" <<<"$out" ||
   fail "replay beside a producer: expected one warning naming plant/state and the participant: $out"
 echo "ok: a producer already on the domain: $(grep warning <<<"$out")"
+kill -INT "$run2" 2>/dev/null
 wait "$run2" || true
 echo "ok: replay_realtime"
