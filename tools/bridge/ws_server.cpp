@@ -202,7 +202,6 @@ std::vector<ClientStats> WsServer::stop(std::chrono::milliseconds grace) {
   if (!s.thread.joinable()) {
     return s.final_stats;
   }
-  s.final_stats = s.hub.stats();
   asio::post(s.server.get_io_service(), [&s] {
     s.stopped = true;
     std::error_code ec;
@@ -217,6 +216,8 @@ std::vector<ClientStats> WsServer::stop(std::chrono::milliseconds grace) {
   while (s.open > 0 && std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
+  // The clients that closed have logged their figures (forget()); these did not answer in time.
+  s.final_stats = s.hub.stats();
   s.server.stop();  // io_service::stop(): run() returns at once
   s.thread.join();
   return s.final_stats;

@@ -30,7 +30,8 @@ class WsServer {
   /// Thread-safe: sends these clients what the hub queued for them (on the server's thread).
   void wake(const std::vector<BridgeHub::ClientId>& clients);
   /// Closes every connection (going away), waits at most `grace` for the closing handshakes, then
-  /// stops the thread. Idempotent. Returns the counts of the clients still connected.
+  /// stops the thread. Idempotent. Clients that close log their counts as they go; returns the
+  /// counts of those that did not answer the close within `grace`.
   std::vector<ClientStats> stop(std::chrono::milliseconds grace);
   /// Receive (DDS) to send (handed to the socket) latencies of every Message Data frame; read
   /// after stop().

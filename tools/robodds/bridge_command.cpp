@@ -105,9 +105,10 @@ class BridgeCommand : public Command {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     bus->close_readers();  // no callback runs after this
-    // Clients that stalled cannot answer the closing handshake: 1 s at most for them.
+    // Clients that stalled cannot answer the closing handshake: 1 s at most for them (their
+    // figures are printed here; the others log theirs as they close).
     for (const bridge::ClientStats& s : server.stop(std::chrono::milliseconds(1000))) {
-      std::printf("robodds bridge: client %s at exit: %llu messages sent, %llu dropped (its queue was full), %llu bad requests\n",
+      std::printf("robodds bridge: client %s did not answer the close: %llu messages sent, %llu dropped (its queue was full), %llu bad requests\n",
                   s.name.c_str(), static_cast<unsigned long long>(s.sent), static_cast<unsigned long long>(s.dropped),
                   static_cast<unsigned long long>(s.errors));
     }
