@@ -12,6 +12,7 @@
 #     the bridge logs drops for B;
 #   - C sends garbage text, a binary frame, malformed JSON, a subscribe to an unknown channel and an
 #     unsubscribe of an unknown subscription: one error status each, one log line each, A served on;
+#   - A gets plant/state unadvertised when the run ends (its last writer gone);
 #   - SIGINT stops the bridge within 5 s with its receive->send latency line.
 # Before that, bad command lines: one line, exit 2. Args: ROBODDS SRC DOMAIN PORT. ~25 s.
 source "$(dirname "$0")/lib.sh"
@@ -113,6 +114,8 @@ for key in ("rate_before_hz", "rate_during_stall_hz"):
 print(f"ok: A's rate {figures['rate_before_hz']:.1f}/s before, {figures['rate_during_stall_hz']:.1f}/s while B stalls (band 255-345)")
 assert figures["late_after_unsubscribe"] == 0, f"{figures['late_after_unsubscribe']} messages after the unsubscribe's ack window"
 print("ok: nothing after A's unsubscribe (300 ms ack window, then 1 s)")
+assert figures["unadvertised_when_the_run_ended"] is True, "plant/state not unadvertised when the run's writers went"
+print("ok: plant/state unadvertised when the run ended (its writers gone)")
 
 expected = ["bad message: not JSON (", "binary message of 3 bytes ignored", "bad message: not JSON (",
             "subscribe: channel 9999 is not advertised", "unsubscribe: no subscription 4242"]

@@ -27,8 +27,11 @@ const fail = (why) => {
   process.exit(1);
 };
 const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-const within = (promise, ms, what) =>
-  Promise.race([promise, sleep(ms).then(() => fail(`timed out after ${ms} ms waiting for ${what}`))]);
+const within = (promise, ms, what) => {
+  let timer;
+  const timeout = new Promise(() => { timer = setTimeout(() => fail(`timed out after ${ms} ms waiting for ${what}`), ms); });
+  return Promise.race([promise, timeout]).finally(() => clearTimeout(timer));
+};
 const plain = (v) => {
   if (typeof v === "bigint") return Number.isSafeInteger(Number(v)) ? Number(v) : v.toString();
   if (ArrayBuffer.isView(v)) return Array.from(v, plain);
@@ -120,6 +123,10 @@ const afterUnsubscribe = received.length;
 await sleep(1000);
 const lateMessages = received.length - afterUnsubscribe;
 
+// The run ends: its writers go, and the bridge unadvertises the topic.
+const unadvertised = new Promise((resolve) => a.client.on("unadvertise", (ids) => { if (ids.includes(channel.id)) resolve(true); }));
+const gone = await Promise.race([unadvertised, sleep(30000).then(() => false)]);
+
 writeFileSync(outPath, received.map((r) => r.line).join("\n") + "\n");
 console.log(JSON.stringify({
   advertised: [...a.channels.values()].map((ch) => ({ topic: ch.topic, schemaName: ch.schemaName, schemaEncoding: ch.schemaEncoding, encoding: ch.encoding })),
@@ -127,6 +134,7 @@ console.log(JSON.stringify({
   rate_before_hz: rateBefore,
   rate_during_stall_hz: rateDuring,
   late_after_unsubscribe: lateMessages,
+  unadvertised_when_the_run_ended: gone,
   b_port: bPort,
   b_messages_before_stall: bMessages,
   statuses: statuses.map((s) => ({ level: s.level, message: s.message })),

@@ -1,5 +1,7 @@
 #include "tools/bridge/bridge_hub.hpp"
 
+#include <algorithm>
+
 #include "runtime/base/error.hpp"
 
 namespace robodds::bridge {
@@ -28,7 +30,7 @@ BridgeHub::BridgeHub(BridgeOptions options, std::string server_name, std::vector
 
 std::pair<std::uint32_t, std::vector<BridgeHub::ClientId>> BridgeHub::add_channel(Channel channel) {
   std::lock_guard<std::mutex> lock(mutex_);
-  channel.id = static_cast<std::uint32_t>(channels_.size() + 1);
+  channel.id = next_channel_++;
   channels_.push_back(channel);
   advertised_.insert(channel.id);
   const std::string message = advertise_json({channel});
@@ -41,6 +43,28 @@ std::pair<std::uint32_t, std::vector<BridgeHub::ClientId>> BridgeHub::add_channe
     }
   }
   return {channel.id, wake};
+}
+
+std::vector<BridgeHub::ClientId> BridgeHub::remove_channel(std::uint32_t channel_id) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<ClientId> wake;
+  if (advertised_.erase(channel_id) == 0) {
+    return wake;
+  }
+  channels_.erase(std::remove_if(channels_.begin(), channels_.end(), [&](const Channel& c) { return c.id == channel_id; }),
+                  channels_.end());
+  const std::string message = unadvertise_json({channel_id});
+  for (auto& [id, client] : clients_) {
+    for (const std::uint32_t subscription : client.session.drop_channel(channel_id)) {
+      client.queue.remove_subscription(subscription);
+    }
+    client.text.push_back(message);
+    if (!client.wake_pending) {
+      client.wake_pending = true;
+      wake.push_back(id);
+    }
+  }
+  return wake;
 }
 
 std::vector<BridgeHub::ClientId> BridgeHub::publish(const std::shared_ptr<const Sample>& sample) {

@@ -61,6 +61,10 @@ class BridgeHub {
   /// Adds and advertises a channel (its id is set here, from 1); returns it and the clients to
   /// wake (each has the advertisement queued).
   std::pair<std::uint32_t, std::vector<ClientId>> add_channel(Channel channel);
+  /// Unadvertises a channel (its topic's last writer went): every client is told, its
+  /// subscriptions of it and their queued messages are dropped. Returns the clients to wake. The
+  /// id is never used again: the topic's next sample advertises a new channel.
+  std::vector<ClientId> remove_channel(std::uint32_t channel_id);
   /// Queues `sample` for every client subscribed to its channel; returns the clients that had no
   /// wake-up pending (the caller wakes them).
   std::vector<ClientId> publish(const std::shared_ptr<const Sample>& sample);
@@ -95,7 +99,8 @@ class BridgeHub {
   const std::string server_name_;
   const std::vector<std::pair<std::string, std::string>> metadata_;
   mutable std::mutex mutex_;
-  std::vector<Channel> channels_;
+  std::vector<Channel> channels_;  // advertised now
+  std::uint32_t next_channel_ = 1;
   std::set<std::uint32_t> advertised_;
   std::map<ClientId, Client> clients_;
   ClientId next_client_ = 1;

@@ -48,6 +48,19 @@ std::vector<std::string> ClientSession::apply(const ClientOp& op, const std::set
   return errors;
 }
 
+std::vector<std::uint32_t> ClientSession::drop_channel(std::uint32_t channel_id) {
+  const auto it = by_channel_.find(channel_id);
+  if (it == by_channel_.end()) {
+    return {};
+  }
+  std::vector<std::uint32_t> ids = it->second;
+  for (const std::uint32_t id : ids) {
+    by_id_.erase(id);
+  }
+  by_channel_.erase(it);
+  return ids;
+}
+
 const std::vector<std::uint32_t>* ClientSession::subscriptions_of(std::uint32_t channel_id) const {
   const auto it = by_channel_.find(channel_id);
   return it == by_channel_.end() ? nullptr : &it->second;

@@ -21,6 +21,9 @@ class ClientSession {
   std::vector<std::string> apply(const ClientOp& op, const std::set<std::uint32_t>& advertised,
                                  std::vector<std::uint32_t>& removed);
 
+  /// Forgets the subscriptions of a channel that is no longer advertised; returns their ids.
+  std::vector<std::uint32_t> drop_channel(std::uint32_t channel_id);
+
   /// The subscription ids of `channel_id` (zero or one).
   const std::vector<std::uint32_t>* subscriptions_of(std::uint32_t channel_id) const;
   std::size_t subscription_count() const { return by_id_.size(); }

@@ -1,7 +1,8 @@
 // `robodds bridge`: a Foxglove WebSocket protocol server (foxglove.websocket.v1) that streams the
 // topics seen on a domain, like foxglove_bridge for ROS 2. Each topic is advertised when its first
-// sample arrives, as the channel a recording would have (schema encoding omgidl with the IDL text,
-// message encoding cdr), and a subscribed client gets the samples' payloads exactly as on the wire.
+// sample arrives (unadvertised when its last writer goes), as the channel a recording would have
+// (schema encoding omgidl with the IDL text, message encoding cdr), and a subscribed client gets the
+// samples' payloads exactly as on the wire.
 //
 // The DDS callbacks only hand a shared copy of the bytes to the clients' bounded queues
 // (tools/bridge/bridge_hub.hpp); the server's thread sends them. A slow or stalled client loses its
@@ -93,6 +94,16 @@ class BridgeCommand : public Command {
                     server.wake(hub.publish(sample));
                   },
                   [name = topic.name](const std::string& e) { log::warn("bridge", name + ": " + e); });
+      // The topic's last writer gone: unadvertise it (a later writer's first sample advertises it anew).
+      bus->watch_writers(topic.name, [&, i](int writers) {
+        if (writers > 0) {
+          return;
+        }
+        std::lock_guard<std::mutex> lock(advertise_mutex);
+        if (const std::uint32_t channel = channel_of[i].exchange(0); channel != 0) {
+          server.wake(hub.remove_channel(channel));
+        }
+      });
     }
     bus->start();
     std::printf("robodds bridge: %zu topics of domain %d on ws://%s:%u (foxglove.websocket.v1)\n", topics.size(), domain,

@@ -130,6 +130,28 @@ TEST(BridgeHub, BadInputGetsAnErrorStatusAndALogLineEachThenOnlyCounts) {
   EXPECT_EQ(hub.disconnect(c).errors, 4u);
 }
 
+TEST(BridgeHub, AChannelWhoseWritersWentIsUnadvertisedWithItsSubscriptionsAndComesBackUnderANewId) {
+  BridgeHub hub(BridgeOptions{}, "b", {});
+  const std::uint32_t ch = hub.add_channel(channel("plant/state")).first;
+  const auto c = hub.connect("c");
+  hub.on_text(c, R"({"op":"subscribe","subscriptions":[{"id":1,"channelId":1}]})");
+  hub.take(c, 100);
+  hub.publish(sample(ch, 1));
+  EXPECT_TRUE(hub.remove_channel(ch).empty()) << "its wake-up is pending already (the sample's)";
+  const auto out = hub.take(c, 100);
+  ASSERT_EQ(out.size(), 1u);  // the unadvertise; the queued sample went with the subscription
+  EXPECT_EQ(json::parse(out[0].text), json::parse(R"({"op":"unadvertise","channelIds":[1]})"));
+  EXPECT_TRUE(hub.remove_channel(ch).empty()) << "twice";
+  EXPECT_EQ(hub.add_channel(channel("plant/state")).first, 2u);
+  const auto late = hub.connect("late");
+  const auto adv = hub.take(late, 100);
+  ASSERT_EQ(adv.size(), 2u);
+  EXPECT_EQ(json::parse(adv[1].text)["channels"].size(), 1u);  // only the channel advertised now
+  EXPECT_EQ(json::parse(adv[1].text)["channels"][0]["id"], 2);
+  // The old id is gone: subscribing to it is refused.
+  EXPECT_EQ(hub.on_text(c, R"({"op":"subscribe","subscriptions":[{"id":1,"channelId":1}]})").size(), 1u);
+}
+
 TEST(BridgeHub, OptionsOutOfRangeAreRefusedNamingTheOption) {
   BridgeOptions o;
   o.client_queue_messages = 0;

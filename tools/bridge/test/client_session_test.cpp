@@ -48,6 +48,17 @@ TEST(BridgeClientSession, UnsubscribeForgetsKnownIdsAndNamesUnknownOnes) {
   EXPECT_TRUE(session.apply(subscribe({{10, 1}}), {1}, removed).empty());  // the id may be used again
 }
 
+TEST(BridgeClientSession, DroppingAChannelForgetsItsSubscriptions) {
+  ClientSession session;
+  std::vector<std::uint32_t> removed;
+  session.apply(subscribe({{10, 1}, {11, 2}}), {1, 2}, removed);
+  EXPECT_EQ(session.drop_channel(1), std::vector<std::uint32_t>{10});
+  EXPECT_TRUE(session.drop_channel(1).empty());
+  EXPECT_EQ(session.subscriptions_of(1), nullptr);
+  EXPECT_EQ(session.subscription_count(), 1u);
+  EXPECT_EQ(session.apply(unsubscribe({10}), {2}, removed).size(), 1u);  // 10 is gone
+}
+
 TEST(BridgeClientSession, OtherOperationsAreNamedAsUnsupported) {
   ClientSession session;
   std::vector<std::uint32_t> removed;
