@@ -14,7 +14,8 @@
 #     unsubscribe of an unknown subscription: one error status each, one log line each, A served on;
 #   - A gets plant/state unadvertised when the run ends (its last writer gone);
 #   - SIGINT stops the bridge within 5 s with its receive->send latency line.
-# Before that, bad command lines: one line, exit 2. Args: ROBODDS SRC DOMAIN PORT. ~25 s.
+# Before that, bad command lines: one line, exit 2, and --duration 1. Args: ROBODDS SRC DOMAIN PORT
+# (PORT and PORT+1). ~25 s.
 source "$(dirname "$0")/lib.sh"
 PORT="$4"
 CLIENT="$SRC/tests/npm/bridge_client.mjs"

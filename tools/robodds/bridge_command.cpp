@@ -7,7 +7,6 @@
 // The DDS callbacks only hand a shared copy of the bytes to the clients' bounded queues
 // (tools/bridge/bridge_hub.hpp); the server's thread sends them. A slow or stalled client loses its
 // oldest messages (counted) and never holds a DDS receive thread.
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
