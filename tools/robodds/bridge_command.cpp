@@ -58,7 +58,8 @@ class BridgeCommand : public Command {
   int run() override {
     options_.validate();
     const std::vector<const TopicInfo*> topics = chosen_topics();
-    const int domain = resolve_dds(dds_, "robodds-bridge").domain_id;
+    const DdsOptions dds = tools_dds(dds_, "robodds-bridge");  // the `tools` identity: reads every topic
+    const int domain = dds.domain_id;
     bridge::BridgeHub hub(options_, "robodds bridge", {{"domain", std::to_string(domain)}});
     const auto log_line = [](const std::string& line) { log::info("bridge", line); };
     // The socket first: a port in use fails before anything joins the domain.
@@ -67,7 +68,7 @@ class BridgeCommand : public Command {
     // Channel id of each topic, 0 until its first sample advertises it.
     std::vector<std::atomic<std::uint32_t>> channel_of(topics.size());
     std::mutex advertise_mutex;
-    auto bus = make_raw_bus(tools_dds(dds_, "robodds-bridge"));
+    auto bus = make_raw_bus(dds);
     for (std::size_t i = 0; i < topics.size(); ++i) {
       const TopicInfo& topic = *topics[i];
       bus->reader(topic.name, topic.type_name, monitor_profile_for(topic),
