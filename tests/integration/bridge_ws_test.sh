@@ -13,6 +13,7 @@
 #   - C sends garbage text, a binary frame, malformed JSON, a subscribe to an unknown channel and an
 #     unsubscribe of an unknown subscription: one error status each, one log line each, A served on;
 #   - A gets plant/state unadvertised when the run ends (its last writer gone);
+#   - D reads --foxglove-scene's foxglove/robot_poses: foxglove.PosesInFrame (JSON), the recorded poses;
 #   - SIGINT stops the bridge within 5 s with its receive->send latency line.
 # Before that, bad command lines: one line, exit 2, and --duration 1. Args: ROBODDS SRC DOMAIN PORT
 # (PORT and PORT+1). ~25 s.
@@ -34,7 +35,7 @@ timeout -k 2 30 "$ROBODDS" bridge --duration 1 --domain "$DOMAIN" --port "$((POR
 echo "ok: --duration 1 stops by itself"
 
 # A small send buffer and queue for the clients, so the stalled client's drops start within seconds.
-$(rt_chrt 10) "$ROBODDS" bridge --domain "$DOMAIN" --port "$PORT" --client-queue 200 --client-send-buffer 4096 \
+$(rt_chrt 10) "$ROBODDS" bridge --domain "$DOMAIN" --port "$PORT" --foxglove-scene --client-queue 200 --client-send-buffer 4096 \
   --client-socket-buffer 4096 \
   >"$WORK/bridge.log" 2>&1 &
 bridge=$!
@@ -83,9 +84,10 @@ import json, re, sys
 figures = json.load(open(sys.argv[1]))
 state = [c for c in figures["advertised"] if c["topic"] == "plant/state"]
 assert state == [{"topic": "plant/state", "schemaName": "robodds::idl::RobotState", "schemaEncoding": "omgidl", "encoding": "cdr"}], state
+topics = [c for c in figures["advertised"] if not c["topic"].startswith("foxglove/")]  # the derived one: below
 assert all(c["schemaEncoding"] == "omgidl" and c["encoding"] == "cdr" and c["schemaName"].startswith("robodds::idl::")
-           for c in figures["advertised"]), figures["advertised"]
-print(f"ok: {len(figures['advertised'])} channels advertised, omgidl/cdr: {sorted(c['topic'] for c in figures['advertised'])}")
+           for c in topics), topics
+print(f"ok: {len(topics)} topics advertised, omgidl/cdr: {sorted(c['topic'] for c in topics)}")
 
 live = [json.loads(l) for l in open(sys.argv[2]) if l.strip()]
 recorded = {(m["value"]["robot_id"], m["value"]["header"]["stamp_ns"]): m["value"]
@@ -129,6 +131,25 @@ for e in sorted(set(expected) - {"bad message: not JSON ("}):
     assert len(re.findall(re.escape(e), log)) == 1, f"log lines with '{e}': {re.findall('.*' + re.escape(e) + '.*', log)}"
 assert len(re.findall(r"bad message: not JSON", log)) == 2, log
 print("ok: bad input: one error status and one log line each:", "; ".join(s["message"] for s in statuses))
+
+# --foxglove-scene: foxglove.PosesInFrame in JSON; each robot's pose is one of its recorded states
+# of the last 0.1 s before the message's time, heading as the quaternion (0, 0, sin, cos)(theta/2).
+import math
+scene = figures["scene"]
+assert scene and (scene["schemaName"], scene["schemaEncoding"], scene["encoding"]) == ("foxglove.PosesInFrame", "jsonschema", "json"), scene
+states = {}
+for (robot, stamp), v in recorded.items():
+    states.setdefault(robot, []).append((int(stamp), v))
+for m in scene["messages"]:
+    t = m["timestamp"]["sec"] * 1_000_000_000 + m["timestamp"]["nsec"]
+    assert m["frame_id"] == "world" and len(m["poses"]) == 3, m
+    for robot, pose in zip((1, 2, 3), m["poses"]):
+        near = [v for stamp, v in states[robot] if t - 100_000_000 <= stamp <= t]
+        match = [v for v in near if (v["x"], v["y"]) == (pose["position"]["x"], pose["position"]["y"])]
+        assert match, f"robot {robot} at {t}: {pose['position']} is none of its states of the last 0.1 s"
+        theta = match[0]["theta"]
+        assert abs(pose["orientation"]["z"] - math.sin(theta / 2)) < 1e-12 and abs(pose["orientation"]["w"] - math.cos(theta / 2)) < 1e-12, pose
+print(f"ok: --foxglove-scene: {len(scene['messages'])} foxglove.PosesInFrame messages (JSON), each robot's pose one of its recorded states")
 
 port = figures["b_port"]
 b = re.search(r"client 127\.0\.0\.1:%d (?:disconnected|failed|did not answer the close): (\d+) messages sent, (\d+) dropped" % port, log)

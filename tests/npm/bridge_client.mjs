@@ -9,6 +9,8 @@
 //     reading its socket (paused) until the end: a stalled client.
 //   C (raw `ws`): sends garbage text, a binary frame, malformed JSON, a subscribe to an unknown
 //     channel and an unsubscribe of an unknown subscription, and must get one error status each.
+//   D (FoxgloveClient): when foxglove/robot_poses is advertised (--foxglove-scene), takes 50 of its
+//     JSON messages (foxglove.PosesInFrame).
 // Prints one JSON line of figures on stdout; exits 1 with one line on the first failure.
 // Usage: node bridge_client.mjs URL TOPIC SCHEMA OUT [STALL_S]
 import { createRequire } from "node:module";
@@ -123,6 +125,19 @@ const afterUnsubscribe = received.length;
 await sleep(1000);
 const lateMessages = received.length - afterUnsubscribe;
 
+// --- D: the derived foxglove.PosesInFrame channel (robodds bridge --foxglove-scene) ---------------
+const d = connect("D");
+await within(d.advertised, 10000, "D's advertisements");
+const scene = [...d.channels.values()].find((ch) => ch.topic === "foxglove/robot_poses");
+const sceneMessages = [];
+if (scene) {
+  const decoder = new TextDecoder();
+  d.client.on("message", ({ data }) => sceneMessages.push(JSON.parse(decoder.decode(data))));
+  d.client.subscribe(scene.id);
+  await within((async () => { while (sceneMessages.length < 50) await sleep(20); })(), 10000, "50 scene messages");
+  d.client.close();
+}
+
 // The run ends: its writers go, and the bridge unadvertises the topic.
 const unadvertised = new Promise((resolve) => a.client.on("unadvertise", (ids) => { if (ids.includes(channel.id)) resolve(true); }));
 const gone = await Promise.race([unadvertised, sleep(30000).then(() => false)]);
@@ -138,6 +153,8 @@ console.log(JSON.stringify({
   b_port: bPort,
   b_messages_before_stall: bMessages,
   statuses: statuses.map((s) => ({ level: s.level, message: s.message })),
+  scene: scene ? { schemaName: scene.schemaName, schemaEncoding: scene.schemaEncoding, encoding: scene.encoding,
+                   messages: sceneMessages.slice(0, 50) } : null,
 }));
 b.ws.terminate();
 a.client.close();

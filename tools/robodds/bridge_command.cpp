@@ -7,6 +7,7 @@
 // The DDS callbacks only hand a shared copy of the bytes to the clients' bounded queues
 // (tools/bridge/bridge_hub.hpp); the server's thread sends them. A slow or stalled client loses its
 // oldest messages (counted) and never holds a DDS receive thread.
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -18,12 +19,15 @@
 #include <vector>
 
 #include "idl/idl_schema.hpp"
+#include "robodds/idl/robodds.h"
+#include "runtime/bus/sample_codec.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/dds/raw_bus.hpp"
 #include "runtime/launch/launch.hpp"
 #include "runtime/topics/topic_catalog.hpp"
 #include "tools/bridge/bridge_hub.hpp"
+#include "tools/bridge/robot_poses.hpp"
 #include "tools/bridge/ws_server.hpp"
 #include "tools/robodds/command.hpp"
 
@@ -50,6 +54,9 @@ class BridgeCommand : public Command {
                      "bytes handed to a client's socket and not yet written before messages wait in its queue");
     cmd_->add_option("--client-socket-buffer", options_.client_socket_buffer_bytes,
                      "SO_SNDBUF of each client's socket in bytes (0: the system's default)");
+    cmd_->add_flag("--foxglove-scene", foxglove_scene_,
+                   "also offer foxglove/robot_poses: every robot's pose from plant/state as a foxglove.PosesInFrame "
+                   "(JSON), which Foxglove's 3D panel draws without configuration");
     add_dds_options(cmd_, dds_);
   }
 
@@ -64,6 +71,42 @@ class BridgeCommand : public Command {
     const auto log_line = [](const std::string& line) { log::info("bridge", line); };
     // The socket first: a port in use fails before anything joins the domain.
     bridge::WsServer server(hub, address_, static_cast<std::uint16_t>(port_), log_line);
+
+    // --foxglove-scene: the derived channel (0 until plant/state's first sample) and the poses.
+    if (foxglove_scene_ && std::none_of(topics.begin(), topics.end(), [](const TopicInfo* t) { return t->name == kSceneSource; })) {
+      throw ConfigError(std::string("--foxglove-scene draws the robots from ") + kSceneSource + ": add it to --topics");
+    }
+    std::mutex scene_mutex;
+    std::uint32_t scene_channel = 0;
+    bridge::RobotPoses poses;
+    bool scene_error_logged = false;
+    const auto publish_scene = [&](const RawSample& s, std::int64_t received) {
+      std::lock_guard<std::mutex> lock(scene_mutex);
+      try {
+        const std::shared_ptr<void> decoded = sample_codec().deserialize(idl::type_name<idl::RobotState>(), s.data, s.size);
+        const auto& state = *static_cast<const idl::RobotState*>(decoded.get());
+        poses.update(state.robot_id(), state.x(), state.y(), state.theta());
+      } catch (const ConfigError& e) {
+        if (!scene_error_logged) {  // once: the raw channel still carries every sample
+          log::warn("bridge", std::string("--foxglove-scene: a ") + kSceneSource + " sample does not decode: " + e.what());
+          scene_error_logged = true;
+        }
+        return;
+      }
+      if (scene_channel == 0) {
+        auto [id, wake] = hub.add_channel(bridge::Channel{0, bridge::kRobotPosesTopic, "json", bridge::kPosesInFrameSchemaName,
+                                                          "jsonschema", bridge::poses_in_frame_json_schema()});
+        scene_channel = id;
+        server.wake(wake);
+      }
+      auto sample = std::make_shared<bridge::Sample>();
+      sample->channel_id = scene_channel;
+      sample->receive_time_ns = static_cast<std::uint64_t>(s.reception_time_ns);
+      sample->receive_steady_ns = received;
+      const std::string text = poses.json(s.source_time_ns);
+      sample->payload.assign(text.begin(), text.end());
+      server.wake(hub.publish(sample));
+    };
 
     // Channel id of each topic, 0 until its first sample advertises it.
     std::vector<std::atomic<std::uint32_t>> channel_of(topics.size());
@@ -92,6 +135,9 @@ class BridgeCommand : public Command {
                     sample->receive_steady_ns = received;
                     sample->payload.assign(s.data, s.data + s.size);
                     server.wake(hub.publish(sample));
+                    if (foxglove_scene_ && topics[i]->name == kSceneSource) {
+                      publish_scene(s, received);
+                    }
                   },
                   [name = topic.name](const std::string& e) { log::warn("bridge", name + ": " + e); });
       // The topic's last writer gone: unadvertise it (a later writer's first sample advertises it anew).
@@ -102,6 +148,13 @@ class BridgeCommand : public Command {
         std::lock_guard<std::mutex> lock(advertise_mutex);
         if (const std::uint32_t channel = channel_of[i].exchange(0); channel != 0) {
           server.wake(hub.remove_channel(channel));
+        }
+        if (topics[i]->name == kSceneSource) {  // the scene goes with its source
+          std::lock_guard<std::mutex> scene_lock(scene_mutex);
+          if (scene_channel != 0) {
+            server.wake(hub.remove_channel(scene_channel));
+            scene_channel = 0;
+          }
         }
       });
     }
@@ -152,6 +205,7 @@ class BridgeCommand : public Command {
     return chosen;
   }
 
+  static constexpr const char* kSceneSource = "plant/state";  // the robots' true poses
   const CommandEnv& env_;
   CLI::App* cmd_ = nullptr;
   std::vector<std::string> topics_;
@@ -159,6 +213,7 @@ class BridgeCommand : public Command {
   std::string address_ = "127.0.0.1";  // loopback only unless asked: the bridge has no authentication
   int port_ = 8765;                    // foxglove_bridge's default
   double duration_s_ = 0.0;
+  bool foxglove_scene_ = false;
   bridge::BridgeOptions options_;
   DdsArgs dds_;
 };
