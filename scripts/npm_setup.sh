@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Installs the npm packages the tests use (tests/npm/: the official MCAP reader @mcap/core, its zstd
-# and lz4 decompressors, Foxglove's omgidl parser and CDR decoder, the ws-protocol client), exactly
-# as pinned by tests/npm/package-lock.json, with `npm ci`. Does nothing when tests/npm/node_modules
-# exists and is newer than the lock file. Needs node and npm (scripts/setup.sh installs them).
+# and lz4 decompressors, Foxglove's omgidl parser and CDR decoder, the ws-protocol client and `ws`,
+# its WebSocket in node), exactly as pinned by tests/npm/package-lock.json, with `npm ci`. Does
+# nothing when tests/npm/node_modules exists and is newer than the lock file. Needs node and npm
+# (scripts/setup.sh installs them).
 set -euo pipefail
 DIR="$(cd "$(dirname "$0")/.." && pwd)/tests/npm"
 if [[ -d $DIR/node_modules && ! $DIR/package-lock.json -nt $DIR/node_modules ]]; then

@@ -8,6 +8,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libssl-dev openssl
   libzstd-dev liblz4-dev  # MCAP chunk compression (runtime/mcap/)
+  libwebsocketpp-dev libasio-dev nlohmann-json3-dev  # robodds bridge: WebSocket server on standalone asio, JSON (tools/bridge/)
   iproute2 tcpdump procps bc docker-compose python3-matplotlib python3-yaml file time
   stress-ng  # CPU hogs beside real-time runs (docs/deployment.md, Real-time priority)
   cyclonedds-dev cyclonedds-tools libcycloneddsidl0

@@ -62,6 +62,13 @@ class RawReaderListener : public dds::DataReaderListener {
       on_sample_(sample);
     }
   }
+  void on_subscription_matched(dds::DataReader*, const dds::SubscriptionMatchedStatus& status) override {
+    if (on_writers_) {
+      on_writers_(status.current_count);
+    }
+  }
+  /// Before the reader exists: the listener's threads read it without a lock.
+  void set_on_writers(RawWritersCallback on_writers) { on_writers_ = std::move(on_writers); }
   void on_requested_incompatible_qos(dds::DataReader*, const dds::RequestedIncompatibleQosStatus& status) override {
     if (on_event_) {
       on_event_("a writer offers an incompatible QoS (policy id " + std::to_string(status.last_policy_id) + ")");
@@ -72,6 +79,7 @@ class RawReaderListener : public dds::DataReaderListener {
   std::string topic_;
   RawSampleCallback on_sample_;
   ReaderEventCallback on_event_;
+  RawWritersCallback on_writers_;
   RawPayload buffer_;  // reused: no allocation once it has the largest sample's size
 };
 
@@ -139,6 +147,15 @@ class FastDdsRawBus : public RawBus {
     }
   }
 
+  void watch_writers(const std::string& topic, RawWritersCallback on_writers) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto it = readers_.find(topic);
+    if (it == readers_.end() || started_) {
+      throw ConfigError("watch_writers(" + topic + "): call it after reader() and before start()");
+    }
+    it->second.listener->set_on_writers(std::move(on_writers));
+  }
+
   void start() override {
     std::lock_guard<std::mutex> lock(mutex_);
     started_ = true;
@@ -192,7 +209,8 @@ class FastDdsRawBus : public RawBus {
       throw ConfigError("cannot read " + topic + ": no data_reader QoS profile '" + entry.profile + "' in the QoS files");
     }
     entry.reader = subscriber_->create_datareader(topics_.at(topic), raw_reader_qos(qos), entry.listener.get(),
-                                                  dds::StatusMask::data_available() << dds::StatusMask::requested_incompatible_qos());
+                                                  dds::StatusMask::data_available() << dds::StatusMask::requested_incompatible_qos()
+                                                      << dds::StatusMask::subscription_matched());
     if (entry.reader == nullptr) {
       const std::string reasons = take_dds_errors();
       throw ConfigError("cannot create a reader on " + topic + " with QoS profile '" + entry.profile + "'" +

@@ -29,6 +29,10 @@ struct RawSample {
 /// bytes are valid only during the call.
 using RawSampleCallback = std::function<void(const RawSample& sample)>;
 
+/// Called with the number of writers matched to a reader each time it changes (a writer found,
+/// or lost: deleted, or its participant gone), from a Fast DDS thread.
+using RawWritersCallback = std::function<void(int matched_writers)>;
+
 class RawWriter {
  public:
   virtual ~RawWriter() = default;
@@ -49,6 +53,9 @@ class RawBus {
   /// reader Fast DDS refuses (at start()).
   virtual void reader(const std::string& topic, const std::string& type_name, const std::string& profile,
                       RawSampleCallback on_sample, ReaderEventCallback on_event) = 0;
+  /// Calls `on_writers` whenever the number of writers matched to `topic`'s reader changes; after
+  /// reader(), before start() (ConfigError otherwise).
+  virtual void watch_writers(const std::string& topic, RawWritersCallback on_writers) = 0;
   virtual void start() = 0;
   /// Deletes every reader: no callback runs once it returns.
   virtual void close_readers() = 0;

@@ -40,5 +40,6 @@ std::unique_ptr<Command> add_sweep_command(CLI::App& app, const CommandEnv& env)
 std::unique_ptr<Command> add_security_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_info_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_replay_command(CLI::App& app, const CommandEnv& env);
+std::unique_ptr<Command> add_bridge_command(CLI::App& app, const CommandEnv& env);
 
 }  // namespace robodds

@@ -20,6 +20,7 @@
 
 #include "robodds/idl/robodds.h"
 #include "robodds/idl/robodds_visit.hpp"
+#include "runtime/base/error.hpp"
 #include "runtime/dds/raw_type.hpp"
 #include "runtime/dds/type_support.hpp"
 #include "runtime/bus/sample_key.hpp"
@@ -196,6 +197,40 @@ TEST(RawBus, RawWritesReachTypedAndKeyFilteredReadersAsTheirSamplesWithTheirInst
   typed->close_readers();
   EXPECT_EQ(std::multiset<std::uint32_t>(all.begin(), all.end()), (std::multiset<std::uint32_t>{1, 2, 3, 4, 5}));
   EXPECT_EQ(filtered, std::vector<std::uint32_t>{2}) << "the key filter decodes the raw payload as any other";
+}
+
+TEST(RawBus, WatchWritersSeesAWriterComeAndGo) {
+  // Its own domain (174, not the other cases' 154): the count must see only this case's writer.
+  DdsOptions reader_options = options_named("raw_watcher");
+  reader_options.domain_id = 174;
+  auto bus = make_raw_bus(reader_options);
+  std::mutex mutex;
+  std::condition_variable changed;
+  std::vector<int> counts;
+  const std::string type = idl::type_name<idl::RobotState>();
+  bus->reader("test/raw_watch", type, "monitor", [](const RawSample&) {}, nullptr);
+  bus->watch_writers("test/raw_watch", [&](int n) {
+    std::lock_guard<std::mutex> lock(mutex);
+    counts.push_back(n);
+    changed.notify_all();
+  });
+  EXPECT_THROW(bus->watch_writers("test/no_reader", [](int) {}), ConfigError);
+  bus->start();
+  EXPECT_THROW(bus->watch_writers("test/raw_watch", [](int) {}), ConfigError) << "after start()";
+  DdsOptions writer_options = options_named("raw_watched");
+  writer_options.domain_id = 174;
+  auto writer_bus = make_raw_bus(writer_options);
+  auto writer = writer_bus->writer("test/raw_watch", type, "state");
+  std::unique_lock<std::mutex> lock(mutex);
+  ASSERT_TRUE(changed.wait_for(lock, std::chrono::seconds(10), [&] { return !counts.empty(); })) << "no match";
+  EXPECT_EQ(counts.back(), 1);
+  lock.unlock();
+  writer.reset();
+  writer_bus.reset();  // the participant goes: its writer is unmatched
+  lock.lock();
+  ASSERT_TRUE(changed.wait_for(lock, std::chrono::seconds(10), [&] { return counts.back() == 0; })) << "no unmatch";
+  lock.unlock();
+  bus->close_readers();
 }
 
 TEST(RawPayloadType, MirrorsTheRealTypesKeyAndSizeAndComputesTheSameKey) {

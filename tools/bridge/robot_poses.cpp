@@ -1,0 +1,44 @@
+#include "tools/bridge/robot_poses.hpp"
+
+#include <cmath>
+
+#include <nlohmann/json.hpp>
+
+namespace robodds::bridge {
+
+using nlohmann::json;
+
+std::string poses_in_frame_json_schema() {
+  // The fields of foxglove.PosesInFrame robodds fills (Foxglove recognises the schema by its name).
+  const json number = {{"type", "number"}};
+  const json vector3 = {{"type", "object"}, {"properties", {{"x", number}, {"y", number}, {"z", number}}}};
+  const json quaternion = {{"type", "object"}, {"properties", {{"x", number}, {"y", number}, {"z", number}, {"w", number}}}};
+  const json time = {{"type", "object"},
+                     {"properties", {{"sec", {{"type", "integer"}, {"minimum", 0}}},
+                                     {"nsec", {{"type", "integer"}, {"minimum", 0}, {"maximum", 999999999}}}}}};
+  return json{{"title", kPosesInFrameSchemaName},
+              {"description", "An array of timestamped poses for an object or reference frame in 3D space"},
+              {"type", "object"},
+              {"properties",
+               {{"timestamp", time},
+                {"frame_id", {{"type", "string"}}},
+                {"poses", {{"type", "array"},
+                           {"items", {{"type", "object"}, {"properties", {{"position", vector3}, {"orientation", quaternion}}}}}}}}}}
+      .dump();
+}
+
+void RobotPoses::update(std::uint32_t robot_id, double x, double y, double theta) { robots_[robot_id] = Pose{x, y, theta}; }
+
+std::string RobotPoses::json(std::int64_t stamp_ns) const {
+  nlohmann::json poses = nlohmann::json::array();
+  for (const auto& [id, p] : robots_) {
+    // A rotation by theta about z: (0, 0, sin(theta/2), cos(theta/2)).
+    poses.push_back({{"position", {{"x", p.x}, {"y", p.y}, {"z", 0.0}}},
+                     {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", std::sin(p.theta / 2)}, {"w", std::cos(p.theta / 2)}}}});
+  }
+  const std::int64_t sec = stamp_ns / 1000000000;
+  const std::int64_t nsec = stamp_ns % 1000000000;
+  return nlohmann::json{{"timestamp", {{"sec", sec}, {"nsec", nsec}}}, {"frame_id", "world"}, {"poses", poses}}.dump();
+}
+
+}  // namespace robodds::bridge
