@@ -5,14 +5,16 @@
 #      CRCs valid), the official reader (@mcap/core with Foxglove's omgidl decoder,
 #      tests/npm/check_mcap.mjs) must read and decode every message, the message counts per topic
 #      must be the run's CSV row counts (plant/state, plant/cmd, sensor/position: the evaluator's
-#      topics), and every CSV row of plant/state must be in the file with the same values.
+#      topics), and every CSV row of plant/state must be in the file with the same values. A also
+#      has --foxglove-scene: its foxglove/robot_poses messages (JSON) must hold plant/state's poses.
 #   B: 16 KB chunks, killed with SIGKILL 3 s into the run: the run must complete all the same
 #      (status completed: a recorder is no host of the run), and `robodds info` must recover the
 #      complete chunks of B's file (no summary).
 #   C: --max-size 0.05 MB, SIGTERM: split into C_0.mcap, C_1.mcap, ..., each whole, holding A's
 #      messages between them.
 #   D: --duration 2: exits 0 by itself with a whole file.
-# Before that, bad input (unknown topic, unwritable --out, bad --compression): one line, exit 2.
+# Before that, bad input (unknown topic, unwritable --out, bad --compression, --foxglove-scene
+# without plant/state): one line, exit 2.
 # Args: ROBODDS SRC DOMAIN. Needs node and tests/npm/node_modules (scripts/npm_setup.sh). ~15 s.
 source "$(dirname "$0")/lib.sh"
 CHECK="$SRC/tests/npm/check_mcap.mjs"
@@ -27,10 +29,12 @@ expect_error 2 "$WORK/no/dir/x.mcap: cannot create the MCAP file: No such file o
 expect_error 2 "unknown compression 'gzip' .accepted: none, zstd, lz4." -- \
   "$ROBODDS" record --all --out "$WORK/x.mcap" --compression gzip --domain "$DOMAIN"
 expect_error 2 "name the topics to record or give --all .not both." -- "$ROBODDS" record --out "$WORK/x.mcap"
+expect_error 2 "--foxglove-scene draws the robots from plant/state: add it to the topics" -- \
+  "$ROBODDS" record sensor/position --foxglove-scene --out "$WORK/x.mcap" --domain "$DOMAIN"
 "$ROBODDS" record --list | grep -qE "^plant/state +robodds::idl::RobotState +monitor" || fail "record --list"
 echo "ok: bad input"
 
-$(rt_chrt 10) "$ROBODDS" record --all --out "$WORK/a.mcap" --domain "$DOMAIN" >"$WORK/a.log" 2>&1 &
+$(rt_chrt 10) "$ROBODDS" record --all --foxglove-scene --out "$WORK/a.mcap" --domain "$DOMAIN" >"$WORK/a.log" 2>&1 &
 rec_a=$!
 cleanup_pids+=("$rec_a")
 $(rt_chrt 10) "$ROBODDS" record --all --out "$WORK/b.mcap" --chunk-size 16 --compression lz4 --domain "$DOMAIN" >"$WORK/b.log" 2>&1 &
@@ -93,6 +97,32 @@ for r in rows:
         assert float(r[field]) == float(v[field]), f"plant/state {field}: CSV {r[field]}, file {v[field]}"
     assert int(r["header.stamp_ns"]) == int(v["header"]["stamp_ns"])
 print(f"ok: plant/state: all {len(rows)} CSV rows in the file with equal values (official decoder)")
+# --foxglove-scene: foxglove/robot_poses holds every robot's newest pose (robot id order) as a
+# foxglove.PosesInFrame, at most once per 50 ms of the stamps; each pose is a plant/state row of
+# its robot stamped no later than the message (x, y and the heading as a rotation about z).
+import math
+scene = [m for m in messages if m["topic"] == "foxglove/robot_poses"]
+assert len(scene) >= 20, f"{len(scene)} foxglove/robot_poses messages for a 5 s run"
+rows_by_robot = {}
+for r in rows:
+    rows_by_robot.setdefault(int(r["robot_id"]), []).append(r)
+robots = sorted(rows_by_robot)
+previous = None
+for m in scene:
+    t = int(m["publish_time"])
+    assert previous is None or t - previous >= 50_000_000, f"scene messages {t - previous} ns apart (< 50 ms)"
+    previous = t
+    v = m["value"]
+    assert v["frame_id"] == "world" and v["timestamp"]["sec"] * 10**9 + v["timestamp"]["nsec"] == t, f"scene header {v}"
+    assert 1 <= len(v["poses"]) <= len(robots), f"{len(v['poses'])} poses, {len(robots)} robots"
+    for k, pose in enumerate(v["poses"]):
+        match = [r for r in rows_by_robot[robots[k]] if int(r["header.stamp_ns"]) <= t
+                 and float(r["x"]) == pose["position"]["x"] and float(r["y"]) == pose["position"]["y"]]
+        assert match, f"scene pose {k} at {t}: no plant/state row of robot {robots[k]} with x, y = {pose['position']}"
+        theta = float(match[-1]["theta"])
+        q = pose["orientation"]
+        assert abs(q["z"] - math.sin(theta / 2)) < 1e-12 and abs(q["w"] - math.cos(theta / 2)) < 1e-12, f"scene heading {q}, theta {theta}"
+print(f"ok: foxglove/robot_poses: {len(scene)} PosesInFrame messages, each pose a plant/state row of its robot")
 # log_time is the reception time: after the source time (publish_time), within a second of it.
 for m in messages:
     lag = int(m["log_time"]) - int(m["publish_time"])
@@ -107,7 +137,7 @@ grep -q "^summary: *missing" <<<"$info_b" || fail "B (SIGKILL) should have no su
 recovered="$(sed -nE 's/.* ([0-9,]+) complete chunks, ([0-9,]+) messages recovered.*/\1 \2/p' <<<"$info_b" | head -1 | tr -d ,)"
 [[ -n $recovered ]] || fail "robodds info did not say what it recovered from B: $info_b"
 read -r chunks_b messages_b <<<"$recovered"
-total_a="$(wc -l <"$WORK/a.jsonl")"
+total_a="$(grep -vc '"topic":"foxglove/robot_poses"' "$WORK/a.jsonl")"  # the recorded topics, not A's derived channel
 # B recorded the first ~1.5 s of the run (3 s after the launch, which starts 5 processes first),
 # ~480 messages/s, less its open chunk (a 16 KB chunk of these topics holds < 300 messages).
 ((chunks_b >= 3 && messages_b >= 200 && messages_b < total_a)) ||

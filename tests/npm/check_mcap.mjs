@@ -8,10 +8,11 @@
 // - McapStreamReader reads the file again front to back (record structure, chunk CRCs) and must
 //   find the same messages (channel, sequence, times, payload) as the indexed reader;
 // - every message whose schema encoding is omgidl (message encoding cdr) is decoded with
-//   @foxglove/omgidl-parser + @foxglove/omgidl-serialization, the decoder Foxglove uses.
+//   @foxglove/omgidl-parser + @foxglove/omgidl-serialization, the decoder Foxglove uses; every
+//   message of a jsonschema schema (message encoding json: --foxglove-scene) is parsed as JSON.
 // Prints one JSON line per message ({topic, log_time, publish_time, value}; times as strings of
 // ns) or, with --counts-only, one line of counts per topic. --expect-json F: F is a JSON array of
-// such objects; the decoded omgidl messages must equal it, in log-time order.
+// such objects; the decoded messages must equal it, in log-time order.
 // Exit 0 when everything agrees, 1 with one "check_mcap: FILE: reason" line otherwise, 2 on usage.
 import { open, readFile } from "node:fs/promises";
 import { isDeepStrictEqual } from "node:util";
@@ -114,6 +115,17 @@ async function main() {
       const channel = reader.channelsById.get(m.channelId);
       if (!channel) fail(`message on channel ${m.channelId}, which the summary does not define`);
       const schema = reader.schemasById.get(channel.schemaId);
+      if (schema?.encoding === "jsonschema") {  // a derived channel (--foxglove-scene): JSON text
+        if (channel.messageEncoding !== "json") fail(`channel ${channel.topic}: message encoding '${channel.messageEncoding}', expected json`);
+        let value;
+        try {
+          value = JSON.parse(new TextDecoder().decode(m.data));
+        } catch (error) {
+          fail(`channel ${channel.topic}, log time ${m.logTime}: not JSON: ${error.message}`);
+        }
+        decoded.push({ topic: channel.topic, log_time: m.logTime.toString(), publish_time: m.publishTime.toString(), value });
+        continue;
+      }
       if (schema?.encoding !== "omgidl") continue;
       if (channel.messageEncoding !== "cdr") fail(`channel ${channel.topic}: message encoding '${channel.messageEncoding}', expected cdr`);
       let messageReader = readers.get(schema.id);

@@ -27,8 +27,8 @@
 #include "runtime/launch/launch.hpp"
 #include "runtime/topics/topic_catalog.hpp"
 #include "tools/bridge/bridge_hub.hpp"
-#include "tools/bridge/robot_poses.hpp"
 #include "tools/bridge/ws_server.hpp"
+#include "tools/foxglove/robot_poses.hpp"
 #include "tools/robodds/command.hpp"
 
 namespace robodds {
@@ -78,7 +78,7 @@ class BridgeCommand : public Command {
     }
     std::mutex scene_mutex;
     std::uint32_t scene_channel = 0;
-    bridge::RobotPoses poses;
+    foxglove::RobotPoses poses;
     bool scene_error_logged = false;
     const auto publish_scene = [&](const RawSample& s, std::int64_t received) {
       std::lock_guard<std::mutex> lock(scene_mutex);
@@ -94,8 +94,8 @@ class BridgeCommand : public Command {
         return;
       }
       if (scene_channel == 0) {
-        auto [id, wake] = hub.add_channel(bridge::Channel{0, bridge::kRobotPosesTopic, "json", bridge::kPosesInFrameSchemaName,
-                                                          "jsonschema", bridge::poses_in_frame_json_schema()});
+        auto [id, wake] = hub.add_channel(bridge::Channel{0, foxglove::kRobotPosesTopic, "json", foxglove::kPosesInFrameSchemaName,
+                                                          "jsonschema", foxglove::poses_in_frame_json_schema()});
         scene_channel = id;
         server.wake(wake);
       }

@@ -6,6 +6,11 @@
 //
 // The DDS callbacks only queue a copy of the bytes; the command's thread writes them, so a slow
 // disk never holds a DDS receive thread (nor, through it, a run's writers).
+//
+// --foxglove-scene adds one derived channel, foxglove/robot_poses (foxglove.PosesInFrame, JSON):
+// every robot's newest pose from plant/state, at most once per kScenePeriodNs of the samples' own
+// stamps, written by the same thread (tools/foxglove/robot_poses.hpp, shared with the bridge).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <deque>
@@ -16,14 +21,18 @@
 #include <string>
 #include <vector>
 
+#include "idl/idl_schema.hpp"
+#include "robodds/idl/robodds.h"
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
+#include "runtime/bus/sample_codec.hpp"
 #include "runtime/dds/raw_bus.hpp"
 #include "runtime/io/notifier.hpp"
 #include "runtime/launch/launch.hpp"
 #include "runtime/mcap/mcap_writer.hpp"
 #include "runtime/mcap/topic_channels.hpp"
 #include "runtime/topics/topic_catalog.hpp"
+#include "tools/foxglove/robot_poses.hpp"
 #include "tools/robodds/command.hpp"
 
 namespace robodds {
@@ -93,21 +102,18 @@ std::string part_path(const std::string& out, bool split, std::size_t part) {
 /// once the open one passes the size limit.
 class McapParts {
  public:
-  McapParts(std::string out, std::uint64_t max_bytes, mcap::WriterOptions options, const std::vector<const TopicInfo*>& topics)
-      : out_(std::move(out)), max_bytes_(max_bytes), options_(std::move(options)), topics_(topics) {
+  /// `scene`: each part also holds the foxglove/robot_poses channel (write_scene()).
+  McapParts(std::string out, std::uint64_t max_bytes, mcap::WriterOptions options, const std::vector<const TopicInfo*>& topics,
+            bool scene)
+      : out_(std::move(out)), max_bytes_(max_bytes), options_(std::move(options)), topics_(topics), scene_(scene) {
     open_part();
   }
 
-  void write(const Pending& p) {
-    auto& channel = channels_[p.topic];
-    writer_->write(channel.id, ++channel.sequence, p.log_time_ns, p.publish_time_ns, p.bytes.data(), p.bytes.size());
-    ++messages_;
-    if (max_bytes_ > 0 && writer_->file_bytes() > max_bytes_) {
-      writer_->close();
-      bytes_done_ += writer_->file_bytes();
-      ++part_;
-      open_part();
-    }
+  void write(const Pending& p) { write_on(channels_[p.topic], p.log_time_ns, p.publish_time_ns, p.bytes.data(), p.bytes.size()); }
+
+  /// A foxglove.PosesInFrame message (JSON text) on the scene channel.
+  void write_scene(std::uint64_t log_time_ns, std::uint64_t publish_time_ns, const std::string& json) {
+    write_on(scene_channel_, log_time_ns, publish_time_ns, reinterpret_cast<const std::uint8_t*>(json.data()), json.size());
   }
 
   void close() {
@@ -125,6 +131,18 @@ class McapParts {
     std::uint32_t sequence = 0;  // per channel and part, from 1
   };
 
+  void write_on(Channel& channel, std::uint64_t log_time_ns, std::uint64_t publish_time_ns, const std::uint8_t* data,
+                std::size_t size) {
+    writer_->write(channel.id, ++channel.sequence, log_time_ns, publish_time_ns, data, size);
+    ++messages_;
+    if (max_bytes_ > 0 && writer_->file_bytes() > max_bytes_) {
+      writer_->close();
+      bytes_done_ += writer_->file_bytes();
+      ++part_;
+      open_part();
+    }
+  }
+
   /// A part holds every schema and channel, so each file reads on its own.
   void open_part() {
     writer_ = std::make_unique<mcap::Writer>(part_path(out_, max_bytes_ > 0, part_), options_);
@@ -133,6 +151,11 @@ class McapParts {
     for (std::size_t i = 0; i < topics_.size(); ++i) {
       channels_[i].id = ids[i];
     }
+    scene_channel_ = Channel{};
+    if (scene_) {
+      const std::uint16_t schema = writer_->add_schema(foxglove::kPosesInFrameSchemaName, "jsonschema", foxglove::poses_in_frame_json_schema());
+      scene_channel_.id = writer_->add_channel(schema, foxglove::kRobotPosesTopic, "json");
+    }
   }
 
   std::string out_;
@@ -140,7 +163,9 @@ class McapParts {
   mcap::WriterOptions options_;
   std::vector<const TopicInfo*> topics_;
   std::unique_ptr<mcap::Writer> writer_;
+  bool scene_;
   std::vector<Channel> channels_;
+  Channel scene_channel_;
   std::size_t part_ = 0;
   std::uint64_t messages_ = 0;
   std::uint64_t bytes_done_ = 0;  // of the closed parts
@@ -163,6 +188,9 @@ class RecordCommand : public Command {
                      "KB of records per chunk: a chunk is written when full, so a killed recorder loses at most "
                      "the open one")
         ->check(CLI::Range(1.0, 1e6));
+    cmd_->add_flag("--foxglove-scene", foxglove_scene_,
+                   "also write foxglove/robot_poses: every robot's pose from plant/state as a foxglove.PosesInFrame "
+                   "(JSON), at most every 50 ms of the samples' stamps, which Foxglove's 3D panel draws as it is");
     add_dds_options(cmd_, dds_);
   }
 
@@ -183,8 +211,37 @@ class RecordCommand : public Command {
     options.compression = mcap::parse_compression(compression_, "--compression");
     options.chunk_size_bytes = static_cast<std::uint64_t>(chunk_kb_ * 1024);
     options.validate();
+    const auto scene_source = std::find_if(topics.begin(), topics.end(), [](const TopicInfo* t) { return t->name == kSceneSource; });
+    if (foxglove_scene_ && scene_source == topics.end()) {
+      throw ConfigError(std::string("--foxglove-scene draws the robots from ") + kSceneSource + ": add it to the topics");
+    }
+    const std::size_t scene_topic = foxglove_scene_ ? static_cast<std::size_t>(scene_source - topics.begin()) : topics.size();
     // The file first: an unwritable --out fails before anything joins the domain.
-    McapParts parts(out_, static_cast<std::uint64_t>(max_size_mb_ * 1e6), options, topics);
+    McapParts parts(out_, static_cast<std::uint64_t>(max_size_mb_ * 1e6), options, topics, foxglove_scene_);
+    foxglove::RobotPoses poses;
+    bool scene_error_logged = false;
+    const auto write = [&](const Pending& p) {
+      parts.write(p);
+      if (p.topic != scene_topic) {
+        return;
+      }
+      try {
+        const std::shared_ptr<void> decoded =
+            sample_codec().deserialize(idl::type_name<idl::RobotState>(), p.bytes.data(), p.bytes.size());
+        const auto& state = *static_cast<const idl::RobotState*>(decoded.get());
+        poses.update(state.robot_id(), state.x(), state.y(), state.theta());
+      } catch (const ConfigError& e) {
+        if (!scene_error_logged) {  // once: the plant/state channel still holds every sample
+          log::warn("record", std::string("--foxglove-scene: a ") + kSceneSource + " sample does not decode: " + e.what());
+          scene_error_logged = true;
+        }
+        return;
+      }
+      const auto stamp = static_cast<std::int64_t>(p.publish_time_ns);
+      if (poses.due(stamp, kScenePeriodNs)) {
+        parts.write_scene(p.log_time_ns, p.publish_time_ns, poses.json(stamp));
+      }
+    };
 
     PendingQueue queue;  // declared before the bus: its callbacks push into it
     auto bus = make_raw_bus(tools_dds(dds_, "robodds-record"));
@@ -211,13 +268,13 @@ class RecordCommand : public Command {
     while (!done()) {
       const auto seen = queue.notifier().generation();
       for (const Pending& p : queue.take()) {
-        parts.write(p);
+        write(p);
       }
       queue.notifier().wait(seen, std::chrono::milliseconds(100));
     }
     bus->close_readers();  // no callback runs after this: the queue holds the last samples
     for (const Pending& p : queue.take()) {
-      parts.write(p);
+      write(p);
     }
     parts.close();
     std::printf("robodds record: %llu messages, %llu bytes in %zu file%s%s\n",
@@ -253,6 +310,8 @@ class RecordCommand : public Command {
     return chosen;
   }
 
+  static constexpr const char* kSceneSource = "plant/state";  // the robots' true poses
+  static constexpr std::int64_t kScenePeriodNs = 50'000'000;   // 20 Hz: enough for a 3D view
   const CommandEnv& env_;
   CLI::App* cmd_ = nullptr;
   std::vector<std::string> topics_;
@@ -263,6 +322,7 @@ class RecordCommand : public Command {
   double max_size_mb_ = 0.0;
   std::string compression_ = "zstd";
   double chunk_kb_ = 1024.0;  // the writer's default, 1 MiB
+  bool foxglove_scene_ = false;
   DdsArgs dds_;
 };
 

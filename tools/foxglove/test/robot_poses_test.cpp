@@ -1,16 +1,16 @@
-#include "tools/bridge/robot_poses.hpp"
+#include "tools/foxglove/robot_poses.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
 
-namespace robodds::bridge {
+namespace robodds::foxglove {
 namespace {
 
 using nlohmann::json;
 
-TEST(BridgeRobotPoses, OnePosesInFrameOfEveryRobotInIdOrderWithItsHeadingAsAQuaternion) {
+TEST(FoxgloveRobotPoses, OnePosesInFrameOfEveryRobotInIdOrderWithItsHeadingAsAQuaternion) {
   RobotPoses poses;
   poses.update(2, 5.0, 0.0, M_PI / 2);
   poses.update(1, 1.0, 2.0, 0.0);
@@ -27,12 +27,23 @@ TEST(BridgeRobotPoses, OnePosesInFrameOfEveryRobotInIdOrderWithItsHeadingAsAQuat
   EXPECT_NEAR(m["poses"][1]["orientation"]["w"].get<double>(), std::sqrt(0.5), 1e-12);
 }
 
-TEST(BridgeRobotPoses, TheSchemaIsFoxglovesPosesInFrame) {
+TEST(FoxgloveRobotPoses, TheSchemaIsFoxglovesPosesInFrame) {
   const json schema = json::parse(poses_in_frame_json_schema());
   EXPECT_EQ(schema["title"], "foxglove.PosesInFrame");
   EXPECT_EQ(schema["properties"]["poses"]["items"]["properties"]["orientation"]["properties"].size(), 4u);
   EXPECT_EQ(std::string(kPosesInFrameSchemaName), "foxglove.PosesInFrame");
 }
 
+TEST(FoxgloveRobotPoses, DueOnTheFirstStampThenOncePerPeriodOfTheStamps) {
+  RobotPoses poses;
+  constexpr std::int64_t kPeriod = 50'000'000;  // 50 ms
+  EXPECT_TRUE(poses.due(1'000'000'000, kPeriod));
+  EXPECT_FALSE(poses.due(1'000'000'000, kPeriod));  // the same step's other robots
+  EXPECT_FALSE(poses.due(1'040'000'000, kPeriod));
+  EXPECT_TRUE(poses.due(1'050'000'000, kPeriod));
+  EXPECT_FALSE(poses.due(1'090'000'000, kPeriod));
+  EXPECT_TRUE(poses.due(1'130'000'000, kPeriod));  // counted from the last true, not a grid
+}
+
 }  // namespace
-}  // namespace robodds::bridge
+}  // namespace robodds::foxglove

@@ -1,13 +1,14 @@
 #pragma once
-// `robodds bridge --foxglove-scene`: the robots' latest poses as one foxglove.PosesInFrame message
-// (Foxglove's well-known schema, JSON encoding), which Foxglove's 3D panel draws without any
-// configuration. Plain C++, no sockets, no DDS: the command feeds it the plant/state samples.
+// `--foxglove-scene` of `robodds bridge` and `robodds record`: the robots' latest poses as one
+// foxglove.PosesInFrame message (Foxglove's well-known schema, JSON encoding), which Foxglove's 3D
+// panel draws without any configuration. Plain C++, no sockets, no DDS: the commands feed it the
+// robots' state samples.
 
 #include <cstdint>
 #include <map>
 #include <string>
 
-namespace robodds::bridge {
+namespace robodds::foxglove {
 
 /// The derived channel's topic, schema name and JSON Schema text.
 inline constexpr const char* kRobotPosesTopic = "foxglove/robot_poses";
@@ -21,12 +22,18 @@ class RobotPoses {
   /// A foxglove.PosesInFrame message: timestamp `stamp_ns`, frame "world", every robot seen so far
   /// in robot id order (z = 0, orientation the rotation by theta about z).
   std::string json(std::int64_t stamp_ns) const;
+  /// True for the first stamp and then for each stamp at least `period_ns` after the last one it
+  /// was true for: the recorder writes the scene at most once per period of the samples' own time
+  /// (ns), so that a lockstep run gives the same messages however it is deployed.
+  bool due(std::int64_t stamp_ns, std::int64_t period_ns);
 
  private:
   struct Pose {
     double x = 0, y = 0, theta = 0;
   };
   std::map<std::uint32_t, Pose> robots_;
+  bool emitted_ = false;
+  std::int64_t last_emitted_ns_ = 0;
 };
 
-}  // namespace robodds::bridge
+}  // namespace robodds::foxglove

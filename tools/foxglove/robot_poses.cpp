@@ -1,10 +1,10 @@
-#include "tools/bridge/robot_poses.hpp"
+#include "tools/foxglove/robot_poses.hpp"
 
 #include <cmath>
 
 #include <nlohmann/json.hpp>
 
-namespace robodds::bridge {
+namespace robodds::foxglove {
 
 using nlohmann::json;
 
@@ -41,4 +41,13 @@ std::string RobotPoses::json(std::int64_t stamp_ns) const {
   return nlohmann::json{{"timestamp", {{"sec", sec}, {"nsec", nsec}}}, {"frame_id", "world"}, {"poses", poses}}.dump();
 }
 
-}  // namespace robodds::bridge
+bool RobotPoses::due(std::int64_t stamp_ns, std::int64_t period_ns) {
+  if (emitted_ && stamp_ns - last_emitted_ns_ < period_ns) {
+    return false;
+  }
+  emitted_ = true;
+  last_emitted_ns_ = stamp_ns;
+  return true;
+}
+
+}  // namespace robodds::foxglove
