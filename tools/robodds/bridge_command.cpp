@@ -13,14 +13,11 @@
 #include <cstdio>
 #include <memory>
 #include <mutex>
-#include <set>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "idl/idl_schema.hpp"
-#include "robodds/idl/robodds.h"
-#include "runtime/bus/sample_codec.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/dds/raw_bus.hpp"
@@ -29,7 +26,9 @@
 #include "tools/bridge/bridge_hub.hpp"
 #include "tools/bridge/ws_server.hpp"
 #include "tools/foxglove/robot_poses.hpp"
+#include "tools/robodds/catalog_topics.hpp"
 #include "tools/robodds/command.hpp"
+#include "tools/robodds/scene_source.hpp"
 
 namespace robodds {
 namespace {
@@ -73,8 +72,8 @@ class BridgeCommand : public Command {
     bridge::WsServer server(hub, address_, static_cast<std::uint16_t>(port_), log_line);
 
     // --foxglove-scene: the derived channel (0 until plant/state's first sample) and the poses.
-    if (foxglove_scene_ && std::none_of(topics.begin(), topics.end(), [](const TopicInfo* t) { return t->name == kSceneSource; })) {
-      throw ConfigError(std::string("--foxglove-scene draws the robots from ") + kSceneSource + ": add it to --topics");
+    if (foxglove_scene_) {
+      require_scene_source(topics, "--topics");
     }
     std::mutex scene_mutex;
     std::uint32_t scene_channel = 0;
@@ -82,15 +81,7 @@ class BridgeCommand : public Command {
     bool scene_error_logged = false;
     const auto publish_scene = [&](const RawSample& s, std::int64_t received) {
       std::lock_guard<std::mutex> lock(scene_mutex);
-      try {
-        const std::shared_ptr<void> decoded = sample_codec().deserialize(idl::type_name<idl::RobotState>(), s.data, s.size);
-        const auto& state = *static_cast<const idl::RobotState*>(decoded.get());
-        poses.update(state.robot_id(), state.x(), state.y(), state.theta());
-      } catch (const ConfigError& e) {
-        if (!scene_error_logged) {  // once: the raw channel still carries every sample
-          log::warn("bridge", std::string("--foxglove-scene: a ") + kSceneSource + " sample does not decode: " + e.what());
-          scene_error_logged = true;
-        }
+      if (!update_poses(poses, s.data, s.size, "bridge", scene_error_logged)) {
         return;
       }
       if (scene_channel == 0) {
@@ -185,27 +176,9 @@ class BridgeCommand : public Command {
     if (all_ && !topics_.empty()) {
       throw ConfigError("--topics and --all: give one of them (neither: --all)");
     }
-    std::vector<const TopicInfo*> chosen;
-    std::set<std::string> seen;
-    if (topics_.empty()) {
-      for (const TopicInfo& topic : topic_catalog()) {
-        chosen.push_back(&topic);
-      }
-      return chosen;
-    }
-    for (const std::string& name : topics_) {
-      const TopicInfo* topic = find_topic(name);
-      if (topic == nullptr) {
-        throw ConfigError("--topics: unknown topic '" + name + "' (`robodds record --list` lists the topics)");
-      }
-      if (seen.insert(name).second) {
-        chosen.push_back(topic);
-      }
-    }
-    return chosen;
+    return catalog_topics(topics_, "--topics");
   }
 
-  static constexpr const char* kSceneSource = "plant/state";  // the robots' true poses
   const CommandEnv& env_;
   CLI::App* cmd_ = nullptr;
   std::vector<std::string> topics_;

@@ -17,15 +17,11 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <set>
 #include <string>
 #include <vector>
 
-#include "idl/idl_schema.hpp"
-#include "robodds/idl/robodds.h"
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
-#include "runtime/bus/sample_codec.hpp"
 #include "runtime/dds/raw_bus.hpp"
 #include "runtime/io/notifier.hpp"
 #include "runtime/launch/launch.hpp"
@@ -33,7 +29,9 @@
 #include "runtime/mcap/topic_channels.hpp"
 #include "runtime/topics/topic_catalog.hpp"
 #include "tools/foxglove/robot_poses.hpp"
+#include "tools/robodds/catalog_topics.hpp"
 #include "tools/robodds/command.hpp"
+#include "tools/robodds/scene_source.hpp"
 
 namespace robodds {
 namespace {
@@ -211,11 +209,12 @@ class RecordCommand : public Command {
     options.compression = mcap::parse_compression(compression_, "--compression");
     options.chunk_size_bytes = static_cast<std::uint64_t>(chunk_kb_ * 1024);
     options.validate();
-    const auto scene_source = std::find_if(topics.begin(), topics.end(), [](const TopicInfo* t) { return t->name == kSceneSource; });
-    if (foxglove_scene_ && scene_source == topics.end()) {
-      throw ConfigError(std::string("--foxglove-scene draws the robots from ") + kSceneSource + ": add it to the topics");
+    if (foxglove_scene_) {
+      require_scene_source(topics, "the topics");
     }
-    const std::size_t scene_topic = foxglove_scene_ ? static_cast<std::size_t>(scene_source - topics.begin()) : topics.size();
+    const std::size_t scene_topic = foxglove_scene_
+        ? static_cast<std::size_t>(std::find_if(topics.begin(), topics.end(), [](const TopicInfo* t) { return t->name == kSceneSource; }) - topics.begin())
+        : topics.size();
     // The file first: an unwritable --out fails before anything joins the domain.
     McapParts parts(out_, static_cast<std::uint64_t>(max_size_mb_ * 1e6), options, topics, foxglove_scene_);
     foxglove::RobotPoses poses;
@@ -225,16 +224,7 @@ class RecordCommand : public Command {
       if (p.topic != scene_topic) {
         return;
       }
-      try {
-        const std::shared_ptr<void> decoded =
-            sample_codec().deserialize(idl::type_name<idl::RobotState>(), p.bytes.data(), p.bytes.size());
-        const auto& state = *static_cast<const idl::RobotState*>(decoded.get());
-        poses.update(state.robot_id(), state.x(), state.y(), state.theta());
-      } catch (const ConfigError& e) {
-        if (!scene_error_logged) {  // once: the plant/state channel still holds every sample
-          log::warn("record", std::string("--foxglove-scene: a ") + kSceneSource + " sample does not decode: " + e.what());
-          scene_error_logged = true;
-        }
+      if (!update_poses(poses, p.bytes.data(), p.bytes.size(), "record", scene_error_logged)) {
         return;
       }
       const auto stamp = static_cast<std::int64_t>(p.publish_time_ns);
@@ -290,27 +280,9 @@ class RecordCommand : public Command {
     if (all_ == !topics_.empty()) {
       throw ConfigError("name the topics to record or give --all (not both)");
     }
-    std::vector<const TopicInfo*> chosen;
-    std::set<std::string> seen;
-    if (all_) {
-      for (const TopicInfo& topic : topic_catalog()) {
-        chosen.push_back(&topic);
-      }
-      return chosen;
-    }
-    for (const std::string& name : topics_) {
-      const TopicInfo* topic = find_topic(name);
-      if (topic == nullptr) {
-        throw ConfigError("unknown topic '" + name + "' (`robodds record --list` lists the topics it can record)");
-      }
-      if (seen.insert(name).second) {
-        chosen.push_back(topic);
-      }
-    }
-    return chosen;
+    return catalog_topics(topics_, "");
   }
 
-  static constexpr const char* kSceneSource = "plant/state";  // the robots' true poses
   static constexpr std::int64_t kScenePeriodNs = 50'000'000;   // 20 Hz: enough for a 3D view
   const CommandEnv& env_;
   CLI::App* cmd_ = nullptr;
