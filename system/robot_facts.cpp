@@ -3,6 +3,7 @@
 #include <string>
 
 #include "common/model/uwb_array_params.hpp"
+#include "common/did_you_mean.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/config/param_table_reader.hpp"
@@ -59,7 +60,8 @@ void check_known(const FlatParams& facts, bool of_one_robot) {
     const std::string group = key.substr(0, key.find('.'));
     const FactKind* kind = fact_kind(group);
     if (kind == nullptr) {
-      throw ConfigError(located(entry.file, key, "unknown fact (known: " + known_facts() + ")"));
+      const std::string known = known_facts();
+      throw ConfigError(located(entry.file, key, "unknown fact" + did_you_mean(group, listed_names(known)) + " (known: " + known + ")"));
     }
     if (of_one_robot && !kind->per_robot) {
       throw ConfigError(located(entry.file, key, "a fact of the whole scenario (under the top-level facts:), not of one robot"));

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "common/did_you_mean.hpp"
 #include "common/random.hpp"
 #include "runtime/config/param_table_reader.hpp"
 #include "runtime/component/registry.hpp"
@@ -88,13 +89,15 @@ void ComponentRegistry::add(ComponentType type) {
 
 const ComponentType& ComponentRegistry::get(const std::string& name) const {
   std::string known;
+  std::vector<std::string> names;
   for (const ComponentType& type : types_) {
     if (type.name == name) {
       return type;
     }
     known += (known.empty() ? "" : ", ") + type.name;
+    names.push_back(type.name);
   }
-  throw ConfigError("unknown component type '" + name + "' (known: " + known + ")");
+  throw ConfigError("unknown component type '" + name + "'" + did_you_mean(name, names) + " (known: " + known + ")");
 }
 
 }  // namespace robodds

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "common/did_you_mean.hpp"
 #include "runtime/base/error.hpp"
 
 namespace robodds {
@@ -99,7 +100,8 @@ FlatParams merge_params(const FlatParams& defaults, const FlatParams& overrides)
   FlatParams merged = defaults;
   for (const auto& [key, entry] : overrides) {
     if (defaults.count(key) == 0) {
-      throw ConfigError(located(entry.file, key, "unknown parameter (known: " + known_keys(defaults) + ")"));
+      const std::string known = known_keys(defaults);
+      throw ConfigError(located(entry.file, key, "unknown parameter" + did_you_mean(key, listed_names(known)) + " (known: " + known + ")"));
     }
     merged[key] = entry;
   }

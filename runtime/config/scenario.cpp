@@ -8,6 +8,7 @@
 #include <mutex>
 #include <set>
 
+#include "common/did_you_mean.hpp"
 #include "common/number_text.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/config/yaml_reader.hpp"
@@ -41,6 +42,14 @@ std::string known_top_level_keys() {
   return text;
 }
 
+std::vector<std::string> component_names(const Scenario& s) {
+  std::vector<std::string> names;
+  for (const ComponentSpec& c : s.components) {
+    names.push_back(c.name);
+  }
+  return names;
+}
+
 class ScenarioParser : public YamlReader {
  public:
   explicit ScenarioParser(std::string file) : YamlReader(std::move(file)) {}
@@ -52,7 +61,8 @@ class ScenarioParser : public YamlReader {
     for (const auto& item : root) {
       const std::string key = item.first.as<std::string>();
       if (kTopLevelKeys.count(key) == 0 && !is_registered_section(key)) {
-        fail(key, "unknown key (known: " + known_top_level_keys() + ")");
+        const std::string known = known_top_level_keys();
+        fail(key, "unknown key" + did_you_mean(key, listed_names(known)) + " (known: " + known + ")");
       }
     }
     Scenario s;
@@ -102,7 +112,7 @@ class ScenarioParser : public YamlReader {
       for (const auto& item : r) {
         const std::string k = item.first.as<std::string>();
         if (k != "id" && k != "x" && k != "y" && k != "theta" && k != "facts") {
-          fail(key + "." + k, "unknown key (known: id, x, y, theta, facts)");
+          fail(key + "." + k, "unknown key" + did_you_mean(k, {"id", "x", "y", "theta", "facts"}) + " (known: id, x, y, theta, facts)");
         }
       }
       RobotSpec robot;
@@ -132,7 +142,8 @@ class ScenarioParser : public YamlReader {
       for (const auto& item : c) {
         const std::string k = item.first.as<std::string>();
         if (k != "name" && k != "type" && k != "robots" && k != "params" && k != "standby_for") {
-          fail(key + "." + k, "unknown key (known: name, type, robots, params, standby_for)");
+          fail(key + "." + k, "unknown key" + did_you_mean(k, {"name", "type", "robots", "params", "standby_for"}) +
+                               " (known: name, type, robots, params, standby_for)");
         }
       }
       ComponentSpec spec;
@@ -221,7 +232,7 @@ class ScenarioParser : public YamlReader {
           const bool known = std::any_of(s.components.begin(), s.components.end(),
                                          [&](const ComponentSpec& c) { return c.name == name; });
           if (!known) {
-            fail(key, "unknown component '" + name + "'");
+            fail(key, "unknown component '" + name + "'" + did_you_mean(name, component_names(s)));
           }
           if (!placed.insert(name).second) {
             fail(key, "component '" + name + "' is in more than one group");
@@ -258,7 +269,7 @@ class ScenarioParser : public YamlReader {
       const auto primary = std::find_if(s.components.begin(), s.components.end(),
                                         [&](const ComponentSpec& c) { return c.name == standby.standby_for; });
       if (primary == s.components.end()) {
-        fail(key, "unknown component '" + standby.standby_for + "'");
+        fail(key, "unknown component '" + standby.standby_for + "'" + did_you_mean(standby.standby_for, component_names(s)));
       }
       if (!primary->standby_for.empty()) {
         fail(key, "'" + primary->name + "' is itself a standby (for '" + primary->standby_for + "')");
@@ -402,7 +413,8 @@ void apply_param_overrides(Scenario& scenario, const FlatParams& overrides, cons
         names += (names.empty() ? "" : ", ") + c.name;
       }
       throw ConfigError(located(file, key, "expected <component>.<parameter> of a scenario component: " +
-                                               (dot == std::string::npos ? "no '.'" : "no component '" + component + "'") +
+                                               (dot == std::string::npos ? "no '.'" : "no component '" + component + "'" +
+                                                                                          did_you_mean(component, component_names(scenario))) +
                                                " in " + scenario.file + " (components: " + names + ")"));
     }
   }

@@ -9,7 +9,9 @@
 #include <set>
 #include <string>
 #include <utility>
+#include <vector>
 
+#include "common/did_you_mean.hpp"
 #include "runtime/base/error.hpp"
 
 namespace robodds {
@@ -51,7 +53,7 @@ class YamlReader {
     for (const auto& item : node) {
       const std::string k = item.first.as<std::string>();
       if (known.count(k) == 0) {
-        fail(key + "." + k, std::string("unknown key (known: ") + list + ")");
+        fail(key + "." + k, "unknown key" + did_you_mean(k, std::vector<std::string>(known.begin(), known.end())) + " (known: " + list + ")");
       }
     }
   }

@@ -1,3 +1,4 @@
+#include "runtime/component/param_keys.hpp"
 #include "runtime/launch/launch.hpp"
 
 #include <algorithm>
@@ -385,6 +386,7 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
   if (!args.params.empty()) {
     apply_param_overrides(scenario, load_param_file(args.params), args.params);
   }
+  check_param_keys(scenario, registry, args.sets, "--set");
   apply_param_overrides(scenario, parse_param_assignments(args.sets), "--set");
   return scenario;
 }

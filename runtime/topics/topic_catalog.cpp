@@ -1,6 +1,8 @@
 #include "runtime/topics/topic_catalog.hpp"
 
+#include "common/did_you_mean.hpp"
 #include "runtime/base/error.hpp"
+#include "runtime/topics/topic_names.hpp"
 
 namespace robodds {
 
@@ -58,7 +60,7 @@ const TopicInfo& topic_info(const std::string& name) {
   for (const TopicInfo& topic : topic_catalog()) {
     known += (known.empty() ? "" : ", ") + topic.name;
   }
-  throw ConfigError("unknown topic '" + name + "' (known: " + known + ")");
+  throw ConfigError("unknown topic '" + name + "'" + did_you_mean(name, topic_names()) + " (known: " + known + ")");
 }
 
 std::string qos_profile_for(const TopicInfo& topic, TimeMode mode, bool single_process) {

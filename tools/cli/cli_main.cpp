@@ -4,9 +4,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 #include <unistd.h>
 
+#include "common/did_you_mean.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/health/shutdown_watchdog.hpp"
 
@@ -29,6 +31,28 @@ void on_signal(int signal_number) {
     (void)ignored;
     ::_exit(128 + signal_number);
   }
+}
+
+/// "unknown subcommand 'recrod'; did you mean 'record'? (known: ...)" when the command line's
+/// first unparsed word stands where the deepest subcommand parsed expects one of its own
+/// subcommands; "" otherwise (then CLI11's own message says what is wrong).
+std::string unknown_subcommand(CLI::App& app) {
+  CLI::App* deepest = &app;
+  while (!deepest->get_subcommands().empty()) {
+    deepest = deepest->get_subcommands().front();
+  }
+  const std::vector<CLI::App*> subcommands = deepest->get_subcommands([](CLI::App*) { return true; });
+  const std::vector<std::string> extras = deepest->remaining();
+  if (subcommands.empty() || extras.empty() || extras.front().empty() || extras.front().front() == '-') {
+    return "";
+  }
+  std::vector<std::string> names;
+  std::string known;
+  for (const CLI::App* sub : subcommands) {
+    names.push_back(sub->get_name());
+    known += (known.empty() ? "" : ", ") + sub->get_name();
+  }
+  return "unknown subcommand '" + extras.front() + "'" + did_you_mean(extras.front(), names) + " (known: " + known + ")";
 }
 
 }  // namespace
@@ -57,7 +81,8 @@ int parse_and_run(CLI::App& app, int argc, char** argv, const std::function<int(
     // Bad command line = bad input: one line and exit code 2, like every other ConfigError.
     const std::string help = app.get_subcommands().empty() ? program + " --help"
                                                            : program + " " + app.get_subcommands().front()->get_name() + " --help";
-    std::fprintf(stderr, "%s: error: %s (see %s)\n", program.c_str(), e.what(), help.c_str());
+    const std::string unknown = unknown_subcommand(app);
+    std::fprintf(stderr, "%s: error: %s (see %s)\n", program.c_str(), unknown.empty() ? e.what() : unknown.c_str(), help.c_str());
     return 2;
   }
   try {

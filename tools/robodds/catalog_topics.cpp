@@ -2,6 +2,8 @@
 
 #include <set>
 
+#include "common/did_you_mean.hpp"
+#include "runtime/topics/topic_names.hpp"
 #include "runtime/base/error.hpp"
 
 namespace robodds {
@@ -18,8 +20,8 @@ std::vector<const TopicInfo*> catalog_topics(const std::vector<std::string>& nam
   for (const std::string& name : names) {
     const TopicInfo* topic = find_topic(name);
     if (topic == nullptr) {
-      throw ConfigError((option.empty() ? "" : option + ": ") + "unknown topic '" + name +
-                        "' (`robodds record --list` lists the topics it can record)");
+      throw ConfigError((option.empty() ? "" : option + ": ") + "unknown topic '" + name + "'" + did_you_mean(name, topic_names()) +
+                        " (`robodds record --list` lists the topics it can record)");
     }
     if (seen.insert(name).second) {
       chosen.push_back(topic);

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <vector>
 
+#include "common/did_you_mean.hpp"
 #include "runtime/base/realtime_priority.hpp"
 #include "runtime/dds/security_files.hpp"
 #include "runtime/base/error.hpp"
@@ -118,7 +119,8 @@ class ComposeWriter {
           known += (known.empty() ? "" : ", ") + type;
         }
         throw ConfigError(located(scenario_.file, "components." + component.name,
-                                  "unknown component type '" + component.type + "' (known: " + known + ")"));
+                                  "unknown component type '" + component.type + "'" + did_you_mean(component.type, types) +
+                                      " (known: " + known + ")"));
       }
     }
     if (!valid_service_name(scenario_.name)) {

@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "common/did_you_mean.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/dds/discovery.hpp"
 #include "runtime/dds/raw_bus.hpp"
@@ -166,7 +167,8 @@ class ReplayCommand : public Command {
       for (const std::string& name : *list) {
         if (in_file.count(name) == 0) {
           throw ConfigError(std::string(list == &only_ ? "--topics" : "--exclude") + ": unknown topic '" + name + "': not in " +
-                            path_ + " (its topics: " + joined(in_file) + ")");
+                            path_ + " (its topics: " + joined(in_file) + ")" +
+                            did_you_mean(name, std::vector<std::string>(in_file.begin(), in_file.end())));
         }
       }
     }

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 
+#include "runtime/component/param_keys.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/launch/added_components.hpp"
 #include "runtime/launch/launch.hpp"
@@ -103,6 +104,7 @@ class RunCommand : public Command {
     const std::vector<std::string> added = record_components(scenario);
     add_components(scenario, added);
     apply_run_overrides(scenario, duration_s_, seed_);
+    check_param_keys(scenario, env_.registry, sets_, "--set");
     apply_param_overrides(scenario, parse_param_assignments(sets_), "--set");
     LaunchOptions launch;
     launch.scenario_file = scenario_file_;

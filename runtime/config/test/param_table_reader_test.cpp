@@ -77,7 +77,7 @@ TEST(ParamTableReader, OverridesWinAndErrorsNameTheirFile) {
 TEST(ParamTableReader, UnknownOverrideNamesTheKnownKeys) {
   const std::string file = write_test_file("s.yaml", "rate: 7\n");
   EXPECT_EQ(error_of([&] { merge_params(defaults(), load_param_file(file)); }),
-            file + ": rate: unknown parameter (known: count, flag, points, rate_hz, topics)");
+            file + ": rate: unknown parameter; did you mean 'rate_hz'? (known: count, flag, points, rate_hz, topics)");
 }
 
 }  // namespace

@@ -96,7 +96,8 @@ TEST(Scenario, DuplicateRobotIsRejected) {
 // A top-level section the runtime does not know is an error, unless the layer above registered it
 // (system/mission_plan.cpp registers targets and events); the runtime stores it unread.
 TEST(Scenario, UnknownTopLevelKeysAreErrorsUnlessRegisteredAsSections) {
-  EXPECT_NE(load_error(std::string(kValid) + "durations_s: 3\n").find("durations_s: unknown key (known: name,"), std::string::npos);
+  EXPECT_NE(load_error(std::string(kValid) + "durations_s: 3\n").find("durations_s: unknown key; did you mean 'duration_s'? (known: name,"),
+            std::string::npos);
   register_scenario_section("test_section");
   const Scenario s = load_scenario(write_test_file("section.yaml", std::string(kValid) + "test_section: [{a: 1}, {a: 2}]\n"));
   ASSERT_EQ(s.sections.count("test_section"), 1u);

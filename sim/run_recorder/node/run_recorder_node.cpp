@@ -15,6 +15,8 @@
 
 #include "robodds/idl/robodds.h"
 #include "robodds/idl/robodds_visit.hpp"
+#include "common/did_you_mean.hpp"
+#include "runtime/topics/topic_names.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/bus/sample_codec.hpp"
@@ -256,7 +258,8 @@ class RunRecorderNode : public Component {
     }
     for (const std::string& name : params.topics) {
       if (find_topic(name) == nullptr) {
-        ctx.params().fail("topics (robodds run --record-topics): unknown topic '" + name + "' (`robodds record --list` lists the topics)");
+        ctx.params().fail("topics (robodds run --record-topics): unknown topic '" + name + "'" + did_you_mean(name, topic_names()) +
+                          " (`robodds record --list` lists the topics)");
       }
       if (producers->count(name) == 0) {
         ctx.params().fail("topics (robodds run --record-topics): no component of the scenario publishes '" + name + "'");

@@ -42,6 +42,27 @@ TEST(CliMain, CommandLineMistakesAreBadInputAndDoNotRun) {
   EXPECT_FALSE(ran);
 }
 
+TEST(CliMain, AnUnknownSubcommandNamesTheClosestOnes) {
+  CLI::App app{"test", "robodds-test"};
+  app.require_subcommand(1);
+  app.add_subcommand("record", "");
+  app.add_subcommand("replay", "");
+  CLI::App* security = app.add_subcommand("security", "");
+  security->require_subcommand(1);
+  security->add_subcommand("init", "");
+  const auto error_of = [&app](std::vector<const char*> argv) {
+    argv.insert(argv.begin(), "robodds-test");
+    testing::internal::CaptureStderr();
+    EXPECT_EQ(parse_and_run(app, static_cast<int>(argv.size()), const_cast<char**>(argv.data()), [] { return 0; }), 2);
+    return testing::internal::GetCapturedStderr();
+  };
+  EXPECT_EQ(error_of({"recrod"}),
+            "robodds-test: error: unknown subcommand 'recrod'; did you mean 'record'? (known: record, replay, security) "
+            "(see robodds-test --help)\n");
+  EXPECT_NE(error_of({"security", "inti"}).find("unknown subcommand 'inti'; did you mean 'init'? (known: init)"), std::string::npos);
+  EXPECT_EQ(error_of({"zzz"}).find("did you mean"), std::string::npos);
+}
+
 TEST(CliMain, LogLevelComesFromTheEnvironmentOrIsInfo) {
   unsetenv("ROBODDS_LOG");
   EXPECT_EQ(log_level_from_environment(), "info");

@@ -205,7 +205,7 @@ TEST(Compose, UnknownComponentTypeNamesComponentAndType) {
   std::string text = kTwoGroups;
   text.replace(text.find("type: plant}"), 12, "type: plantt}");
   const std::string error = config_error(scenario_from(text), options_for(ComposeDiscovery::kMulticast, ComposeNetwork::kBridge));
-  EXPECT_THAT(error, HasSubstr("compose_scenario.yaml: components.plant: unknown component type 'plantt' (known: "));
+  EXPECT_THAT(error, HasSubstr("compose_scenario.yaml: components.plant: unknown component type 'plantt'; did you mean 'plant'? (known: "));
 }
 
 TEST(Compose, GroupNamedLikeAGeneratedServiceIsRejected) {
