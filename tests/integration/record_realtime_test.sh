@@ -22,7 +22,7 @@ command -v node >/dev/null || fail "node not found (scripts/setup.sh installs no
 [[ -d $SRC/tests/npm/node_modules/@mcap/core ]] || fail "tests/npm/node_modules missing: run scripts/npm_setup.sh"
 
 # Bad input: one line each, exit 2, before joining the domain.
-expect_error 2 "unknown topic 'plant/stat' .*robodds record --list. lists the topics" -- \
+expect_error 2 "unknown topic 'plant/stat'; did you mean 'plant/state'\? .*robodds record --list. lists the topics" -- \
   "$ROBODDS" record plant/state plant/stat --out "$WORK/x.mcap" --domain "$DOMAIN"
 expect_error 2 "$WORK/no/dir/x.mcap: cannot create the MCAP file: No such file or directory" -- \
   "$ROBODDS" record --all --out "$WORK/no/dir/x.mcap" --domain "$DOMAIN"
