@@ -2,7 +2,8 @@
 # Runs fastddsgen at build time into the build tree and builds two libraries:
 #   ${TARGET_NAME}            the plain C++ types (Fast CDR only; safe to include anywhere)
 #   ${TARGET_NAME}_typesupport the TopicDataType classes (Fast DDS; linked by runtime/ only)
-# plus ${TARGET_NAME}_visit.hpp: generated field visitors (printing, CSV, finiteness checks).
+# plus ${TARGET_NAME}_visit.hpp: generated field visitors (printing, CSV, finiteness checks), and
+# ${TARGET_NAME}_enums.hpp: the IDL names of enum values (enum_name()).
 find_program(FASTDDSGEN_EXECUTABLE fastddsgen REQUIRED)
 find_package(Python3 REQUIRED COMPONENTS Interpreter)
 
@@ -13,6 +14,7 @@ function(robodds_generate_idl target idl_file)
   set(gen_sources ${out_dir}/${stem}.cxx ${out_dir}/${stem}.h)
   set(gen_typesupport ${out_dir}/${stem}PubSubTypes.cxx ${out_dir}/${stem}PubSubTypes.h)
   set(gen_visit ${out_dir}/${stem}_visit.hpp)
+  set(gen_enums ${out_dir}/${stem}_enums.hpp)
   # fastddsgen preprocesses the IDL into <temp dir>/<idl file name>.cc, by default /tmp/ for every
   # build on the machine. Two builds generating at once (fresh build dirs) could read each other's
   # file: half-written, fastddsgen fails ("mismatched input '<EOF>'", no file written); whole, from
@@ -29,14 +31,14 @@ function(robodds_generate_idl target idl_file)
     COMMENT "fastddsgen ${stem}.idl"
     VERBATIM)
   add_custom_command(
-    OUTPUT ${gen_visit}
+    OUTPUT ${gen_visit} ${gen_enums}
     COMMAND ${CMAKE_COMMAND} -E make_directory ${out_dir}
-    COMMAND Python3::Interpreter ${PROJECT_SOURCE_DIR}/cmake/idl_visitors.py ${idl_abs} ${gen_visit}
+    COMMAND Python3::Interpreter ${PROJECT_SOURCE_DIR}/cmake/idl_visitors.py ${idl_abs} ${gen_visit} ${gen_enums}
     DEPENDS ${idl_abs} ${PROJECT_SOURCE_DIR}/cmake/idl_visitors.py
     COMMENT "field visitors for ${stem}.idl"
     VERBATIM)
 
-  add_library(${target} STATIC ${gen_sources} ${gen_visit})
+  add_library(${target} STATIC ${gen_sources} ${gen_visit} ${gen_enums})
   target_include_directories(${target} SYSTEM PUBLIC ${CMAKE_CURRENT_BINARY_DIR}/generated)
   target_link_libraries(${target} PUBLIC fastcdr)
   # fixed_size_string.hpp (header only) comes from the Fast RTPS include directory.

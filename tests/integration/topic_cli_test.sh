@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# `robodds topics` lists the live topics with type and QoS; `robodds echo` prints samples readably.
+# `robodds topics` lists the live topics with type and QoS; `robodds echo` prints samples readably
+# (enums by name), filtered by key (--robot, --key), one field (--field), as JSON or CSV.
 source "$(dirname "$0")/lib.sh"
 "$ROBODDS" host --scenario "$SRC/sim/scenarios/plant_smoke.yaml" --components plant,commander,position_sensor --realtime $(rt_priority_flag) \
   --duration 30 --domain "$DOMAIN" >"$WORK/host.log" 2>&1 &
@@ -13,5 +14,30 @@ grep -qE "^plant/cmd +robodds::idl::VelocityCommand +1 +1 " <<<"$topics" || fail
 out="$(timeout -k 2 20 "$ROBODDS" echo plant/state --count 3 --timeout 5 --domain "$DOMAIN")" || fail "echo failed: $out"
 [[ $(grep -c "^--- plant/state (robot_id=" <<<"$out") -eq 3 ]] || fail "expected 3 samples: $out"
 grep -qE "^  x: -?[0-9]" <<<"$out" || fail "fields not printed: $out"
-expect_error 1 "no sample on sensor/uwb within 1" -- "$ROBODDS" echo sensor/uwb --count 1 --timeout 1 --domain "$DOMAIN"
+expect_error 1 "no sample on sensor/uwb within 1 s on DDS domain $DOMAIN \(.robodds topics --domain $DOMAIN. lists the topics" -- \
+  "$ROBODDS" echo sensor/uwb --count 1 --timeout 1 --domain "$DOMAIN"
 echo "ok: topics and echo"
+
+# Issue 26: the commander's commands of robot 2 only, the mode enum by its IDL name.
+out="$(timeout -k 2 20 "$ROBODDS" echo plant/cmd --robot 2 --count 3 --timeout 5 --domain "$DOMAIN")" || fail "echo --robot failed: $out"
+[[ $(grep -c "^--- plant/cmd (robot_id=2)" <<<"$out") -eq 3 && $(grep -c "^--- " <<<"$out") -eq 3 ]] || fail "expected 3 samples of robot 2: $out"
+[[ $(grep -c "^  mode: VELOCITY$" <<<"$out") -eq 3 ]] || fail "enum not printed by name: $out"
+# --json: one object per line, nested header, only robot 3.
+out="$(timeout -k 2 20 "$ROBODDS" echo plant/state --robot 3 --json --count 2 --timeout 5 --domain "$DOMAIN")" || fail "echo --json failed: $out"
+python3 -c '
+import json, sys
+rows = [json.loads(line) for line in sys.stdin.read().splitlines()]
+assert len(rows) == 2 and all(r["robot_id"] == 3 and r["header"]["step"] > 0 and isinstance(r["x"], float) for r in rows), rows
+' <<<"$out" || fail "echo --json: not 2 JSON objects of robot 3: $out"
+# --csv: a header, then rows with the enum by name; --field: the bare value.
+out="$(timeout -k 2 20 "$ROBODDS" echo plant/cmd --csv --count 2 --timeout 5 --domain "$DOMAIN")" || fail "echo --csv failed: $out"
+[[ $(head -1 <<<"$out") == "robot_id,header.step,header.next_step,header.stamp_ns,mode,v,omega,v_left,v_right" ]] || fail "csv header: $out"
+[[ $(grep -cE "^[123],[0-9]+,[0-9]+,[0-9]+,VELOCITY," <<<"$out") -eq 2 ]] || fail "csv rows: $out"
+out="$(timeout -k 2 20 "$ROBODDS" echo plant/state --robot 1 --field x --count 2 --timeout 5 --domain "$DOMAIN")" || fail "echo --field failed: $out"
+[[ $(grep -cE "^-?[0-9][0-9.e+-]*$" <<<"$out") -eq 2 ]] || fail "expected 2 bare values of x: $out"
+expect_error 1 "no sample of robot_id=9 on plant/state within 1 s on DDS domain $DOMAIN" -- \
+  "$ROBODDS" echo plant/state --robot 9 --count 1 --timeout 1 --domain "$DOMAIN"
+expect_error 2 "--field 'xx': no such field; did you mean 'x'\?" -- "$ROBODDS" echo plant/state --field xx --domain "$DOMAIN"
+expect_error 2 "--key 'robotid=1': 'robotid' is no key of the topic; did you mean 'robot_id'\?" -- \
+  "$ROBODDS" echo plant/state --key robotid=1 --domain "$DOMAIN"
+echo "ok: echo --robot, --json, --csv, --field"

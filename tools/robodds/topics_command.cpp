@@ -19,14 +19,17 @@ class TopicsCommand : public Command {
   bool parsed() const override { return cmd_->parsed(); }
 
   int run() override {
-    const auto topics = discover_topics(tools_dds(dds_, "robodds-topics"), seconds_);
+    const DdsOptions dds = tools_dds(dds_, "robodds-topics");
+    const auto topics = discover_topics(dds, seconds_);
     std::printf("%-24s %-36s %3s %3s  %-26s %s\n", "topic", "type", "W", "R", "writer QoS", "reader QoS");
     for (const DiscoveredTopic& t : topics) {
       std::printf("%-24s %-36s %3d %3d  %-26s %s\n", t.name.c_str(), t.type_name.c_str(), t.writers, t.readers,
                   t.writer_qos.c_str(), t.reader_qos.c_str());
     }
     if (topics.empty()) {
-      std::printf("(no topics seen in %.1f s)\n", seconds_);
+      std::printf("(no topics seen in %.1f s on DDS domain %d: is anything running there? --domain or $ROBODDS_DOMAIN_ID "
+                  "picks the domain, --duration listens longer)\n",
+                  seconds_, dds.domain_id);
     }
     return 0;
   }
