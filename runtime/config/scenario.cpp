@@ -330,7 +330,8 @@ const ComponentSpec& Scenario::component(const std::string& component_name) cons
       return c;
     }
   }
-  throw ConfigError(located(file, "components", "no component named '" + component_name + "'"));
+  throw ConfigError(located(file, "components", "no component named '" + component_name + "'" +
+                                                    did_you_mean(component_name, component_names(*this))));
 }
 
 std::size_t Scenario::robots_served_by(const std::vector<std::string>& component_names) const {
@@ -344,13 +345,16 @@ std::size_t Scenario::robots_served_by(const std::vector<std::string>& component
 
 const GroupSpec& Scenario::group(const std::string& group_name) const {
   std::string known;
+  std::vector<std::string> names;
   for (const GroupSpec& g : groups) {
     if (g.name == group_name) {
       return g;
     }
     known += (known.empty() ? "" : ", ") + g.name;
+    names.push_back(g.name);
   }
-  throw ConfigError(located(file, "groups", "no group named '" + group_name + "' (groups: " + known + ")"));
+  throw ConfigError(located(file, "groups", "no group named '" + group_name + "'" + did_you_mean(group_name, names) +
+                                                " (groups: " + known + ")"));
 }
 
 const RobotSpec& Scenario::robot(std::uint32_t id) const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "common/did_you_mean.hpp"
 #include "runtime/base/error.hpp"
 
 namespace robodds {
@@ -24,7 +25,11 @@ void add_components(Scenario& scenario, const std::vector<std::string>& specs) {
     component.type = spec.substr(second + 1);
     auto g = std::find_if(scenario.groups.begin(), scenario.groups.end(), [&](const GroupSpec& s) { return s.name == group; });
     if (g == scenario.groups.end()) {
-      throw ConfigError("--add-component '" + spec + "': " + scenario.file + " has no group '" + group + "'");
+      std::vector<std::string> names;
+      for (const GroupSpec& known : scenario.groups) {
+        names.push_back(known.name);
+      }
+      throw ConfigError("--add-component '" + spec + "': " + scenario.file + " has no group '" + group + "'" + did_you_mean(group, names));
     }
     if (std::any_of(scenario.components.begin(), scenario.components.end(),
                     [&](const ComponentSpec& c) { return c.name == component.name; })) {

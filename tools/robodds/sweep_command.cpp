@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "common/number_text.hpp"
+#include "runtime/component/param_keys.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/launch/host_args.hpp"
 #include "runtime/launch/launch.hpp"
@@ -151,6 +152,17 @@ class SweepCommand : public Command {
       spec.run_args = {"--duration", shortest_text(*duration_s_)};
     }
     spec.run_timeout_s = run_timeout_s_;
+    // A key without its component ('--set epsilon=0.1,0.2'): the plan would only say "expected
+    // component.parameter"; the scenario's parameters name the closest instead.
+    for (const std::string& text : grid_) {
+      if (text.substr(0, text.find('=')).find('.') == std::string::npos && text.find('=') != std::string::npos) {
+        try {
+          check_param_keys(load_scenario(spec.source), env_.registry, {text}, "--set");
+        } catch (const ConfigError& e) {
+          throw ConfigError(std::string("robodds sweep: ") + e.what());
+        }
+      }
+    }
     std::vector<PlannedRun> runs;
     try {
       runs = planned_runs(spec);

@@ -75,7 +75,24 @@ TEST(Scenario, UnknownRobotIsNamed) {
 TEST(Scenario, UnknownGroupMemberIsNamed) {
   std::string text = kValid;
   text.replace(text.find("sim: [plant]"), 12, "sim: [plantt]");
-  EXPECT_NE(load_error(text).find("groups.sim: unknown component 'plantt'"), std::string::npos);
+  EXPECT_NE(load_error(text).find("groups.sim: unknown component 'plantt'; did you mean 'plant'?"), std::string::npos);
+}
+
+TEST(Scenario, AnUnknownComponentOrGroupNameNamesTheClosest) {
+  const Scenario s = load_scenario(write_test_file("ok.yaml", kValid));
+  std::string message;
+  try {
+    s.group("sin");
+  } catch (const ConfigError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("groups: no group named 'sin'; did you mean 'sim'? (groups: "), std::string::npos) << message;
+  try {
+    s.component("plnat");
+  } catch (const ConfigError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("components: no component named 'plnat'; did you mean 'plant'?"), std::string::npos) << message;
 }
 
 TEST(Scenario, BadValuesAreNamed) {

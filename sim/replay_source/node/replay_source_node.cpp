@@ -11,6 +11,7 @@
 #include <set>
 #include <vector>
 
+#include "common/did_you_mean.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/bus/sample_codec.hpp"
 #include "runtime/component/registry.hpp"
@@ -85,7 +86,8 @@ class ReplaySourceNode : public Component {
         std::string names;
         for (const std::string& n : in_file) names += (names.empty() ? "" : ", ") + n;
         throw ConfigError(name_ + ".topics: " + params_.file + " has no topic '" + topic + "' (" +
-                          (names.empty() ? std::string("it holds no channel") : "its topics: " + names) + ")");
+                          (names.empty() ? std::string("it holds no channel") : "its topics: " + names) + ")" +
+                          did_you_mean(topic, std::vector<std::string>(in_file.begin(), in_file.end())));
       }
       const TopicInfo& info = replayable_topic(params_.file, report, *channel, "replay_source takes only robodds topics");
       if (streams_.count(topic) != 0) {
