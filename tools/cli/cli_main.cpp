@@ -33,17 +33,43 @@ void on_signal(int signal_number) {
   }
 }
 
-/// "unknown subcommand 'recrod'; did you mean 'record'? (known: ...)" when the command line's
-/// first unparsed word stands where the deepest subcommand parsed expects one of its own
-/// subcommands; "" otherwise (then CLI11's own message says what is wrong).
-std::string unknown_subcommand(CLI::App& app) {
+/// The message of a command line word that is no subcommand or option of the deepest subcommand
+/// parsed, naming the closest: "unknown subcommand 'recrod'; did you mean 'record'? (known: ...)"
+/// where that subcommand expects one of its own subcommands, "unknown option '--sed'; did you mean
+/// '--seed'?" for an option with a close one. "" otherwise (then CLI11's own message says what is
+/// wrong).
+std::string unknown_word(CLI::App& app) {
   CLI::App* deepest = &app;
   while (!deepest->get_subcommands().empty()) {
     deepest = deepest->get_subcommands().front();
   }
-  const std::vector<CLI::App*> subcommands = deepest->get_subcommands([](CLI::App*) { return true; });
   const std::vector<std::string> extras = deepest->remaining();
-  if (subcommands.empty() || extras.empty() || extras.front().empty() || extras.front().front() == '-') {
+  if (extras.empty() || extras.front().empty()) {
+    return "";
+  }
+  const std::string word = extras.front();
+  if (word.front() == '-') {
+    // "--sed=3" is the option "--sed"; compared without the dashes, so "--x" is no typo of "--y".
+    const std::string option = word.substr(0, word.find('='));
+    const std::string bare = option.substr(option.find_first_not_of('-') == std::string::npos ? option.size() : option.find_first_not_of('-'));
+    std::vector<std::string> names;
+    for (const CLI::Option* known : deepest->get_options()) {
+      for (const std::string& name : known->get_lnames()) {
+        names.push_back(name);
+      }
+    }
+    const std::vector<std::string> close = closest_names(bare, names);
+    if (close.empty()) {
+      return "";
+    }
+    std::vector<std::string> dashed;
+    for (const std::string& name : close) {
+      dashed.push_back("--" + name);
+    }
+    return "unknown option '" + option + "'" + did_you_mean(option, dashed);
+  }
+  const std::vector<CLI::App*> subcommands = deepest->get_subcommands([](CLI::App*) { return true; });
+  if (subcommands.empty()) {
     return "";
   }
   std::vector<std::string> names;
@@ -52,7 +78,7 @@ std::string unknown_subcommand(CLI::App& app) {
     names.push_back(sub->get_name());
     known += (known.empty() ? "" : ", ") + sub->get_name();
   }
-  return "unknown subcommand '" + extras.front() + "'" + did_you_mean(extras.front(), names) + " (known: " + known + ")";
+  return "unknown subcommand '" + word + "'" + did_you_mean(word, names) + " (known: " + known + ")";
 }
 
 }  // namespace
@@ -81,7 +107,7 @@ int parse_and_run(CLI::App& app, int argc, char** argv, const std::function<int(
     // Bad command line = bad input: one line and exit code 2, like every other ConfigError.
     const std::string help = app.get_subcommands().empty() ? program + " --help"
                                                            : program + " " + app.get_subcommands().front()->get_name() + " --help";
-    const std::string unknown = unknown_subcommand(app);
+    const std::string unknown = unknown_word(app);
     std::fprintf(stderr, "%s: error: %s (see %s)\n", program.c_str(), unknown.empty() ? e.what() : unknown.c_str(), help.c_str());
     return 2;
   }

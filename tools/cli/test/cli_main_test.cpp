@@ -63,6 +63,19 @@ TEST(CliMain, AnUnknownSubcommandNamesTheClosestOnes) {
   EXPECT_EQ(error_of({"zzz"}).find("did you mean"), std::string::npos);
 }
 
+TEST(CliMain, AnUnknownOptionNamesTheClosestOne) {
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run_with({"--cuont", "3"}, [] { return 0; }), 2);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(),
+            "robodds-test: error: unknown option '--cuont'; did you mean '--count'? (see robodds-test --help)\n");
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run_with({"--cuont=3"}, [] { return 0; }), 2);
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("unknown option '--cuont'; did you mean '--count'?"), std::string::npos);
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(run_with({"--zzzzz"}, [] { return 0; }), 2);  // nothing close: CLI11's own message
+  EXPECT_EQ(testing::internal::GetCapturedStderr().find("did you mean"), std::string::npos);
+}
+
 TEST(CliMain, LogLevelComesFromTheEnvironmentOrIsInfo) {
   unsetenv("ROBODDS_LOG");
   EXPECT_EQ(log_level_from_environment(), "info");
