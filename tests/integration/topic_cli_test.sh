@@ -41,3 +41,8 @@ expect_error 2 "--field 'xx': no such field; did you mean 'x'\?" -- "$ROBODDS" e
 expect_error 2 "--key 'robotid=1': 'robotid' is no key of the topic; did you mean 'robot_id'\?" -- \
   "$ROBODDS" echo plant/state --key robotid=1 --domain "$DOMAIN"
 echo "ok: echo --robot, --json, --csv, --field"
+# A recording of nothing says where it listened and how to see what is there.
+out="$(timeout -k 2 20 "$ROBODDS" record sensor/uwb --duration 1 --out "$WORK/empty.mcap" --domain "$DOMAIN")" || fail "record failed: $out"
+grep -qF "no sample of these topics on DDS domain $DOMAIN (\`robodds topics --domain $DOMAIN\` lists the topics seen there)" <<<"$out" ||
+  fail "an empty recording does not name the domain: $out"
+echo "ok: an empty recording names the domain"

@@ -234,7 +234,8 @@ class RecordCommand : public Command {
     };
 
     PendingQueue queue;  // declared before the bus: its callbacks push into it
-    auto bus = make_raw_bus(tools_dds(dds_, "robodds-record"));
+    const DdsOptions dds = tools_dds(dds_, "robodds-record");
+    auto bus = make_raw_bus(dds);
     for (std::size_t i = 0; i < topics.size(); ++i) {
       const TopicInfo& topic = *topics[i];
       // Missions are transient local: read them with the mission profile to get the last one
@@ -272,6 +273,10 @@ class RecordCommand : public Command {
                 parts.parts(), parts.parts() == 1 ? "" : "s",
                 queue.dropped() > 0 ? (", " + std::to_string(queue.dropped()) + " samples dropped (the writer fell behind)").c_str()
                                     : "");
+    if (parts.messages() == 0) {
+      std::printf("robodds record: no sample of these topics on DDS domain %d (`robodds topics --domain %d` lists the topics seen there)\n",
+                  dds.domain_id, dds.domain_id);
+    }
     return 0;
   }
 
