@@ -6,10 +6,12 @@
 #include <vector>
 #include <sys/stat.h>
 
+#include "common/did_you_mean.hpp"
 #include "common/json_writer.hpp"
 #include "common/replace_file.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/config/param_table_reader.hpp"
+#include "runtime/topics/topic_names.hpp"
 #include "runtime/config/params.hpp"
 #include "runtime/component/registry.hpp"
 #include "sim/evaluator/module/metrics_setup.hpp"
@@ -115,6 +117,9 @@ class EvaluatorNode : public Component {
     // Keyed (robot_id, target_id): one stream per robot whatever its target (a mission event moves it).
     const bool by_robot = info != nullptr && info->key == "robot_id, target_id";
     if (info == nullptr || (info->key != "robot_id" && !by_robot)) {
+      if (info == nullptr) {  // a typo ('plant/stat') names the topic it missed
+        ctx.params().fail("topics: unknown topic '" + topic + "'" + did_you_mean(topic, topic_names()) + " (docs/topics.md lists them)");
+      }
       ctx.params().fail("topics: '" + topic + "' is not a per-robot topic (key robot_id or robot_id, target_id) of the catalog, "
                         "nor one a metrics module records (e.g. a relative pose topic, key robot_id, peer_id; see docs/topics.md)");
     }

@@ -146,6 +146,21 @@ components:
   EXPECT_NE(error.find("sim/clock"), std::string::npos) << "expected a ConfigError, got: " << error;
 }
 
+TEST(EvaluatorNode, AnUnknownTopicNamesTheClosest) {
+  NodeHarness h(R"(name: evaluator_node
+step_s: 0.01
+duration_s: 0.1
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: evaluator, type: evaluator, params: {topics: [plant/stat]}}
+)");
+  add_evaluator(h);
+  const std::string error = h.run_error<ConfigError>({"evaluator"});
+  EXPECT_NE(error.find("topics: unknown topic 'plant/stat'; did you mean 'plant/state'?"), std::string::npos) << error;
+}
+
 // Real time: the files are opened in on_start(), before the clock starts (opening them at step 0
 // made steps 0-1 late at 200 robots); lockstep: at the first step, so a run stopped at its start
 // barrier leaves no files. The feeder runs before the evaluator at each step: what it sees at step
