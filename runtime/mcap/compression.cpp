@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "common/did_you_mean.hpp"
 #include "runtime/base/error.hpp"
 
 namespace robodds::mcap {
@@ -21,7 +22,8 @@ Compression parse_compression(const std::string& text, const std::string& option
   if (text == "none") return Compression::kNone;
   if (text == "zstd") return Compression::kZstd;
   if (text == "lz4") return Compression::kLz4;
-  throw ConfigError(option_name + ": unknown compression '" + text + "' (accepted: none, zstd, lz4)");
+  throw ConfigError(option_name + ": unknown compression '" + text + "'" + did_you_mean(text, {"none", "zstd", "lz4"}) +
+                    " (accepted: none, zstd, lz4)");
 }
 
 const char* record_name(Compression compression) {

@@ -23,6 +23,12 @@ TEST(Compression, ParsesTheThreeNamesAndNamesTheOptionOtherwise) {
   } catch (const ConfigError& e) {
     EXPECT_STREQ(e.what(), "--compression: unknown compression 'gzip' (accepted: none, zstd, lz4)");
   }
+  try {
+    parse_compression("zsdt", "--compression");
+    FAIL();
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(), "--compression: unknown compression 'zsdt'; did you mean 'zstd'? (accepted: none, zstd, lz4)");
+  }
 }
 
 TEST(Compression, RoundTripsEachCodec) {
