@@ -8,6 +8,7 @@
 #include "runtime/base/error.hpp"
 #include "runtime/launch/launch.hpp"
 #include "runtime/config/scenario.hpp"
+#include "tools/cli/one_of.hpp"
 #include "tools/robodds/compose.hpp"
 
 namespace robodds {
@@ -45,9 +46,9 @@ DeployCommand::DeployCommand(CLI::App& app, const CommandEnv& env) : env_(env) {
   CLI::App* compose = deploy_->add_subcommand("compose", "docker-compose file: one service per group of the scenario + coordinator");
   compose->add_option("scenario", scenario_file_, "scenario YAML file (inside the repository)")->required();
   compose->add_option("--discovery", discovery_, "multicast (SIMPLE discovery) or server (a Fast DDS Discovery Server service)")
-      ->check(CLI::IsMember({"multicast", "server"}));
+      ->check(cli::one_of({"multicast", "server"}));
   compose->add_option("--network", network_, "bridge (user-defined network, UDP only) or host (network_mode: host, ipc: host)")
-      ->check(CLI::IsMember({"bridge", "host"}));
+      ->check(cli::one_of({"bridge", "host"}));
   compose->add_option("--security", security_dir_,
                       "DDS Security: directory made by `robodds security init`; each container mounts its own identity, read-only");
   add_rt_priority_option(compose, rt_priority_);

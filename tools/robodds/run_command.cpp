@@ -15,6 +15,7 @@
 #include "runtime/launch/launch.hpp"
 #include "runtime/mcap/compression.hpp"
 #include "runtime/base/log.hpp"
+#include "tools/cli/one_of.hpp"
 #include "tools/robodds/command.hpp"
 #include "tools/robodds/summary_table.hpp"
 
@@ -74,7 +75,7 @@ class RunCommand : public Command {
     cmd_ = app.add_subcommand("run", "run a scenario (lockstep, co-located by default)");
     cmd_->add_option("scenario", scenario_file_, "scenario YAML file")->required();
     cmd_->add_option("--deploy", deploy_, "colocated (one process) or processes (one per group)")
-        ->check(CLI::IsMember({"colocated", "processes"}));
+        ->check(cli::one_of({"colocated", "processes"}));
     cmd_->add_option("--out", out_dir_, "output directory (default out/<scenario name>)");
     add_seed_option(cmd_, seed_, "override the scenario seed");
     cmd_->add_option("--set", sets_, "component.parameter=value over the scenario's (repeatable), e.g. controller.epsilon_m=0.01");

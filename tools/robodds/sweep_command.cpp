@@ -16,6 +16,7 @@
 #include "runtime/launch/launch.hpp"
 #include "runtime/launch/output_dir.hpp"
 #include "runtime/config/share_dir.hpp"
+#include "tools/cli/one_of.hpp"
 #include "tools/robodds/command.hpp"
 #include "tools/robodds/sweep_emit.hpp"
 #include "tools/robodds/sweep_runner.hpp"
@@ -70,7 +71,7 @@ class SweepCommand : public Command {
     cmd_->add_option("--run-index", run_index_, "run only run K of the sweep already planned in --out (a batch array task)");
     cmd_->add_flag("--aggregate", aggregate_, "only (re)write the tables from the runs in --out");
     cmd_->add_option("--emit", emit_, "write the planned sweep in --out as a batch array job: slurm (slurm.sbatch) or k8s (k8s-job.yaml)")
-        ->check(CLI::IsMember({"slurm", "k8s"}));
+        ->check(cli::one_of({"slurm", "k8s"}));
     cmd_->add_option("--image", image_, "with --emit k8s: the container image (default robodds:latest, deploy/docker)");
     cmd_->add_option("--claim", claim_, "with --emit k8s: the persistent volume claim holding the sweep folder (default robodds-sweep)");
     cmd_->add_option("--domain-offset", domain_offset_text_,
