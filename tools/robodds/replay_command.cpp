@@ -112,7 +112,7 @@ class ReplayCommand : public Command {
     std::printf("robodds replay: %s: %zu messages on %zu topics (%s)%s\n", path_.c_str(), messages.size(), channels.size(),
                 joined(names).c_str(), fast_ ? ", as fast as possible" : (", at " + number(rate_) + " x recorded speed").c_str());
     std::fflush(stdout);
-    wait_for_readers(channels);
+    wait_for_readers(channels, dds.domain_id);
 
     const auto start = Clock::now();
     const std::uint64_t base = messages.empty() ? 0 : messages.front()->log_time;
@@ -206,7 +206,7 @@ class ReplayCommand : public Command {
     }
   }
 
-  void wait_for_readers(const std::map<std::uint16_t, Replayed>& channels) const {
+  void wait_for_readers(const std::map<std::uint16_t, Replayed>& channels, int domain) const {
     if (wait_readers_s_ <= 0) return;
     std::printf("robodds replay: waiting up to %s s (--wait-readers) for a reader of each topic\n", number(wait_readers_s_).c_str());
     std::fflush(stdout);
@@ -227,8 +227,10 @@ class ReplayCommand : public Command {
       if (env_.stop) return;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     } while (Clock::now() < deadline);
-    std::fprintf(stderr, "robodds replay: warning: no reader of %s after %s s (--wait-readers); replaying anyway\n",
-                 joined(missing).c_str(), number(wait_readers_s_).c_str());
+    std::fprintf(stderr,
+                 "robodds replay: warning: no reader of %s on DDS domain %d after %s s (--wait-readers; `robodds topics --domain %d` "
+                 "lists the readers there); replaying anyway\n",
+                 joined(missing).c_str(), domain, number(wait_readers_s_).c_str(), domain);
   }
 
   /// Reliable readers acknowledge every sample (best-effort ones never hold it up), within the
