@@ -54,6 +54,11 @@ struct SampleMeta {
   /// steady_clock (CLOCK_MONOTONIC) time at which this process took the sample, ns since the
   /// clock's epoch. 0: unknown (e.g. a unit test feeding an Input directly).
   std::int64_t received_ns = 0;
+  /// One delivery of a sample to several readers in this process (MemoryBus: every reader inside
+  /// write(), one after the other on one thread) points all of them at one flag: the first reader
+  /// whose content checks pass it sets it, and the others do not check the same bytes again
+  /// (lockstep only: there the checks depend on the sample alone). nullptr: no sharing (DDS).
+  bool* checks_passed = nullptr;
 };
 
 /// steady_clock now in ns: the clock of SampleMeta::received_ns.

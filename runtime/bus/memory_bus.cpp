@@ -150,15 +150,21 @@ struct MemoryBus::State {
     struct Leave {
       ~Leave() { active_deliveries.pop_back(); }
     } leave;
-    for (const SampleCallback& callback : *callbacks) {
-      callback(sample, meta);
-    }
+    run_callbacks(*callbacks, sample, meta);
     while (!queue.empty()) {
       const Delivery next = std::move(queue.front());
       queue.pop_front();
-      for (const SampleCallback& callback : *next.callbacks) {
-        callback(next.sample.get(), next.meta);
-      }
+      run_callbacks(*next.callbacks, next.sample.get(), next.meta);
+    }
+  }
+
+  /// Every reader of one sample, sharing one SampleMeta::checks_passed flag.
+  static void run_callbacks(const Callbacks& callbacks, const void* sample, const SampleMeta& meta) {
+    bool checks_passed = false;
+    SampleMeta shared = meta;
+    shared.checks_passed = &checks_passed;
+    for (const SampleCallback& callback : callbacks) {
+      callback(sample, shared);
     }
   }
 };

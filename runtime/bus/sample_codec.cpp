@@ -18,7 +18,24 @@ Installed& installed() {
   return slot;
 }
 
+class ByNameSerializer : public SampleSerializer {
+ public:
+  ByNameSerializer(const SampleCodec& codec, std::string type_name) : codec_(codec), type_name_(std::move(type_name)) {}
+  void serialize(const void* sample, std::vector<std::uint8_t>& out) const override {
+    const std::vector<std::uint8_t> bytes = codec_.serialize(type_name_, sample);
+    out.assign(bytes.begin(), bytes.end());
+  }
+
+ private:
+  const SampleCodec& codec_;
+  std::string type_name_;
+};
+
 }  // namespace
+
+std::unique_ptr<SampleSerializer> SampleCodec::serializer(const std::string& type_name) const {
+  return std::make_unique<ByNameSerializer>(*this, type_name);
+}
 
 const SampleCodec& sample_codec() {
   Installed& slot = installed();

@@ -11,6 +11,17 @@
 
 namespace robodds {
 
+/// Serializes samples of one type (SampleCodec::serializer()): SampleCodec::serialize()'s bytes
+/// into a buffer the caller keeps, so a recorder writing millions of samples neither looks the
+/// type up by name nor allocates per sample. One serializer is used by one thread at a time.
+class SampleSerializer {
+ public:
+  virtual ~SampleSerializer() = default;
+  /// Replaces `out` with the sample's payload (exactly SampleCodec::serialize()'s bytes); `out`
+  /// keeps its capacity, so reusing it allocates only for a sample larger than any before.
+  virtual void serialize(const void* sample, std::vector<std::uint8_t>& out) const = 0;
+};
+
 class SampleCodec {
  public:
   virtual ~SampleCodec() = default;
@@ -18,6 +29,9 @@ class SampleCodec {
   /// the wire: 4-byte encapsulation header + XCDR1 body (alignment padding zero, so the same
   /// sample always gives the same bytes). ConfigError naming the type if unknown.
   virtual std::vector<std::uint8_t> serialize(const std::string& type_name, const void* sample) const = 0;
+  /// A serializer of `type_name`'s samples; ConfigError naming the type if unknown. Default: one
+  /// that calls serialize() (a codec without a faster path, e.g. a test's).
+  virtual std::unique_ptr<SampleSerializer> serializer(const std::string& type_name) const;
   /// A new sample of `type_name` decoded from such bytes; ConfigError naming the type and why
   /// (unknown type, bad encapsulation, truncated) when they do not decode.
   virtual std::shared_ptr<void> deserialize(const std::string& type_name, const std::uint8_t* data,

@@ -6,7 +6,11 @@
 
 #include <cstring>
 #include <map>
+#include <memory>
 #include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "robodds/idl/roboddsPubSubTypes.h"
 #include "robodds/idl/robodds_visit.hpp"
@@ -31,18 +35,58 @@ std::shared_ptr<TopicDataType> generated_type(const std::string& type_name) {
   return type;
 }
 
+/// A SerializedPayload_t over the caller's buffer instead of one of its own (which it would free).
+class BorrowedPayload {
+ public:
+  explicit BorrowedPayload(std::vector<std::uint8_t>& buffer) {
+    payload.data = buffer.data();
+    payload.max_size = static_cast<std::uint32_t>(buffer.size());
+  }
+  ~BorrowedPayload() {
+    payload.data = nullptr;  // the buffer's, not the payload's to free
+    payload.max_size = 0;
+  }
+  BorrowedPayload(const BorrowedPayload&) = delete;
+  BorrowedPayload& operator=(const BorrowedPayload&) = delete;
+  SerializedPayload_t payload;
+};
+
+/// What DataWriterImpl does: a payload of the sample's serialized size, then serialize(). Its
+/// payload is zero-filled (calloc), so alignment padding is zero: `out` is zeroed likewise.
+void serialize_into(TopicDataType& type, const std::string& type_name, const void* sample,
+                    std::vector<std::uint8_t>& out) {
+  void* data = const_cast<void*>(sample);  // TopicDataType's interface; serialize() only reads it
+  out.assign(type.getSerializedSizeProvider(data)(), 0);
+  BorrowedPayload borrowed(out);
+  if (!type.serialize(data, &borrowed.payload)) {
+    throw ConfigError("sample codec: cannot serialize a sample of " + type_name + " (larger than its type's bound)");
+  }
+  out.resize(borrowed.payload.length);
+}
+
+class DdsSampleSerializer : public SampleSerializer {
+ public:
+  DdsSampleSerializer(std::shared_ptr<TopicDataType> type, std::string type_name)
+      : type_(std::move(type)), type_name_(std::move(type_name)) {}
+  void serialize(const void* sample, std::vector<std::uint8_t>& out) const override {
+    serialize_into(*type_, type_name_, sample, out);
+  }
+
+ private:
+  std::shared_ptr<TopicDataType> type_;
+  std::string type_name_;
+};
+
 class DdsSampleCodec : public SampleCodec {
  public:
   std::vector<std::uint8_t> serialize(const std::string& type_name, const void* sample) const override {
-    const std::shared_ptr<TopicDataType> type = type_of(type_name, "serialize");
-    void* data = const_cast<void*>(sample);  // TopicDataType's interface; serialize() only reads it
-    // What DataWriterImpl does: a payload of the sample's serialized size, then serialize(). A
-    // fresh payload is zero-filled (calloc), so alignment padding is always zero.
-    SerializedPayload_t payload(type->getSerializedSizeProvider(data)());
-    if (!type->serialize(data, &payload)) {
-      throw ConfigError("sample codec: cannot serialize a sample of " + type_name + " (larger than its type's bound)");
-    }
-    return std::vector<std::uint8_t>(payload.data, payload.data + payload.length);
+    std::vector<std::uint8_t> out;
+    serialize_into(*type_of(type_name, "serialize"), type_name, sample, out);
+    return out;
+  }
+
+  std::unique_ptr<SampleSerializer> serializer(const std::string& type_name) const override {
+    return std::make_unique<DdsSampleSerializer>(type_of(type_name, "serialize"), type_name);
   }
 
   std::shared_ptr<void> deserialize(const std::string& type_name, const std::uint8_t* data,

@@ -151,7 +151,17 @@ class Input : public InputBase {
       i = add_instance(key, stream, idl::instance_label(sample));
       slots_.emplace_back();
     }
-    const std::optional<SampleCheckFailure> failed = first_failed_check(sample);
+    // In lockstep the checks depend on the sample alone: when another reader of this delivery
+    // passed them (SampleMeta::checks_passed), they would pass again. A co-located run's every
+    // reader of a topic (e.g. the run's recorder beside the components) checks it once.
+    const bool shared = meta.checks_passed != nullptr && state_->mode == TimeMode::kLockstep;
+    std::optional<SampleCheckFailure> failed;
+    if (!shared || !*meta.checks_passed) {
+      failed = first_failed_check(sample);
+      if (shared && !failed) {
+        *meta.checks_passed = true;
+      }
+    }
     const std::string& label = instances_[i].label;
     Stream& s = streams_[instances_[i].stream];
     Progress& p = s.progress;

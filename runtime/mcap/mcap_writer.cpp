@@ -7,7 +7,6 @@
 #include <cerrno>
 #include <cstring>
 #include <limits>
-#include <set>
 #include <utility>
 #include <vector>
 
@@ -83,12 +82,15 @@ struct Writer::Impl {
   std::vector<SchemaRecord> schemas;    // id = index + 1
   std::vector<ChannelRecord> channels;  // id = index + 1
 
-  // The open chunk: its uncompressed records, and per channel the (log time, offset in the records)
-  // of each message for the Message Index records.
+  // The open chunk: its uncompressed records, and per channel (index = id - 1) the (log time,
+  // offset in the records) of each message for the Message Index records. Vectors by id rather
+  // than maps and sets: looked up for every message; cleared, not freed, when a chunk is written.
   std::string chunk;
+  std::uint64_t chunk_messages = 0;
   std::uint64_t chunk_start_time = 0, chunk_end_time = 0;
-  std::map<std::uint16_t, std::vector<std::pair<std::uint64_t, std::uint64_t>>> chunk_index;
-  std::set<std::uint16_t> chunk_schemas, chunk_channels;  // defined in the open chunk
+  std::vector<std::vector<std::pair<std::uint64_t, std::uint64_t>>> chunk_index;
+  std::vector<bool> chunk_schemas, chunk_channels;  // defined in the open chunk (index = id - 1)
+  std::string out;  // a chunk compressed and framed, with its message indexes (capacity reused)
 
   std::vector<ChunkIndexRecord> chunk_indexes;
   Statistics stats;
@@ -113,8 +115,7 @@ struct Writer::Impl {
     if (chunk.empty()) return;
     const std::uint32_t uncompressed_crc = crc32(chunk.data(), chunk.size());
     const std::string compression = record_name(options.compression);
-    std::string out;
-    out.reserve(chunk.size() / 2 + 256);
+    out.clear();
     RecordBuilder b(out);
     const std::size_t record_at = b.begin_record(Opcode::kChunk);
     b.u64(chunk_start_time);
@@ -132,11 +133,17 @@ struct Writer::Impl {
 
     ChunkIndexRecord index{chunk_start_time, chunk_end_time, file_bytes, chunk_length, {}, 0,
                            compression,      compressed_size, chunk.size()};
-    for (auto& [channel_id, entries] : chunk_index) {
+    for (std::size_t i = 0; i < chunk_index.size(); ++i) {
+      auto& entries = chunk_index[i];
+      if (entries.empty()) continue;  // no message of this channel in the chunk
+      const auto channel_id = static_cast<std::uint16_t>(i + 1);
       // Sorted by log time (stable: equal times keep their order), so an indexed reader can merge
       // chunks in log-time order even when messages arrived out of order.
-      std::stable_sort(entries.begin(), entries.end(),
-                       [](const auto& a, const auto& c) { return a.first < c.first; });
+      // A recorder's log times mostly come in order already: only then is the sort skipped.
+      const auto by_time = [](const auto& a, const auto& c) { return a.first < c.first; };
+      if (!std::is_sorted(entries.begin(), entries.end(), by_time)) {
+        std::stable_sort(entries.begin(), entries.end(), by_time);
+      }
       index.message_index_offsets[channel_id] = file_bytes + out.size();
       const std::size_t at = b.begin_record(Opcode::kMessageIndex);
       b.u16(channel_id);
@@ -153,9 +160,10 @@ struct Writer::Impl {
     chunk_indexes.push_back(std::move(index));
     ++stats.chunk_count;
     chunk.clear();
-    chunk_index.clear();
-    chunk_schemas.clear();
-    chunk_channels.clear();
+    chunk_messages = 0;
+    for (auto& entries : chunk_index) entries.clear();
+    chunk_schemas.assign(chunk_schemas.size(), false);
+    chunk_channels.assign(chunk_channels.size(), false);
   }
 
   void check_open(const char* what) const {
@@ -198,6 +206,7 @@ std::uint16_t Writer::add_schema(const std::string& name, const std::string& enc
     throw McapError(impl_->path + ": more than 65535 schemas");
   }
   impl_->schemas.push_back({name, encoding, data});
+  impl_->chunk_schemas.push_back(false);
   return static_cast<std::uint16_t>(impl_->schemas.size());
 }
 
@@ -211,6 +220,8 @@ std::uint16_t Writer::add_channel(std::uint16_t schema_id, const std::string& to
     throw McapError(impl_->path + ": more than 65535 channels");
   }
   impl_->channels.push_back({schema_id, topic, message_encoding, metadata});
+  impl_->chunk_channels.push_back(false);
+  impl_->chunk_index.emplace_back();
   const auto id = static_cast<std::uint16_t>(impl_->channels.size());
   impl_->stats.channel_message_counts[id] = 0;
   return id;
@@ -226,20 +237,22 @@ void Writer::write(std::uint16_t channel_id, std::uint32_t sequence, std::uint64
   RecordBuilder b(w.chunk);
   // Each chunk carries the Schema and Channel records of its messages, so every chunk can be
   // decoded alone (a file cut short, a chunk lost to corruption).
-  if (w.chunk_channels.insert(channel_id).second) {
+  if (!w.chunk_channels[channel_id - 1U]) {
+    w.chunk_channels[channel_id - 1U] = true;
     const ChannelRecord& channel = w.channels[channel_id - 1U];
-    if (channel.schema_id != 0 && w.chunk_schemas.insert(channel.schema_id).second) {
+    if (channel.schema_id != 0 && !w.chunk_schemas[channel.schema_id - 1U]) {
+      w.chunk_schemas[channel.schema_id - 1U] = true;
       append_schema(b, channel.schema_id, w.schemas[channel.schema_id - 1U]);
     }
     append_channel(b, channel_id, channel);
   }
-  if (w.chunk_index.empty()) {
+  if (w.chunk_messages++ == 0) {
     w.chunk_start_time = log_time_ns;
     w.chunk_end_time = log_time_ns;
   }
   w.chunk_start_time = std::min(w.chunk_start_time, log_time_ns);
   w.chunk_end_time = std::max(w.chunk_end_time, log_time_ns);
-  w.chunk_index[channel_id].emplace_back(log_time_ns, w.chunk.size());
+  w.chunk_index[channel_id - 1U].emplace_back(log_time_ns, w.chunk.size());
   const std::size_t at = b.begin_record(Opcode::kMessage);
   b.u16(channel_id);
   b.u32(sequence);

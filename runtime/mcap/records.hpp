@@ -84,8 +84,11 @@ class RecordBuilder {
   std::size_t size() const { return out_.size(); }
 
  private:
+  // One append per field, not one push_back per byte: a recorder frames millions of fields.
   void le(std::uint64_t v, int bytes) {
-    for (int i = 0; i < bytes; ++i) out_.push_back(static_cast<char>((v >> (8 * i)) & 0xFFU));
+    char b[8];
+    for (int i = 0; i < bytes; ++i) b[i] = static_cast<char>((v >> (8 * i)) & 0xFFU);
+    out_.append(b, static_cast<std::size_t>(bytes));
   }
   void patch(std::size_t at, std::uint64_t v, int bytes) {
     for (int i = 0; i < bytes; ++i) out_[at + static_cast<std::size_t>(i)] = static_cast<char>((v >> (8 * i)) & 0xFFU);

@@ -80,6 +80,33 @@ TEST(MemoryBus, EveryReaderAndEveryCallbackGetsEverySample) {
   EXPECT_EQ(c.seen, expected);
 }
 
+// Every reader of one write shares one SampleMeta::checks_passed flag (Input<Msg> checks a
+// sample's content once per delivery); each write starts with a fresh, unset one.
+TEST(MemoryBus, TheReadersOfOneSampleShareOneChecksFlag) {
+  MemoryBus bus;
+  std::vector<std::pair<bool*, bool>> first, second;  // (flag, its value on arrival)
+  auto ra = bus.reader(kState, kStateType, "lockstep_local", [&first](const void*, const SampleMeta& meta) {
+    first.emplace_back(meta.checks_passed, meta.checks_passed != nullptr && *meta.checks_passed);
+    *meta.checks_passed = true;
+  }, kNoEvents);
+  auto rb = bus.reader(kState, kStateType, "state", [&second](const void*, const SampleMeta& meta) {
+    second.emplace_back(meta.checks_passed, meta.checks_passed != nullptr && *meta.checks_passed);
+  }, kNoEvents);
+  auto writer = bus.writer(kState, kStateType, "lockstep_local");
+  for (std::uint64_t step = 0; step < 2; ++step) {
+    idl::RobotState s = state(7, step);
+    writer->write(&s);
+  }
+  ASSERT_EQ(first.size(), 2u);
+  ASSERT_EQ(second.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    ASSERT_NE(first[i].first, nullptr);
+    EXPECT_EQ(second[i].first, first[i].first) << "one flag for both readers of write " << i;
+    EXPECT_FALSE(first[i].second) << "unset when write " << i << " starts";
+    EXPECT_TRUE(second[i].second) << "set by the first reader of write " << i;
+  }
+}
+
 TEST(MemoryBus, OneWriterPerTopicAndProfile) {
   MemoryBus bus;
   EXPECT_EQ(bus.writer(kState, kStateType, "lockstep_local"), bus.writer(kState, kStateType, "lockstep_local"));

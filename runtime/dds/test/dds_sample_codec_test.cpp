@@ -56,6 +56,37 @@ TEST(DdsSampleCodec, SerializesAsTheTypeSupportDoes) {
   EXPECT_EQ(bytes[1], 0x01) << "CDR_LE";
 }
 
+// The recorder's path: one serializer per type, one buffer reused for every sample. Whatever the
+// buffer held before (here 0xAB bytes, more than any sample), the bytes are the type support's,
+// alignment padding zero included.
+TEST(DdsSampleCodec, SerializerGivesTheSameBytesIntoAReusedBuffer) {
+  const auto codec = make_dds_sample_codec();
+  const auto states = codec->serializer(idl::type_name<idl::RobotState>());
+  const auto missions = codec->serializer(idl::type_name<idl::WaypointMission>());
+  idl::WaypointMission mission;
+  mission.robot_id(7);
+  std::vector<std::uint8_t> buffer;
+  for (int i = 0; i < 4; ++i) {
+    idl::Waypoint w;
+    w.x(i + 0.5);
+    w.y(-i * 2.0);
+    mission.waypoints().push_back(w);
+    buffer.assign(4096, 0xAB);
+    missions->serialize(&mission, buffer);
+    EXPECT_EQ(buffer, type_support_bytes(mission)) << i + 1 << " way-points";
+    EXPECT_EQ(buffer, codec->serialize(idl::type_name<idl::WaypointMission>(), &mission));
+  }
+  idl::RobotState state;
+  state.robot_id(3);
+  state.header().step(42);
+  state.v(0.75);
+  buffer.assign(4096, 0xAB);
+  states->serialize(&state, buffer);
+  EXPECT_EQ(buffer, type_support_bytes(state));
+  EXPECT_NE(error_of([&] { codec->serializer("robodds::idl::NoSuchType"); }).find("robodds::idl::NoSuchType"),
+            std::string::npos);
+}
+
 TEST(DdsSampleCodec, DecodesWhatItEncoded) {
   const auto codec = make_dds_sample_codec();
   idl::VelocityCommand sent;

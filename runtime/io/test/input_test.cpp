@@ -263,6 +263,32 @@ TEST_F(InputTest, NonFiniteSampleAdvancesTimeButIsDropped) {
   EXPECT_EQ(counts.rejected.at("non_finite"), 1u);
 }
 
+// A co-located delivery shares SampleMeta::checks_passed among a sample's readers: in lockstep a
+// reader whose checks pass sets it, and a reader that finds it set does not check again (here a
+// NaN the flag vouches for is taken, which a real delivery never does: it shows the check is not
+// run twice). Unset, or in real time, every reader checks.
+TEST_F(InputTest, LockstepReadersOfOneDeliveryCheckASampleOnce) {
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, robot_one(0));
+  bool passed = false;
+  SampleMeta meta;
+  meta.checks_passed = &passed;
+  input.on_sample(state(1, 0, 1, 1.0), meta);
+  EXPECT_TRUE(passed) << "a valid sample sets the flag for the next readers";
+  passed = false;
+  input.on_sample(state(1, 1, 2, std::numeric_limits<double>::quiet_NaN()), meta);
+  EXPECT_FALSE(passed) << "a refused sample leaves it unset";
+  EXPECT_EQ(input.counts().rejected.at("non_finite"), 1u);
+  passed = true;
+  input.on_sample(state(1, 2, 3, std::numeric_limits<double>::quiet_NaN()), meta);
+  EXPECT_EQ(input.counts().accepted, 2u) << "checks passed by another reader are not run again";
+
+  clock.mode = TimeMode::kRealtime;
+  Input<idl::RobotState> realtime("plant/state", "test", &clock, &notifier, robot_one(0));
+  passed = true;
+  realtime.on_sample(state(1, 0, 1, std::numeric_limits<double>::quiet_NaN()), meta);
+  EXPECT_EQ(realtime.counts().accepted, 0u) << "in real time the checks read the clock: each reader runs them";
+}
+
 TEST_F(InputTest, AgeIsMeasuredFromTheReceiveTimeOfTheNewestAcceptedSample) {
   Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, robot_one(0));
   EXPECT_FALSE(input.age_s(1, 5'000'000'000).has_value());  // nothing received

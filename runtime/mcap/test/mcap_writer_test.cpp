@@ -4,6 +4,8 @@
 
 #include <fstream>
 #include <iterator>
+#include <utility>
+#include <vector>
 
 #include "runtime/mcap/crc32.hpp"
 #include "runtime/mcap/records.hpp"
@@ -75,6 +77,52 @@ TEST(McapWriter, ChunksReachTheFileAsSoonAsTheyAreFull) {
   writer.close();
   writer.close();  // idempotent
   EXPECT_EQ(slurp(path).size(), writer.file_bytes());
+}
+
+// Each chunk's Message Index records list their channel's (log time, offset) pairs sorted by log
+// time, stably, whether the messages came in order (the writer then skips the sort) or not; the
+// records are read here straight from the file, not through our reader.
+TEST(McapWriter, MessageIndexesAreSortedByLogTime) {
+  const std::string path = test_support::write_test_file("index_order.mcap", "");
+  WriterOptions options;
+  options.compression = Compression::kNone;
+  options.chunk_size_bytes = 1500;  // several chunks
+  Writer writer(path, options);
+  const std::uint16_t in_order = writer.add_channel(0, "in_order", "raw");
+  const std::uint16_t shuffled = writer.add_channel(0, "shuffled", "raw");
+  const std::uint8_t payload[40] = {};
+  for (std::uint32_t i = 0; i < 60; ++i) {
+    writer.write(in_order, i, 1000 + i / 2, 0, payload, sizeof payload);               // equal pairs: stable order
+    writer.write(shuffled, i, 5000 + (i * 7) % 11 * 10 - i % 3, 0, payload, sizeof payload);  // back and forth
+  }
+  writer.close();
+  const std::string bytes = slurp(path);
+  std::size_t indexes = 0;
+  for (std::size_t pos = kMagicSize; pos + kRecordPrefixSize <= bytes.size() - kMagicSize;) {
+    FieldReader record = at(bytes, pos);
+    const auto op = static_cast<Opcode>(record.u8());
+    const std::uint64_t length = record.u64();
+    if (op == Opcode::kMessageIndex) {
+      const std::uint16_t channel = record.u16();
+      const std::uint32_t array_bytes = record.u32();
+      std::vector<std::pair<std::uint64_t, std::uint64_t>> entries;
+      for (std::uint32_t n = 0; n < array_bytes / 16; ++n) {
+        const std::uint64_t log_time = record.u64();  // two statements: the fields' order is fixed
+        entries.emplace_back(log_time, record.u64());
+      }
+      ASSERT_FALSE(entries.empty());
+      for (std::size_t k = 1; k < entries.size(); ++k) {
+        EXPECT_LE(entries[k - 1].first, entries[k].first) << "channel " << channel << " at " << pos;
+        if (entries[k - 1].first == entries[k].first) {
+          EXPECT_LT(entries[k - 1].second, entries[k].second) << "stable";
+        }
+      }
+      ++indexes;
+    }
+    if (op == Opcode::kFooter) break;
+    pos += kRecordPrefixSize + length;
+  }
+  EXPECT_GE(indexes, 4U) << "two channels in at least two chunks";
 }
 
 TEST(McapWriter, RefusesBadOptionsIdsAndPathsWithOneLine) {
