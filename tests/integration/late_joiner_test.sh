@@ -16,5 +16,5 @@ sleep 2   # the mission is published at the first step, long before the reader e
 out="$(timeout -k 5 20 "$ROBODDS" echo mission/waypoints --count 1 --timeout 5 --domain "$DOMAIN")" \
   || fail "late reader got no mission: $out $(cat "$WORK/host.log")"
 grep -q "robot_id: 4" <<<"$out" || fail "wrong sample: $out"
-grep -q "waypoints: 1:2;3:4" <<<"$out" || fail "wrong way-points: $out"
+grep -qF "waypoints: [{x: 1, y: 2}, {x: 3, y: 4}]" <<<"$out" || fail "wrong way-points: $out"
 echo "ok: late-joining reader received the transient-local mission"
