@@ -10,7 +10,6 @@
 // --foxglove-scene adds one derived channel, foxglove/robot_poses (foxglove.PosesInFrame, JSON):
 // every robot's newest pose from plant/state, at most once per kScenePeriodNs of the samples' own
 // stamps, written by the same thread (tools/foxglove/robot_poses.hpp, shared with the bridge).
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <deque>
@@ -218,12 +217,8 @@ class RecordCommand : public Command {
     options.compression = mcap::parse_compression(compression_, "--compression");
     options.chunk_size_bytes = static_cast<std::uint64_t>(chunk_kb_ * 1024);
     options.validate();
-    if (foxglove_scene_) {
-      require_scene_source(topics, "the topics");
-    }
-    const std::size_t scene_topic = foxglove_scene_
-        ? static_cast<std::size_t>(std::find_if(topics.begin(), topics.end(), [](const TopicInfo* t) { return t->name == kSceneSource; }) - topics.begin())
-        : topics.size();
+    // topics.size(): no sample is the scene's source.
+    const std::size_t scene_topic = foxglove_scene_ ? require_scene_source(topics, "the topics") : topics.size();
     // The file first: an unwritable --out fails before anything joins the domain.
     McapParts parts(out_, static_cast<std::uint64_t>(max_size_mb_ * 1e6), options, topics, foxglove_scene_);
     foxglove::RobotPoses poses;

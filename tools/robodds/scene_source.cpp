@@ -11,10 +11,12 @@
 
 namespace robodds {
 
-void require_scene_source(const std::vector<const TopicInfo*>& topics, const std::string& where) {
-  if (std::none_of(topics.begin(), topics.end(), [](const TopicInfo* t) { return t->name == kSceneSource; })) {
+std::size_t require_scene_source(const std::vector<const TopicInfo*>& topics, const std::string& where) {
+  const auto found = std::find_if(topics.begin(), topics.end(), [](const TopicInfo* t) { return t->name == kSceneSource; });
+  if (found == topics.end()) {
     throw ConfigError(std::string("--foxglove-scene draws the robots from ") + kSceneSource + ": add it to " + where);
   }
+  return static_cast<std::size_t>(found - topics.begin());
 }
 
 bool update_poses(foxglove::RobotPoses& poses, const std::uint8_t* data, std::size_t size, const std::string& tool,

@@ -13,8 +13,8 @@ namespace robodds {
 
 inline constexpr const char* kSceneSource = "plant/state";
 
-/// ConfigError unless kSceneSource is among `topics` ("add it to `where`").
-void require_scene_source(const std::vector<const TopicInfo*>& topics, const std::string& where);
+/// The index of kSceneSource in `topics`; ConfigError when it is not there ("add it to `where`").
+std::size_t require_scene_source(const std::vector<const TopicInfo*>& topics, const std::string& where);
 
 /// Decodes one kSceneSource payload (XCDR1 with its encapsulation header) into `poses`. False
 /// when it does not decode: `tool` logs that once (its raw channel still carries every sample).
