@@ -70,6 +70,9 @@ void ComponentRegistry::add_scenario_check(std::function<void(const Scenario&)> 
 }
 
 void ComponentRegistry::check_scenario(const Scenario& scenario) const {
+  for (const ComponentSpec& component : scenario.components) {
+    type_of(scenario, component);
+  }
   for (const auto& check : scenario_checks_) {
     check(scenario);
   }
@@ -98,6 +101,14 @@ const ComponentType& ComponentRegistry::get(const std::string& name) const {
     names.push_back(type.name);
   }
   throw ConfigError("unknown component type '" + name + "'" + did_you_mean(name, names) + " (known: " + known + ")");
+}
+
+const ComponentType& ComponentRegistry::type_of(const Scenario& scenario, const ComponentSpec& component) const {
+  try {
+    return get(component.type);
+  } catch (const ConfigError& e) {
+    throw ConfigError(scenario.file + ": components." + component.name + ".type: " + e.what());
+  }
 }
 
 }  // namespace robodds

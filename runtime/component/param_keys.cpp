@@ -12,7 +12,7 @@ void check_param_keys(const Scenario& scenario, const ComponentRegistry& registr
                       const std::vector<std::string>& assignments, const std::string& option) {
   std::vector<std::string> known;
   for (const ComponentSpec& component : scenario.components) {
-    for (const auto& [key, entry] : default_params(registry.get(component.type).params(), component.type)) {
+    for (const auto& [key, entry] : default_params(registry.type_of(scenario, component).params(), component.type)) {
       known.push_back(component.name + "." + key);
     }
   }

@@ -40,13 +40,17 @@ class ComponentRegistry {
   void add(ComponentType type);
   /// Throws ConfigError naming the unknown type and the known ones.
   const ComponentType& get(const std::string& name) const;
+  /// The type of a scenario's component; an unknown one throws ConfigError naming the scenario
+  /// file and the component (`FILE: components.NAME.type: unknown component type ...`).
+  const ComponentType& type_of(const Scenario& scenario, const ComponentSpec& component) const;
   const std::vector<ComponentType>& types() const { return types_; }
 
   /// A check of the whole scenario by the layer above the runtime (e.g. system/: its shared
   /// facts' keys and values), which the runtime cannot read itself. Each check throws ConfigError
   /// naming the file, the key and the reason.
   void add_scenario_check(std::function<void(const Scenario&)> check);
-  /// Runs every scenario check, in the order they were added; before anything starts.
+  /// Checks every component's type (type_of), then runs every scenario check, in the order they
+  /// were added; before anything starts.
   void check_scenario(const Scenario& scenario) const;
 
  private:

@@ -9,7 +9,7 @@ scenario_with() {  # scenario_with NAME SED-EXPR: a copy of plant_smoke edited b
 R=("$ROBODDS" run --domain "$DOMAIN" --out "$WORK/out")
 
 expect_error 2 "no-such\.yaml: cannot open scenario file" -- "${R[@]}" "$WORK/no-such.yaml"
-expect_error 2 "unknown component type 'plantt'" -- "${R[@]}" "$(scenario_with t1 's/type: plant}/type: plantt}/')"
+expect_error 2 "t1\.yaml: components\.plant\.type: unknown component type 'plantt'; did you mean 'plant'\?" -- "${R[@]}" "$(scenario_with t1 's/type: plant}/type: plantt}/')"
 expect_error 2 "components\[1\]\.robots\[0\]: unknown robot 9" -- \
   "${R[@]}" "$(scenario_with t2 's/{name: plant, type: plant}/{name: plant, type: plant, robots: [9]}/')"
 expect_error 2 "t3\.yaml: wheel_base_mm: unknown parameter" -- \

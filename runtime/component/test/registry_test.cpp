@@ -32,6 +32,24 @@ TEST(ComponentRegistry, FindsRegisteredTypesAndNamesTheKnownOnesOtherwise) {
   }
 }
 
+TEST(ComponentRegistry, AScenarioComponentOfUnknownTypeNamesTheFileTheComponentAndTheNearestType) {
+  ComponentRegistry registry;
+  registry.add(idle_type("pf_estimator"));
+  Scenario scenario;
+  scenario.file = "mission.yaml";
+  scenario.components.push_back({"estimator", "pf_estimatr", {}, {}, ""});
+  try {
+    registry.check_scenario(scenario);
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_STREQ(e.what(),
+                 "mission.yaml: components.estimator.type: unknown component type 'pf_estimatr'; did you mean "
+                 "'pf_estimator'? (known: pf_estimator)");
+  }
+  scenario.components.front().type = "pf_estimator";
+  EXPECT_EQ(&registry.type_of(scenario, scenario.components.front()), &registry.get("pf_estimator"));
+}
+
 TEST(ComponentRegistry, RefusesIncompleteOrRepeatedRegistrations) {
   ComponentRegistry registry;
   registry.add(idle_type("a"));
