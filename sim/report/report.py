@@ -315,9 +315,23 @@ def read_table(path, columns, optional=()):
     return table
 
 
+def read_file(path):
+    """One known file: its table, None for a file no figure draws (header checked only); ReportError on bad
+    input."""
+    name = os.path.basename(path)
+    if name in HEADER_ONLY:
+        header = read_header(path)
+        for column in SCHEMAS[name]:
+            if column not in header:
+                raise ReportError("%s: missing column '%s'" % (path, column))
+        return None
+    return read_table(path, SCHEMAS[name], OPTIONAL_COLUMNS.get(name, ()))
+
+
 def load(out_dir):
     """Reads every known CSV file of out_dir that a figure draws: {file name: table}; checks the header of
-    the others. Raises ReportError on bad input."""
+    the others. Raises ReportError on bad input. (Parsing the files in worker processes cost more than it
+    saved: pickling the tables back took longer than numpy's parser, measured in docs/performance.md.)"""
     if not os.path.isdir(out_dir):
         raise ReportError("%s: no such directory" % out_dir)
     csv_files = sorted(f for f in os.listdir(out_dir) if f.endswith(".csv"))
@@ -325,16 +339,10 @@ def load(out_dir):
         raise ReportError("%s: no CSV file (expected the output of `robodds run SCENARIO --out DIR`)" % out_dir)
     data = {}
     for name in csv_files:
-        if name not in SCHEMAS:
-            continue
-        path = os.path.join(out_dir, name)
-        if name in HEADER_ONLY:
-            header = read_header(path)
-            for column in SCHEMAS[name]:
-                if column not in header:
-                    raise ReportError("%s: missing column '%s'" % (path, column))
-            continue
-        data[name] = read_table(path, SCHEMAS[name], OPTIONAL_COLUMNS.get(name, ()))
+        if name in SCHEMAS:
+            table = read_file(os.path.join(out_dir, name))
+            if table is not None:
+                data[name] = table
     return data
 
 
