@@ -36,7 +36,7 @@ files estimate_relative_pose*.csv (one per stage, each row with the true pose of
 Each figure is titled with what it shows and, below, the scenario's name and description (summary.json);
 the paper's figure is named only for the scenarios that reproduce it (PAPER_FIGURES). Time axes start at
 the run's start (real-time runs stamp samples with the wall clock). The figures are drawn in parallel
-worker processes (ROBODDS_REPORT_JOBS, default: one per processor).
+worker processes (ROBODDS_REPORT_JOBS, default: one per idle processor).
 
 A figure whose input files are absent is skipped. Prints the path of each written file, one per line.
 Exit status: 0 on success (also when no figure had its inputs), 2 when OUT_DIR is missing, holds no CSV
@@ -137,6 +137,7 @@ MODE_WHEEL_SPEEDS = 1  # idl::CommandMode (VELOCITY = 0, WHEEL_SPEEDS = 1)
 STATE_TRACKING = 0
 STATE_DONE = 5
 DPI = 120
+PNG_COMPRESS_LEVEL = 3
 
 # The paper figure each figure reproduces, only for the scenarios that are that figure's setting (the
 # same robot on other missions, or a user's scenario, is no paper figure). Keys: figure names without
@@ -597,7 +598,7 @@ def fig_velocity(data, info):
         ax_v.plot(*envelope(cmd["t_s"], v), color=colors[robot], lw=1.3, drawstyle="steps-post", label=label)
         ax_w.plot(*envelope(cmd["t_s"], omega), color=colors[robot], lw=1.3, drawstyle="steps-post", label=label)
     ax_v.set_ylabel("v [m/s]")
-    ax_w.set_ylabel(r"$\omega$ [rad/s]")
+    ax_w.set_ylabel("\u03c9 [rad/s]")  # plain text: no mathtext parser (~30 ms the first time)
     ax_w.set_xlabel("time [s]")
     for ax in (ax_v, ax_w):
         ax.grid(True, alpha=0.3)
@@ -1197,19 +1198,24 @@ def _draw(index):
     if fig is None:
         return None
     path = os.path.join(_OUT_DIR, name)
-    fig.savefig(path, dpi=DPI)
+    # zlib level 3: 25 ms less per figure than PIL's default 6, the file as small (pf_error.png of
+    # paper1_waypoints: 228.8 against 230.1 kB)
+    fig.savefig(path, dpi=DPI, pil_kwargs={"compress_level": PNG_COMPRESS_LEVEL})
     return path
 
 
 def worker_count(jobs):
-    """ROBODDS_REPORT_JOBS, else one per processor this process may run on, at most one per figure."""
+    """ROBODDS_REPORT_JOBS, else one per idle processor (those this process may run on minus the 1-minute
+    load average), at most one per figure. On a busy machine the workers cost more than they saved (beside
+    eight CPU hogs on 2 cores: wall x1.16, CPU x1.11 against drawing in this process; docs/performance.md)."""
     wanted = os.environ.get("ROBODDS_REPORT_JOBS", "").strip()
     if wanted:
         if not wanted.isdigit() or int(wanted) < 1:
             raise ReportError("ROBODDS_REPORT_JOBS: '%s' is not a whole number >= 1" % wanted)
         count = int(wanted)
     else:
-        count = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+        processors = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (os.cpu_count() or 1)
+        count = processors - int(round(os.getloadavg()[0]))
     return max(1, min(count, jobs))
 
 
