@@ -764,9 +764,10 @@ def fig_errors(data, info, rmses):
 def rmse_definition(info, has_estimate):
     """The footnote of the error figure: how its RMSEs are computed, the same as summary.json's."""
     _, from_s = metrics_from_step(info)
-    return ("2-D RMSE = sqrt(mean(dx\u00b2 + dy\u00b2)) over every sample from t = %g s (an estimate valid or not), "
+    return ("2-D RMSE = sqrt(mean(dx\u00b2 + dy\u00b2)) over every sample from t = %g s%s, "
             "matched with the truth at its step: summary.json's %s%s"
-            % (from_s, "pf_rmse_m and measurement_rmse_m" if has_estimate else "measurement_rmse_m",
+            % (from_s, " (an estimate valid or not)" if has_estimate else "",
+               "pf_rmse_m and measurement_rmse_m" if has_estimate else "measurement_rmse_m",
                "" if info.metrics_after_s is not None else " (summary.json gives no metrics_after_s: from t = 0 here)"))
 
 
