@@ -1221,7 +1221,7 @@ def worker_count(jobs):
 
 
 def draw_all(jobs, out_dir):
-    """Draws the jobs, in forked worker processes when there are several processors (each figure is
+    """Draws the jobs, in forked worker processes when processors are idle (worker_count(); each figure is
     independent; matplotlib and the data are already in memory, inherited at the fork); the written paths
     in job order."""
     global _JOBS, _OUT_DIR
