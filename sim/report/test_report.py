@@ -7,6 +7,7 @@ import atexit
 import contextlib
 import csv
 import io
+import json
 import math
 import os
 import random
@@ -27,6 +28,7 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 sys.dont_write_bytecode = True
 sys.path.insert(0, HERE)
 import report  # noqa: E402
+import numpy as np  # noqa: E402
 
 HEADER = ["t_s", "robot_id", "header.step", "header.next_step", "header.stamp_ns"]
 COLUMNS = {
@@ -36,9 +38,10 @@ COLUMNS = {
     "sensor_odometry.csv": HEADER + ["v", "omega", "dt_s", "var_v", "var_omega"],
     "estimate_pose.csv": HEADER + ["x", "y", "theta"] + ["cov[%d]" % i for i in range(9)] + ["valid"],
     "control_status.csv": HEADER + ["waypoint_index", "waypoints_total", "waypoints_reached",
-                                    "distance_to_waypoint", "distance_to_final", "alpha", "sigma", "done"],
+                                    "distance_to_waypoint", "distance_to_final", "alpha", "sigma", "done", "state"],
     "mission_waypoints.csv": HEADER + ["waypoints"],
 }
+INVALID_UNTIL_S = 1.0  # synthetic_rows: the estimate is not valid before (the controller's state ESTIMATE_INVALID)
 HEADER_TARGET = ["t_s", "robot_id", "target_id", "header.step", "header.next_step", "header.stamp_ns"]
 # Paper 2 (as the recorder writes them: IDL members in order, two-part keys with target_id after robot_id).
 P2_COLUMNS = {
@@ -94,11 +97,14 @@ def synthetic_rows(step_s=0.05, duration_s=30.0, seed=7):
             omega = 0.0 if done else max(-1.5, min(1.5, 2.0 * alpha))
             final = math.hypot(wps[-1][0] - x, wps[-1][1] - y)
             rows["plant_state.csv"].append(head(robot, 1) + [x, y, th, v, omega])
+            valid = t >= INVALID_UNTIL_S
             if step % 2 == 0:
                 rows["plant_cmd.csv"].append(head(robot, 2) + [0, v, omega, 0, 0])
                 rows["sensor_odometry.csv"].append(head(robot, 2) + [v, omega, 2 * step_s, 0.01, 0.01])
+                # As the controller: no distance (0) while the estimate is not valid (state 3), DONE 5, TRACKING 0.
                 rows["control_status.csv"].append(
-                    head(robot, 2) + [k, len(wps), k + (1 if done else 0), dist, final, alpha, 0.0, int(done)])
+                    head(robot, 2) + [k, len(wps), k + (1 if done else 0), dist if valid else 0.0,
+                                      final if valid else 0.0, alpha, 0.0, int(done), (5 if done else 0) if valid else 3])
             if step % 2 == 0:
                 rows["sensor_position.csv"].append(
                     head(robot, 2) + [x + rng.gauss(0, 1.5), y + rng.gauss(0, 1.5), 2.25, 2.25])
@@ -107,7 +113,7 @@ def synthetic_rows(step_s=0.05, duration_s=30.0, seed=7):
                 e[1] = 0.9 * e[1] + rng.gauss(0, 0.08)
                 cov = [0.04, 0, 0, 0, 0.04, 0, 0, 0, 0.01]
                 rows["estimate_pose.csv"].append(
-                    head(robot, 2) + [x + e[0], y + e[1], th] + cov + [0 if step == 0 else 1])
+                    head(robot, 2) + [x + e[0], y + e[1], th] + cov + [1 if valid else 0])
             poses[robot] = [x + v * math.cos(th) * step_s, y + v * math.sin(th) * step_s, th + omega * step_s]
     return rows
 
@@ -587,6 +593,322 @@ class HelperTest(unittest.TestCase):
         self.assertEqual(omega.tolist(), [0.2, 0.75])
         v, omega = report.command_twist(cmd, None)
         self.assertTrue(math.isnan(omega[1]))
+
+
+EPOCH_S = 1796406400.0  # a real-time run's stamps: wall-clock seconds (2026-12)
+
+
+def write_summary(out_dir, **fields):
+    with open(os.path.join(out_dir, "summary.json"), "w") as f:
+        json.dump(dict({"status": "completed"}, **fields), f)
+
+
+def figures_of(out_dir):
+    """{file name: Figure} as report.py would draw them (not saved): for looking at titles, legends, lines."""
+    data, missions, info = report.prepare(out_dir)
+    report._load_matplotlib()
+    figures = {}
+    for name, build in report.figure_jobs(data, missions, info):
+        fig = build()
+        if fig is not None:
+            figures[name] = fig
+    return figures
+
+
+def title_of(fig):
+    return fig._suptitle.get_text() if fig._suptitle is not None else ""
+
+
+def texts_of(fig):
+    return [t.get_text() for t in fig.texts] + [t.get_text() for ax in fig.axes for t in ax.texts]
+
+
+def legend_handles(fig):
+    handles = []
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        if legend is not None:
+            handles += list(getattr(legend, "legend_handles", None) or legend.legendHandles)
+    return handles
+
+
+def has_line(ls):
+    return ls not in ("None", "none", "", " ")
+
+
+class FigureContentTest(unittest.TestCase):
+    """What the figures say: titles from the scenario, legends that match the lines, gaps where a value does
+    not exist, time from the run's start, empty panels explained, summary.json's RMSE."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.rows = synthetic_rows()
+        cls.p2_rows = paper2_rows()
+
+    def setUp(self):
+        self.dir = tempfile.mkdtemp(prefix="robodds-report-content-test-")
+        self.addCleanup(shutil.rmtree, self.dir, True)
+
+    def assert_legend_matches_lines(self, fig, name):
+        """Every legend entry drawn as a line is a line of the figure (colour and style) and every line of
+        the figure (more than 2 points: not a reference line) has its entry; marker entries name a marker
+        drawn."""
+        from matplotlib.colors import to_rgba
+        def styles(lines):
+            return {(to_rgba(line.get_color()), line.get_linestyle()) for line in lines if has_line(line.get_linestyle())}
+
+        every_style = styles(line for ax in fig.axes for line in ax.lines)
+        drawn_styles = styles(line for ax in fig.axes for line in ax.lines if len(line.get_xdata()) > 2)
+        markers = {line.get_marker() for ax in fig.axes for line in ax.lines}
+        handles = [h for h in legend_handles(fig) if hasattr(h, "get_linestyle") and hasattr(h, "get_marker")]
+        self.assertTrue(handles, name)
+        entry_styles = set()
+        for handle in handles:
+            if has_line(handle.get_linestyle()):
+                style = (to_rgba(handle.get_color()), handle.get_linestyle())
+                entry_styles.add(style)
+                self.assertIn(style, every_style, "%s: legend entry '%s' is no line of the figure"
+                              % (name, handle.get_label()))
+            else:
+                self.assertIn(handle.get_marker(), markers, "%s: '%s'" % (name, handle.get_label()))
+        for style in drawn_styles:
+            self.assertIn(style, entry_styles, "%s: a line %s has no legend entry" % (name, style))
+
+    # --- titles -----------------------------------------------------------------------------------
+
+    def test_titles_name_the_paper_figure_only_for_the_scenario_that_is_it(self):
+        write_run(self.dir, rows=self.rows)
+        write_summary(self.dir, scenario="paper1_waypoints", description="paper 1 with the PF in the loop", step_s=0.05,
+                      metrics_after_s=0.0)
+        figures = figures_of(self.dir)
+        self.assertEqual(title_of(figures["trajectory.png"]), "Trajectory (paper 1 Fig. 3)")
+        self.assertIn("paper 1 Fig. 4", title_of(figures["velocity.png"]))
+        self.assertIn("paper 1 Fig. 5", title_of(figures["distance.png"]))
+        self.assertIn("paper 1 Fig. 2", title_of(figures["pf_error.png"]))
+        for fig in figures.values():
+            self.assertIn("scenario paper1_waypoints: paper 1 with the PF in the loop", texts_of(fig))
+
+        # A scenario of one's own (and the same robot on another mission): no paper figure.
+        for scenario in ("warehouse_loop", "paper1_close_uturn"):
+            write_summary(self.dir, scenario=scenario, description="my robot", step_s=0.05)
+            figures = figures_of(self.dir)
+            self.assertEqual(title_of(figures["trajectory.png"]), "Trajectory")
+            for name, fig in figures.items():
+                self.assertNotIn("Fig.", title_of(fig), name)
+                self.assertNotIn("paper", title_of(fig), name)
+                self.assertIn("scenario %s: my robot" % scenario, texts_of(fig), name)
+
+        # Without summary.json: what the figure shows, nothing more.
+        os.remove(os.path.join(self.dir, "summary.json"))
+        figures = figures_of(self.dir)
+        self.assertEqual(title_of(figures["trajectory.png"]), "Trajectory")
+        fig = figures["trajectory.png"]
+        self.assertEqual([t for t in fig.texts if t is not fig._suptitle], [])  # no scenario line
+
+    def test_paper2_titles_follow_the_scenario(self):
+        write_run(self.dir, rows=self.p2_rows, columns=P2_COLUMNS)
+        write_summary(self.dir, scenario="paper2_circumnavigation_noise", step_s=0.1)
+        figures = figures_of(self.dir)
+        self.assertIn("(paper 2 Fig. 5)", title_of(figures["p2_trajectories.png"]))
+        self.assertIn("(paper 2 Fig. 6)", title_of(figures["p2_range_rate.png"]))
+        self.assertNotIn("Fig.", title_of(figures["p2_observer_zoom.png"]))  # Fig. 7 is the noise-free run's
+        self.assertEqual(title_of(figures["trajectory.png"]), "Trajectory")  # no paper-1 figure for a paper-2 run
+
+    def test_a_run_stopped_early_says_so(self):
+        write_run(self.dir, rows=self.rows)
+        write_summary(self.dir, scenario="warehouse_loop", step_s=0.05, stopped_by="signal")
+        lines = "\n".join(texts_of(figures_of(self.dir)["velocity.png"]))
+        self.assertIn("stopped by signal at t = 30.0 s", lines)
+
+    # --- legends ----------------------------------------------------------------------------------
+
+    def test_legend_entries_are_the_lines_drawn(self):
+        write_run(self.dir, rows=self.rows)
+        for name, fig in figures_of(self.dir).items():
+            self.assert_legend_matches_lines(fig, "two robots: " + name)
+        one_robot = {name: [row for row in rows if row[1] == 1] for name, rows in self.rows.items()}
+        write_run(self.dir, rows=one_robot)
+        for name, fig in figures_of(self.dir).items():
+            self.assert_legend_matches_lines(fig, "one robot: " + name)
+        p2 = tempfile.mkdtemp(prefix="robodds-report-content-p2-")
+        self.addCleanup(shutil.rmtree, p2, True)
+        write_run(p2, rows=self.p2_rows, columns=P2_COLUMNS)
+        figures = figures_of(p2)
+        for name in ("p2_trajectories.png", "p2_range_rate.png", "p2_formation.png"):
+            self.assert_legend_matches_lines(figures[name], name)
+
+    # --- gaps -------------------------------------------------------------------------------------
+
+    def test_distance_is_a_gap_not_zero_while_the_estimate_is_not_valid(self):
+        write_run(self.dir, rows=self.rows)
+        fig = figures_of(self.dir)["distance.png"]
+        for ax in fig.axes:
+            line = [line for line in ax.lines if len(line.get_xdata()) > 2][0]
+            t, d = np.asarray(line.get_xdata(), dtype=float), np.asarray(line.get_ydata(), dtype=float)
+            before = t < INVALID_UNTIL_S - 1e-9
+            self.assertTrue(np.any(before))
+            self.assertTrue(np.all(np.isnan(d[before])), "0 m drawn while there was no distance")
+            self.assertTrue(np.all(np.isfinite(d[~before])))
+        labels = [h.get_label() for h in legend_handles(fig)]
+        self.assertIn("no valid estimate: no distance", labels)
+
+    def test_distance_of_a_run_without_the_state_column_is_drawn_as_recorded(self):
+        rows = {name: [row[:-1] for row in table] if name == "control_status.csv" else table
+                for name, table in self.rows.items()}
+        columns = dict(COLUMNS, **{"control_status.csv": COLUMNS["control_status.csv"][:-1]})
+        write_run(self.dir, rows=rows, columns=columns)
+        line = figures_of(self.dir)["distance.png"].axes[0].lines[0]
+        self.assertFalse(np.any(np.isnan(np.asarray(line.get_ydata(), dtype=float))))
+
+    # --- time -------------------------------------------------------------------------------------
+
+    def test_time_axis_starts_at_the_run_start_for_wall_clock_stamps(self):
+        epoch = {name: [[row[0] + EPOCH_S] + row[1:] for row in table] for name, table in self.rows.items()}
+        for summary in (False, True):
+            write_run(self.dir, rows=epoch)
+            if summary:
+                write_summary(self.dir, scenario="warehouse_loop", step_s=0.05, run={"mode": "realtime"})
+            figures = figures_of(self.dir)
+            for name in ("velocity.png", "distance.png", "pf_error.png"):
+                ax = figures[name].axes[-1]
+                t = np.concatenate([np.asarray(line.get_xdata(), dtype=float) for line in ax.lines
+                                    if len(line.get_xdata()) > 2])
+                self.assertAlmostEqual(float(np.nanmin(t)), 0.0, places=5, msg=name)
+                self.assertLess(ax.get_xlim()[1], 100.0, name)
+            if summary:
+                self.assertIn("scenario warehouse_loop (real time)", texts_of(figures["velocity.png"]))
+
+    def test_run_start_is_step_zero_time(self):
+        table = {"t_s": np.array([EPOCH_S + 0.52, EPOCH_S + 0.61]), "header.step": np.array([5.0, 6.0])}
+        self.assertAlmostEqual(report.run_start({"a.csv": table}, 0.1) - EPOCH_S, 0.01, places=5)  # the smaller
+        self.assertAlmostEqual(report.run_start({"a.csv": table}, None) - EPOCH_S, 0.52, places=5)
+        lockstep = {"t_s": np.array([0.5, 0.6]), "header.step": np.array([5.0, 6.0])}
+        self.assertAlmostEqual(report.run_start({"a.csv": lockstep}, 0.1), 0.0)
+
+    # --- empty panels -----------------------------------------------------------------------------
+
+    def test_an_empty_zoom_panel_says_the_robot_left_and_keeps_its_rows_scale(self):
+        rows = {name: list(table) for name, table in self.p2_rows.items()}
+        # As a real run: the observers publish one last sample at the switch step of the robot that leaves.
+        switch_step = 600
+        for name in ("observer_range_rate.csv", "observer_range_rate_linear.csv"):
+            rows[name].append([60.0, 3, 1, switch_step, switch_step + 1, 60000000000, 100.0, 0.1, 1, 0])
+        write_run(self.dir, rows=rows, columns=P2_COLUMNS)
+        fig = figures_of(self.dir)["p2_observer_zoom.png"]
+        axes = np.array(fig.axes).reshape(3, 2)  # robots 1-3 x windows 0-60 s and 60-120 s
+        panel = axes[2, 1]
+        self.assertEqual([line for line in panel.lines if len(line.get_xdata())], [])
+        self.assertIn("robot 3 left at t = 60 s", " ".join(t.get_text() for t in panel.texts))
+        self.assertEqual(panel.get_ylim(), axes[2, 0].get_ylim())  # the robot's other window's scale
+        self.assertEqual(panel.get_xlim(), (60.0, 120.0))
+        for ax in axes[:2, 1]:  # the robots that stay are drawn, with no note
+            self.assertEqual(len(ax.texts), 0)
+
+    def test_departures_and_why_a_window_is_empty(self):
+        schedules = {1: {"t_s": np.array([0.0, 50.0]), "active": np.array([1.0, 0.0])},
+                     2: {"t_s": np.array([0.0]), "active": np.array([0.0])}}
+        left = report.departures(schedules)
+        self.assertEqual(left, {1: 50.0})
+        self.assertIn("robot 1 left at t = 50 s", report.empty_window_reason(1, 50.0, 110.0, schedules, left))
+        self.assertIn("no target assigned", report.empty_window_reason(2, 0.0, 60.0, schedules, left))
+        self.assertIn("no valid observer", report.empty_window_reason(1, 0.0, 60.0, schedules, left))
+
+    # --- RMSE -------------------------------------------------------------------------------------
+
+    def expected_rmse(self, name, robot, from_step):
+        """sqrt(mean(dx^2 + dy^2)) over every row of robot at step >= from_step, as summary.json."""
+        truth = {(row[1], row[2]): row for row in self.rows["plant_state.csv"]}
+        squares = [(row[5] - truth[(robot, row[2])][5]) ** 2 + (row[6] - truth[(robot, row[2])][6]) ** 2
+                   for row in self.rows[name] if row[1] == robot and row[2] >= from_step]
+        return math.sqrt(sum(squares) / len(squares))
+
+    def test_rmse_in_the_legend_is_summary_jsons_2d_rmse_from_metrics_after_s(self):
+        write_run(self.dir, rows=self.rows)
+        write_summary(self.dir, scenario="warehouse_loop", step_s=0.05, metrics_after_s=5.0)
+        fig = figures_of(self.dir)["pf_error.png"]
+        labels = [h.get_label() for h in legend_handles(fig)]
+        for robot in (1, 2):
+            estimate = self.expected_rmse("estimate_pose.csv", robot, 100)  # 5 s / 0.05 s
+            fix = self.expected_rmse("sensor_position.csv", robot, 100)
+            self.assertIn("robot %d estimate (2-D RMSE %.3g m)" % (robot, estimate), labels)
+            self.assertIn("robot %d raw fix (2-D RMSE %.3g m)" % (robot, fix), labels)
+        self.assertIn("from t = 5 s", " ".join(texts_of(fig)))
+        self.assertIn("pf_rmse_m", " ".join(texts_of(fig)))
+
+    def test_position_rmse_counts_invalid_estimates_from_the_first_step_only(self):
+        truth = {"header.step": np.array([0.0, 1.0, 2.0, 3.0]), "t_s": np.array([0.0, 0.1, 0.2, 0.3]),
+                 "x": np.zeros(4), "y": np.zeros(4)}
+        rows = {"header.step": np.array([0.0, 1.0, 2.0, 5.0]), "t_s": np.array([0.0, 0.1, 0.2, 0.5]),
+                "x": np.array([9.0, 3.0, 0.0, 7.0]), "y": np.array([9.0, 4.0, 1.0, 7.0]),
+                "valid": np.array([1.0, 0.0, 1.0, 1.0])}
+        value, count = report.position_rmse(truth, rows, 1, None)  # step 0 before, step 5 without truth
+        self.assertEqual(count, 2)
+        self.assertAlmostEqual(value, math.sqrt((25.0 + 1.0) / 2))
+        value, count = report.position_rmse(truth, rows, None, 0.1)
+        self.assertAlmostEqual(value, math.sqrt((25.0 + 1.0) / 2))
+
+    def test_an_rmse_other_than_summary_jsons_is_reported(self):
+        write_run(self.dir, rows=self.rows)
+        estimate = self.expected_rmse("estimate_pose.csv", 1, 100)
+        robots = {"1": {"pf_rmse_m": estimate, "measurement_rmse_m": self.expected_rmse("sensor_position.csv", 1, 100)}}
+        write_summary(self.dir, step_s=0.05, metrics_after_s=5.0, metrics={"robots": robots})
+        status, _, err = run_main(self.dir)
+        self.assertEqual((status, err), (0, ""))
+        robots["1"]["pf_rmse_m"] = estimate * 1.5
+        write_summary(self.dir, step_s=0.05, metrics_after_s=5.0, metrics={"robots": robots})
+        status, _, err = run_main(self.dir)
+        self.assertEqual(status, 0)
+        self.assertIn("robot 1's estimate RMSE", err)
+        self.assertIn("summary.json's pf_rmse_m", err)
+
+    # --- bad input and drawing --------------------------------------------------------------------
+
+    def test_a_malformed_summary_names_the_file_and_key(self):
+        write_run(self.dir, files=SMOKE_FILES, rows=self.rows)
+        with open(os.path.join(self.dir, "summary.json"), "w") as f:
+            f.write("{\"status\": ")
+        status, _, err = run_main(self.dir)
+        self.assertEqual(status, 2)
+        self.assertIn("summary.json: not readable as JSON", err)
+        write_summary(self.dir, step_s="fast")
+        status, _, err = run_main(self.dir)
+        self.assertEqual(status, 2)
+        self.assertIn("summary.json: key 'step_s'", err)
+        self.assertEqual(len(err.strip().splitlines()), 1, err)
+        self.assertEqual(sorted(f for f in os.listdir(self.dir) if f.endswith(".png")), [])
+
+    def test_serial_and_parallel_drawing_write_the_same_files(self):
+        write_run(self.dir, rows=self.rows)
+        outputs = []
+        for jobs in ("1", "3"):
+            os.environ["ROBODDS_REPORT_JOBS"] = jobs
+            try:
+                status, out, err = run_main(self.dir)
+            finally:
+                del os.environ["ROBODDS_REPORT_JOBS"]
+            self.assertEqual(status, 0, err)
+            outputs.append(out)
+        self.assertEqual(outputs[0], outputs[1])
+        os.environ["ROBODDS_REPORT_JOBS"] = "0"
+        try:
+            status, _, err = run_main(self.dir)
+        finally:
+            del os.environ["ROBODDS_REPORT_JOBS"]
+        self.assertEqual(status, 2)
+        self.assertIn("ROBODDS_REPORT_JOBS: '0'", err)
+
+    def test_envelope_keeps_spikes_and_gaps_within_the_point_budget(self):
+        t = np.arange(100000) * 0.01
+        y = np.sin(t)
+        y[31234] = 50.0            # a one-sample spike
+        y[60000:61000] = np.nan    # a gap of 10 s
+        td, yd = report.envelope(t, y, max_points=4000)
+        self.assertLessEqual(len(td), 4000)
+        self.assertEqual(float(np.nanmax(yd)), 50.0)
+        self.assertTrue(np.any(np.isnan(yd[(td > 600.5) & (td < 609.5)])))
+        self.assertTrue(np.all(np.diff(td) >= 0))
+        short_t, short_y = report.envelope(t[:10], y[:10])
+        self.assertEqual(short_y.tolist(), y[:10].tolist())
 
 
 if __name__ == "__main__":

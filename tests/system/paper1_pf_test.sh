@@ -29,7 +29,11 @@ PY
 for figure in trajectory.png velocity.png distance.png pf_error.png; do
   [[ -s "$WORK/run/$figure" ]] || fail "figure '$figure' not written: $(ls "$WORK/run")"
 done
-echo "ok: figures written"
+# report.py recomputes the RMSEs of pf_error.png's legend and warns when one differs from summary.json's.
+if grep -q "differs from summary.json" "$WORK/run.log"; then
+  fail "the plots' RMSE is not summary.json's: $(grep "differs from summary.json" "$WORK/run.log")"
+fi
+echo "ok: figures written, their RMSEs those of summary.json"
 
 # Epsilon far below the estimator's error: the paper's rule alone stalls, the confidence-aware
 # switch (kappa = 0.5) completes the mission with true switch distances like epsilon = 0.1 m.

@@ -155,8 +155,12 @@ class EvaluatorNode : public Component {
     json.begin_object();
     write_status_section(json, end, recording_->figures());
     json.value("scenario", context_->scenario().name);
+    if (!context_->scenario().description.empty()) {
+      json.value("description", context_->scenario().description);  // the plots' subtitle (sim/report)
+    }
     json.value("steps", static_cast<std::int64_t>(steps_));
     json.value("step_s", context_->step_s());
+    json.value("metrics_after_s", metrics_after_s_);  // s: where the errors start (the plots' RMSEs count from it too)
     write_metrics_section(json);
     write_run_section(json, *recording_, context_->mode());
     standby_.write(json, keys_, start_s_);

@@ -53,6 +53,10 @@ TEST(EvaluatorNode, WritesEveryValidSampleToCsvAndCountsTheRejectedOne) {
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("samples": \{\s*"plant/state": 21\s*\})"))) << summary;
   EXPECT_EQ(summary.rfind("{\n  \"status\": \"completed\",\n", 0), 0u) << summary;
   EXPECT_EQ(summary.find("\"reason\""), std::string::npos) << summary;
+  // What the plots (sim/report/report.py) take for their subtitle and for the start of their RMSEs.
+  EXPECT_NE(summary.find("\"scenario\": \"evaluator_node\",\n  \"description\": \"two robots, \\\"quoted\\\"\",\n"),
+            std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"metrics_after_s\": 0,"), std::string::npos) << summary;
 }
 
 TEST(EvaluatorNode, AFailedRunKeepsTheRowsSoFarAndSaysWhyInTheSummary) {

@@ -18,6 +18,7 @@ namespace robodds::evaluator::testing {
 
 /// Two robots, the evaluator recording plant/state from the start: 11 steps of 0.01 s.
 inline const char* const kTwoRobotScenario = R"(name: evaluator_node
+description: two robots, "quoted"
 step_s: 0.01
 duration_s: 0.1
 seed: 1
