@@ -27,7 +27,7 @@ class InfoCommand : public Command {
     cmd_ = app.add_subcommand("info",
                               "describe a topic on the domain (type, each writer and reader with its QoS, like ros2 topic info -v) "
                               "or an MCAP recording (topics, types, counts, times, rates, compression, summary)");
-    cmd_->add_option("file", path_, "a topic name (e.g. plant/state), or an .mcap file")->required();
+    cmd_->add_option("topic_or_file", path_, "a topic name (e.g. plant/state), or an .mcap file")->required();
     cmd_->add_option("--duration", seconds_, "s to listen for a topic's writers and readers")->check(CLI::PositiveNumber);
     add_dds_options(cmd_, dds_);
   }
