@@ -1,5 +1,6 @@
 #include "tools/robodds/topic_report.hpp"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "common/number_text.hpp"
@@ -20,6 +21,39 @@ std::string plural(int n, const char* one) { return std::to_string(n) + " " + on
 std::string where(const DiscoveredEndpoint& e) { return e.participant + " @ " + (e.host.empty() ? "(host not announced)" : e.host); }
 
 }  // namespace
+
+bool InstanceOrder::operator()(const std::string& a, const std::string& b) const {
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  std::size_t i = 0;
+  std::size_t j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (digit(a[i]) && digit(b[j])) {
+      // Compare two runs of digits by value: without leading zeros, the longer is larger.
+      std::size_t ie = i;
+      std::size_t je = j;
+      while (ie < a.size() && digit(a[ie])) ++ie;
+      while (je < b.size() && digit(b[je])) ++je;
+      const std::size_t is = std::min(a.find_first_not_of('0', i), ie);
+      const std::size_t js = std::min(b.find_first_not_of('0', j), je);
+      if (ie - is != je - js) {
+        return ie - is < je - js;
+      }
+      const int cmp = a.compare(is, ie - is, b, js, je - js);
+      if (cmp != 0) {
+        return cmp < 0;
+      }
+      i = ie;
+      j = je;
+    } else {
+      if (a[i] != b[j]) {
+        return a[i] < b[j];
+      }
+      ++i;
+      ++j;
+    }
+  }
+  return a.size() - i < b.size() - j || (a.size() - i == b.size() - j && a < b);
+}
 
 std::string hz_text(const std::string& instance, const PeriodStats& s) {
   char buf[256];

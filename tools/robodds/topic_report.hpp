@@ -13,6 +13,12 @@ namespace robodds {
 /// (ros2 topic hz's two lines; `instance` non-empty: "robot_id=1: " before the first).
 std::string hz_text(const std::string& instance, const PeriodStats& stats);
 
+/// The order `--per-key` prints instances in: numbers by value ("robot_id=2" before
+/// "robot_id=10", "robot_id=1, peer_id=3" before "robot_id=1, peer_id=12"), the rest as text.
+struct InstanceOrder {
+  bool operator()(const std::string& a, const std::string& b) const;
+};
+
 /// A size in bytes as ros2 topic bw writes one: "76 B", "1.53 KB", "2.10 MB" (1000-based).
 std::string byte_text(double bytes);
 

@@ -8,6 +8,7 @@
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/bus/sample_codec.hpp"
+#include "tools/robodds/topic_report.hpp"
 
 namespace robodds {
 
@@ -57,8 +58,9 @@ std::string TopicWatch::label(const RawSample& sample) {
 int watch_and_report(const TopicInfo& topic, const DdsOptions& dds, const TopicReport& report, const std::atomic<bool>& stop) {
   using Clock = std::chrono::steady_clock;
   TopicWatch watch(topic, dds, report.per_key);
-  std::map<std::string, ArrivalWindow> windows;      // instance ("" without --per-key) -> its window
-  std::map<std::string, std::uint64_t> printed_at;   // instance -> ArrivalWindow::total() at its last print
+  // instance ("" without --per-key) -> its window, printed robot_id=2 before robot_id=10
+  std::map<std::string, ArrivalWindow, InstanceOrder> windows;
+  std::map<std::string, std::uint64_t> printed_at;  // instance -> ArrivalWindow::total() at its last print
   const auto start = Clock::now();
   const auto deadline = start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(report.duration_s));
   auto next_print = start + std::chrono::seconds(1);

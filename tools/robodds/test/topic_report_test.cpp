@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
+#include <vector>
+
 namespace robodds {
 namespace {
 
@@ -15,6 +19,15 @@ TEST(TopicReport, HzTextIsRos2sTwoLines) {
   s.std_s = 0.000123;
   EXPECT_EQ(hz_text("", s), "average rate: 100.000\n\tmin: 0.009s max: 0.011s std dev: 0.00012s window: 101\n");
   EXPECT_EQ(hz_text("robot_id=2", s), "robot_id=2: average rate: 100.000\n\tmin: 0.009s max: 0.011s std dev: 0.00012s window: 101\n");
+}
+
+TEST(TopicReport, InstancesInNumericOrder) {
+  std::vector<std::string> labels{"robot_id=10", "robot_id=2", "robot_id=1, peer_id=12", "robot_id=1, peer_id=3", "member=b", "member=a", "robot_id=2"};
+  std::sort(labels.begin(), labels.end(), InstanceOrder{});
+  EXPECT_EQ(labels, (std::vector<std::string>{"member=a", "member=b", "robot_id=1, peer_id=3", "robot_id=1, peer_id=12",
+                                              "robot_id=2", "robot_id=2", "robot_id=10"}));
+  EXPECT_TRUE(InstanceOrder{}("robot_id=9", "robot_id=010"));  // leading zeros do not count
+  EXPECT_FALSE(InstanceOrder{}("robot_id=2", "robot_id=2"));
 }
 
 TEST(TopicReport, BytesIn1000BasedUnits) {
