@@ -205,6 +205,13 @@ class DiscoveryListener : public dds::DomainParticipantListener {
 std::vector<DiscoveredTopic> discover_topics(const DdsOptions& options, double seconds) {
   dds::DomainParticipantQos qos = checked_participant_qos(options);
   qos.name("robodds-topics");
+  // A Discovery Server passes a CLIENT only the endpoints of the topics it has endpoints on
+  // itself (none here): a SUPER_CLIENT gets every participant's and endpoint's discovery data
+  // (as the ros2 daemon does), so `robodds topics`/`info` see a server-discovered system too.
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  if (discovery.discoveryProtocol == rtps::DiscoveryProtocol_t::CLIENT) {
+    discovery.discoveryProtocol = rtps::DiscoveryProtocol_t::SUPER_CLIENT;
+  }
   DiscoveryListener listener;  // declared before the participant: outlives it
   // Only discovery callbacks: leave data_on_readers out of the mask (it would swallow data).
   ParticipantPtr participant =

@@ -10,6 +10,17 @@ since() { printf "%.1f s" "$(bc <<<"$EPOCHREALTIME - $start")"; }  # since the h
 "$ROBODDS" host --scenario "$SRC/sim/scenarios/plant_smoke.yaml" --components plant,commander,position_sensor --realtime $(rt_priority_flag) \
   --duration 40 --domain "$DOMAIN" >"$WORK/host.log" 2>&1 &
 cleanup_pids+=("$!")
+# And through a Discovery Server, on domain DOMAIN + 1: a commander alone, its plant/cmd writer
+# found by `robodds topics` below only if the server tells the tool about every endpoint.
+ds_domain=$((DOMAIN + 1))
+ds="127.0.0.1:$((11800 + DOMAIN % 100))"
+if command -v fast-discovery-server >/dev/null; then
+  fast-discovery-server -i 0 -l 127.0.0.1 -p "${ds#*:}" >"$WORK/ds.log" 2>&1 &
+  cleanup_pids+=("$!")
+  "$ROBODDS" host --scenario "$SRC/sim/scenarios/plant_smoke.yaml" --components commander --realtime $(rt_priority_flag) \
+    --duration 40 --domain "$ds_domain" --discovery-server "$ds" >"$WORK/ds_host.log" 2>&1 &
+  cleanup_pids+=("$!")
+fi
 sleep 1
 # hz measures the wall clock on arrival: above the CPU hogs of a busy machine, below the host.
 rt="$(rt_chrt 40)"
@@ -48,6 +59,10 @@ echo "ok: bw $bw KB/s of 76-byte samples ($(since))"
 
 # The writer's QoS as deploy/qos/robodds_qos.xml's `state` profile sets it, its host, one reader
 # (the host's own: the position sensor reads plant/state).
+if command -v fast-discovery-server >/dev/null; then
+  timeout -k 2 20 $rt "$ROBODDS" topics --duration 2 --domain "$ds_domain" --discovery-server "$ds" >"$WORK/ds_topics.out" 2>&1 &
+  ds_topics=$!
+fi
 out="$(timeout -k 2 20 $rt "$ROBODDS" info plant/state --duration 2 --domain "$DOMAIN" 2>&1)" || fail "info failed: $out; host: $(cat "$WORK/host.log")"
 python3 - "$out" "$(hostname)" <<'PY' || fail "info plant/state: $out; host: $(cat "$WORK/host.log")"
 import sys
@@ -64,7 +79,12 @@ grep -qxF "plant/state [robodds::idl::RobotState] 1 writer, 1 reader" <<<"$out" 
 grep -qxF "    writer  robodds-host @ $(hostname)  RELIABLE, VOLATILE, deadline 0.5 s, liveliness MANUAL_BY_TOPIC 1 s" <<<"$out" ||
   fail "topics -v: plant/state's writer: $out"
 grep -qxF "    writer  robodds-host @ $(hostname)  BEST_EFFORT, VOLATILE, deadline 0.2 s" <<<"$out" || fail "topics -v: sensor/position's writer: $out"
-echo "ok: info plant/state and topics -v ($(since))"
+if [[ -n ${ds_topics:-} ]]; then
+  wait "$ds_topics" || fail "topics through the Discovery Server failed: $(cat "$WORK/ds_topics.out")"
+  grep -qE "^plant/cmd +robodds::idl::VelocityCommand +1 +0 " "$WORK/ds_topics.out" ||
+    fail "topics through the Discovery Server: no plant/cmd writer: $(cat "$WORK/ds_topics.out"); host: $(cat "$WORK/ds_host.log")"
+fi
+echo "ok: info plant/state and topics -v, topics through a Discovery Server ($(since))"
 
 # Nothing seen names the domain and how to list the topics; a typo gets the closest name.
 expect_error 1 "no sample on sensor/uwb within 1 s on DDS domain $DOMAIN \(.robodds topics --domain $DOMAIN. lists the topics seen there\)" -- \
