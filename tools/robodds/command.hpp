@@ -41,5 +41,7 @@ std::unique_ptr<Command> add_security_command(CLI::App& app, const CommandEnv& e
 std::unique_ptr<Command> add_info_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_replay_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_bridge_command(CLI::App& app, const CommandEnv& env);
+std::unique_ptr<Command> add_hz_command(CLI::App& app, const CommandEnv& env);
+std::unique_ptr<Command> add_bw_command(CLI::App& app, const CommandEnv& env);
 
 }  // namespace robodds

@@ -22,7 +22,8 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<Command>> commands;
   for (auto add : {add_run_command, add_host_command, add_topics_command, add_echo_command, add_record_command,
                    add_components_command, add_report_command, add_deploy_command, add_sweep_command, add_security_command,
-                   add_info_command, add_replay_command, add_bridge_command}) {
+                   add_info_command, add_replay_command, add_bridge_command,
+                   add_hz_command, add_bw_command}) {
     commands.push_back(add(app, env));
   }
   const int code = cli::parse_and_run(app, argc, argv, [&] {
