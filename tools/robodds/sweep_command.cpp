@@ -296,6 +296,9 @@ class SweepCommand : public Command {
     RunnerOptions o = runner_options(spec);
     o.jobs = 1;
     const std::vector<RunOutcome> outcome = run_all({runs[index]}, o, [](const Progress&) {});
+    if (outcome.front().not_run) {  // a signal (e.g. the batch engine's preemption): not carried out, a retry runs it
+      throw RunError("robodds sweep: run " + std::to_string(index) + " was interrupted by a signal; nothing recorded");
+    }
     std::printf("run %zu (seed %llu): %s\n", index, static_cast<unsigned long long>(runs[index].seed),
                 outcome.front().ok ? "ok" : ("failed (recorded): " + outcome.front().error).c_str());
     return 0;
