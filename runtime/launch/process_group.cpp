@@ -53,6 +53,13 @@ void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>
     }
     if (own_process_group) {
       setpgid(0, 0);
+      // The runner's stop step (signal_all(SIGUSR1)) must not kill a host still loading (the
+      // default action): it waits, pending across exec, until the host's handler unblocks it
+      // (tools/cli install_stop_handlers()).
+      sigset_t usr1;
+      sigemptyset(&usr1);
+      sigaddset(&usr1, SIGUSR1);
+      sigprocmask(SIG_BLOCK, &usr1, nullptr);
     }
     if (!keep_scheduling) {
       // A helper (the plots' python3) does not inherit the runner's SCHED_FIFO (--rt-priority).

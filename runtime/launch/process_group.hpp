@@ -20,7 +20,8 @@ class ProcessGroup {
   /// unless `keep_scheduling` (a host of `robodds run --rt-priority`: it starts up at the
   /// runner's priority, before it applies its own; a helper such as python3 must not).
   /// `own_process_group`: the child leads a process group of its own (setpgid), so a terminal's
-  /// Ctrl-C reaches the runner only, which decides what the child gets (signal_all).
+  /// Ctrl-C reaches the runner only, which decides what the child gets (signal_all), and starts
+  /// with SIGUSR1 blocked until its handler unblocks it (a robodds host: tools/cli).
   void spawn(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file = "",
              bool keep_scheduling = false, bool own_process_group = false);
   /// Sends `signal_number` with the value `value` (sigqueue: the child's SA_SIGINFO handler

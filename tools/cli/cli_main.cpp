@@ -116,6 +116,12 @@ const std::atomic<bool>& install_stop_handlers() {
   step_action.sa_flags = SA_SIGINFO;
   sigemptyset(&step_action.sa_mask);
   sigaction(SIGUSR1, &step_action, nullptr);
+  // A host of a real-time run across processes starts with SIGUSR1 blocked (ProcessGroup::spawn),
+  // so that a stop step sent while it was loading waits for this handler.
+  sigset_t usr1;
+  sigemptyset(&usr1);
+  sigaddset(&usr1, SIGUSR1);
+  sigprocmask(SIG_UNBLOCK, &usr1, nullptr);
   return g_stop;
 }
 
