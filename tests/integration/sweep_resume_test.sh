@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Issue 26, finding 3: an interrupted sweep and --resume (plant_smoke lockstep runs of 5 s, one
+# Issue 26, finding 3: an interrupted sweep and --resume (plant_smoke lockstep runs of 20 s, one
 # worker on domain DOMAIN):
 # 1. SIGINT once the first run finished: exit 130; runs.csv and summary.md cover the runs that
 #    finished, the others are "not run" (not failed), also for --aggregate (exit 0).
@@ -9,7 +9,7 @@
 #    one line naming what differs / the folder.
 source "$(dirname "$0")/lib.sh"
 S="$SRC/sim/scenarios/plant_smoke.yaml"
-SWEEP=("$ROBODDS" sweep "$S" --seeds 1-4 --duration 5 --jobs 1 --domain "$DOMAIN")
+SWEEP=("$ROBODDS" sweep "$S" --seeds 1-4 --duration 20 --jobs 1 --domain "$DOMAIN")
 D="$WORK/sweep"
 
 "${SWEEP[@]}" --out "$D" >"$WORK/first.log" 2>&1 &
@@ -48,7 +48,7 @@ grep -q "resuming $D: $ok of 4 runs finished, $not_run to run" "$WORK/resume.log
 echo "ok: --resume ran exactly the $not_run missing run(s), kept the $ok finished"
 
 rc=0
-out="$("$ROBODDS" sweep "$S" --seeds 1-5 --duration 5 --jobs 1 --domain "$DOMAIN" --resume "$D" 2>&1)" || rc=$?
+out="$("$ROBODDS" sweep "$S" --seeds 1-5 --duration 20 --jobs 1 --domain "$DOMAIN" --resume "$D" 2>&1)" || rc=$?
 [[ $rc -eq 2 && $(wc -l <<<"$out") -eq 1 ]] && grep -q "resume $D: not the sweep of this command line: --seeds: '1-4' in sweep.json, '1-5' on the command line" <<<"$out" ||
   fail "--resume with other seeds: exit $rc: $out"
 rc=0
