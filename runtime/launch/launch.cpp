@@ -200,8 +200,8 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
       if (launch.stop != nullptr && launch.stop->load()) {
         throw RunError("interrupted by a signal");
       }
-      // A graceful stop: every host ends after the same step, chosen here (after step 0's wall
-      // time: before it, a host may still be installing its signal handlers).
+      // A graceful stop: every host ends after the same step, chosen here once step 0's wall time
+      // has come (the hosts' loops start there; a signal during start-up waits for it).
       if (!stop_sent && launch.graceful_stop != nullptr && launch.graceful_stop->load() && wall_clock_now_ns() >= epoch_ns) {
         stop_sent = true;
         const std::uint64_t step = graceful_stop_step(epoch_ns, wall_clock_now_ns(), scenario.step_s);
