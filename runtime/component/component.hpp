@@ -64,6 +64,11 @@ struct RunFigures {
   std::vector<double> thirds_done_at_s;
   std::vector<HostHealth> hosts;
   std::vector<std::string> hosts_not_heard;
+  /// Real time: "signal" when a signal stopped the run cleanly before its end (HostOptions::
+  /// graceful_stop, stop_at_step); empty: it ran to its end (or failed).
+  std::string stopped_by;
+  double stopped_at_s = 0.0;            // when stopped: sim time of the last step run (s since step 0)
+  std::int64_t stopped_at_wall_ns = 0;  // when stopped: CLOCK_REALTIME as this host's loop ended (ns)
 };
 
 /// The scenario's producers of each topic instance: topic -> robot id (0: an unkeyed topic) ->

@@ -111,6 +111,18 @@ struct Host::Impl {
     }
   }
 
+  /// Real time: the step a graceful stop ends the run after (HostOptions::graceful_stop: the step
+  /// the loop is at, `at_step`; stop_at_step: the runner's), or `end` when none was asked for.
+  std::uint64_t graceful_end(std::uint64_t end, std::uint64_t at_step) const {
+    if (options.stop_at_step != nullptr) {
+      end = std::min(end, std::max(options.stop_at_step->load(), at_step));
+    }
+    if (options.graceful_stop != nullptr && options.graceful_stop->load()) {
+      end = std::min(end, at_step);
+    }
+    return end;
+  }
+
   void check_stop() const {
     if (options.stop != nullptr && options.stop->load()) {
       throw RunError(options.member + ": interrupted by a signal");
@@ -231,6 +243,7 @@ struct Host::Impl {
     std::set<std::string> told_other_files;  // hosts of this run named as having loaded other files
     std::string other_files;                  // degraded: what was said of them, "; "-joined
     bool stopped = false;
+    std::uint64_t end = last;  // the run's last step: earlier after a graceful stop (graceful_end)
     while (true) {
       if (options.stop_ends_run && options.stop != nullptr && options.stop->load()) {
         log::info(options.member, "stopped by a signal after step " + std::to_string(last_run) + ": finishing");
@@ -248,13 +261,20 @@ struct Host::Impl {
         continue;
       }
       const auto current = static_cast<std::uint64_t>(elapsed_s / step_s);
-      if (current > last) {
-        last_run = last;
+      const std::uint64_t asked_end = graceful_end(end, last_run);
+      if (asked_end < end) {
+        end = asked_end;
+        log::info(options.member, "stopping on a signal: the run ends cleanly after step " + std::to_string(end) + " (t = " +
+                                      shortest_text(static_cast<double>(end) * step_s) + " s of " +
+                                      shortest_text(static_cast<double>(last) * step_s) + " s)");
+      }
+      if (current > end) {
+        last_run = end;
         break;
       }
       last_run = current;
       watch_peers(peers, seconds_since(start), next_peer_check_s);
-      const double remaining_s = static_cast<double>(last + 1) * step_s - elapsed_s;  // s to the run's end
+      const double remaining_s = static_cast<double>(end + 1) * step_s - elapsed_s;  // s to the run's end
       peer_losses->check_realtime(peers, elapsed_s, remaining_s);
       if (loop_alive) {
         loop_alive->beat(elapsed_s, current);
@@ -265,7 +285,7 @@ struct Host::Impl {
       if (first_due <= current) {
         count_overrun(overruns, first_due, current, due_steps_between(periods, first_due, current), elapsed_s);
       }
-      std::uint64_t soonest = last + 1;
+      std::uint64_t soonest = end + 1;
       for (std::size_t i = 0; i < slots.size(); ++i) {
         ComponentSlot& slot = *slots[i];
         if (next_due[i] <= current) {
@@ -291,7 +311,7 @@ struct Host::Impl {
     if (!stopped && !next_due.empty()) {
       // Due steps after the last one the loop ran that it never got to before the end.
       const std::uint64_t first_due = *std::min_element(next_due.begin(), next_due.end());
-      overruns.missed_at_end(due_steps_between(periods, std::min(first_due, last + 1), last + 1));
+      overruns.missed_at_end(due_steps_between(periods, std::min(first_due, end + 1), end + 1));
       check_overrun_limit(overruns);
     }
     if (overruns.figures().missed_steps > 0 || overruns.figures().late_steps > 0) {
@@ -301,8 +321,13 @@ struct Host::Impl {
       watch_peers(peers, seconds_since(start), next_peer_check_s, true);
     }
     const std::string degraded = peers.degraded() + (peers.degraded().empty() || other_files.empty() ? "" : "; ") + other_files;
+    if (end < last) {
+      run.figures.stopped_by = "signal";
+      run.figures.stopped_at_s = static_cast<double>(end) * step_s;
+      run.figures.stopped_at_wall_ns = wall_clock_now_ns();
+    }
     host_detail::finish_run(run, options.member, overruns.figures(), slots, health.get(), last_run, seconds_since(start), degraded);
-    return RunStats{last_run + 1, seconds_since(start), degraded};
+    return RunStats{last_run + 1, seconds_since(start), degraded, run.figures.stopped_by};
   }
 
   /// Real time: hosts of this run that loaded other files (DigestCheck). Within the start timeout, a

@@ -39,6 +39,14 @@ struct HostOptions {
   /// Real time: `stop` ends the run normally (components finish, no error) instead of
   /// interrupting it. For hosts that run until stopped (a component executable on a robot).
   bool stop_ends_run = false;
+  /// Real time: once set (the first SIGINT/SIGTERM of `robodds run --realtime`), the run ends
+  /// cleanly after the step it is at, as at its end (on_finish, health, summary "completed" with
+  /// RunFigures::stopped_by); `stop` (the second signal) still aborts.
+  const std::atomic<bool>* graceful_stop = nullptr;
+  /// Real time: once not kNoStopStep, the run ends cleanly after this step (or at once if past
+  /// it): the step the runner of --deploy processes chose for every child host, so that they
+  /// all end together, as at a normal end.
+  const std::atomic<std::uint64_t>* stop_at_step = nullptr;
   /// Real time: the run fails (RunError) when more due steps than this are skipped; nullopt:
   /// default_max_missed_steps() of the run's steps (runtime/health/overrun_counter.hpp).
   std::optional<std::uint64_t> max_missed_steps;
@@ -49,11 +57,16 @@ struct HostOptions {
   RunDigest digest;
 };
 
+/// HostOptions::stop_at_step before a stop was asked for.
+inline constexpr std::uint64_t kNoStopStep = ~std::uint64_t{0};
+
 struct RunStats {
   std::uint64_t steps = 0;  // ticks completed
   double wall_s = 0.0;
   /// Real time: why this host ran degraded (PeerWatch: groups it never discovered); empty: not.
   std::string degraded;
+  /// Real time: "signal" when a graceful stop ended the run before its end (steps: those run).
+  std::string stopped_by;
 };
 
 /// Exit code of a host that ran to its end degraded (RunStats::degraded): not a failure, not a

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <csignal>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
@@ -103,6 +104,7 @@ RunStats run_colocated(const ComponentRegistry& registry, const Scenario& scenar
   apply(launch.lockstep, options);
   options.progress = launch.progress;
   options.stop = launch.stop;
+  options.graceful_stop = launch.realtime ? launch.graceful_stop : nullptr;
   // One participant is every group and the coordinator: the `colocated` identity, whose
   // permissions are the union of theirs (tools/robodds/security_policy.hpp).
   return run_in_process(registry, scenario, with_identity(launch.dds, kColocatedIdentity), options,
@@ -183,22 +185,40 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
   for (const GroupSpec& group : scenario.groups) {
     // With --rt-priority a host starts up (exec, loading, configuration) at the runner's priority:
     // beside CPU hogs its start at SCHED_OTHER took seconds and made its first steps late.
-    children.spawn(group.name, child_argv(scenario, launch, group.name, run_id, epoch_ns), "", launch.rt_priority.has_value());
+    // Real time: a process group of its own, so a terminal's Ctrl-C reaches the runner alone,
+    // which stops every host after the same step (below); lockstep children get it as before.
+    children.spawn(group.name, child_argv(scenario, launch, group.name, run_id, epoch_ns), "", launch.rt_priority.has_value(),
+                   launch.realtime);
   }
   RunStats stats;
   if (launch.realtime) {
     const auto start = std::chrono::steady_clock::now();
     const double limit = 2.0 + scenario.duration_s + launch.lockstep.start_timeout_s;
+    std::uint64_t end = scenario.last_step();
+    bool stop_sent = false;
     while (children.reap_finished() > 0) {
       if (launch.stop != nullptr && launch.stop->load()) {
         throw RunError("interrupted by a signal");
+      }
+      // A graceful stop: every host ends after the same step, chosen here once step 0's wall time
+      // has come (the hosts' loops start there; a signal during start-up waits for it).
+      if (!stop_sent && launch.graceful_stop != nullptr && launch.graceful_stop->load() && wall_clock_now_ns() >= epoch_ns) {
+        stop_sent = true;
+        const std::uint64_t step = graceful_stop_step(epoch_ns, wall_clock_now_ns(), scenario.step_s);
+        if (step < end) {
+          end = step;
+          stats.stopped_by = "signal";
+          children.signal_all(SIGUSR1, step);
+          log::info("run", "stopping on a signal: every host ends cleanly after step " + std::to_string(step) + " (t = " +
+                               shortest_text(static_cast<double>(step) * scenario.step_s) + " s); a second signal aborts");
+        }
       }
       if (std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() > limit) {
         throw RunError("real-time run did not finish within " + std::to_string(limit) + " s");
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
-    stats.steps = scenario.last_step() + 1;
+    stats.steps = end + 1;
     stats.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return stats;
   }
@@ -221,6 +241,11 @@ RunStats run_as_processes(const ComponentRegistry& registry, const Scenario& sce
 }
 
 }  // namespace
+
+std::uint64_t graceful_stop_step(std::int64_t epoch_ns, std::int64_t now_ns, double step_s) {
+  const double ahead_s = std::max(0.0, static_cast<double>(now_ns - epoch_ns) * 1e-9) + kGracefulStopAheadS;
+  return static_cast<std::uint64_t>(std::ceil(ahead_s / step_s));
+}
 
 const char* to_string(Deploy deploy) { return deploy == Deploy::kProcesses ? "processes" : "colocated"; }
 
@@ -393,7 +418,8 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
 
 }  // namespace
 
-int run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop) {
+int run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop,
+             const std::atomic<std::uint64_t>* stop_at_step) {
   const bool standalone = args.deploy != to_string(Deploy::kProcesses);  // not a child of `robodds run --deploy processes`
   // First: a refusal ends the host before anything started; every thread created later inherits it.
   const std::string who = !args.member.empty() ? args.member : !args.group.empty() ? args.group : !args.type.empty() ? args.type : "host";
@@ -437,6 +463,7 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
   options.stop_ends_run = !args.type.empty() && !args.duration_s;
   apply(args.lockstep, options);
   options.stop = stop;
+  options.stop_at_step = stop_at_step;
   // DDS Security identity: the group's (also under another --member), the coordinator's for a
   // coordinator alone; a host of loose --components has none (it would need a group's rights).
   const std::string identity = !args.type.empty()     ? scenario.groups.front().name

@@ -39,8 +39,20 @@ struct LaunchOptions {
   std::optional<std::uint64_t> max_missed_steps;  // real time: HostOptions::max_missed_steps of every host
   std::optional<int> rt_priority;  // --rt-priority of every child host (the caller applies it to itself: apply_rt_priority_option())
   std::function<void(std::uint64_t step, std::uint64_t last_step)> progress;
-  const std::atomic<bool>* stop = nullptr;  // set by a signal handler
+  const std::atomic<bool>* stop = nullptr;  // set by a signal handler: the run aborts (RunError)
+  /// Real time: set by the first signal, the run stops cleanly at its next step (every host after
+  /// the same step across processes: the runner sends it to them); `stop` then aborts.
+  const std::atomic<bool>* graceful_stop = nullptr;
 };
+
+/// Real time across processes: how far ahead (s) of the runner's clock the step lies after which
+/// every host ends on a graceful stop: the hosts get it within one loop iteration (at most 50 ms
+/// of sleep), so they all reach it and end together, as at a normal end.
+inline constexpr double kGracefulStopAheadS = 0.3;
+
+/// The step every host ends after on a graceful stop asked for at wall time `now_ns` of a run
+/// whose step 0 is at `epoch_ns`: kGracefulStopAheadS ahead, at least step 0.
+std::uint64_t graceful_stop_step(std::int64_t epoch_ns, std::int64_t now_ns, double step_s);
 
 /// --rt-priority of this process, if given: apply_rt_priority() before anything else starts (no
 /// DDS participant yet, so every thread inherits it), its warning logged as `who`; ConfigError
@@ -57,7 +69,10 @@ RunStats launch_run(const ComponentRegistry& registry, const Scenario& scenario,
 /// this process until the run ends.
 /// Returns the process's exit code: 0, or kDegradedExitCode when the host ran degraded (real time:
 /// groups it never discovered); failures throw.
-int run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop);
+/// `stop`: aborts the run (a signal); `stop_at_step` (real time, may be null): a step other than
+/// kNoStopStep ends the run cleanly after it (HostOptions::stop_at_step).
+int run_host(const ComponentRegistry& registry, const HostArgs& args, const std::atomic<bool>* stop,
+             const std::atomic<std::uint64_t>* stop_at_step = nullptr);
 
 /// Where this process runs components: the bus, the run's context and its host.
 struct InProcessRun {

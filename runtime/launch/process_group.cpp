@@ -29,7 +29,7 @@ std::chrono::steady_clock::time_point deadline_after(double seconds) {
 ProcessGroup::~ProcessGroup() { terminate_all(2.0); }
 
 void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file,
-                         bool keep_scheduling) {
+                         bool keep_scheduling, bool own_process_group) {
   int log_fd = -1;
   if (!log_file.empty()) {
     log_fd = open(log_file.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -50,6 +50,16 @@ void ProcessGroup::spawn(const std::string& name, const std::vector<std::string>
     prctl(PR_SET_PDEATHSIG, SIGTERM);
     if (getppid() != parent) {
       _exit(1);  // the runner died between fork and prctl
+    }
+    if (own_process_group) {
+      setpgid(0, 0);
+      // The runner's stop step (signal_all(SIGUSR1)) must not kill a host still loading (the
+      // default action): it waits, pending across exec, until the host's handler unblocks it
+      // (tools/cli install_stop_handlers()).
+      sigset_t usr1;
+      sigemptyset(&usr1);
+      sigaddset(&usr1, SIGUSR1);
+      sigprocmask(SIG_BLOCK, &usr1, nullptr);
     }
     if (!keep_scheduling) {
       // A helper (the plots' python3) does not inherit the runner's SCHED_FIFO (--rt-priority).
@@ -157,6 +167,16 @@ int ProcessGroup::poll_exit_status(std::size_t index) {
     return -1;
   }
   return WIFSIGNALED(child.status) ? 128 + WTERMSIG(child.status) : WEXITSTATUS(child.status);
+}
+
+void ProcessGroup::signal_all(int signal_number, std::uint64_t value) {
+  sigval carried{};
+  carried.sival_ptr = reinterpret_cast<void*>(static_cast<std::uintptr_t>(value));
+  for (const Child& child : children_) {
+    if (!child.exited) {
+      sigqueue(child.pid, signal_number, carried);
+    }
+  }
 }
 
 void ProcessGroup::terminate_all(double grace_s) {

@@ -4,6 +4,7 @@
 // blocking, and always reaped.
 
 #include <chrono>
+#include <cstdint>
 #include <string>
 #include <sys/types.h>
 #include <vector>
@@ -18,8 +19,14 @@ class ProcessGroup {
   /// truncated; RunError naming it if it cannot be opened). The child starts on SCHED_OTHER
   /// unless `keep_scheduling` (a host of `robodds run --rt-priority`: it starts up at the
   /// runner's priority, before it applies its own; a helper such as python3 must not).
+  /// `own_process_group`: the child leads a process group of its own (setpgid), so a terminal's
+  /// Ctrl-C reaches the runner only, which decides what the child gets (signal_all), and starts
+  /// with SIGUSR1 blocked until its handler unblocks it (a robodds host: tools/cli).
   void spawn(const std::string& name, const std::vector<std::string>& argv, const std::string& log_file = "",
-             bool keep_scheduling = false);
+             bool keep_scheduling = false, bool own_process_group = false);
+  /// Sends `signal_number` with the value `value` (sigqueue: the child's SA_SIGINFO handler
+  /// reads it from si_value) to every child still running.
+  void signal_all(int signal_number, std::uint64_t value);
   /// Throws RunError naming the group if a child has failed (non-zero exit or a signal) while the
   /// run goes on; a child that ended with code 0 finished its part and is only reaped.
   void check_alive();

@@ -1,6 +1,7 @@
 #include "tools/cli/cli_main.hpp"
 
 #include <csignal>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
@@ -16,6 +17,9 @@ namespace robodds::cli {
 namespace {
 
 std::atomic<bool> g_stop{false};
+std::atomic<bool> g_second{false};  // a second SIGINT/SIGTERM: a run stopping gracefully aborts
+std::atomic<int> g_signals{0};
+std::atomic<std::uint64_t> g_stop_at_step{kNoStopStep};
 std::atomic<int> g_signal{0};  // the signal that stopped the run: its exit code is 128 + it (130 SIGINT, 143 SIGTERM)
 
 // A signal asks the run loop to stop (outputs are written, exit 128 + signal: 130 for SIGINT, 143
@@ -24,12 +28,25 @@ std::atomic<int> g_signal{0};  // the signal that stopped the run: its exit code
 // (shutting_down(), a step Fast DDS may block in) ends the process at once with 128 + signal.
 void on_signal(int signal_number) {
   g_signal = signal_number;
+  if (g_signals.fetch_add(1) >= 1) {
+    g_second = true;
+  }
   g_stop = true;
   if (shutting_down()) {
     static const char kLine[] = "robodds: error: stopped by a signal during shutdown\n";
     const ssize_t ignored = ::write(STDERR_FILENO, kLine, sizeof(kLine) - 1);
     (void)ignored;
     ::_exit(128 + signal_number);
+  }
+}
+
+/// SIGUSR1 from the runner (sigqueue): the step to stop after travels in the signal's value, so
+/// every child host ends at the same step without a round trip. Lock-free atomics only.
+void on_stop_at_step(int /*signal_number*/, siginfo_t* info, void* /*context*/) {
+  const std::uint64_t step =
+      info != nullptr && info->si_code == SI_QUEUE ? static_cast<std::uint64_t>(reinterpret_cast<std::uintptr_t>(info->si_value.sival_ptr)) : 0;
+  std::uint64_t current = g_stop_at_step.load();
+  while (step < current && !g_stop_at_step.compare_exchange_weak(current, step)) {
   }
 }
 
@@ -94,7 +111,23 @@ const std::atomic<bool>& install_stop_handlers() {
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
+  struct sigaction step_action {};
+  step_action.sa_sigaction = on_stop_at_step;
+  step_action.sa_flags = SA_SIGINFO;
+  sigemptyset(&step_action.sa_mask);
+  sigaction(SIGUSR1, &step_action, nullptr);
+  // A host of a real-time run across processes starts with SIGUSR1 blocked (ProcessGroup::spawn),
+  // so that a stop step sent while it was loading waits for this handler.
+  sigset_t usr1;
+  sigemptyset(&usr1);
+  sigaddset(&usr1, SIGUSR1);
+  sigprocmask(SIG_UNBLOCK, &usr1, nullptr);
   return g_stop;
+}
+
+const StopFlags& stop_flags() {
+  static const StopFlags flags{g_stop, g_second, g_stop_at_step};
+  return flags;
 }
 
 int parse_and_run(CLI::App& app, int argc, char** argv, const std::function<int()>& run) {

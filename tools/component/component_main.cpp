@@ -31,7 +31,7 @@ int component_main(int argc, char** argv, const char* type, void (*register_type
              params::describe_params(component.params()));
   const int code = cli::parse_and_run(app, argc, argv, [&] {
     log::set_level(log::parse_level(!args.log_level.empty() ? args.log_level : cli::log_level_from_environment()));
-    return run_host(registry, args, &stop);
+    return run_host(registry, args, &stop, &cli::stop_flags().stop_at_step);  // SIGUSR1: end cleanly (real time), as robodds host
   });
   return exit_now_if_dds_is_closed(code);  // skips Fast DDS's 100 ms sleep at exit
 }

@@ -2,6 +2,7 @@
 // process; the options are HostArgs (runtime/launch/host_args.hpp), which the runner renders.
 #include "runtime/launch/launch.hpp"
 #include "runtime/base/log.hpp"
+#include "tools/cli/cli_main.hpp"
 #include "tools/robodds/command.hpp"
 
 namespace robodds {
@@ -20,7 +21,8 @@ class HostCommand : public Command {
     if (!args_.log_level.empty()) {
       log::set_level(log::parse_level(args_.log_level));
     }
-    return run_host(env_.registry, args_, &env_.stop);
+    // SIGUSR1 (with a step: the runner of a real-time run across processes) stops it cleanly.
+    return run_host(env_.registry, args_, &env_.stop, &cli::stop_flags().stop_at_step);
   }
 
  private:

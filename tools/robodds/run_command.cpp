@@ -15,6 +15,7 @@
 #include "runtime/launch/launch.hpp"
 #include "runtime/mcap/compression.hpp"
 #include "runtime/base/log.hpp"
+#include "tools/cli/cli_main.hpp"
 #include "tools/cli/one_of.hpp"
 #include "tools/robodds/command.hpp"
 #include "tools/robodds/summary_table.hpp"
@@ -119,7 +120,12 @@ class RunCommand : public Command {
     launch.max_missed_steps = max_missed_steps_;
     launch.rt_priority = rt_priority_;
     launch.progress = show_progress;
-    launch.stop = &env_.stop;
+    // Real time: the first SIGINT/SIGTERM stops the run cleanly at its next step (summary
+    // "completed", "stopped_by": "signal"), a second aborts; lockstep: the first aborts (an
+    // interrupted deterministic run is "failed").
+    const cli::StopFlags& stop = cli::stop_flags();
+    launch.stop = realtime_ ? &stop.second_signal : &env_.stop;
+    launch.graceful_stop = realtime_ ? &stop.first_signal : nullptr;
     launch.dds = resolve_dds(dds_, "robodds-run");  // a bad $ROBODDS_DOMAIN_ID creates no --out
     make_output_dir(launch.out_dir);
     std::fflush(stdout);

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <set>
 #include <thread>
 
 #include "common/number_text.hpp"
@@ -19,6 +21,7 @@
 #include "tools/cli/one_of.hpp"
 #include "tools/robodds/command.hpp"
 #include "tools/robodds/sweep_emit.hpp"
+#include "tools/robodds/sweep_resume.hpp"
 #include "tools/robodds/sweep_runner.hpp"
 
 namespace robodds {
@@ -60,7 +63,10 @@ class SweepCommand : public Command {
                      "controller.epsilon_m=0.1,0.01");
     jobs_ = std::max(1U, std::thread::hardware_concurrency());
     cmd_->add_option("--jobs", jobs_, "worker processes (default: the number of cores)");
-    cmd_->add_option("--out", out_dir_, "the sweep's folder: sweep.json, runs/<k>/, runs.csv, summary.csv, summary.md")->required();
+    cmd_->add_option("--out", out_dir_, "the sweep's folder: sweep.json, runs/<k>/, runs.csv, summary.csv, summary.md (required unless --resume)");
+    cmd_->add_option("--resume", resume_dir_,
+                     "the folder of an interrupted sweep: run only its runs that did not finish (the same scenario, --seeds, "
+                     "--set and --duration as it was started with), then write the tables of all");
     cmd_->add_option("--domain", first_domain_,
                      "DDS domain of worker 1; worker j uses domain + j - 1 (default: $ROBODDS_DOMAIN_ID or 0)")
         ->check(CLI::Range(0, kMaxDomain));
@@ -82,14 +88,23 @@ class SweepCommand : public Command {
   bool parsed() const override { return cmd_->parsed(); }
 
   int run() override {
+    if (!resume_dir_.empty()) {
+      if (!out_dir_.empty() && std::filesystem::path(out_dir_).lexically_normal() != std::filesystem::path(resume_dir_).lexically_normal()) {
+        throw ConfigError("robodds sweep: --resume " + resume_dir_ + " and --out " + out_dir_ + " name different folders (--resume alone is enough)");
+      }
+      out_dir_ = resume_dir_;
+    } else if (out_dir_.empty()) {
+      throw ConfigError("robodds sweep: --out DIR is required (or --resume DIR: an interrupted sweep)");
+    }
     if (domain_offset_text_ && emit_.empty()) {
       throw ConfigError("robodds sweep: --domain-offset works only with --emit slurm|k8s (a sweep on this machine takes --domain)");
     }
     const int planned_modes = (aggregate_ ? 1 : 0) + (run_index_ ? 1 : 0) + (emit_.empty() ? 0 : 1);
     if (planned_modes > 0) {
-      if (!scenario_file_.empty() || !seeds_.empty() || !grid_.empty() || duration_s_ || plan_only_ || planned_modes > 1) {
+      if (!scenario_file_.empty() || !seeds_.empty() || !grid_.empty() || duration_s_ || plan_only_ || planned_modes > 1 ||
+          !resume_dir_.empty()) {
         throw ConfigError("robodds sweep: --aggregate, --run-index and --emit work on the sweep planned in --out; they take no "
-                          "scenario, --seeds, --set, --duration or --plan (and not each other)");
+                          "scenario, --seeds, --set, --duration, --plan or --resume (and not each other)");
       }
       if (!emit_.empty()) {
         const int offset = domain_offset();  // before sweep.json: a bad option is named first
@@ -99,6 +114,12 @@ class SweepCommand : public Command {
       return aggregate_ ? write_tables(spec, collect_existing(spec)) : run_one(spec, *run_index_);
     }
     const SweepSpec spec = checked_spec();
+    if (!resume_dir_.empty()) {
+      if (plan_only_) {
+        throw ConfigError("robodds sweep: --plan starts a new sweep; it does not go with --resume");
+      }
+      return resume(spec);
+    }
     std::filesystem::create_directories(out_dir_);
     std::filesystem::copy_file(spec.source, out_dir_ + "/" + spec.scenario_file, std::filesystem::copy_options::overwrite_existing);
     write_file(out_dir_ + "/sweep.json", spec_json(spec));
@@ -112,7 +133,7 @@ class SweepCommand : public Command {
     std::fprintf(stderr, "sweep: %zu runs (%zu combinations x %zu seeds) on %u workers, domains %d-%d\n", runs.size(),
                  combination_count(grid_axes(spec)), parse_seeds(spec.seeds).size(), jobs_, domain(),
                  domain() + static_cast<int>(jobs_) - 1);
-    return write_tables(spec, run_all(runs, runner_options(spec), print_progress));
+    return finish(spec, run_all(runs, runner_options(spec), print_progress));
   }
 
  private:
@@ -141,7 +162,7 @@ class SweepCommand : public Command {
                         " needs domains up to " + std::to_string(domain() + static_cast<int>(jobs_) - 1) + " (max " +
                         std::to_string(kMaxDomain) + ")");
     }
-    if (std::filesystem::exists(out_dir_ + "/sweep.json")) {
+    if (resume_dir_.empty() && std::filesystem::exists(out_dir_ + "/sweep.json")) {
       throw ConfigError("robodds sweep: --out " + out_dir_ + " holds another sweep (sweep.json); choose another folder or remove it");
     }
     SweepSpec spec;
@@ -275,6 +296,9 @@ class SweepCommand : public Command {
     RunnerOptions o = runner_options(spec);
     o.jobs = 1;
     const std::vector<RunOutcome> outcome = run_all({runs[index]}, o, [](const Progress&) {});
+    if (outcome.front().not_run) {  // a signal (e.g. the batch engine's preemption): not carried out, a retry runs it
+      throw RunError("robodds sweep: run " + std::to_string(index) + " was interrupted by a signal; nothing recorded");
+    }
     std::printf("run %zu (seed %llu): %s\n", index, static_cast<unsigned long long>(runs[index].seed),
                 outcome.front().ok ? "ok" : ("failed (recorded): " + outcome.front().error).c_str());
     return 0;
@@ -298,19 +322,84 @@ class SweepCommand : public Command {
     write_file(out_dir_ + "/summary.md", markdown);
     std::fputs(markdown.c_str(), stdout);
     std::size_t failed = 0;
+    std::size_t not_run = 0;
     for (const RunOutcome& o : outcomes) {
-      if (!o.ok) {
+      if (o.not_run) {
+        ++not_run;  // never started or interrupted: --resume runs it, it is no failure
+      } else if (!o.ok) {
         ++failed;
         std::fprintf(stderr, "sweep: run %zu (seed %llu) failed: %s\n", o.run.index, static_cast<unsigned long long>(o.run.seed),
                      o.error.c_str());
       }
     }
-    std::printf("tables: %s/summary.md, summary.csv, runs.csv (%zu runs, %zu failed)\n", out_dir_.c_str(), outcomes.size(), failed);
+    const std::string missing = not_run == 0 ? "" : ", " + std::to_string(not_run) + " not run";
+    std::printf("tables: %s/summary.md, summary.csv, runs.csv (%zu runs, %zu failed%s)\n", out_dir_.c_str(), outcomes.size(), failed,
+                missing.c_str());
     return failed == 0 ? 0 : 1;
+  }
+
+  /// The tables of `outcomes`; after an interruption (the runs it stopped and those never started
+  /// are not run) the RunError that ends the sweep with 128 + the signal.
+  int finish(const SweepSpec& spec, const std::vector<RunOutcome>& outcomes) const {
+    const int code = write_tables(spec, outcomes);
+    if (env_.stop.load()) {
+      std::size_t finished = 0;
+      for (const RunOutcome& o : outcomes) {
+        finished += o.not_run ? 0 : 1;
+      }
+      throw RunError("sweep interrupted by a signal after " + std::to_string(finished) + " of " + std::to_string(outcomes.size()) +
+                     " runs (the tables cover those); run the rest with the same command and --resume " + out_dir_);
+    }
+    return code;
+  }
+
+  /// --resume: the sweep in out_dir_ must be the one the command line describes; runs only the
+  /// planned runs without an outcome (never started, or stopped by an interruption), then writes
+  /// the tables of every run.
+  int resume(const SweepSpec& given) const {
+    if (!std::filesystem::is_directory(out_dir_)) {
+      throw ConfigError("robodds sweep: --resume " + out_dir_ + ": no such folder");
+    }
+    if (!std::filesystem::exists(out_dir_ + "/sweep.json")) {
+      throw ConfigError("robodds sweep: --resume " + out_dir_ + ": holds no sweep.json (not a sweep's folder)");
+    }
+    const SweepSpec planned = read_planned_spec();
+    const std::string difference = spec_difference(planned, given);
+    if (!difference.empty()) {
+      throw ConfigError("robodds sweep: --resume " + out_dir_ + ": not the sweep of this command line: " + difference);
+    }
+    if (file_text(given.source) != file_text(out_dir_ + "/" + planned.scenario_file)) {
+      throw ConfigError("robodds sweep: --resume " + out_dir_ + ": " + scenario_file_ + " has changed since the sweep started (" +
+                        out_dir_ + "/" + planned.scenario_file + " is the copy its runs used)");
+    }
+    std::set<std::size_t> finished;
+    const std::vector<PlannedRun> runs = planned_runs(planned);
+    for (const PlannedRun& r : runs) {
+      if (std::filesystem::exists(run_dir(out_dir_, r.index) + "/outcome.json")) {
+        finished.insert(r.index);
+      }
+    }
+    const std::vector<PlannedRun> missing = missing_runs(runs, finished);
+    std::fprintf(stderr, "sweep: resuming %s: %zu of %zu runs finished, %zu to run on %u workers, domains %d-%d\n", out_dir_.c_str(),
+                 finished.size(), runs.size(), missing.size(), jobs_, domain(), domain() + static_cast<int>(jobs_) - 1);
+    const std::vector<RunOutcome> done = run_all(missing, runner_options(planned), print_progress);
+    std::vector<RunOutcome> outcomes = collect_existing(planned);  // the kept runs and the new ones, from their folders
+    for (const RunOutcome& o : done) {
+      if (o.not_run) {
+        outcomes.at(o.run.index) = o;  // interrupted again: not run (and why)
+      }
+    }
+    return finish(planned, outcomes);
+  }
+
+  static std::string file_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
 
   const CommandEnv& env_;
   CLI::App* cmd_ = nullptr;
+  std::string resume_dir_;
   std::string scenario_file_;
   std::string seeds_;
   std::vector<std::string> grid_;

@@ -133,7 +133,7 @@ std::string runs_csv(const std::vector<GridAxis>& axes, const std::vector<RunOut
     for (const std::string& s : o.run.sets) {
       out += "," + csv_cell(assigned_value(s));
     }
-    out += std::string(",") + (o.ok ? "ok" : "failed") + "," + std::to_string(o.exit_code) + "," + shortest_text(o.wall_s) + "," +
+    out += std::string(",") + (o.ok ? "ok" : o.not_run ? "not run" : "failed") + "," + std::to_string(o.exit_code) + "," + shortest_text(o.wall_s) + "," +
            csv_cell(o.error);
     std::map<std::string, double> by_name(o.metrics.begin(), o.metrics.end());
     for (const std::string& m : metrics) {
@@ -172,13 +172,14 @@ std::string summary_markdown(const std::vector<GridAxis>& axes, const std::vecto
   for (std::size_t c = 0; c < combinations; ++c) {
     std::size_t ok = 0;
     std::size_t failed = 0;
+    std::size_t not_run = 0;
     for (const RunOutcome& o : outcomes) {
       if (o.run.combination == c) {
-        (o.ok ? ok : failed) += 1;
+        (o.ok ? ok : o.not_run ? not_run : failed) += 1;
       }
     }
     out += "## " + combination_title(axes, combination_sets(axes, c)) + "\n\n" + std::to_string(ok) + " runs ok, " +
-           std::to_string(failed) + " failed; mean ± half-width of the 95 % confidence interval (Student t); never: runs whose "
+           std::to_string(failed) + " failed" + (not_run > 0 ? ", " + std::to_string(not_run) + " not run" : "") + "; mean ± half-width of the 95 % confidence interval (Student t); never: runs whose "
            "time metric (-1) never came, not in n\n\n";
     out += "| metric | n | mean | ± 95 % | std | min | max | never |\n|---|---:|---:|---:|---:|---:|---:|---:|\n";
     for (const MetricStats& r : rows) {

@@ -18,6 +18,9 @@ struct RunOutcome {
   int exit_code = -1;  // of `robodds run` (128 + signal if killed; -1: not run)
   double wall_s = 0.0;
   std::string error;   // why it failed (its log's last error line), empty if ok
+  /// Never started, or stopped by the sweep's interruption before it finished: neither ok nor
+  /// failed (the tables say "not run"; `robodds sweep ... --resume DIR` runs it).
+  bool not_run = false;
   std::vector<std::pair<std::string, double>> metrics;  // "metrics." leaves of summary.json that are finite numbers
 };
 
@@ -46,7 +49,7 @@ struct MetricStats {
 /// reports is absent.
 std::vector<MetricStats> aggregate(const std::vector<RunOutcome>& outcomes);
 
-/// Every run: index, seed, one column per grid axis, status, exit code, wall time, error, then one
+/// Every run: index, seed, one column per grid axis, status ("ok", "failed", "not run"), exit code, wall time, error, then one
 /// column per metric (empty where a run lacks it).
 std::string runs_csv(const std::vector<GridAxis>& axes, const std::vector<RunOutcome>& outcomes);
 
@@ -54,7 +57,8 @@ std::string runs_csv(const std::vector<GridAxis>& axes, const std::vector<RunOut
 /// never (runs that reported "never", not in n; the statistics cells are empty when n is 0).
 std::string summary_csv(const std::vector<GridAxis>& axes, const std::vector<MetricStats>& rows);
 
-/// The same as Markdown: a section per combination with its runs done/failed and a table.
+/// The same as Markdown: a section per combination with its runs done/failed (and not run, if
+/// any) and a table.
 std::string summary_markdown(const std::vector<GridAxis>& axes, const std::vector<RunOutcome>& outcomes,
                              const std::vector<MetricStats>& rows);
 

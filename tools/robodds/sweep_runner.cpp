@@ -59,6 +59,14 @@ void record_outcome(const RunOutcome& outcome, const std::string& dir) {
   std::ofstream(dir + "/outcome.json") << w.str() << "\n";
 }
 
+RunOutcome not_run(const PlannedRun& run, const std::string& why) {
+  RunOutcome outcome;
+  outcome.run = run;
+  outcome.not_run = true;
+  outcome.error = "not run (" + why + ")";
+  return outcome;
+}
+
 struct Slot {
   std::unique_ptr<ProcessGroup> process;  // empty: idle
   std::size_t run = 0;
@@ -110,10 +118,7 @@ RunOutcome collect_outcome(const PlannedRun& run, int exit_code, double wall_s, 
 
 RunOutcome recorded_outcome(const PlannedRun& run, const std::string& dir) {
   if (!std::filesystem::exists(dir)) {
-    RunOutcome outcome;
-    outcome.run = run;
-    outcome.error = "not run (" + dir + " missing)";
-    return outcome;
+    return not_run(run, dir + " missing");
   }
   const std::string recorded = dir + "/outcome.json";
   if (!std::filesystem::exists(recorded)) {  // still running, killed with its worker, or an older sweep
@@ -147,12 +152,19 @@ std::vector<RunOutcome> run_all(const std::vector<PlannedRun>& runs, const Runne
   while (p.done < runs.size()) {
     if (options.stop != nullptr && options.stop->load()) {
       for (Slot& slot : slots) {
-        slot.process.reset();  // terminates the run (SIGTERM, then SIGKILL)
+        if (slot.process) {
+          slot.process.reset();  // terminates the run (SIGTERM, then SIGKILL)
+          // Half a run is no result: its folder goes, so --aggregate and --resume see it as not run.
+          std::filesystem::remove_all(run_dir(options.out_dir, runs[slot.run].index));
+        }
       }
-      throw RunError("sweep interrupted by a signal after " + std::to_string(p.done) + " of " + std::to_string(p.total) + " runs");
+      break;
     }
     bool changed = false;
     for (std::size_t j = 0; j < slots.size(); ++j) {
+      if (options.stop != nullptr && options.stop->load()) {
+        break;  // a run the signal ended too (exit 130) is not run, not failed: above, next round
+      }
       Slot& slot = slots[j];
       if (slot.process) {
         int status = slot.process->poll_exit_status(0);
@@ -195,8 +207,8 @@ std::vector<RunOutcome> run_all(const std::vector<PlannedRun>& runs, const Runne
     }
   }
   std::vector<RunOutcome> out;
-  for (std::optional<RunOutcome>& o : outcomes) {
-    out.push_back(std::move(*o));
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    out.push_back(outcomes[i] ? std::move(*outcomes[i]) : not_run(runs[i], "the sweep was interrupted"));
   }
   return out;
 }

@@ -19,7 +19,7 @@ struct RunnerOptions {
   int first_domain = 0;       // slot j runs on DDS domain first_domain + j
   double run_timeout_s = 3600.0;  // a run still going after this is killed and recorded as failed
   std::vector<std::string> run_args;  // appended to every `robodds run` (e.g. --duration 50)
-  const std::atomic<bool>* stop = nullptr;  // set by a signal handler: running runs are terminated
+  const std::atomic<bool>* stop = nullptr;  // set by a signal handler: running runs are terminated, none started
 };
 
 struct Progress {
@@ -41,11 +41,13 @@ RunOutcome collect_outcome(const PlannedRun& run, int exit_code, double wall_s, 
 
 /// The outcome recorded in `dir`/outcome.json by run_all (--aggregate reads it back: a run of a
 /// batch array task ends with code 0 whatever its simulation did). Without outcome.json: from
-/// summary.json alone ("not run" if `dir` is missing).
+/// summary.json alone (RunOutcome::not_run if `dir` is missing).
 RunOutcome recorded_outcome(const PlannedRun& run, const std::string& dir);
 
 /// Runs every run of `runs` (a failed run is recorded and the sweep goes on) and returns their
-/// outcomes in plan order. `progress` is called after each run. Throws RunError if interrupted.
+/// outcomes in the order of `runs`. `progress` is called after each run. Interrupted
+/// (options.stop): the running runs are terminated and their folders removed; they and the runs
+/// not started come back not_run (the caller writes the tables of what finished).
 std::vector<RunOutcome> run_all(const std::vector<PlannedRun>& runs, const RunnerOptions& options,
                                 const std::function<void(const Progress&)>& progress);
 

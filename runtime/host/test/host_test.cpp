@@ -305,6 +305,79 @@ components:
   }
 }
 
+// `robodds run --realtime`: the first signal (graceful_stop) ends the run cleanly after the step
+// it is at (components finish, stopped_by "signal"); the runner's stop_at_step ends it after
+// that step exactly, also when it comes before the run starts.
+TEST(HostLoop, RealTimeGracefulStopEndsTheRunCleanlyAtTheNextStep) {
+  const char* scenario = R"(name: graceful
+step_s: 0.01
+duration_s: 3.0
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: ticker, type: ticker}
+)";
+  {
+    NodeHarness h(scenario);
+    std::atomic<bool> graceful{false};
+    std::atomic<bool> abort{false};
+    std::uint64_t last_step = 0;
+    std::uint64_t finished_at = 0;
+    bool finished = false;
+    h.add_script("ticker", nullptr,
+                 [&](const StepInfo& info) {
+                   last_step = info.step;
+                   if (info.step >= 3) {
+                     graceful = true;  // as the first signal would
+                   }
+                 },
+                 [&](const StepInfo& info) {
+                   finished = true;
+                   finished_at = info.step;
+                 });
+    h.set_mode(TimeMode::kRealtime);
+    h.options().stop = &abort;
+    h.options().graceful_stop = &graceful;
+    const RunStats stats = h.run({"ticker"});
+    EXPECT_TRUE(finished);
+    EXPECT_EQ(stats.stopped_by, "signal");
+    EXPECT_EQ(finished_at, last_step) << "ends after the step it was at";
+    EXPECT_EQ(stats.steps, last_step + 1);
+    EXPECT_LT(stats.steps, 100u);  // ended long before duration_s (300 steps)
+  }
+  {
+    NodeHarness h(scenario);
+    std::atomic<std::uint64_t> stop_at{5};  // sent before the run's first step
+    std::uint64_t finished_at = 0;
+    h.add_script("ticker", nullptr, [](const StepInfo&) {}, [&](const StepInfo& info) { finished_at = info.step; });
+    h.set_mode(TimeMode::kRealtime);
+    h.options().stop_at_step = &stop_at;
+    const RunStats stats = h.run({"ticker"});
+    EXPECT_EQ(stats.stopped_by, "signal");
+    EXPECT_EQ(finished_at, 5u);
+    EXPECT_EQ(stats.steps, 6u);
+  }
+  {
+    NodeHarness h(R"(name: short
+step_s: 0.01
+duration_s: 0.05
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: ticker, type: ticker}
+)");
+    std::atomic<std::uint64_t> stop_at{kNoStopStep};
+    h.add_script("ticker", nullptr, [](const StepInfo&) {}, nullptr);
+    h.set_mode(TimeMode::kRealtime);
+    h.options().stop_at_step = &stop_at;
+    const RunStats stats = h.run({"ticker"});
+    EXPECT_EQ(stats.stopped_by, "") << "no stop asked: the run goes to its end";
+    EXPECT_EQ(stats.steps, 6u);
+  }
+}
+
 /// Logs on_start() and on_step() calls, to check the order the host calls them in.
 class StartLogger : public Component {
  public:

@@ -113,6 +113,22 @@ bool is_dead(pid_t pid) {
   return !(stat >> pid_field >> name >> state) || state == "Z" || state == "X";
 }
 
+// A host of a real-time run across processes: in a process group of its own (the terminal's
+// Ctrl-C reaches the runner alone) and with SIGUSR1 blocked until its handler is installed (here
+// the shell never installs one: SIGUSR1 stays pending, it lives on); signal_all() reaches it.
+TEST(ProcessGroup, AChildInItsOwnProcessGroupSurvivesAnEarlySigusr1) {
+  ProcessGroup group;
+  group.spawn("host", {"/bin/sh", "-c", "[ \"$(cut -d' ' -f5 /proc/$$/stat)\" = \"$$\" ] || exit 3; kill -USR1 $$; exit 7"}, "",
+              false, true);
+  group.spawn("plain", {"/bin/sh", "-c", "kill -USR1 $$; exit 7"});
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while ((group.poll_exit_status(0) < 0 || group.poll_exit_status(1) < 0) && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  EXPECT_EQ(group.poll_exit_status(0), 7) << "3: not its own process group; 138: killed by SIGUSR1";
+  EXPECT_EQ(group.poll_exit_status(1), 128 + SIGUSR1) << "without the option SIGUSR1 keeps its default action";
+}
+
 TEST(ProcessGroup, ChildrenDieWithTheirParent) {
   // A middle process spawns a long sleeper and dies without any clean-up (as on SIGKILL): the
   // parent-death signal must end the sleeper, or runs would leave orphan hosts behind.

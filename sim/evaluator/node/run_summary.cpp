@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <ctime>
 #include <vector>
 
 #include "sim/evaluator/node/timing_summary.hpp"
@@ -42,6 +44,17 @@ void write_thirds(JsonWriter& json, const RunFigures& run) {
   json.value("ticks_per_s_by_third", rates);
 }
 
+/// `wall_ns` (CLOCK_REALTIME) as ISO 8601 UTC to the millisecond: "2026-12-06T16:45:01.234Z".
+std::string utc_text(std::int64_t wall_ns) {
+  const std::time_t seconds = static_cast<std::time_t>(wall_ns / 1000000000LL);
+  std::tm tm{};
+  gmtime_r(&seconds, &tm);
+  char text[40];
+  const std::size_t n = std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%S", &tm);
+  std::snprintf(text + n, sizeof text - n, ".%03dZ", static_cast<int>((wall_ns / 1000000LL) % 1000));
+  return text;
+}
+
 }  // namespace
 
 void write_status_section(JsonWriter& json, const RunEnd& end, const RunFigures& figures) {
@@ -54,6 +67,11 @@ void write_status_section(JsonWriter& json, const RunEnd& end, const RunFigures&
   json.value("status", degraded.empty() ? "completed" : "degraded");
   if (!degraded.empty()) {
     json.value("reason", degraded);
+  }
+  if (!figures.stopped_by.empty()) {  // a real-time run stopped cleanly early: the figures cover the steps that ran
+    json.value("stopped_by", figures.stopped_by);
+    json.value("stopped_at_s", figures.stopped_at_s);
+    json.value("stopped_at_utc", utc_text(figures.stopped_at_wall_ns));
   }
 }
 

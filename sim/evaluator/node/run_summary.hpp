@@ -15,7 +15,8 @@ struct RunEnd {
   std::string reason;
 };
 
-/// "status": "completed"; "degraded" when the run reached its end but a host ran without some of
+/// "status": "completed" (real time, stopped early by a signal: also "stopped_by": "signal",
+/// "stopped_at_s", sim s of the last step, and "stopped_at_utc"); "degraded" when the run reached its end but a host ran without some of
 /// its peers or did not report (the "reason" names each); "failed" with the error line that
 /// ended the run as "reason".
 void write_status_section(JsonWriter& json, const RunEnd& end, const RunFigures& figures);

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -84,6 +85,41 @@ TEST(EvaluatorNode, AFailedRunKeepsTheRowsSoFarAndSaysWhyInTheSummary) {
   EXPECT_NE(summary.find("\"steps\": 6"), std::string::npos) << summary;
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("samples": \{\s*"plant/state": 12\s*\})"))) << summary;
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("1": \{\s*"path_length_m": 5,)"))) << "metrics of the data so far: " << summary;
+}
+
+// Real time, stopped by the first signal (HostOptions::graceful_stop) from step 4 of 0..10 (or the
+// first step after it the loop ran, on a busy machine): the run ends cleanly after that step,
+// summary.json says "completed", who stopped it and when, with the metrics and rows of the steps
+// that ran.
+TEST(EvaluatorNode, ARealTimeRunStoppedBySignalIsCompletedWithTheStopAndTheMetricsSoFar) {
+  NodeHarness h(kTwoRobotScenario);
+  add_evaluator(h);
+  h.set_mode(TimeMode::kRealtime);
+  std::atomic<bool> graceful{false};
+  std::uint64_t stop_step = 0;
+  h.options().graceful_stop = &graceful;
+  h.feed([&](std::uint64_t step) {
+    for (std::uint32_t robot : {1u, 2u}) {
+      idl::RobotState s;
+      s.robot_id(robot);
+      s.x(static_cast<double>(step));
+      h.publish("plant/state", s, step, step + 1);
+    }
+    if (step >= 4 && !graceful) {
+      graceful = true;
+      stop_step = step;
+    }
+  });
+  const RunStats stats = h.run({"evaluator"});
+  ASSERT_TRUE(graceful) << "the loop skipped every step from 4 on";
+  EXPECT_EQ(stats.stopped_by, "signal");
+  const std::string summary = text_of(h.output_dir() + "/summary.json");
+  EXPECT_EQ(summary.rfind("{\n  \"status\": \"completed\",\n  \"stopped_by\": \"signal\",\n  \"stopped_at_s\": ", 0), 0u) << summary;
+  EXPECT_NEAR(summary_value(summary, "stopped_at_s"), 0.01 * static_cast<double>(stop_step), 1e-9) << summary;
+  EXPECT_TRUE(std::regex_search(summary, std::regex(R"("stopped_at_utc": "20\d\d-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3}Z")"))) << summary;
+  EXPECT_NE(summary.find("\"steps\": " + std::to_string(stop_step + 1) + ","), std::string::npos) << summary;
+  EXPECT_TRUE(std::regex_search(summary, std::regex("\"1\": \\{\\s*\"path_length_m\": " + std::to_string(stop_step) + ",")))
+      << "metrics of the steps run: " << summary;
 }
 
 /// The number after "<key>": in summary.json (the first occurrence); NaN if absent.

@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdint>
+#include <cstdlib>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,6 +34,36 @@ TEST(CliMain, ExitCodesNameTheKindOfFailure) {
   EXPECT_EQ(run_with({}, []() -> int { throw ConfigError("bad input"); }), 2);
   EXPECT_EQ(run_with({}, []() -> int { throw RunError("run failed"); }), 1);
   EXPECT_EQ(run_with({}, []() -> int { throw std::runtime_error("other"); }), 1);
+}
+
+// In a child process (the flags are process-wide): the first SIGINT/SIGTERM sets first_signal
+// only (a real-time run stops cleanly), the second second_signal (it aborts, exit 128 + signal);
+// SIGUSR1 from sigqueue carries the step every host ends after, the smallest one wins, and a
+// plain kill -USR1 means step 0 (at once). Exit code 0: every check held, else the failed check's number.
+TEST(CliMain, SignalsSetTheFirstAndSecondStopFlagsAndSigusr1CarriesTheStopStep) {
+  EXPECT_EXIT(
+      {
+        install_stop_handlers();
+        const StopFlags& flags = stop_flags();
+        int failed = 0;
+        const auto check = [&failed](int number, bool ok) { failed = failed == 0 && !ok ? number : failed; };
+        check(1, !flags.first_signal && !flags.second_signal && flags.stop_at_step == kNoStopStep);
+        std::raise(SIGINT);
+        check(2, flags.first_signal && !flags.second_signal);
+        sigval value{};
+        value.sival_ptr = reinterpret_cast<void*>(std::uintptr_t{1234});
+        sigqueue(getpid(), SIGUSR1, value);
+        check(3, flags.stop_at_step == 1234u && !flags.second_signal);
+        value.sival_ptr = reinterpret_cast<void*>(std::uintptr_t{5678});
+        sigqueue(getpid(), SIGUSR1, value);
+        check(4, flags.stop_at_step == 1234u);
+        std::raise(SIGTERM);
+        check(5, flags.second_signal);
+        std::raise(SIGUSR1);
+        check(6, flags.stop_at_step == 0u);
+        std::_Exit(failed);
+      },
+      ::testing::ExitedWithCode(0), "");
 }
 
 TEST(CliMain, CommandLineMistakesAreBadInputAndDoNotRun) {
