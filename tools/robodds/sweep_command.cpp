@@ -18,6 +18,7 @@
 #include "runtime/config/share_dir.hpp"
 #include "tools/cli/one_of.hpp"
 #include "tools/robodds/command.hpp"
+#include "tools/robodds/progress.hpp"
 #include "tools/robodds/sweep_emit.hpp"
 #include "tools/robodds/sweep_runner.hpp"
 
@@ -28,18 +29,25 @@ using namespace sweep;
 
 constexpr int kMaxDomain = 232;
 
-std::string minutes_seconds(double s) {
-  char text[32];
-  const long total = static_cast<long>(s + 0.5);
-  std::snprintf(text, sizeof text, "%ld:%02ld", total / 60, total % 60);
-  return text;
-}
+/// The sweep's progress on stderr, as `robodds run`'s (progress.hpp): a live line on a terminal,
+/// else a line per 10 % of the runs or every 30 s.
+class SweepProgress {
+ public:
+  SweepProgress() : pacer_(isatty(STDERR_FILENO) != 0) {}
 
-void print_progress(const Progress& p) {
-  const double per_run = p.done > 0 ? p.elapsed_s / static_cast<double>(p.done) : 0.0;
-  std::fprintf(stderr, "sweep: %zu/%zu runs done, %zu failed, %s elapsed, ETA %s\n", p.done, p.total, p.failed,
-               minutes_seconds(p.elapsed_s).c_str(), minutes_seconds(per_run * static_cast<double>(p.total - p.done)).c_str());
-}
+  void operator()(const Progress& p) {
+    if (!pacer_.due(p.done, p.total, p.elapsed_s)) {
+      return;
+    }
+    const std::string text = "sweep: " + std::to_string(p.done) + "/" + std::to_string(p.total) + " runs done, " +
+                             std::to_string(p.failed) + " failed, " + clock_text(p.elapsed_s) + " elapsed, " +
+                             eta_text(p.done, p.total, p.elapsed_s);
+    std::fputs(progress_output(text, pacer_.terminal(), p.done >= p.total).c_str(), stderr);
+  }
+
+ private:
+  ProgressPacer pacer_;
+};
 
 void write_file(const std::string& path, const std::string& text) {
   std::ofstream out(path);
@@ -112,7 +120,7 @@ class SweepCommand : public Command {
     std::fprintf(stderr, "sweep: %zu runs (%zu combinations x %zu seeds) on %u workers, domains %d-%d\n", runs.size(),
                  combination_count(grid_axes(spec)), parse_seeds(spec.seeds).size(), jobs_, domain(),
                  domain() + static_cast<int>(jobs_) - 1);
-    return write_tables(spec, run_all(runs, runner_options(spec), print_progress));
+    return write_tables(spec, run_all(runs, runner_options(spec), SweepProgress()));
   }
 
  private:
