@@ -21,7 +21,7 @@ status_line=$(grep -n "^completed: 20 s simulated in .* s (.*x real time)$" "$WO
 report_lines=$(( $(wc -l <"$WORK/both.log") - status_line + 1 ))
 [[ $report_lines -le 15 ]] || fail "the report has $report_lines lines (at most 15): $(cat "$WORK/both.log")"
 grep -qE "^  way-points +[0-9]+ of 18 reached" "$WORK/both.log" || fail "no way-point line: $(cat "$WORK/both.log")"
-grep -qE "^  PF RMSE +[0-9.]+ m position, [0-9.]+ deg heading$" "$WORK/both.log" || fail "no PF RMSE line: $(cat "$WORK/both.log")"
+grep -qE "^  estimate RMSE +[0-9.]+ m position, [0-9.]+ deg heading$" "$WORK/both.log" || fail "no estimate RMSE line: $(cat "$WORK/both.log")"
 grep -q "robots" "$WORK/both.log" && fail "a robot's figures printed apart: $(cat "$WORK/both.log")"
 tail -1 "$WORK/both.log" | grep -q "^results: $WORK/a (summary.json, 7 CSV files; --verbose prints every figure)$" ||
   fail "the last line does not say where the outputs are: $(tail -2 "$WORK/both.log")"

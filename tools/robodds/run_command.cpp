@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <optional>
 #include <sstream>
 
@@ -21,9 +22,9 @@
 #include "runtime/mcap/compression.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/base/log_count.hpp"
-#include "sim/evaluator/module/metrics_module_registry.hpp"
 #include "tools/cli/one_of.hpp"
 #include "tools/robodds/command.hpp"
+#include "tools/robodds/module_headlines.hpp"
 #include "tools/robodds/progress.hpp"
 #include "tools/robodds/run_report.hpp"
 #include "tools/robodds/summary_table.hpp"
@@ -31,7 +32,7 @@
 namespace robodds {
 namespace {
 
-/// The progress line on stderr (progress.hpp), timed from the first call.
+/// The progress line on stderr (progress.hpp), timed from its making (just before the run starts).
 class RunProgress {
  public:
   RunProgress(double step_s, bool shown) : step_s_(step_s), shown_(shown), pacer_(isatty(STDERR_FILENO) != 0) {}
@@ -44,26 +45,28 @@ class RunProgress {
     if (pacer_.due(step, last, wall_s)) {
       std::fputs(progress_output("  " + run_progress_text(step, last, step_s_, wall_s), pacer_.terminal(), step >= last).c_str(),
                  stderr);
+      *open_line_ = pacer_.terminal() && step < last;
     }
   }
+
+  /// Ends a live line the run left unfinished (it failed), so the report starts on a line of its own.
+  void close() const {
+    if (*open_line_) {
+      std::fputs("\n", stderr);
+      *open_line_ = false;
+    }
+  }
+
+  /// Wall time since the start, s.
+  double elapsed_s() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
 
  private:
   double step_s_;
   bool shown_;
   ProgressPacer pacer_;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::shared_ptr<bool> open_line_ = std::make_shared<bool>(false);  // shared with the copy launch_run() calls
 };
-
-/// Every metrics module's headline lines, in summary order.
-evaluator::Headline module_headlines() {
-  evaluator::MetricsModuleRegistry modules;
-  evaluator::register_builtin_metrics_modules(modules);
-  evaluator::Headline out;
-  for (const evaluator::MetricsModuleType& type : modules.types()) {
-    out.insert(out.end(), type.headline.begin(), type.headline.end());
-  }
-  return out;
-}
 
 /// How many files in `dir` (not below) end in `extension`.
 std::size_t files_ending(const std::string& dir, const std::string& extension) {
@@ -166,7 +169,8 @@ class RunCommand : public Command {
     launch.log_level = quiet_ ? std::string("error") : env_.log_level;
     launch.max_missed_steps = max_missed_steps_;
     launch.rt_priority = rt_priority_;
-    launch.progress = RunProgress(scenario.step_s, !quiet_);
+    const RunProgress progress(scenario.step_s, !quiet_);
+    launch.progress = progress;
     launch.stop = &env_.stop;
     launch.dds = resolve_dds(dds_, "robodds-run");  // a bad $ROBODDS_DOMAIN_ID creates no --out
     make_output_dir(launch.out_dir);
@@ -181,11 +185,12 @@ class RunCommand : public Command {
       stats = launch_run(env_.registry, scenario, launch);
     } catch (const RunError&) {
       // A failed run keeps its CSVs and summary.json: say where, then the error line (cli_main).
-      report(scenario, launch.out_dir, std::nullopt, warnings_before, false);
+      progress.close();
+      report(scenario, launch.out_dir, std::nullopt, progress.elapsed_s(), warnings_before, false);
       throw;
     }
     const bool plots = !no_plots_ && plot(launch.out_dir);
-    report(scenario, launch.out_dir, stats, warnings_before, plots);
+    report(scenario, launch.out_dir, stats, stats.wall_s, warnings_before, plots);
     return 0;
   }
 
@@ -203,7 +208,8 @@ class RunCommand : public Command {
 
   /// The end of the run on stdout: the short report, every figure (--verbose), the output
   /// directory (--quiet) or summary.json (--json).
-  void report(const Scenario& scenario, const std::string& out_dir, const std::optional<RunStats>& stats,
+  /// `stats`: the run's, none when it failed; `wall_s`: its wall time.
+  void report(const Scenario& scenario, const std::string& out_dir, const std::optional<RunStats>& stats, double wall_s,
               std::uint64_t warnings_before, bool plots) const {
     const std::string summary = out_dir + "/summary.json";
     if (quiet_) {
@@ -250,8 +256,8 @@ class RunCommand : public Command {
     in.headline = module_headlines();
     if (stats) {
       in.ticks = stats->steps;
-      in.wall_s = stats->wall_s;
     }
+    in.wall_s = wall_s;
     in.step_s = scenario.step_s;
     in.warnings_logged = log::warnings_written() - warnings_before;
     in.out_dir = out_dir;

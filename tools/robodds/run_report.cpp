@@ -10,7 +10,7 @@ namespace robodds {
 namespace {
 
 constexpr int kDefaultSignificant = 3;
-constexpr std::size_t kLabelWidth = 16;
+constexpr std::size_t kLabelWidth = 18;  // "stage pf_baseline" and a space
 constexpr std::size_t kMaxItemsPerLine = 3;  // rejected/adjusted inputs, warnings: the rest counted
 
 std::vector<std::string> split(const std::string& text, char separator) {
@@ -58,9 +58,9 @@ std::string shown(const std::string& key, const SummaryLeaf& leaf, int significa
 }
 
 /// `text` with {key} / {key:N} replaced from `leaves` below `prefix` and {*} by `match`; nullopt
-/// when a key is missing.
+/// when a key is missing. The leaves' paths it used are appended to `used`.
 std::optional<std::string> fill(const std::string& text, const std::string& prefix, const std::string& match,
-                                const std::map<std::string, const SummaryLeaf*>& leaves) {
+                                const std::map<std::string, const SummaryLeaf*>& leaves, std::vector<std::string>& used) {
   std::string out;
   std::size_t at = 0;
   while (at < text.size()) {
@@ -87,6 +87,7 @@ std::optional<std::string> fill(const std::string& text, const std::string& pref
     if (leaf == leaves.end()) {
       return std::nullopt;
     }
+    used.push_back(leaf->first);
     const std::string value = shown(key, *leaf->second, significant);
     out += value;
     const bool unit_s_follows =
@@ -188,11 +189,8 @@ std::string status_line(const RunReportInput& in) {
     // Step 0 is at t = 0: N ticks span (N - 1) steps of simulated time.
     const double sim_s = static_cast<double>(*ticks > 0 ? *ticks - 1 : 0) * in.step_s;
     line += ": " + round_significant(sim_s, 4) + " s simulated";
-    if (wall_s) {
-      line += " in " + round_significant(*wall_s, 3) + " s";
-      if (*wall_s > 0.0) {
-        line += " (" + round_significant(sim_s / *wall_s, 3) + "x real time)";
-      }
+    if (wall_s && *wall_s > 0.0) {  // a failed run's summary may say 0
+      line += " in " + round_significant(*wall_s, 3) + " s (" + round_significant(sim_s / *wall_s, 3) + "x real time)";
     }
   }
   if (const SummaryLeaf* stopped = find(in.summary, "stopped_by"); stopped != nullptr) {
@@ -224,7 +222,8 @@ std::string round_significant(double value, int significant) {
   return out == "-0" ? "0" : out;
 }
 
-std::vector<std::string> headline_lines(const evaluator::Headline& headline, const std::vector<SummaryLeaf>& summary) {
+std::vector<std::string> headline_lines(const evaluator::Headline& headline, const std::vector<SummaryLeaf>& summary,
+                                        std::vector<std::string>* used_paths) {
   std::map<std::string, const SummaryLeaf*> leaves;
   for (const SummaryLeaf& leaf : summary) {
     leaves.emplace(leaf.path, &leaf);
@@ -257,10 +256,14 @@ std::vector<std::string> headline_lines(const evaluator::Headline& headline, con
       }
     }
     for (const auto& [prefix, match] : scopes) {
-      const std::optional<std::string> label = fill(line.label, prefix, match, leaves);
-      const std::optional<std::string> text = fill(line.text, prefix, match, leaves);
+      std::vector<std::string> used;
+      const std::optional<std::string> label = fill(line.label, prefix, match, leaves, used);
+      const std::optional<std::string> text = fill(line.text, prefix, match, leaves, used);
       if (label && text) {
         out.push_back("  " + padded(*label) + *text);
+        if (used_paths != nullptr) {
+          used_paths->insert(used_paths->end(), used.begin(), used.end());
+        }
       }
     }
   }

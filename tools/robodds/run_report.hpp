@@ -39,7 +39,9 @@ std::vector<std::string> run_report_lines(const RunReportInput& input);
 std::string round_significant(double value, int significant);
 
 /// The headline lines `headline` gives for `summary` ("label  text"), in order; a line whose
-/// keys are missing is left out.
-std::vector<std::string> headline_lines(const evaluator::Headline& headline, const std::vector<SummaryLeaf>& summary);
+/// keys are missing is left out. `used_paths`, if given, gets the paths of the leaves the lines
+/// show (e.g. "metrics.pf_rmse_m"; `robodds sweep` prints those metrics' rows).
+std::vector<std::string> headline_lines(const evaluator::Headline& headline, const std::vector<SummaryLeaf>& summary,
+                                        std::vector<std::string>* used_paths = nullptr);
 
 }  // namespace robodds

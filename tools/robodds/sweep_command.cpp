@@ -4,6 +4,7 @@
 // batch engine's array task) and `--aggregate` (the tables from the runs' folders).
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -18,7 +19,9 @@
 #include "runtime/config/share_dir.hpp"
 #include "tools/cli/one_of.hpp"
 #include "tools/robodds/command.hpp"
+#include "tools/robodds/module_headlines.hpp"
 #include "tools/robodds/progress.hpp"
+#include "tools/robodds/run_report.hpp"
 #include "tools/robodds/sweep_emit.hpp"
 #include "tools/robodds/sweep_runner.hpp"
 
@@ -48,6 +51,29 @@ class SweepProgress {
  private:
   ProgressPacer pacer_;
 };
+
+/// The rows of the metrics the modules' headline lines show (module_headlines()), found in the
+/// first successful run's metrics; every row when none is (a scenario without headline figures).
+std::vector<MetricStats> headline_rows(const std::vector<MetricStats>& rows, const std::vector<RunOutcome>& outcomes) {
+  std::vector<SummaryLeaf> leaves;
+  for (const RunOutcome& o : outcomes) {
+    if (o.ok) {
+      for (const auto& [name, value] : o.metrics) {
+        leaves.push_back({"metrics." + name, shortest_text(value), value});
+      }
+      break;
+    }
+  }
+  std::vector<std::string> used;
+  headline_lines(module_headlines(), leaves, &used);
+  std::vector<MetricStats> out;
+  for (const MetricStats& row : rows) {
+    if (std::find(used.begin(), used.end(), "metrics." + row.metric) != used.end()) {
+      out.push_back(row);
+    }
+  }
+  return out.empty() ? rows : out;
+}
 
 void write_file(const std::string& path, const std::string& text) {
   std::ofstream out(path);
@@ -304,7 +330,8 @@ class SweepCommand : public Command {
     write_file(out_dir_ + "/summary.csv", summary_csv(axes, rows));
     const std::string markdown = summary_markdown(axes, outcomes, rows);
     write_file(out_dir_ + "/summary.md", markdown);
-    std::fputs(markdown.c_str(), stdout);
+    // On stdout the headline figures' rows only (issue 26: a table a person reads); the files have every metric.
+    std::fputs(summary_markdown(axes, outcomes, headline_rows(rows, outcomes)).c_str(), stdout);
     std::size_t failed = 0;
     for (const RunOutcome& o : outcomes) {
       if (!o.ok) {
@@ -313,7 +340,8 @@ class SweepCommand : public Command {
                      o.error.c_str());
       }
     }
-    std::printf("tables: %s/summary.md, summary.csv, runs.csv (%zu runs, %zu failed)\n", out_dir_.c_str(), outcomes.size(), failed);
+    std::printf("tables of every metric: %s/summary.md, summary.csv, runs.csv (%zu runs, %zu failed)\n", out_dir_.c_str(), outcomes.size(),
+                failed);
     return failed == 0 ? 0 : 1;
   }
 

@@ -64,15 +64,19 @@ TEST(RunReport, RoundsToSignificantFiguresWithoutExponentOrTrailingZeros) {
 TEST(RunReport, HeadlineLinesFillTheKeysOfTheTopLevelAndOfEachMatchedObject) {
   const std::vector<std::string> lines = headline_lines(kHeadline, leaves_of(kOneRobot));
   const std::vector<std::string> expected = {
-      "  way-points      18 of 18 reached, time to the last: 283 s",
-      "  PF RMSE         0.319 m position, 3.5 deg heading",
-      "  valid estimate  time to it: never",
-      "  phase1          settling: 404 s, radius RMSE 0.0395 m",
-      "  phase2          settling: 303 s, radius RMSE 0.036 m",
-      "  stage pf        0.29 m",
-      "  stage uwb       0.58 m",
+      "  way-points        18 of 18 reached, time to the last: 283 s",
+      "  PF RMSE           0.319 m position, 3.5 deg heading",
+      "  valid estimate    time to it: never",
+      "  phase1            settling: 404 s, radius RMSE 0.0395 m",
+      "  phase2            settling: 303 s, radius RMSE 0.036 m",
+      "  stage pf          0.29 m",
+      "  stage uwb         0.58 m",
   };
   EXPECT_EQ(lines, expected);
+  std::vector<std::string> used;
+  headline_lines({kHeadline[1], kHeadline[5]}, leaves_of(kOneRobot), &used);
+  EXPECT_EQ(used, (std::vector<std::string>{"metrics.pf_rmse_m", "metrics.heading_rmse_deg", "metrics.stages.pf.position_error_m_mean",
+                                            "metrics.stages.uwb.position_error_m_mean"}));
 }
 
 TEST(RunReport, ShortReportHasStatusSpeedFiguresNonZeroCountsAndWhereTheOutputsAre) {
@@ -88,7 +92,7 @@ TEST(RunReport, ShortReportHasStatusSpeedFiguresNonZeroCountsAndWhereTheOutputsA
   const std::vector<std::string> lines = run_report_lines(in);
   ASSERT_GE(lines.size(), 3U);
   EXPECT_EQ(lines.front(), "completed: 350 s simulated in 1.75 s (200x real time)");
-  EXPECT_EQ(lines[lines.size() - 2], "  adjusted inputs plant plant/cmd: 1539 acceleration_limited, 2953 saturated");
+  EXPECT_EQ(lines[lines.size() - 2], "  adjusted inputs   plant plant/cmd: 1539 acceleration_limited, 2953 saturated");
   EXPECT_EQ(lines.back(), "results: out/paper1_waypoints (summary.json, 7 CSV files, 5 plots; --verbose prints every figure)");
   for (const std::string& line : lines) {
     EXPECT_EQ(line.find("rejected"), std::string::npos) << "no rejected input, no line: " << line;
@@ -108,9 +112,9 @@ TEST(RunReport, FailedRunGivesItsReasonAndFiguresFromTheSummary) {
   const std::vector<std::string> lines = run_report_lines(in);
   const std::vector<std::string> expected = {
       "failed: 10 s simulated in 0.5 s (20x real time)",
-      "  reason          estimator: stale",
-      "  rejected inputs c t/x: 4 stale",
-      "  warnings        host h missed 3 real-time steps; host h: 2 undecodable samples (plant/cmd); host g did not report; +1 "
+      "  reason            estimator: stale",
+      "  rejected inputs   c t/x: 4 stale",
+      "  warnings          host h missed 3 real-time steps; host h: 2 undecodable samples (plant/cmd); host g did not report; +1 "
       "more in summary.json \"hosts\"",
       "results: o (summary.json, 0 CSV files; --verbose prints every figure)",
   };

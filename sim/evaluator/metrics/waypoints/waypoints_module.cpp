@@ -182,7 +182,7 @@ std::unique_ptr<MetricsModule> make_waypoints_module() { return std::make_unique
 Headline waypoints_headline() {
   return {{"way-points", "", "{waypoints_reached} of {waypoints_total} reached, time to the last: {time_to_final_s} s"},
           {"final error", "", "{final_error_true_m} m from the last way-point (true pose)"},
-          {"PF RMSE", "", "{pf_rmse_m} m position, {heading_rmse_deg} deg heading"},
+          {"estimate RMSE", "", "{pf_rmse_m} m position, {heading_rmse_deg} deg heading"},
           {"fix RMSE", "", "{measurement_rmse_m} m (sensor/position)"}};
 }
 
