@@ -48,7 +48,7 @@ std::string shown(const std::string& key, const SummaryLeaf& leaf, int significa
     return leaf.json == "null" ? "n/a" : unquoted(leaf.json);
   }
   const double value = *leaf.number;
-  if (value == -1.0 && key.size() >= 2 && key.compare(key.size() - 2, 2, "_s") == 0) {
+  if (is_never(key, value)) {
     return "never";
   }
   if (leaf.json.find_first_of(".eE") == std::string::npos) {
