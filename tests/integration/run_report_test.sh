@@ -5,7 +5,9 @@
 #    lines, has the way-point and PF headline lines, and no robot's figure twice (robots.1).
 # 2. --quiet prints only the output directory, --json summary.json byte for byte and nothing else
 #    on stdout, --verbose every figure (metrics.robots.1.pf_rmse_m).
-# 3. A run that fails at run time: header first, report (status failed), the error line last.
+# 3. Bad input found after the header: header first, the error line last.
+# 4. A NaN estimate: the report's rejected-inputs and warnings lines.
+# 5. A sweep: paced progress, the headline rows on stdout.
 source "$(dirname "$0")/lib.sh"
 S="$SRC/sim/scenarios/paper1_waypoints.yaml"
 RUN=(timeout -k 5 60 "$ROBODDS" run "$S" --duration 20 --no-plots --domain "$DOMAIN")
@@ -54,3 +56,15 @@ timeout -k 5 60 "$ROBODDS" run "$WORK/nan.yaml" --duration 5 --no-plots --domain
 grep -qE "^  rejected inputs +controller estimate/pose: 1 [a-z_]+" "$WORK/n.out" || fail "no rejected input line: $(cat "$WORK/n.out")"
 grep -qE "^  warnings +[0-9]+ warnings? logged above$" "$WORK/n.out" || fail "no warnings line: $(cat "$WORK/n.out")"
 echo "ok: rejected inputs and warnings in the report"
+
+# A sweep piped (domains DOMAIN and DOMAIN + 1): progress paced (a line per 10 % of the runs at most, the last
+# always), stdout's table has the headline figures' rows only (summary.md every metric).
+timeout -k 5 120 "$ROBODDS" sweep "$SRC/sim/scenarios/constant_twist.yaml" --seeds 1-20 --duration 1 --jobs 2 --domain "$DOMAIN" \
+  --out "$WORK/s" >"$WORK/s.out" 2>"$WORK/s.err" || fail "sweep failed: $(tail -5 "$WORK/s.err")"
+lines=$(grep -c "^sweep: [0-9]*/20 runs done" "$WORK/s.err" || true)
+[[ $lines -ge 1 && $lines -le 10 ]] && grep -q "^sweep: 20/20 runs done, 0 failed" "$WORK/s.err" ||
+  fail "sweep progress: expected at most one line per 10 % of the runs (10) and the last: $(cat "$WORK/s.err")"
+grep -q "^| max_abs_v_applied_mps | 20 |" "$WORK/s.out" && ! grep -q "max_abs_v_commanded_mps" "$WORK/s.out" &&
+  grep -q "^| max_abs_v_commanded_mps | 20 |" "$WORK/s/summary.md" ||
+  fail "sweep stdout: expected the headline rows only: $(cat "$WORK/s.out")"
+echo "ok: sweep: $lines progress lines for 20 runs, the headline rows on stdout"
