@@ -7,7 +7,7 @@
 #    on stdout, --verbose every figure (metrics.robots.1.pf_rmse_m).
 # 3. Bad input found after the header: header first, the error line last.
 # 4. A NaN estimate: the report's rejected-inputs and warnings lines.
-# 5. A sweep: paced progress, the headline rows on stdout.
+# 5. A sweep: paced progress, the headline rows on stdout. 6. A replay --fast: progress lines.
 source "$(dirname "$0")/lib.sh"
 S="$SRC/sim/scenarios/paper1_waypoints.yaml"
 RUN=(timeout -k 5 60 "$ROBODDS" run "$S" --duration 20 --no-plots --domain "$DOMAIN")
@@ -68,3 +68,12 @@ grep -q "^| max_abs_v_applied_mps | 20 |" "$WORK/s.out" && ! grep -q "max_abs_v_
   grep -q "^| max_abs_v_commanded_mps | 20 |" "$WORK/s/summary.md" ||
   fail "sweep stdout: expected the headline rows only: $(cat "$WORK/s.out")"
 echo "ok: sweep: $lines progress lines for 20 runs, the headline rows on stdout"
+
+# `robodds replay --fast` piped: a progress line per 10 % of the messages.
+timeout -k 5 60 "$ROBODDS" run "$SRC/sim/scenarios/constant_twist.yaml" --duration 5 --no-plots --domain "$DOMAIN" --out "$WORK/r" \
+  --record "$WORK/r.mcap" --quiet >/dev/null || fail "recording run failed"
+timeout -k 5 60 "$ROBODDS" replay "$WORK/r.mcap" --fast --wait-readers 0 --domain "$DOMAIN" >"$WORK/replay.out" 2>"$WORK/replay.err" ||
+  fail "replay failed: $(cat "$WORK/replay.err")"
+lines=$(grep -cE "^  message [0-9]+ / [0-9]+ \([0-9]+ %\), .* s of the recording, .*ETA" "$WORK/replay.err" || true)
+[[ $lines -eq 10 ]] || fail "replay: expected 10 progress lines, got $lines: $(cat "$WORK/replay.err")"
+echo "ok: replay: 10 progress lines"
