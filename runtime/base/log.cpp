@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "runtime/base/error.hpp"
+#include "runtime/base/log_count.hpp"
 
 namespace robodds {
 
@@ -37,6 +38,8 @@ std::atomic<int>& level_storage() {
   return storage;
 }
 
+std::atomic<std::uint64_t> warnings{0};
+
 std::mutex& output_mutex() {
   static std::mutex mutex;
   return mutex;
@@ -55,6 +58,7 @@ const char* tag(Level level) {
 }  // namespace
 
 void set_level(Level level) { level_storage() = static_cast<int>(level); }
+std::uint64_t warnings_written() { return warnings.load(); }
 Level level() { return static_cast<Level>(level_storage().load()); }
 
 Level parse_level(const std::string& text) {
@@ -68,6 +72,9 @@ Level parse_level(const std::string& text) {
 void write(Level message_level, const std::string& source, const std::string& message) {
   if (static_cast<int>(message_level) < level_storage().load()) {
     return;
+  }
+  if (message_level >= Level::kWarn) {
+    ++warnings;
   }
   std::lock_guard<std::mutex> lock(output_mutex());
   std::fprintf(stderr, "[%s] %s: %s\n", tag(message_level), source.c_str(), message.c_str());

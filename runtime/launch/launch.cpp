@@ -514,11 +514,11 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
   return 0;
 }
 
-int draw_plots(const std::string& out_dir, double timeout_s) {
+int draw_plots(const std::string& out_dir, double timeout_s, const std::string& log_file) {
   const std::string script = share_dir() + "/sim/report/report.py";
   std::fflush(stdout);  // our buffered output first, then the child's
   try {
-    return run_to_exit("python3 " + script, {"python3", script, out_dir}, timeout_s);
+    return run_to_exit("python3 " + script, {"python3", script, out_dir}, timeout_s, log_file);
   } catch (const RunError& e) {
     log::warn("report", e.what());
     return 1;

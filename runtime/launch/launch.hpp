@@ -101,7 +101,8 @@ DdsOptions tools_dds(const DdsArgs& args, const std::string& participant_name);
 std::string share_dir();
 
 /// Draws a run's plots: `python3 sim/report/report.py OUT_DIR` as a child process (stdout and
-/// stderr shared), waited for at most timeout_s. Returns the script's exit code.
-int draw_plots(const std::string& out_dir, double timeout_s = 600.0);
+/// stderr shared, or both into `log_file` if given), waited for at most timeout_s. Returns the
+/// script's exit code.
+int draw_plots(const std::string& out_dir, double timeout_s = 600.0, const std::string& log_file = "");
 
 }  // namespace robodds

@@ -142,9 +142,9 @@ void ProcessGroup::wait_all(double timeout_s) {
   }
 }
 
-int run_to_exit(const std::string& what, const std::vector<std::string>& argv, double timeout_s) {
+int run_to_exit(const std::string& what, const std::vector<std::string>& argv, double timeout_s, const std::string& log_file) {
   ProcessGroup group;  // terminates the child if anything below throws
-  group.spawn(what, argv);
+  group.spawn(what, argv, log_file);
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(timeout_s);
   while (true) {
     const int status = group.poll_exit_status(0);

@@ -54,7 +54,8 @@ class ProcessGroup {
 };
 
 /// Runs `argv` to its end and returns its exit code (128 + signal if killed; 127 if it cannot
-/// be executed). After timeout_s it is terminated and RunError names `what` and the timeout.
-int run_to_exit(const std::string& what, const std::vector<std::string>& argv, double timeout_s);
+/// be executed). After timeout_s it is terminated and RunError names `what` and the timeout. A
+/// non-empty `log_file` takes its stdout and stderr (ProcessGroup::spawn).
+int run_to_exit(const std::string& what, const std::vector<std::string>& argv, double timeout_s, const std::string& log_file = "");
 
 }  // namespace robodds

@@ -9,6 +9,8 @@
 // Only robodds' own topics replay: a channel must carry a catalog topic with its omgidl schema
 // and cdr messages (sim/replay_source/node/replay_recording.hpp); anything else is one error line.
 // Replaying into a lockstep scenario is the `replay_source` component (sim/replay_source/).
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -28,6 +30,7 @@
 #include "runtime/topics/topic_catalog.hpp"
 #include "sim/replay_source/node/replay_recording.hpp"
 #include "tools/robodds/command.hpp"
+#include "tools/robodds/progress.hpp"
 
 namespace robodds {
 namespace {
@@ -116,6 +119,9 @@ class ReplayCommand : public Command {
 
     const auto start = Clock::now();
     const std::uint64_t base = messages.empty() ? 0 : messages.front()->log_time;
+    const double span_s = messages.empty() ? 0.0 : static_cast<double>(messages.back()->log_time - base) * 1e-9;
+    ProgressPacer pacer(isatty(STDERR_FILENO) != 0);
+    std::uint64_t done = 0;
     for (const mcap::Message* m : messages) {
       if (env_.stop) break;
       if (!fast_) {
@@ -133,6 +139,14 @@ class ReplayCommand : public Command {
       } else {
         ++c.refused;
       }
+      const double wall_s = std::chrono::duration<double>(Clock::now() - start).count();
+      if (pacer.due(++done, messages.size(), wall_s)) {
+        const double recorded_s = static_cast<double>(m->log_time - base) * 1e-9;
+        std::fputs(progress_output("  " + replay_progress_text(done, messages.size(), recorded_s, span_s, wall_s), pacer.terminal(),
+                                   done == messages.size())
+                       .c_str(),
+                   stderr);
+      }
     }
     const double elapsed_s = std::chrono::duration<double>(Clock::now() - start).count();
     const bool acknowledged = wait_for_acknowledgements(channels);
@@ -142,7 +156,6 @@ class ReplayCommand : public Command {
       written += c.written;
       refused += c.refused;
     }
-    const double span_s = messages.empty() ? 0.0 : static_cast<double>(messages.back()->log_time - base) * 1e-9;
     std::printf("robodds replay: %llu messages in %.3f s (recorded span %.3f s)%s%s%s\n",
                 static_cast<unsigned long long>(written), elapsed_s, span_s,
                 refused > 0 ? (", " + std::to_string(refused) + " refused by DDS").c_str() : "",

@@ -1,13 +1,19 @@
 // `robodds run SCENARIO`: the whole scenario, co-located or one process per group, then the
-// summary table and the plots.
+// plots and a short report (--verbose: every figure of summary.json, --quiet: the output path,
+// --json: summary.json on stdout).
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <sstream>
 
 #include "runtime/component/param_keys.hpp"
 #include "runtime/base/error.hpp"
@@ -16,27 +22,61 @@
 #include "runtime/mcap/compression.hpp"
 #include "runtime/base/log.hpp"
 #include "tools/cli/cli_main.hpp"
+#include "runtime/base/log_count.hpp"
 #include "tools/cli/one_of.hpp"
 #include "tools/robodds/command.hpp"
+#include "tools/robodds/module_headlines.hpp"
+#include "tools/robodds/progress.hpp"
+#include "tools/robodds/run_report.hpp"
 #include "tools/robodds/summary_table.hpp"
 
 namespace robodds {
 namespace {
 
-void show_progress(std::uint64_t step, std::uint64_t last) {
-  static const bool on_terminal = isatty(STDERR_FILENO) != 0;  // a system call: ask once, not per tick
-  if (!on_terminal) {
-    return;
+/// The progress line on stderr (progress.hpp), timed from its making (just before the run starts).
+class RunProgress {
+ public:
+  RunProgress(double step_s, bool shown) : step_s_(step_s), shown_(shown), pacer_(isatty(STDERR_FILENO) != 0) {}
+
+  void operator()(std::uint64_t step, std::uint64_t last) {
+    if (!shown_) {
+      return;
+    }
+    const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    if (pacer_.due(step, last, wall_s)) {
+      std::fputs(progress_output("  " + run_progress_text(step, last, step_s_, wall_s), pacer_.terminal(), step >= last).c_str(),
+                 stderr);
+      *open_line_ = pacer_.terminal() && step < last;
+    }
   }
-  static auto last_print = std::chrono::steady_clock::now();
-  const auto now = std::chrono::steady_clock::now();
-  if (step != last && now - last_print < std::chrono::milliseconds(200)) {
-    return;
+
+  /// Ends a live line the run left unfinished (it failed), so the report starts on a line of its own.
+  void close() const {
+    if (*open_line_) {
+      std::fputs("\n", stderr);
+      *open_line_ = false;
+    }
   }
-  last_print = now;
-  std::fprintf(stderr, "\r  step %llu / %llu (%3.0f%%)%s", static_cast<unsigned long long>(step),
-               static_cast<unsigned long long>(last), last > 0 ? 100.0 * static_cast<double>(step) / static_cast<double>(last) : 100.0,
-               step == last ? "\n" : "");
+
+  /// Wall time since the start, s.
+  double elapsed_s() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+
+ private:
+  double step_s_;
+  bool shown_;
+  ProgressPacer pacer_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+  std::shared_ptr<bool> open_line_ = std::make_shared<bool>(false);  // shared with the copy launch_run() calls
+};
+
+/// How many files in `dir` (not below) end in `extension`.
+std::size_t files_ending(const std::string& dir, const std::string& extension) {
+  std::size_t n = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    n += entry.path().extension() == extension ? 1 : 0;
+  }
+  return n;
 }
 
 /// The recorder `--record` adds: its instance name (and type).
@@ -87,6 +127,11 @@ class RunCommand : public Command {
     add_dds_options(cmd_, dds_);
     add_lockstep_options(cmd_, lockstep_);
     cmd_->add_flag("--no-plots", no_plots_, "do not draw the PNG plots at the end");
+    CLI::Option* verbose = cmd_->add_flag("--verbose", verbose_, "end with every figure of summary.json (and the plots' paths)");
+    CLI::Option* quiet = cmd_->add_flag("--quiet", quiet_, "print only errors and the output directory");
+    CLI::Option* json = cmd_->add_flag("--json", json_, "print summary.json on stdout (and nothing else there)");
+    verbose->excludes(quiet)->excludes(json);
+    quiet->excludes(json);
     cmd_->add_option("--record", record_,
                      "record the topics the scenario's components publish into this MCAP file, from inside the run "
                      "(lockstep: sim times, the same file co-located and across processes; docs/record-replay.md)");
@@ -98,6 +143,12 @@ class RunCommand : public Command {
   bool parsed() const override { return cmd_->parsed(); }
 
   int run() override {
+    // Line by line even when piped: the header and report keep their places among the log's
+    // stderr lines (a pipe's full buffering would print the header after an error).
+    std::setvbuf(stdout, nullptr, _IOLBF, BUFSIZ);
+    if (quiet_ && log::level() < log::Level::kError) {
+      log::set_level(log::Level::kError);
+    }
     // The runner first (before any participant or child exists; a refusal starts nothing), then
     // every child host applies it itself (a host starts at the runner's policy, a helper such as
     // the plots' python3 on SCHED_OTHER: ProcessGroup::spawn).
@@ -116,10 +167,11 @@ class RunCommand : public Command {
     launch.realtime = realtime_;
     launch.out_dir = out_dir_.empty() ? "out/" + scenario.name : out_dir_;
     launch.lockstep = lockstep_;
-    launch.log_level = env_.log_level;
+    launch.log_level = quiet_ ? std::string("error") : env_.log_level;
     launch.max_missed_steps = max_missed_steps_;
     launch.rt_priority = rt_priority_;
-    launch.progress = show_progress;
+    const RunProgress progress(scenario.step_s, !quiet_);
+    launch.progress = progress;
     // Real time: the first SIGINT/SIGTERM stops the run cleanly at its next step (summary
     // "completed", "stopped_by": "signal"), a second aborts; lockstep: the first aborts (an
     // interrupted deterministic run is "failed").
@@ -128,22 +180,100 @@ class RunCommand : public Command {
     launch.graceful_stop = realtime_ ? &stop.first_signal : nullptr;
     launch.dds = resolve_dds(dds_, "robodds-run");  // a bad $ROBODDS_DOMAIN_ID creates no --out
     make_output_dir(launch.out_dir);
-    std::fflush(stdout);
-    std::printf("robodds run %s: %s, %s, %llu steps of %g s, seed %llu\n", scenario.name.c_str(), deploy_.c_str(),
-                realtime_ ? "real time" : "lockstep", static_cast<unsigned long long>(scenario.last_step() + 1),
-                scenario.step_s, static_cast<unsigned long long>(scenario.seed));
-    const RunStats stats = launch_run(env_.registry, scenario, launch);
-    std::printf("done: %llu ticks in %.3f s (%.0f ticks/s)\n", static_cast<unsigned long long>(stats.steps), stats.wall_s,
-                stats.wall_s > 0 ? static_cast<double>(stats.steps) / stats.wall_s : 0.0);
-    std::fputs(summary_table(launch.out_dir).c_str(), stdout);
-    if (!no_plots_ && draw_plots(launch.out_dir) != 0) {
-      log::warn("run", "plots were not drawn (python3 with matplotlib missing?); the CSVs and summary.json are complete");
+    if (!quiet_) {
+      std::fprintf(json_ ? stderr : stdout, "robodds run %s: %s, %s, %llu steps of %g s, seed %llu\n", scenario.name.c_str(),
+                   deploy_.c_str(), realtime_ ? "real time" : "lockstep", static_cast<unsigned long long>(scenario.last_step() + 1),
+                   scenario.step_s, static_cast<unsigned long long>(scenario.seed));
     }
-    std::printf("results: %s\n", launch.out_dir.c_str());
+    const std::uint64_t warnings_before = log::warnings_written();
+    RunStats stats;
+    try {
+      stats = launch_run(env_.registry, scenario, launch);
+    } catch (const RunError&) {
+      // A failed run keeps its CSVs and summary.json: say where, then the error line (cli_main).
+      progress.close();
+      report(scenario, launch.out_dir, std::nullopt, progress.elapsed_s(), warnings_before, false);
+      throw;
+    }
+    const bool plots = !no_plots_ && plot(launch.out_dir);
+    report(scenario, launch.out_dir, stats, stats.wall_s, warnings_before, plots);
     return 0;
   }
 
  private:
+  /// Draws the plots; true if drawn. Their paths go to OUT/plots.log unless --verbose.
+  bool plot(const std::string& out_dir) const {
+    const std::string log_file = verbose_ ? "" : out_dir + "/plots.log";
+    if (draw_plots(out_dir, 600.0, log_file) == 0) {
+      return true;
+    }
+    log::warn("run", "plots were not drawn (python3 with matplotlib missing?" + (log_file.empty() ? "" : " see " + log_file) +
+                         "); the CSVs and summary.json are complete");
+    return false;
+  }
+
+  /// The end of the run on stdout: the short report, every figure (--verbose), the output
+  /// directory (--quiet) or summary.json (--json).
+  /// `stats`: the run's, none when it failed; `wall_s`: its wall time.
+  void report(const Scenario& scenario, const std::string& out_dir, const std::optional<RunStats>& stats, double wall_s,
+              std::uint64_t warnings_before, bool plots) const {
+    const std::string summary = out_dir + "/summary.json";
+    if (quiet_) {
+      std::printf("%s\n", out_dir.c_str());
+      return;
+    }
+    if (json_) {
+      std::ifstream in(summary);
+      if (!in) {
+        if (!stats) {
+          return;  // a failed run without one: its error line says why
+        }
+        throw RunError("--json: the run wrote no " + summary + " (the scenario has no evaluator)");
+      }
+      std::ostringstream text;
+      text << in.rdbuf();
+      std::fputs(text.str().c_str(), stdout);
+      return;
+    }
+    if (verbose_) {
+      if (stats) {
+        std::printf("done: %llu ticks in %.3f s (%.0f ticks/s)\n", static_cast<unsigned long long>(stats->steps), stats->wall_s,
+                    stats->wall_s > 0 ? static_cast<double>(stats->steps) / stats->wall_s : 0.0);
+      }
+      std::fputs(summary_table(out_dir).c_str(), stdout);
+      std::printf("results: %s\n", out_dir.c_str());
+      return;
+    }
+    RunReportInput in;
+    if (std::ifstream(summary)) {
+      try {
+        in.summary = summary_leaves(summary);
+        if (!stats) {  // failed: the error line after the report gives the reason
+          in.summary.erase(std::remove_if(in.summary.begin(), in.summary.end(),
+                                          [](const SummaryLeaf& leaf) { return leaf.path == "reason"; }),
+                           in.summary.end());
+        }
+      } catch (const std::runtime_error& e) {
+        in.summary_note = e.what();
+      }
+    } else {
+      in.summary_note = "no summary.json in " + out_dir + ": the scenario has no evaluator";
+    }
+    in.headline = module_headlines();
+    if (stats) {
+      in.ticks = stats->steps;
+    }
+    in.wall_s = wall_s;
+    in.step_s = scenario.step_s;
+    in.warnings_logged = log::warnings_written() - warnings_before;
+    in.out_dir = out_dir;
+    in.csv_files = files_ending(out_dir, ".csv");
+    in.plot_files = plots ? files_ending(out_dir, ".png") : 0;
+    for (const std::string& line : run_report_lines(in)) {
+      std::printf("%s\n", line.c_str());
+    }
+  }
+
   /// With --record: the recorder to add (and its parameters appended to the --set list, which
   /// every child host applies too); nothing otherwise.
   std::vector<std::string> record_components(const Scenario& scenario) {
@@ -179,6 +309,9 @@ class RunCommand : public Command {
   std::optional<std::uint64_t> max_missed_steps_;
   std::optional<int> rt_priority_;
   bool no_plots_ = false;
+  bool verbose_ = false;
+  bool quiet_ = false;
+  bool json_ = false;
   std::string record_;
   std::string record_compression_ = "zstd";
   std::vector<std::string> record_topics_;

@@ -46,6 +46,11 @@ void append_leaves(std::vector<SummaryLeaf>& out, const YAML::Node& map, const s
 
 }  // namespace
 
+bool is_never(const std::string& metric, double value) {
+  constexpr double kNever = -1.0;
+  return value == kNever && metric.size() >= 2 && metric.compare(metric.size() - 2, 2, "_s") == 0;
+}
+
 std::vector<SummaryLeaf> summary_leaves(const std::string& path) {
   YAML::Node root;
   try {

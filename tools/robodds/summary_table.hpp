@@ -18,6 +18,11 @@ struct SummaryLeaf {
   std::optional<double> number;
 };
 
+/// The evaluator reports a time that never came as -1 (time_to_final_s, settle_time_s,
+/// convergence_s, time_to_valid_s: "-1: never" in sim/evaluator): true for a metric whose name
+/// ends in "_s" with that value.
+bool is_never(const std::string& metric, double value);
+
 /// The leaves of the JSON file `path`, in file order. Throws std::runtime_error naming the file
 /// if it cannot be read or is not a JSON object.
 std::vector<SummaryLeaf> summary_leaves(const std::string& path);

@@ -4,6 +4,7 @@
 // batch engine's array task) and `--aggregate` (the tables from the runs' folders).
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +21,9 @@
 #include "runtime/config/share_dir.hpp"
 #include "tools/cli/one_of.hpp"
 #include "tools/robodds/command.hpp"
+#include "tools/robodds/module_headlines.hpp"
+#include "tools/robodds/progress.hpp"
+#include "tools/robodds/run_report.hpp"
 #include "tools/robodds/sweep_emit.hpp"
 #include "tools/robodds/sweep_resume.hpp"
 #include "tools/robodds/sweep_runner.hpp"
@@ -31,17 +35,47 @@ using namespace sweep;
 
 constexpr int kMaxDomain = 232;
 
-std::string minutes_seconds(double s) {
-  char text[32];
-  const long total = static_cast<long>(s + 0.5);
-  std::snprintf(text, sizeof text, "%ld:%02ld", total / 60, total % 60);
-  return text;
-}
+/// The sweep's progress on stderr, as `robodds run`'s (progress.hpp): a live line on a terminal,
+/// else a line per 10 % of the runs or every 30 s.
+class SweepProgress {
+ public:
+  SweepProgress() : pacer_(isatty(STDERR_FILENO) != 0) {}
 
-void print_progress(const Progress& p) {
-  const double per_run = p.done > 0 ? p.elapsed_s / static_cast<double>(p.done) : 0.0;
-  std::fprintf(stderr, "sweep: %zu/%zu runs done, %zu failed, %s elapsed, ETA %s\n", p.done, p.total, p.failed,
-               minutes_seconds(p.elapsed_s).c_str(), minutes_seconds(per_run * static_cast<double>(p.total - p.done)).c_str());
+  void operator()(const Progress& p) {
+    if (!pacer_.due(p.done, p.total, p.elapsed_s)) {
+      return;
+    }
+    const std::string text = "sweep: " + std::to_string(p.done) + "/" + std::to_string(p.total) + " runs done, " +
+                             std::to_string(p.failed) + " failed, " + clock_text(p.elapsed_s) + " elapsed, " +
+                             eta_text(p.done, p.total, p.elapsed_s);
+    std::fputs(progress_output(text, pacer_.terminal(), p.done >= p.total).c_str(), stderr);
+  }
+
+ private:
+  ProgressPacer pacer_;
+};
+
+/// The rows of the metrics the modules' headline lines show (module_headlines()), found in the
+/// first successful run's metrics; every row when none is (a scenario without headline figures).
+std::vector<MetricStats> headline_rows(const std::vector<MetricStats>& rows, const std::vector<RunOutcome>& outcomes) {
+  std::vector<SummaryLeaf> leaves;
+  for (const RunOutcome& o : outcomes) {
+    if (o.ok) {
+      for (const auto& [name, value] : o.metrics) {
+        leaves.push_back({"metrics." + name, shortest_text(value), value});
+      }
+      break;
+    }
+  }
+  std::vector<std::string> used;
+  headline_lines(module_headlines(), leaves, &used);
+  std::vector<MetricStats> out;
+  for (const MetricStats& row : rows) {
+    if (std::find(used.begin(), used.end(), "metrics." + row.metric) != used.end()) {
+      out.push_back(row);
+    }
+  }
+  return out.empty() ? rows : out;
 }
 
 void write_file(const std::string& path, const std::string& text) {
@@ -133,7 +167,7 @@ class SweepCommand : public Command {
     std::fprintf(stderr, "sweep: %zu runs (%zu combinations x %zu seeds) on %u workers, domains %d-%d\n", runs.size(),
                  combination_count(grid_axes(spec)), parse_seeds(spec.seeds).size(), jobs_, domain(),
                  domain() + static_cast<int>(jobs_) - 1);
-    return finish(spec, run_all(runs, runner_options(spec), print_progress));
+    return finish(spec, run_all(runs, runner_options(spec), SweepProgress()));
   }
 
  private:
@@ -320,7 +354,8 @@ class SweepCommand : public Command {
     write_file(out_dir_ + "/summary.csv", summary_csv(axes, rows));
     const std::string markdown = summary_markdown(axes, outcomes, rows);
     write_file(out_dir_ + "/summary.md", markdown);
-    std::fputs(markdown.c_str(), stdout);
+    // On stdout the headline figures' rows only (issue 26: a table a person reads); the files have every metric.
+    std::fputs(summary_markdown(axes, outcomes, headline_rows(rows, outcomes)).c_str(), stdout);
     std::size_t failed = 0;
     std::size_t not_run = 0;
     for (const RunOutcome& o : outcomes) {
@@ -333,8 +368,8 @@ class SweepCommand : public Command {
       }
     }
     const std::string missing = not_run == 0 ? "" : ", " + std::to_string(not_run) + " not run";
-    std::printf("tables: %s/summary.md, summary.csv, runs.csv (%zu runs, %zu failed%s)\n", out_dir_.c_str(), outcomes.size(), failed,
-                missing.c_str());
+    std::printf("tables of every metric: %s/summary.md, summary.csv, runs.csv (%zu runs, %zu failed%s)\n", out_dir_.c_str(), outcomes.size(),
+                failed, missing.c_str());
     return failed == 0 ? 0 : 1;
   }
 
@@ -382,7 +417,7 @@ class SweepCommand : public Command {
     const std::vector<PlannedRun> missing = missing_runs(runs, finished);
     std::fprintf(stderr, "sweep: resuming %s: %zu of %zu runs finished, %zu to run on %u workers, domains %d-%d\n", out_dir_.c_str(),
                  finished.size(), runs.size(), missing.size(), jobs_, domain(), domain() + static_cast<int>(jobs_) - 1);
-    const std::vector<RunOutcome> done = run_all(missing, runner_options(planned), print_progress);
+    const std::vector<RunOutcome> done = run_all(missing, runner_options(planned), SweepProgress());
     std::vector<RunOutcome> outcomes = collect_existing(planned);  // the kept runs and the new ones, from their folders
     for (const RunOutcome& o : done) {
       if (o.not_run) {

@@ -75,11 +75,6 @@ std::vector<std::pair<std::string, double>> metrics_of(const std::vector<Summary
   return out;
 }
 
-bool is_never(const std::string& metric, double value) {
-  constexpr double kNever = -1.0;
-  return value == kNever && metric.size() >= 2 && metric.compare(metric.size() - 2, 2, "_s") == 0;
-}
-
 std::vector<MetricStats> aggregate(const std::vector<RunOutcome>& outcomes) {
   std::size_t combinations = 0;
   for (const RunOutcome& o : outcomes) {

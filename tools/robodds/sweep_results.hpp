@@ -31,10 +31,8 @@ std::vector<std::pair<std::string, double>> read_metrics(const std::string& path
 /// The same from leaves already read (summary_leaves()).
 std::vector<std::pair<std::string, double>> metrics_of(const std::vector<SummaryLeaf>& leaves);
 
-/// The evaluator reports a time that never came as -1 (time_to_final_s, settle_time_s,
-/// convergence_s, time_to_valid_s: "-1: never" in sim/evaluator): true for a metric whose name
-/// ends in "_s" with that value. Such a value is counted, never averaged as a duration.
-bool is_never(const std::string& metric, double value);
+/// summary_table.hpp's: such a value is counted, never averaged as a duration.
+using ::robodds::is_never;
 
 /// The statistics of one metric over the successful runs of one combination.
 struct MetricStats {

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "sim/evaluator/module/headline.hpp"
 #include "sim/evaluator/module/metrics_module.hpp"
 
 namespace robodds::evaluator {
@@ -26,6 +27,8 @@ struct MetricsModuleType {
   /// one takes a rank of its own so that the existing keys keep their places.
   int summary_rank = 0;
   std::function<std::unique_ptr<MetricsModule>()> create;
+  /// Its lines of `robodds run`'s short report (headline.hpp); empty: none.
+  Headline headline;
 };
 
 class MetricsModuleRegistry {
@@ -47,16 +50,17 @@ void register_builtin_metrics_modules(MetricsModuleRegistry& registry);
 
 /// Defines robodds::metrics_module_registration::register_<kind>(MetricsModuleRegistry&), which
 /// adds the module `kind` (a bare identifier, the NAME of its robodds_metrics_module() call) with
-/// a one-line description, its summary rank (MetricsModuleType::summary_rank) and its factory
-/// (std::unique_ptr<MetricsModule>()). Its folder is the one of its robodds_metrics_module()
+/// a one-line description, its summary rank (MetricsModuleType::summary_rank), its factory
+/// (std::unique_ptr<MetricsModule>()) and its headline (an expression giving the Headline, e.g.
+/// a function call: `robodds run`'s short report, headline.hpp). Its folder is the one of its robodds_metrics_module()
 /// call, which passes the path as ROBODDS_METRICS_MODULE_FOLDER (a module registered by hand, in a
 /// test, defines it before the macro). Write it once, at global scope, in the module's .cpp.
-#define ROBODDS_REGISTER_METRICS_MODULE(kind, description, summary_rank, factory)                               \
+#define ROBODDS_REGISTER_METRICS_MODULE(kind, description, summary_rank, factory, headline)                     \
   namespace robodds::metrics_module_registration {                                                              \
   void register_##kind(::robodds::evaluator::MetricsModuleRegistry& registry);                                  \
   }                                                                                                             \
   void ::robodds::metrics_module_registration::register_##kind(::robodds::evaluator::MetricsModuleRegistry& registry) { \
-    registry.add({#kind, description, ROBODDS_METRICS_MODULE_FOLDER, summary_rank, factory});                    \
+    registry.add({#kind, description, ROBODDS_METRICS_MODULE_FOLDER, summary_rank, factory, headline});          \
   }                                                                                                             \
   static_assert(sizeof(description) > 1, "ROBODDS_REGISTER_METRICS_MODULE(" #kind "): the description must not be empty")
 

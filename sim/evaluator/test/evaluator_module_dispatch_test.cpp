@@ -53,7 +53,7 @@ std::unique_ptr<MetricsModule> make_sample_counter_module() { return std::make_u
 // Registered by hand, not by robodds_metrics_module(), which would name the module's folder.
 #define ROBODDS_METRICS_MODULE_FOLDER "sim/evaluator/test"
 ROBODDS_REGISTER_METRICS_MODULE(sample_counter, "test: counts samples and steps", 50,
-                                robodds::evaluator::make_sample_counter_module);
+                                robodds::evaluator::make_sample_counter_module, robodds::evaluator::Headline{});
 
 namespace robodds::evaluator {
 namespace {

@@ -128,8 +128,15 @@ class CircumnavigationModule : public MetricsModule {
 
 std::unique_ptr<MetricsModule> make_circumnavigation_module() { return std::make_unique<CircumnavigationModule>(); }
 
+/// `robodds run`'s lines: paper 2's figures, each phase's settling and errors, each observer's
+/// range-rate errors.
+Headline circumnavigation_headline() {
+  return {{"{*}", "phase*", "settling: {settle_time_s} s, radius RMSE {radius_rmse_m} m, spacing RMSE {spacing_rmse_deg} deg"},
+          {"observer {*}", "observer.*", "range-rate RMSE {transient_rmse_mps} m/s transient, {steady_rmse_mps} m/s steady"}};
+}
+
 }  // namespace
 }  // namespace robodds::evaluator
 
 ROBODDS_REGISTER_METRICS_MODULE(circumnavigation, "paper 2: phases' settling, radius and spacing errors; observers' range-rate errors", 30,
-                                robodds::evaluator::make_circumnavigation_module);
+                                robodds::evaluator::make_circumnavigation_module, robodds::evaluator::circumnavigation_headline());

@@ -94,8 +94,16 @@ class MotionModule : public MetricsModule {
 
 std::unique_ptr<MetricsModule> make_motion_module() { return std::make_unique<MotionModule>(); }
 
+/// `robodds run`'s lines: what the plant applied (against the robot's limits) and when the
+/// estimate became valid; with one robot (the keys are per robot otherwise).
+Headline motion_headline() {
+  return {{"applied motion", "", "max |v| {max_abs_v_applied_mps} m/s, |omega| {max_abs_omega_applied_radps} rad/s, "
+                                 "|a| {max_abs_accel_applied_mps2} m/s^2"},
+          {"valid estimate", "", "time to it: {time_to_valid_s} s"}};
+}
+
 }  // namespace
 }  // namespace robodds::evaluator
 
 ROBODDS_REGISTER_METRICS_MODULE(motion, "issue 12: extremes of the applied and commanded motion, time to a valid estimate", 20,
-                                robodds::evaluator::make_motion_module);
+                                robodds::evaluator::make_motion_module, robodds::evaluator::motion_headline());

@@ -105,8 +105,15 @@ class RelativePoseModule : public MetricsModule {
 
 std::unique_ptr<MetricsModule> make_relative_pose_module() { return std::make_unique<RelativePoseModule>(); }
 
+/// `robodds run`'s lines: paper 3's Tables 1 and 2, one line per estimator stage (mean +- std).
+Headline relative_pose_headline() {
+  return {{"stage {*}", "stages.*",
+           "position error {position_error_m_mean:2} +- {position_error_m_std:2} m, heading {heading_error_deg_mean:2} +- "
+           "{heading_error_deg_std:2} deg"}};
+}
+
 }  // namespace
 }  // namespace robodds::evaluator
 
 ROBODDS_REGISTER_METRICS_MODULE(relative_pose, "paper 3: relative pose errors per stage, CSVs with the peers' truth", 40,
-                                robodds::evaluator::make_relative_pose_module);
+                                robodds::evaluator::make_relative_pose_module, robodds::evaluator::relative_pose_headline());

@@ -177,8 +177,17 @@ class WaypointsModule : public MetricsModule {
 
 std::unique_ptr<MetricsModule> make_waypoints_module() { return std::make_unique<WaypointsModule>(); }
 
+/// `robodds run`'s lines: paper 1's Table 1 figures (way-points, final error) and the estimate's
+/// errors; with one robot its keys are at the top level, with several only the pooled RMSEs are.
+Headline waypoints_headline() {
+  return {{"way-points", "", "{waypoints_reached} of {waypoints_total} reached, time to the last: {time_to_final_s} s"},
+          {"final error", "", "{final_error_true_m} m from the last way-point (true pose)"},
+          {"estimate RMSE", "", "{pf_rmse_m} m position, {heading_rmse_deg} deg heading"},
+          {"fix RMSE", "", "{measurement_rmse_m} m (sensor/position)"}};
+}
+
 }  // namespace
 }  // namespace robodds::evaluator
 
 ROBODDS_REGISTER_METRICS_MODULE(waypoints, "paper 1: the true track, measurement/pf/heading RMSE, way-point figures", 10,
-                                robodds::evaluator::make_waypoints_module);
+                                robodds::evaluator::make_waypoints_module, robodds::evaluator::waypoints_headline());

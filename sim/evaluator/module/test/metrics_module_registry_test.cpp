@@ -17,7 +17,7 @@ class EmptyModule : public MetricsModule {
 };
 
 MetricsModuleType type(const std::string& name, int rank) {
-  return {name, "test", "sim/evaluator/module/test", rank, [] { return std::make_unique<EmptyModule>(); }};
+  return {name, "test", "sim/evaluator/module/test", rank, [] { return std::make_unique<EmptyModule>(); }, {}};
 }
 
 TEST(MetricsModuleRegistry, KeepsTheModulesByRankThenName) {
@@ -37,7 +37,7 @@ TEST(MetricsModuleRegistry, RefusesANameTwiceAndATypeWithoutFactory) {
   MetricsModuleRegistry registry;
   registry.add(type("waypoints", 10));
   EXPECT_THROW(registry.add(type("waypoints", 50)), std::logic_error);
-  EXPECT_THROW(registry.add({"no_factory", "test", "sim/evaluator/module/test", 60, nullptr}), std::logic_error);
+  EXPECT_THROW(registry.add({"no_factory", "test", "sim/evaluator/module/test", 60, nullptr, {}}), std::logic_error);
 }
 
 }  // namespace
