@@ -17,6 +17,7 @@
 #include "common/number_text.hpp"
 #include "runtime/bus/colocated_bus.hpp"
 #include "runtime/launch/added_components.hpp"
+#include "runtime/launch/coordinator_scenario.hpp"
 #include "runtime/dds/security_files.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/launch/failed_summary.hpp"
@@ -374,8 +375,12 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
     registry.get(args.type);  // an unknown type names the known ones
     return standalone_scenario(args);
   }
+  if (args.scenario.empty() && args.coordinate) {
+    return coordinator_scenario(args);  // a coordinator of component executables (robodds coordinate)
+  }
   if (args.scenario.empty()) {
-    throw ConfigError("robodds host: --scenario is required (or --type: one component without a scenario file)");
+    throw ConfigError("robodds host: --scenario is required (or --type: one component without a scenario file; or "
+                      "`robodds coordinate`: a lockstep coordinator of component executables)");
   }
   if (!args.robots.empty() || !args.name.empty() || args.step_s) {
     throw ConfigError("robodds host: --robot, --name and --step describe a component without a scenario (--type); the scenario has its own");
@@ -425,6 +430,9 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
     options.member = args.member;
   }
   check_standby_apart(scenario, options.components);
+  if (!args.members.empty()) {
+    check_members(args.members);  // a duplicate or empty name would be waited for in vain
+  }
   options.run_id = args.run_id;
   options.coordinator = args.coordinate;
   options.members = !args.members.empty()         ? args.members
@@ -469,7 +477,16 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
   // A component executable without a scenario file knows no other producer: the first writer rule.
   const bool assign_producers = args.type.empty();
   const DdsOptions dds = with_identity(resolve_dds(args.dds, "robodds-" + options.member), identity);
-  if (args.type.empty() && digest_check_wanted()) {  // a host of a scenario: the others of its run must have loaded the same
+  if (!args.type.empty() && !args.realtime) {
+    // A component executable waiting for ticks: say which coordinator it waits for, and that it
+    // needs none on the wall clock (it waited --start-timeout, 30 s by default, for the first tick).
+    options.no_tick_advice = "is a lockstep coordinator alive on domain " + std::to_string(dds.domain_id) + " with run id " +
+                             std::to_string(args.run_id) + " and waiting for member '" + options.member +
+                             "' (`robodds coordinate --members " + options.member + ",... --step " +
+                             shortest_text(scenario.step_s) + " --duration S`, or `robodds run`)? To run this component "
+                             "without one, on the wall clock, give --realtime";
+  }
+  if (!args.scenario.empty() && digest_check_wanted()) {  // a host of a scenario: the others of its run must have loaded the same
     check_qos_profiles(dds);  // a missing or bad QoS file is named as such, not as unreadable for its digest
     options.digest = host_digest(scenario, args.params, args.sets, dds);
   }
