@@ -52,8 +52,8 @@ bool LockstepCoordinator::poll() {
   digests_.fail_on_difference(*run_.bus, "coordinator");
   for (std::uint64_t key : ack_input_->instances()) {
     for (const idl::StepDone& ack : ack_input_->take_new(key)) {
-      if (ack.run_id() == options_.run_id) {
-        std::uint64_t& newest = newest_ack_[ack.member().to_string()];
+      if (ack.run_id() == options_.run_id) {  // by instance key: no string per acknowledgement
+        std::uint64_t& newest = newest_ack_[key];
         newest = std::max(newest, ack.header().step() + 1);
       }
       if (ack.run_id() == options_.run_id && ack.failed()) {
@@ -113,7 +113,7 @@ bool LockstepCoordinator::poll() {
 std::string LockstepCoordinator::missing_members(const std::string& first_missing) const {
   std::vector<std::string> missing;  // in the order of options.members
   for (const std::string& member : options_.members) {
-    const auto newest = newest_ack_.find(member);
+    const auto newest = newest_ack_.find(member_key(member));
     if (newest == newest_ack_.end()) {
       missing.push_back("'" + member + "' (nothing received yet)");
     } else if (newest->second <= acked_steps_) {

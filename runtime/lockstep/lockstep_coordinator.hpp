@@ -53,7 +53,7 @@ class LockstepCoordinator {
   std::unique_ptr<Input<idl::StepDone>> ack_input_;
   std::shared_ptr<ReaderHandle> ack_reader_;
 
-  std::map<std::string, std::uint64_t> newest_ack_;  // member -> 1 + the newest step it acknowledged
+  std::map<std::uint64_t, std::uint64_t> newest_ack_;  // member's instance key -> 1 + the newest step it acknowledged
   std::uint64_t acked_steps_ = 0;
   std::uint64_t next_tick_ = 0;  // ticks [0, next_tick_) are sent
   host_detail::Clock::time_point ack_progress_at_;
