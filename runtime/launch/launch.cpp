@@ -471,8 +471,15 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
     for (const std::string& name : options.coordinator ? options.members : options.components) {
       what += (what.empty() ? "" : ", ") + name;
     }
+    // A component executable in lockstep does nothing until a coordinator ticks: say so at once,
+    // not only when the first tick's wait (--start-timeout, 30 s) runs out.
+    const bool awaits_coordinator = !args.type.empty() && !args.realtime && !options.coordinator;
     log::info(options.member, run_name + ": " + (options.coordinator ? "coordinating " : "components ") + what +
-                                  (args.realtime ? " (real time)" : " (lockstep)"));
+                                  (args.realtime             ? " (real time)"
+                                   : awaits_coordinator ? " (lockstep: waiting for the ticks of a coordinator of member '" +
+                                                              options.member + "', e.g. `robodds coordinate --members " +
+                                                              options.member + ",... --duration S`; --realtime needs none)"
+                                                        : " (lockstep)"));
   }
   // A component executable without a scenario file knows no other producer: the first writer rule.
   const bool assign_producers = args.type.empty();

@@ -118,9 +118,17 @@ done
 [[ $n -ge 3 ]] || fail "the reference wrote $n CSVs"
 echo "ok: 4 component executables + robodds coordinate ran plant_smoke's 51 steps, byte-identical to robodds run ($n CSVs, metrics)"
 
-# 3. A lone executable: no coordinator on its domain.
-expect_error 1 "plant: no tick on sim/clock for 1.0 s after start: is a lockstep coordinator alive on domain $D1 with run id 1 and waiting for member 'plant' \(\`robodds coordinate --members plant,\.\.\. --step 0\.01 --duration S\`, or \`robodds run\`\)\? To run this component without one, on the wall clock, give --realtime" \
-  -- "$BIN/robodds-plant" --robot 1 --domain "$D1" --start-timeout 1
+# 3. A lone executable: no coordinator on its domain. It says at once what it waits for, and when
+#    the first tick's wait runs out, which coordinator and that --realtime needs none.
+lone_rc=0
+timeout -k 5 60 "$BIN/robodds-plant" --robot 1 --domain "$D1" --start-timeout 1 >"$WORK/lone.log" 2>&1 || lone_rc=$?
+[[ $lone_rc -eq 1 ]] || fail "a lone plant in lockstep exited $lone_rc: $(cat "$WORK/lone.log")"
+grep -qF "[info] plant: run 1 of 'plant': components plant (lockstep: waiting for the ticks of a coordinator of member 'plant', e.g. \`robodds coordinate --members plant,... --duration S\`; --realtime needs none)" \
+  "$WORK/lone.log" || fail "the lone plant does not say at start what it waits for: $(cat "$WORK/lone.log")"
+grep -qF "error: plant: no tick on sim/clock for 1.0 s after start: is a lockstep coordinator alive on domain $D1 with run id 1 and waiting for member 'plant' (\`robodds coordinate --members plant,... --step 0.01 --duration S\`, or \`robodds run\`)? To run this component without one, on the wall clock, give --realtime" \
+  "$WORK/lone.log" || fail "the lone plant's timeout does not name the coordinator and --realtime: $(cat "$WORK/lone.log")"
+[[ $(grep -c "error:" "$WORK/lone.log") -eq 1 ]] || fail "expected one error line: $(cat "$WORK/lone.log")"
+echo "ok: a lone executable says what it waits for, and at its timeout which coordinator and --realtime"
 
 # 4. Bad input names the option.
 expect_error 2 "--members 'sim,sim': 'sim' is given twice" -- "$ROBODDS" coordinate --members sim,sim --duration 1 --domain "$D1"
