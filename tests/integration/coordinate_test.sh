@@ -8,8 +8,9 @@
 #      evaluator's CSVs and metrics are byte-identical to `robodds run plant_smoke` co-located;
 #   2. a coordinator whose members are not all started names every missing one (and not the one
 #      that came) at --start-timeout, exit 1;
-#   3. a lone executable without a coordinator says, after --start-timeout, which coordinator it
-#      waits for (`robodds coordinate --members ...`) and that --realtime needs none;
+#   3. a lone executable without a coordinator says at start that it waits for one and, after
+#      --start-timeout, which coordinator (`robodds coordinate --members ...`) and that --realtime
+#      needs none;
 #   4. bad --members / --step / --duration: one line each naming the option, exit 2;
 #   5. a member killed during a run is named by the coordinator (its participant's lease), exit 1.
 # Domains DOMAIN (1), DOMAIN+1 (the reference run, then 3), DOMAIN+2 (2, then 5, beside 1).
