@@ -33,6 +33,10 @@ struct HostOptions {
   /// acknowledgements go between its two halves through an in-memory bus of its own, not DDS
   /// (sim/clock and sim/step_done then stay inside the process). Same protocol, same Inputs.
   bool lockstep_in_memory = false;
+  /// Lockstep: what the "no tick on sim/clock" error asks or advises (empty: whether the
+  /// coordinator, robodds run, is alive and on the same domain). Set by the launcher, which
+  /// knows how this host was started (e.g. a component executable without a scenario).
+  std::string no_tick_advice;
   std::function<void()> poll;               // called every loop iteration; may throw (child died)
   std::function<void(std::uint64_t step, std::uint64_t last_step)> progress;
   const std::atomic<bool>* stop = nullptr;  // set by a signal handler

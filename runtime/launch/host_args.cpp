@@ -80,6 +80,12 @@ void add_duration_option(CLI::App* app, std::optional<double>& duration_s, const
       ->check(positive_seconds());
 }
 
+void add_step_option(CLI::App* app, std::optional<double>& step_s, const std::string& help) {
+  app->add_option_function<double>(
+         "--step", [&step_s](const double& seconds) { step_s = seconds; }, help)
+      ->check(positive_seconds());
+}
+
 void add_seed_option(CLI::App* app, std::optional<std::uint64_t>& seed, const std::string& help) {
   app->add_option_function<std::uint64_t>(
          "--seed", [&seed](const std::uint64_t& value) { seed = value; }, help)
@@ -273,10 +279,7 @@ void add_standalone_options(CLI::App* app, HostArgs& args) {
   app->add_option("--name", args.name, "without a scenario: instance name (default: the type); seeds derive from it");
   app->add_option("--robot", args.robots,
                   "without a scenario: a robot the component serves, ID or ID:X,Y,THETA (initial pose, m, m, rad); repeat for several");
-  app->add_option_function<double>(
-         "--step", [&args](const double& seconds) { args.step_s = seconds; },
-         "without a scenario: simulation step (s, default 0.01)")
-      ->check(positive_seconds());
+  add_step_option(app, args.step_s, "without a scenario: simulation step (s, default 0.01)");
 }
 
 }  // namespace

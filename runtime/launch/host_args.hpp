@@ -101,6 +101,8 @@ HostArgOptions add_host_options(CLI::App* app, HostArgs& args);
 void add_component_options(CLI::App* app, HostArgs& args);
 /// --duration: a positive, finite number of seconds (NaN, inf, 0 and negatives are CLI errors).
 void add_duration_option(CLI::App* app, std::optional<double>& duration_s, const std::string& help);
+/// --step: a positive, finite number of seconds (NaN, inf, 0 and negatives are CLI errors).
+void add_step_option(CLI::App* app, std::optional<double>& step_s, const std::string& help);
 /// --seed: a whole number 0..2^64-1 in decimal digits ("-1" and overflow are CLI errors).
 void add_seed_option(CLI::App* app, std::optional<std::uint64_t>& seed, const std::string& help);
 /// --max-missed-steps: real time, the run fails when a host skips more due steps than this

@@ -18,6 +18,7 @@
 #include "common/number_text.hpp"
 #include "runtime/bus/colocated_bus.hpp"
 #include "runtime/launch/added_components.hpp"
+#include "runtime/launch/coordinator_scenario.hpp"
 #include "runtime/dds/security_files.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/launch/failed_summary.hpp"
@@ -399,8 +400,12 @@ Scenario host_scenario(const ComponentRegistry& registry, const HostArgs& args) 
     registry.get(args.type);  // an unknown type names the known ones
     return standalone_scenario(args);
   }
+  if (args.scenario.empty() && args.coordinate) {
+    return coordinator_scenario(args);  // a coordinator of component executables (robodds coordinate)
+  }
   if (args.scenario.empty()) {
-    throw ConfigError("robodds host: --scenario is required (or --type: one component without a scenario file)");
+    throw ConfigError("robodds host: --scenario is required (or --type: one component without a scenario file; or "
+                      "`robodds coordinate`: a lockstep coordinator of component executables)");
   }
   if (!args.robots.empty() || !args.name.empty() || args.step_s) {
     throw ConfigError("robodds host: --robot, --name and --step describe a component without a scenario (--type); the scenario has its own");
@@ -451,6 +456,9 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
     options.member = args.member;
   }
   check_standby_apart(scenario, options.components);
+  if (!args.members.empty()) {
+    check_members(args.members);  // a duplicate or empty name would be waited for in vain
+  }
   options.run_id = args.run_id;
   options.coordinator = args.coordinate;
   options.members = !args.members.empty()         ? args.members
@@ -490,13 +498,29 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
     for (const std::string& name : options.coordinator ? options.members : options.components) {
       what += (what.empty() ? "" : ", ") + name;
     }
+    // A component executable in lockstep does nothing until a coordinator ticks: say so at once,
+    // not only when the first tick's wait (--start-timeout, 30 s) runs out.
+    const bool awaits_coordinator = !args.type.empty() && !args.realtime && !options.coordinator;
     log::info(options.member, run_name + ": " + (options.coordinator ? "coordinating " : "components ") + what +
-                                  (args.realtime ? " (real time)" : " (lockstep)"));
+                                  (args.realtime             ? " (real time)"
+                                   : awaits_coordinator ? " (lockstep: waiting for the ticks of a coordinator of member '" +
+                                                              options.member + "', e.g. `robodds coordinate --members " +
+                                                              options.member + ",... --duration S`; --realtime needs none)"
+                                                        : " (lockstep)"));
   }
   // A component executable without a scenario file knows no other producer: the first writer rule.
   const bool assign_producers = args.type.empty();
   const DdsOptions dds = with_identity(resolve_dds(args.dds, "robodds-" + options.member), identity);
-  if (args.type.empty() && digest_check_wanted()) {  // a host of a scenario: the others of its run must have loaded the same
+  if (!args.type.empty() && !args.realtime) {
+    // A component executable waiting for ticks: say which coordinator it waits for, and that it
+    // needs none on the wall clock (it waited --start-timeout, 30 s by default, for the first tick).
+    options.no_tick_advice = "is a lockstep coordinator alive on domain " + std::to_string(dds.domain_id) + " with run id " +
+                             std::to_string(args.run_id) + " and waiting for member '" + options.member +
+                             "' (`robodds coordinate --members " + options.member + ",... --step " +
+                             shortest_text(scenario.step_s) + " --duration S`, or `robodds run`)? To run this component "
+                             "without one, on the wall clock, give --realtime";
+  }
+  if (!args.scenario.empty() && digest_check_wanted()) {  // a host of a scenario: the others of its run must have loaded the same
     check_qos_profiles(dds);  // a missing or bad QoS file is named as such, not as unreadable for its digest
     options.digest = host_digest(scenario, args.params, args.sets, dds);
   }

@@ -1,7 +1,9 @@
 #include "runtime/lockstep/lockstep_coordinator.hpp"
 
 #include <algorithm>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
@@ -50,6 +52,10 @@ bool LockstepCoordinator::poll() {
   digests_.fail_on_difference(*run_.bus, "coordinator");
   for (std::uint64_t key : ack_input_->instances()) {
     for (const idl::StepDone& ack : ack_input_->take_new(key)) {
+      if (ack.run_id() == options_.run_id) {  // by instance key: no string per acknowledgement
+        std::uint64_t& newest = newest_ack_[key];
+        newest = std::max(newest, ack.header().step() + 1);
+      }
       if (ack.run_id() == options_.run_id && ack.failed()) {
         // A host that stopped because another loaded other files: that difference is the reason
         // (its report can overtake the announcement of the host it names).
@@ -98,10 +104,30 @@ bool LockstepCoordinator::poll() {
     const double limit = acked_steps_ == 0 ? options_.start_timeout_s : options_.tick_timeout_s;
     if (seconds_since(ack_progress_at_) > limit) {
       throw RunError("lockstep: no acknowledgement of step " + std::to_string(acked_steps_) + " within " + fmt_s(limit) +
-                     " s from group " + missing + " on sim/step_done" + dds_report(*run_.bus));
+                     " s from " + missing_members(missing) + " on sim/step_done" + dds_report(*run_.bus));
     }
   }
   return progressed;
+}
+
+std::string LockstepCoordinator::missing_members(const std::string& first_missing) const {
+  std::vector<std::string> missing;  // in the order of options.members
+  for (const std::string& member : options_.members) {
+    const auto newest = newest_ack_.find(member_key(member));
+    if (newest == newest_ack_.end()) {
+      missing.push_back("'" + member + "' (nothing received yet)");
+    } else if (newest->second <= acked_steps_) {
+      missing.push_back("'" + member + "' (newest sample: step " + std::to_string(newest->second - 1) + ")");
+    }
+  }
+  if (missing.size() <= 1) {
+    return "group " + first_missing;  // the input's own words (as before several were named)
+  }
+  std::string text = "groups ";
+  for (std::size_t i = 0; i < missing.size(); ++i) {
+    text += (i == 0 ? "" : ", ") + missing[i];
+  }
+  return text;
 }
 
 void LockstepCoordinator::check_digests_once_discovered() {

@@ -5,7 +5,9 @@
 // poll() in its loop, next to LockstepHost::step().
 
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <string>
 
 #include "robodds/idl/robodds.h"
 #include "runtime/host/digest_check.hpp"
@@ -38,6 +40,11 @@ class LockstepCoordinator {
   /// announcement can come after its first sample, then compares their digests with this
   /// host's (RunConfigError on a difference).
   void check_digests_once_discovered();
+  /// For the acknowledgement timeout: "group 'b' (...)" (`first_missing`, as the input names it),
+  /// or, when several members are missing, "groups 'a' (...), 'c' (...)": every one of them, in
+  /// the order of options.members, so that a coordinator of component executables names each
+  /// member that was not started, not only the first.
+  std::string missing_members(const std::string& first_missing) const;
 
   const RunContext& run_;
   const HostOptions& options_;
@@ -46,6 +53,7 @@ class LockstepCoordinator {
   std::unique_ptr<Input<idl::StepDone>> ack_input_;
   std::shared_ptr<ReaderHandle> ack_reader_;
 
+  std::map<std::uint64_t, std::uint64_t> newest_ack_;  // member's instance key -> 1 + the newest step it acknowledged
   std::uint64_t acked_steps_ = 0;
   std::uint64_t next_tick_ = 0;  // ticks [0, next_tick_) are sent
   host_detail::Clock::time_point ack_progress_at_;

@@ -130,9 +130,12 @@ bool LockstepHost::take_tick() {
   if (tick_queue_.empty()) {
     const double limit = first_tick_ ? options_.start_timeout_s : options_.tick_timeout_s;
     if (seconds_since(waiting_since_) > limit) {
+      const std::string advice = !options_.no_tick_advice.empty()
+                                     ? options_.no_tick_advice
+                                     : std::string("is the coordinator (robodds run) alive and on the same domain?");
       throw RunError(options_.member + ": no tick on sim/clock for " + fmt_s(limit) + " s " +
-                     (first_tick_ ? "after start" : "after step " + std::to_string(tick_step_)) +
-                     ": is the coordinator (robodds run) alive and on the same domain?" + dds_report(*run_.bus));
+                     (first_tick_ ? "after start" : "after step " + std::to_string(tick_step_)) + ": " + advice +
+                     dds_report(*run_.bus));
     }
     return false;
   }

@@ -22,7 +22,8 @@ int component_main(int argc, char** argv, const char* type, void (*register_type
   const std::string program = component_executable_name(component.name);
 
   CLI::App app{program + ": " + component.description + "\n(one component without a scenario file; in lockstep it "
-                   "joins a run whose coordinator waits for its --member, by default its --name)",
+                   "joins a run whose coordinator waits for its --member, by default its --name: `robodds coordinate "
+                   "--members NAME,... --duration S` steps component executables; --realtime needs no coordinator)",
                program};
   HostArgs args;
   args.type = component.name;

@@ -30,6 +30,7 @@ class Command {
 
 std::unique_ptr<Command> add_run_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_host_command(CLI::App& app, const CommandEnv& env);
+std::unique_ptr<Command> add_coordinate_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_topics_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_echo_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_record_command(CLI::App& app, const CommandEnv& env);

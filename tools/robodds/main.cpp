@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   register_builtin_components(registry);
   const CommandEnv env{registry, stop, log_level};
   std::vector<std::unique_ptr<Command>> commands;
-  for (auto add : {add_run_command, add_host_command, add_topics_command, add_echo_command, add_record_command,
+  for (auto add : {add_run_command, add_host_command, add_coordinate_command, add_topics_command, add_echo_command, add_record_command,
                    add_components_command, add_report_command, add_deploy_command, add_sweep_command, add_security_command,
                    add_info_command, add_replay_command, add_bridge_command,
                    add_hz_command, add_bw_command}) {

@@ -127,5 +127,25 @@ TEST_F(CoordinatorFixture, MissingAcknowledgementTimesOutNamingTheGroup) {
   }
 }
 
+// At the start several members may be missing (component executables not started): each is
+// named, in the order of --members, not only the first by key.
+TEST_F(CoordinatorFixture, MissingAcknowledgementsNameEveryMissingGroup) {
+  options.members = {"c", "a", "b"};
+  options.start_timeout_s = 0.05;
+  LockstepCoordinator coordinator(run, options, *run.bus);
+  coordinator.begin(std::chrono::steady_clock::now());
+  coordinator.poll();
+  ack("b", 0);
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  try {
+    coordinator.poll();
+    FAIL() << "expected a RunError";
+  } catch (const RunError& e) {
+    EXPECT_STREQ(e.what(),
+                 "lockstep: no acknowledgement of step 0 within 0.1 s from groups 'c' (nothing received yet), "
+                 "'a' (nothing received yet) on sim/step_done");
+  }
+}
+
 }  // namespace
 }  // namespace robodds

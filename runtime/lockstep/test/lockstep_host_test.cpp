@@ -173,6 +173,23 @@ TEST_F(HostFixture, NoTickTimesOut) {
   }
 }
 
+// The launcher knows how the host was started (a component executable: which coordinator, and
+// that real time needs none) and gives the advice the error ends with.
+TEST_F(HostFixture, NoTickTimeoutEndsWithTheLaunchersAdvice) {
+  add_slot(1);
+  options.start_timeout_s = 0.05;
+  options.no_tick_advice = "is `robodds coordinate --members m` running? Or give --realtime";
+  LockstepHost host(run, options, slots, *run.bus);
+  host.begin(std::chrono::steady_clock::now());
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  try {
+    host.step();
+    FAIL() << "expected a RunError";
+  } catch (const RunError& e) {
+    EXPECT_STREQ(e.what(), "m: no tick on sim/clock for 0.1 s after start: is `robodds coordinate --members m` running? Or give --realtime");
+  }
+}
+
 TEST_F(HostFixture, MissingInputTimesOutNamingComponentStepAndTopic) {
   host_detail::ComponentSlot& slot = add_slot(1);
   slot.context->subscribe<idl::RobotState>("plant/state", Subscription::instances({1}));
