@@ -70,9 +70,6 @@ void ComponentRegistry::add_scenario_check(std::function<void(const Scenario&)> 
 }
 
 void ComponentRegistry::check_scenario(const Scenario& scenario) const {
-  for (const ComponentSpec& component : scenario.components) {
-    type_of(scenario, component);
-  }
   for (const auto& check : scenario_checks_) {
     check(scenario);
   }

@@ -49,8 +49,7 @@ class ComponentRegistry {
   /// facts' keys and values), which the runtime cannot read itself. Each check throws ConfigError
   /// naming the file, the key and the reason.
   void add_scenario_check(std::function<void(const Scenario&)> check);
-  /// Checks every component's type (type_of), then runs every scenario check, in the order they
-  /// were added; before anything starts.
+  /// Runs every scenario check, in the order they were added; before anything starts.
   void check_scenario(const Scenario& scenario) const;
 
  private:

@@ -13,6 +13,7 @@
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <map>
@@ -176,20 +177,36 @@ class FastDdsRawBus : public RawBus {
     started_ = false;
   }
 
-  std::shared_ptr<RawWriter> writer(const std::string& topic, const std::string& type_name, const std::string& profile) override {
+  std::shared_ptr<RawWriter> writer(const std::string& topic, const std::string& type_name, const std::string& profile,
+                                    std::int32_t min_history_depth) override {
     std::lock_guard<std::mutex> lock(mutex_);
-    auto it = writers_.find(topic + "|" + profile);
+    const std::string id = topic + "|" + profile + "|" + std::to_string(min_history_depth);
+    auto it = writers_.find(id);
     if (it != writers_.end()) {
       return it->second;
     }
-    dds::DataWriter* created = publisher_->create_datawriter_with_profile(ensure_topic(topic, type_name), profile);
+    dds::DataWriterQos qos;
+    if (publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+      throw ConfigError("cannot write " + topic + ": no data_writer QoS profile '" + profile + "' in the QoS files");
+    }
+    // Not for transient-local profiles: their history is what a late reader receives (the last
+    // mission of each robot, not the last 256).
+    if (qos.durability().kind == dds::VOLATILE_DURABILITY_QOS && qos.history().kind == dds::KEEP_LAST_HISTORY_QOS &&
+        qos.history().depth < min_history_depth) {
+      qos.history().depth = min_history_depth;
+      qos.resource_limits().max_samples_per_instance = std::max(qos.resource_limits().max_samples_per_instance, min_history_depth);
+      if (qos.resource_limits().max_samples > 0) {  // 0: unlimited
+        qos.resource_limits().max_samples = std::max(qos.resource_limits().max_samples, min_history_depth);
+      }
+    }
+    dds::DataWriter* created = publisher_->create_datawriter(ensure_topic(topic, type_name), qos);
     if (created == nullptr) {
       const std::string reasons = take_dds_errors();
       throw ConfigError("cannot create a writer on " + topic + " with QoS profile '" + profile + "'" +
                         (reasons.empty() ? std::string() : ": Fast DDS: " + reasons));
     }
     auto handle = std::make_shared<FastDdsRawWriter>(created);
-    writers_[topic + "|" + profile] = handle;
+    writers_[id] = handle;
     return handle;
   }
 

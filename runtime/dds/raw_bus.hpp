@@ -59,9 +59,13 @@ class RawBus {
   virtual void start() = 0;
   /// Deletes every reader: no callback runs once it returns.
   virtual void close_readers() = 0;
-  /// A writer of `topic` as `type_name` with QoS profile `profile`; ConfigError if refused.
-  virtual std::shared_ptr<RawWriter> writer(const std::string& topic, const std::string& type_name,
-                                            const std::string& profile) = 0;
+  /// A writer of `topic` as `type_name` with QoS profile `profile`, keeping at least
+  /// `min_history_depth` samples per instance (0: the profile's depth). A replay needs more than a
+  /// command profile's depth 1: under load a sample not yet sent or acknowledged would be replaced
+  /// by the next one of its instance and never reach a recorder. History is the writer's own and
+  /// takes no part in matching. ConfigError if refused.
+  virtual std::shared_ptr<RawWriter> writer(const std::string& topic, const std::string& type_name, const std::string& profile,
+                                            std::int32_t min_history_depth) = 0;
 };
 
 /// One DomainParticipant of its own (options as for make_dds_bus: QoS files, profile, security,

@@ -367,6 +367,9 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
 /// run (InProcessRun::producers): finding them configures every component once.
 static ScenarioProducers check_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode,
                                          bool single_process) {
+  for (const ComponentSpec& component : scenario.components) {
+    registry.type_of(scenario, component);  // FILE: components.NAME.type: unknown ... did you mean
+  }
   registry.check_scenario(scenario);
   check_standby_deployment(scenario, mode, single_process);
   ScenarioProducers producers = scenario_producers(registry, scenario, mode);

@@ -105,7 +105,7 @@ python3 - "$WORK/reference/summary.json" "$WORK/standalone/summary.json" <<'PY' 
 import json, sys
 ref, alone = (json.load(open(path)) for path in sys.argv[1:])
 assert alone["status"] == "completed" and alone["steps"] == 51, alone
-for key in ("run", "hosts", "inputs", "scenario"):  # deployment figures; the scenario's name (the evaluator's type alone)
+for key in ("run", "hosts", "inputs", "scenario", "description"):  # deployment figures; the scenario's name and description (the evaluator's type alone)
     ref.pop(key, None)
     alone.pop(key, None)
 if ref != alone:

@@ -49,8 +49,15 @@ for robot in 1 2 3; do
   rate="$(last_rate "$WORK/hz_cmd.out" "robot_id=$robot")"
   within "${rate:-0}" 45 55 || fail "hz --per-key plant/cmd robot_id=$robot: expected ~50 Hz, got '$rate': $(cat "$WORK/hz_cmd.out")"
 done
-grep -qE "^	min: 0\.0(09|10|11)s max: 0\.0[0-9][0-9]s std dev: [0-9.]+s window: 100$" "$WORK/hz_state.out" ||
-  fail "hz --per-key: no full window of ~10 ms periods: $(cat "$WORK/hz_state.out")"
+# The shortest period is ~10 ms only when publisher and hz run above the machine's other work
+# (SCHED_FIFO); without the privilege two samples may arrive back to back: a full window is enough.
+if [[ -n "$(rt_priority_flag)" ]]; then
+  grep -qE "^	min: 0\.0(09|10|11)s max: 0\.0[0-9][0-9]s std dev: [0-9.]+s window: 100$" "$WORK/hz_state.out" ||
+    fail "hz --per-key: no full window of ~10 ms periods: $(cat "$WORK/hz_state.out")"
+else
+  grep -qE "^	min: [0-9.]+s max: [0-9.]+s std dev: [0-9.]+s window: 100$" "$WORK/hz_state.out" ||
+    fail "hz --per-key: no full window: $(cat "$WORK/hz_state.out")"
+fi
 echo "ok: hz $(last_rate "$WORK/hz_all.out") Hz in all, per robot $(last_rate "$WORK/hz_state.out" robot_id=1) (state) and $(last_rate "$WORK/hz_cmd.out" robot_id=1) (cmd) ($(since))"
 grep -qxF "	Message size mean: 76 B min: 76 B max: 76 B" "$WORK/bw.out" || fail "bw: RobotState is 76 bytes on the wire: $(cat "$WORK/bw.out")"
 bw="$(grep -E "^[0-9.]+ KB/s from 300 messages$" "$WORK/bw.out" | tail -n 1 | cut -d' ' -f1)"

@@ -108,12 +108,15 @@ std::string log_level_from_environment() {
 const std::atomic<bool>& install_stop_handlers() {
   struct sigaction action {};
   action.sa_handler = on_signal;
+  // SA_RESTART: a run that goes on after the first signal (a graceful real-time stop) must not
+  // see a system call of another thread fail with EINTR (e.g. a write to a full pipe).
+  action.sa_flags = SA_RESTART;
   sigemptyset(&action.sa_mask);
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
   struct sigaction step_action {};
   step_action.sa_sigaction = on_stop_at_step;
-  step_action.sa_flags = SA_SIGINFO;
+  step_action.sa_flags = SA_SIGINFO | SA_RESTART;
   sigemptyset(&step_action.sa_mask);
   sigaction(SIGUSR1, &step_action, nullptr);
   // A host of a real-time run across processes starts with SIGUSR1 blocked (ProcessGroup::spawn),

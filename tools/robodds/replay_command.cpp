@@ -37,6 +37,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+/// Samples per instance each replay writer keeps until its readers acknowledge them: a topic's
+/// own depth (1 for commands: the latest one matters) would let a replay drop a recorded message
+/// whenever the next one of its robot comes before a loaded reader acknowledged it.
+constexpr std::int32_t kReplayHistoryDepth = 256;
+
 /// "a, b, c" of a set's names.
 std::string joined(const std::set<std::string>& names) {
   std::string out;
@@ -109,7 +114,8 @@ class ReplayCommand : public Command {
     auto bus = make_raw_bus(dds);
     std::set<std::string> names;
     for (auto& [id, c] : channels) {
-      c.writer = bus->writer(c.topic->name, c.topic->type_name, qos_profile_for(*c.topic, TimeMode::kRealtime, false));
+      c.writer = bus->writer(c.topic->name, c.topic->type_name, qos_profile_for(*c.topic, TimeMode::kRealtime, false),
+                             kReplayHistoryDepth);
       names.insert(c.topic->name);
     }
     std::printf("robodds replay: %s: %zu messages on %zu topics (%s)%s\n", path_.c_str(), messages.size(), channels.size(),

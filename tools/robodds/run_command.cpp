@@ -50,7 +50,8 @@ class RunProgress {
     }
   }
 
-  /// Ends a live line the run left unfinished (it failed), so the report starts on a line of its own.
+  /// Ends a live line the run left unfinished (it failed, was stopped, or ended between two lines),
+  /// so the report starts on a line of its own.
   void close() const {
     if (*open_line_) {
       std::fputs("\n", stderr);
@@ -195,7 +196,14 @@ class RunCommand : public Command {
       report(scenario, launch.out_dir, std::nullopt, progress.elapsed_s(), warnings_before, false);
       throw;
     }
+    progress.close();  // a real-time run may end (or be stopped) between two progress lines
     const bool plots = !no_plots_ && plot(launch.out_dir);
+    // A signal while drawing (python3 got it too): the run is complete, the plots are not; end
+    // as a signal ends any command. Real time: the first signal was the graceful stop itself.
+    if (realtime_ ? stop.second_signal.load() : env_.stop.load()) {
+      throw RunError("stopped by a signal while drawing the plots; the run's CSVs and summary.json are complete (`robodds report " +
+                     launch.out_dir + "` draws them)");
+    }
     report(scenario, launch.out_dir, stats, stats.wall_s, warnings_before, plots);
     return 0;
   }

@@ -123,7 +123,7 @@ class SweepCommand : public Command {
 
   int run() override {
     if (!resume_dir_.empty()) {
-      if (!out_dir_.empty() && std::filesystem::path(out_dir_).lexically_normal() != std::filesystem::path(resume_dir_).lexically_normal()) {
+      if (!out_dir_.empty() && std::filesystem::weakly_canonical(out_dir_) != std::filesystem::weakly_canonical(resume_dir_)) {
         throw ConfigError("robodds sweep: --resume " + resume_dir_ + " and --out " + out_dir_ + " name different folders (--resume alone is enough)");
       }
       out_dir_ = resume_dir_;
@@ -201,7 +201,7 @@ class SweepCommand : public Command {
     }
     SweepSpec spec;
     spec.scenario_file = "scenario.yaml";
-    spec.source = std::filesystem::absolute(scenario_file_).string();
+    spec.source = std::filesystem::weakly_canonical(scenario_file_).string();  // ./x.yaml and x.yaml: one file for --resume
     spec.seeds = seeds_;
     spec.grid = grid_;
     if (duration_s_) {
@@ -381,6 +381,9 @@ class SweepCommand : public Command {
       std::size_t finished = 0;
       for (const RunOutcome& o : outcomes) {
         finished += o.not_run ? 0 : 1;
+      }
+      if (finished == outcomes.size()) {
+        return code;  // the signal came after the last run: nothing to resume
       }
       throw RunError("sweep interrupted by a signal after " + std::to_string(finished) + " of " + std::to_string(outcomes.size()) +
                      " runs (the tables cover those); run the rest with the same command and --resume " + out_dir_);

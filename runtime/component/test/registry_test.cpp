@@ -39,7 +39,7 @@ TEST(ComponentRegistry, AScenarioComponentOfUnknownTypeNamesTheFileTheComponentA
   scenario.file = "mission.yaml";
   scenario.components.push_back({"estimator", "pf_estimatr", {}, {}, ""});
   try {
-    registry.check_scenario(scenario);
+    registry.type_of(scenario, scenario.components.front());
     FAIL() << "expected a ConfigError";
   } catch (const ConfigError& e) {
     EXPECT_STREQ(e.what(),

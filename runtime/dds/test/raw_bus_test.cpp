@@ -180,19 +180,23 @@ TEST(RawBus, RawWritesReachTypedAndKeyFilteredReadersAsTheirSamplesWithTheirInst
     changed.notify_all();
   }, nullptr, KeyFilter{[robot2_key](std::uint64_t key) { return key == robot2_key; }, nullptr});
 
-  // Written before any reader exists: a late reader gets the writer's history, one sample per
-  // instance (KEEP_LAST 1): five only if the raw writer's instances are the robots.
+  // Written twice per robot before any reader exists: a late reader gets the writer's history,
+  // one sample per instance (KEEP_LAST 1): five only if the raw writer's instances are the robots,
+  // and only if a replay's deeper history (256) leaves a transient-local profile's depth alone.
   auto raw = make_raw_bus(options_named("raw_writer"));
-  auto writer = raw->writer("test/raw_writer", type, "mission");
-  for (std::uint32_t robot = 1; robot <= 5; ++robot) {
-    idl::WaypointMission mission;
-    mission.robot_id(robot);
-    const std::vector<std::uint8_t> bytes = serialized(mission);
-    ASSERT_TRUE(writer->write(bytes.data(), bytes.size()));
+  auto writer = raw->writer("test/raw_writer", type, "mission", 256);
+  for (int round = 0; round < 2; ++round) {
+    for (std::uint32_t robot = 1; robot <= 5; ++robot) {
+      idl::WaypointMission mission;
+      mission.robot_id(robot);
+      const std::vector<std::uint8_t> bytes = serialized(mission);
+      ASSERT_TRUE(writer->write(bytes.data(), bytes.size()));
+    }
   }
   typed->start();
   std::unique_lock<std::mutex> lock(mutex);
   changed.wait_for(lock, std::chrono::seconds(10), [&] { return all.size() >= 5 && !filtered.empty(); });
+  changed.wait_for(lock, std::chrono::milliseconds(500), [&] { return all.size() > 5; });  // any sixth would come now
   lock.unlock();
   typed->close_readers();
   EXPECT_EQ(std::multiset<std::uint32_t>(all.begin(), all.end()), (std::multiset<std::uint32_t>{1, 2, 3, 4, 5}));
@@ -220,7 +224,7 @@ TEST(RawBus, WatchWritersSeesAWriterComeAndGo) {
   DdsOptions writer_options = options_named("raw_watched");
   writer_options.domain_id = 174;
   auto writer_bus = make_raw_bus(writer_options);
-  auto writer = writer_bus->writer("test/raw_watch", type, "state");
+  auto writer = writer_bus->writer("test/raw_watch", type, "state", 0);
   std::unique_lock<std::mutex> lock(mutex);
   ASSERT_TRUE(changed.wait_for(lock, std::chrono::seconds(10), [&] { return !counts.empty(); })) << "no match";
   EXPECT_EQ(counts.back(), 1);
