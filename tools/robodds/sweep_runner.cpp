@@ -146,6 +146,7 @@ std::vector<RunOutcome> run_all(const std::vector<PlannedRun>& runs, const Runne
   std::vector<std::optional<RunOutcome>> outcomes(runs.size());
   std::vector<Slot> slots(std::max<std::size_t>(options.jobs, 1));
   const Clock::time_point start = Clock::now();
+  Clock::time_point last_progress = start;
   Progress p;
   p.total = runs.size();
   std::size_t next = 0;
@@ -199,10 +200,15 @@ std::vector<RunOutcome> run_all(const std::vector<PlannedRun>& runs, const Runne
         slot.started = Clock::now();
       }
     }
-    if (changed) {
-      p.elapsed_s = seconds_between(start, Clock::now());
+    // At every finished run, and once a second between them: runs longer than the progress
+    // period still show a sign of life (the caller paces the lines).
+    const Clock::time_point now = Clock::now();
+    if (changed || now - last_progress >= std::chrono::seconds(1)) {
+      last_progress = now;
+      p.elapsed_s = seconds_between(start, now);
       progress(p);
-    } else {
+    }
+    if (!changed) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
   }

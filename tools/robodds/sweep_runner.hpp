@@ -45,7 +45,7 @@ RunOutcome collect_outcome(const PlannedRun& run, int exit_code, double wall_s, 
 RunOutcome recorded_outcome(const PlannedRun& run, const std::string& dir);
 
 /// Runs every run of `runs` (a failed run is recorded and the sweep goes on) and returns their
-/// outcomes in the order of `runs`. `progress` is called after each run. Interrupted
+/// outcomes in the order of `runs`. `progress` is called after each run and once a second between runs. Interrupted
 /// (options.stop): the running runs are terminated and their folders removed; they and the runs
 /// not started come back not_run (the caller writes the tables of what finished).
 std::vector<RunOutcome> run_all(const std::vector<PlannedRun>& runs, const RunnerOptions& options,
