@@ -35,7 +35,13 @@ cleanup() {
   for pid in "${cleanup_pids[@]:-}"; do
     [[ -n "$pid" ]] && kill "$pid" 2>/dev/null || true
   done
-  rm -rf "$WORK"
+  # A start_host wrapper writes NAME.exit when its process ends, which may be while rm runs
+  # ("Directory not empty" would fail a test that passed): try again while they finish.
+  for _ in 1 2 3 4 5 6 7 8 9 10; do
+    rm -rf "$WORK" 2>/dev/null && break
+    sleep 0.2
+  done
+  [[ ! -e $WORK ]] || echo "warning: $WORK could not be removed" >&2
   # A process killed by a test (dead peers, signals) leaves its Fast DDS shared-memory segment
   # (~1 MiB with its ports, deploy/qos/robodds_qos.xml) in /dev/shm; this removes those whose
   # owner is gone (segments in use by another test's processes are kept).
