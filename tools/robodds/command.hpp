@@ -28,6 +28,13 @@ class Command {
   virtual int run() = 0;
 };
 
+/// "on DDS domain D (`robodds topics --domain D` lists the topics seen there)": how every
+/// "nothing seen" line of the topic tools (echo, hz, bw, info, record) ends.
+inline std::string on_domain_text(int domain) {
+  const std::string d = std::to_string(domain);
+  return "on DDS domain " + d + " (`robodds topics --domain " + d + "` lists the topics seen there)";
+}
+
 std::unique_ptr<Command> add_run_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_host_command(CLI::App& app, const CommandEnv& env);
 std::unique_ptr<Command> add_coordinate_command(CLI::App& app, const CommandEnv& env);

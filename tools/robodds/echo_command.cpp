@@ -135,9 +135,7 @@ class EchoCommand : public Command {
     }
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%g", timeout_s_);
-    const std::string domain_text = std::to_string(domain);
-    return "no sample" + which + " on " + topic_ + " within " + seconds + " s on DDS domain " + domain_text +
-           " (`robodds topics --domain " + domain_text + "` lists the topics seen there)";
+    return "no sample" + which + " on " + topic_ + " within " + seconds + " s " + on_domain_text(domain);
   }
 
   const CommandEnv& env_;

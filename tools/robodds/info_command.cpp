@@ -54,9 +54,8 @@ class InfoCommand : public Command {
     }
     std::fputs(topic_info_text(seen).c_str(), stdout);
     if (seen.endpoints.empty()) {
-      const std::string d = std::to_string(dds.domain_id);
-      std::fprintf(stderr, "robodds info: no writer or reader of %s seen within %g s on DDS domain %s (`robodds topics --domain %s` lists the topics seen there)\n",
-                   info.name.c_str(), seconds_, d.c_str(), d.c_str());
+      std::fprintf(stderr, "robodds info: no writer or reader of %s seen within %g s %s\n", info.name.c_str(), seconds_,
+                   on_domain_text(dds.domain_id).c_str());
     }
     return 0;
   }

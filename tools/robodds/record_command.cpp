@@ -278,8 +278,7 @@ class RecordCommand : public Command {
                 queue.dropped() > 0 ? (", " + std::to_string(queue.dropped()) + " samples dropped (the writer fell behind)").c_str()
                                     : "");
     if (parts.messages() == 0) {
-      std::printf("robodds record: no sample of these topics on DDS domain %d (`robodds topics --domain %d` lists the topics seen there)\n",
-                  dds.domain_id, dds.domain_id);
+      std::printf("robodds record: no sample of these topics %s\n", on_domain_text(dds.domain_id).c_str());
     }
     return 0;
   }

@@ -8,6 +8,7 @@
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/bus/sample_codec.hpp"
+#include "tools/robodds/command.hpp"
 #include "tools/robodds/topic_report.hpp"
 
 namespace robodds {
@@ -113,9 +114,7 @@ int watch_and_report(const TopicInfo& topic, const DdsOptions& dds, const TopicR
 std::string nothing_seen_text(const std::string& topic, double seconds, int domain) {
   char s[32];
   std::snprintf(s, sizeof s, "%g", seconds);
-  const std::string d = std::to_string(domain);
-  return "no sample on " + topic + " within " + s + " s on DDS domain " + d + " (`robodds topics --domain " + d +
-         "` lists the topics seen there)";
+  return "no sample on " + topic + " within " + s + " s " + on_domain_text(domain);
 }
 
 }  // namespace robodds
