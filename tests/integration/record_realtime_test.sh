@@ -97,38 +97,15 @@ for r in rows:
         assert float(r[field]) == float(v[field]), f"plant/state {field}: CSV {r[field]}, file {v[field]}"
     assert int(r["header.stamp_ns"]) == int(v["header"]["stamp_ns"])
 print(f"ok: plant/state: all {len(rows)} CSV rows in the file with equal values (official decoder)")
-# --foxglove-scene: foxglove/robot_poses holds every robot's newest pose (robot id order) as a
-# foxglove.PosesInFrame, at most once per 50 ms of the stamps; each pose is a plant/state row of
-# its robot stamped no later than the message (x, y and the heading as a rotation about z).
-import math
-scene = [m for m in messages if m["topic"] == "foxglove/robot_poses"]
-assert len(scene) >= 20, f"{len(scene)} foxglove/robot_poses messages for a 5 s run"
-rows_by_robot = {}
-for r in rows:
-    rows_by_robot.setdefault(int(r["robot_id"]), []).append(r)
-robots = sorted(rows_by_robot)
-previous = None
-for m in scene:
-    t = int(m["publish_time"])
-    assert previous is None or t - previous >= 50_000_000, f"scene messages {t - previous} ns apart (< 50 ms)"
-    previous = t
-    v = m["value"]
-    assert v["frame_id"] == "world" and v["timestamp"]["sec"] * 10**9 + v["timestamp"]["nsec"] == t, f"scene header {v}"
-    assert 1 <= len(v["poses"]) <= len(robots), f"{len(v['poses'])} poses, {len(robots)} robots"
-    for k, pose in enumerate(v["poses"]):
-        match = [r for r in rows_by_robot[robots[k]] if int(r["header.stamp_ns"]) <= t
-                 and float(r["x"]) == pose["position"]["x"] and float(r["y"]) == pose["position"]["y"]]
-        assert match, f"scene pose {k} at {t}: no plant/state row of robot {robots[k]} with x, y = {pose['position']}"
-        theta = float(match[-1]["theta"])
-        q = pose["orientation"]
-        assert abs(q["z"] - math.sin(theta / 2)) < 1e-12 and abs(q["w"] - math.cos(theta / 2)) < 1e-12, f"scene heading {q}, theta {theta}"
-print(f"ok: foxglove/robot_poses: {len(scene)} PosesInFrame messages, each pose a plant/state row of its robot")
 # log_time is the reception time: after the source time (publish_time), within a second of it.
 for m in messages:
     lag = int(m["log_time"]) - int(m["publish_time"])
     assert 0 <= lag < 1_000_000_000, f"{m['topic']}: log_time - publish_time = {lag} ns"
 print("ok: log_time (reception) after publish_time (source timestamp) for all", len(messages), "messages")
 PY
+# --foxglove-scene: every robot's newest pose at most once per 50 ms of the stamps, each a plant/state row.
+python3 "$SRC/tests/integration/scene_matches_states.py" "$WORK/a.jsonl" "$WORK/out/plant_state.csv" ||
+  fail "A's foxglove/robot_poses do not hold plant/state's poses"
 
 rc=0
 info_b="$("$ROBODDS" info "$WORK/b.mcap" 2>&1)" || rc=$?

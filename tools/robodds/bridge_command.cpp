@@ -25,7 +25,7 @@
 #include "runtime/topics/topic_catalog.hpp"
 #include "tools/bridge/bridge_hub.hpp"
 #include "tools/bridge/ws_server.hpp"
-#include "tools/foxglove/robot_poses.hpp"
+#include "system/foxglove/robot_poses.hpp"
 #include "tools/robodds/catalog_topics.hpp"
 #include "tools/robodds/command.hpp"
 #include "tools/robodds/scene_source.hpp"

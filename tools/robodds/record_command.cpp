@@ -9,7 +9,7 @@
 //
 // --foxglove-scene adds one derived channel, foxglove/robot_poses (foxglove.PosesInFrame, JSON):
 // every robot's newest pose from plant/state, at most once per kScenePeriodNs of the samples' own
-// stamps, written by the same thread (tools/foxglove/robot_poses.hpp, shared with the bridge).
+// stamps, written by the same thread (system/foxglove/robot_poses.hpp, shared with the bridge and the run's recorder).
 #include <chrono>
 #include <cstdio>
 #include <deque>
@@ -27,7 +27,7 @@
 #include "runtime/mcap/mcap_writer.hpp"
 #include "runtime/mcap/topic_channels.hpp"
 #include "runtime/topics/topic_catalog.hpp"
-#include "tools/foxglove/robot_poses.hpp"
+#include "system/foxglove/robot_poses.hpp"
 #include "tools/robodds/catalog_topics.hpp"
 #include "tools/robodds/command.hpp"
 #include "tools/robodds/scene_source.hpp"
@@ -159,8 +159,7 @@ class McapParts {
     }
     scene_channel_ = Channel{};
     if (scene_) {
-      const std::uint16_t schema = writer_->add_schema(foxglove::kPosesInFrameSchemaName, "jsonschema", foxglove::poses_in_frame_json_schema());
-      scene_channel_.id = writer_->add_channel(schema, foxglove::kRobotPosesTopic, "json");
+      scene_channel_.id = foxglove::add_robot_poses_channel(*writer_);
     }
   }
 
@@ -232,7 +231,7 @@ class RecordCommand : public Command {
         return;
       }
       const auto stamp = static_cast<std::int64_t>(p.publish_time_ns);
-      if (poses.due(stamp, kScenePeriodNs)) {
+      if (poses.due(stamp, foxglove::kScenePeriodNs)) {
         parts.write_scene(p.log_time_ns, p.publish_time_ns, poses.json(stamp));
       }
     };
@@ -291,7 +290,6 @@ class RecordCommand : public Command {
     return catalog_topics(topics_, "");
   }
 
-  static constexpr std::int64_t kScenePeriodNs = 50'000'000;   // 20 Hz: enough for a 3D view
   const CommandEnv& env_;
   CLI::App* cmd_ = nullptr;
   std::vector<std::string> topics_;

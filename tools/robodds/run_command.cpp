@@ -139,6 +139,9 @@ class RunCommand : public Command {
     cmd_->add_option("--record-compression", record_compression_, "with --record: chunk compression zstd, lz4 or none");
     cmd_->add_option("--record-topics", record_topics_, "with --record: only these topics (comma separated; default all published)")
         ->delimiter(',');
+    cmd_->add_flag("--record-foxglove-scene", record_foxglove_scene_,
+                   "with --record: also write foxglove/robot_poses, every robot's pose from plant/state as a "
+                   "foxglove.PosesInFrame (JSON) at most every 50 ms of the samples' stamps, drawn by Foxglove's 3D panel");
   }
 
   bool parsed() const override { return cmd_->parsed(); }
@@ -286,8 +289,8 @@ class RunCommand : public Command {
   /// every child host applies too); nothing otherwise.
   std::vector<std::string> record_components(const Scenario& scenario) {
     if (record_.empty()) {
-      if (!record_topics_.empty() || record_compression_ != "zstd") {
-        throw ConfigError("--record-topics and --record-compression go with --record FILE.mcap");
+      if (!record_topics_.empty() || record_compression_ != "zstd" || record_foxglove_scene_) {
+        throw ConfigError("--record-topics, --record-compression and --record-foxglove-scene go with --record FILE.mcap");
       }
       return {};
     }
@@ -301,6 +304,9 @@ class RunCommand : public Command {
         list += (list.empty() ? "" : ", ") + topic;
       }
       sets_.push_back(recorder + ".topics=[" + list + "]");
+    }
+    if (record_foxglove_scene_) {
+      sets_.push_back(recorder + ".foxglove_scene=true");
     }
     return {added_component_spec(recording_group(scenario), recorder, kRecorderName)};
   }
@@ -323,6 +329,7 @@ class RunCommand : public Command {
   std::string record_;
   std::string record_compression_ = "zstd";
   std::vector<std::string> record_topics_;
+  bool record_foxglove_scene_ = false;
   DdsArgs dds_;
   LockstepArgs lockstep_;
 };

@@ -7,11 +7,11 @@
 #include <vector>
 
 #include "runtime/topics/topic_catalog.hpp"
-#include "tools/foxglove/robot_poses.hpp"
+#include "system/foxglove/robot_poses.hpp"
 
 namespace robodds {
 
-inline constexpr const char* kSceneSource = "plant/state";
+using foxglove::kSceneSource;
 
 /// The index of kSceneSource in `topics`; ConfigError when it is not there ("add it to `where`").
 std::size_t require_scene_source(const std::vector<const TopicInfo*>& topics, const std::string& where);

@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "robodds/idl/robodds.h"
@@ -26,15 +27,26 @@
 #include "runtime/mcap/mcap_writer.hpp"
 #include "runtime/mcap/topic_channels.hpp"
 #include "sim/run_recorder/node/run_recorder_params.hpp"
+#include "system/foxglove/robot_poses.hpp"
 
 namespace robodds::run_recorder {
 namespace {
+
+/// foxglove_scene (`--record-foxglove-scene`): the derived foxglove/robot_poses channel, written by
+/// the writer thread after the plant/state batches in the file's order (so the step path pays
+/// nothing and a lockstep run gives the same messages however it is deployed).
+struct Scene {
+  foxglove::RobotPoses poses;
+  std::uint16_t channel = 0;
+  std::uint32_t sequence = 0;
+};
 
 /// Where the samples of a step are written: the file and how log times are made.
 struct Sink {
   mcap::Writer* writer = nullptr;
   TimeMode mode = TimeMode::kLockstep;
   double step_s = 0.0;
+  Scene* scene = nullptr;  // null: no scene channel (the writer thread's)
 };
 
 /// The samples one topic gave at one step, written later by the writer thread.
@@ -49,31 +61,66 @@ class Batch {
 template <class Msg>
 class TypedBatch : public Batch {
  public:
+  /// `scene_source`: the batch is of foxglove::kSceneSource, from which the scene is drawn.
   TypedBatch(const SampleSerializer* serializer, std::uint16_t channel, std::uint32_t* sequence, std::int64_t taken_ns,
-             std::vector<Msg> samples)
-      : serializer_(serializer), channel_(channel), sequence_(sequence), taken_ns_(taken_ns), samples_(std::move(samples)) {}
+             std::vector<Msg> samples, bool scene_source)
+      : serializer_(serializer),
+        channel_(channel),
+        sequence_(sequence),
+        taken_ns_(taken_ns),
+        samples_(std::move(samples)),
+        scene_source_(scene_source) {}
 
   void write(const Sink& sink, std::vector<std::uint8_t>& bytes) override {
     for (const Msg& sample : samples_) {
       serializer_->serialize(&sample, bytes);
-      // Lockstep: the sim time of the sample's step (ns), as its stamp: the same in every
-      // deployment. Real time: when the recorder took it (at most one of its steps after arrival).
-      const std::int64_t log_ns =
-          sink.mode == TimeMode::kRealtime
-              ? taken_ns_
-              : static_cast<std::int64_t>(std::llround(static_cast<double>(sample.header().step()) * sink.step_s * 1e9));
-      sink.writer->write(channel_, ++*sequence_, static_cast<std::uint64_t>(log_ns),
+      sink.writer->write(channel_, ++*sequence_, static_cast<std::uint64_t>(log_time_ns(sink, sample)),
                          static_cast<std::uint64_t>(sample.header().stamp_ns()), bytes.data(), bytes.size());
+    }
+    if constexpr (std::is_same_v<Msg, idl::RobotState>) {
+      if (scene_source_ && sink.scene != nullptr) {
+        write_scene(sink, *sink.scene);
+      }
     }
   }
   std::size_t size() const override { return samples_.size(); }
 
  private:
+  /// Lockstep: the sim time of the sample's step (ns), as its stamp: the same in every deployment.
+  /// Real time: when the recorder took it (at most one of its steps after arrival).
+  std::int64_t log_time_ns(const Sink& sink, const Msg& sample) const {
+    return sink.mode == TimeMode::kRealtime
+               ? taken_ns_
+               : static_cast<std::int64_t>(std::llround(static_cast<double>(sample.header().step()) * sink.step_s * 1e9));
+  }
+
+  /// After this batch's states (one step's, every robot's in lockstep): the robots' newest poses,
+  /// stamped and timed as the batch's newest sample (the first in file order among equals), when
+  /// that stamp is the first or at least foxglove::kScenePeriodNs after the last scene's (as
+  /// `robodds record --foxglove-scene`): every pose is then no newer than its message.
+  void write_scene(const Sink& sink, Scene& scene) const {
+    const Msg* newest = nullptr;
+    for (const Msg& sample : samples_) {
+      scene.poses.update(sample.robot_id(), sample.x(), sample.y(), sample.theta());
+      if (newest == nullptr || sample.header().stamp_ns() > newest->header().stamp_ns()) {
+        newest = &sample;
+      }
+    }
+    const std::int64_t stamp = newest->header().stamp_ns();
+    if (!scene.poses.due(stamp, foxglove::kScenePeriodNs)) {
+      return;
+    }
+    const std::string json = scene.poses.json(stamp);
+    sink.writer->write(scene.channel, ++scene.sequence, static_cast<std::uint64_t>(log_time_ns(sink, *newest)),
+                       static_cast<std::uint64_t>(stamp), reinterpret_cast<const std::uint8_t*>(json.data()), json.size());
+  }
+
   const SampleSerializer* serializer_;  // the topic's, used by the writer thread only
   std::uint16_t channel_;
   std::uint32_t* sequence_;  // the topic's, touched by the writer thread only
   std::int64_t taken_ns_;
   std::vector<Msg> samples_;
+  bool scene_source_;
 };
 
 /// Serializing, framing and compressing take about four times what taking the samples does
@@ -187,8 +234,12 @@ template <class Msg>
 class TopicStream : public TopicStreamBase {
  public:
   TopicStream(Input<Msg>* input, std::unique_ptr<SampleSerializer> serializer, std::vector<std::uint64_t> keys,
-              bool by_robot)
-      : input_(input), serializer_(std::move(serializer)), keys_(std::move(keys)), by_robot_(by_robot) {}
+              bool by_robot, bool scene_source)
+      : input_(input),
+        serializer_(std::move(serializer)),
+        keys_(std::move(keys)),
+        by_robot_(by_robot),
+        scene_source_(scene_source) {}
 
   std::unique_ptr<Batch> collect(std::uint16_t channel, std::int64_t taken_ns) override {
     std::vector<Msg> samples;
@@ -203,7 +254,8 @@ class TopicStream : public TopicStreamBase {
     }
     last_size_ = samples.size();
     messages_ += samples.size();
-    return std::make_unique<TypedBatch<Msg>>(serializer_.get(), channel, &sequence_, taken_ns, std::move(samples));
+    return std::make_unique<TypedBatch<Msg>>(serializer_.get(), channel, &sequence_, taken_ns, std::move(samples),
+                                             scene_source_);
   }
   std::uint64_t messages() const override { return messages_; }
 
@@ -212,6 +264,7 @@ class TopicStream : public TopicStreamBase {
   std::unique_ptr<SampleSerializer> serializer_;
   std::vector<std::uint64_t> keys_;
   bool by_robot_;
+  bool scene_source_;
   std::uint64_t messages_ = 0;
   std::size_t last_size_ = 0;   // samples of the last non-empty step
   std::uint32_t sequence_ = 0;  // the channel's, written by the writer thread
@@ -276,6 +329,11 @@ class RunRecorderNode : public Component {
       }
       names.insert(name);
     }
+    scene_ = params.foxglove_scene;
+    if (scene_ && names.count(foxglove::kSceneSource) == 0) {
+      ctx.params().fail(std::string("foxglove_scene (robodds run --record-foxglove-scene) draws the robots from ") + foxglove::kSceneSource +
+                        (every ? ": no component of the scenario publishes it" : ": add it to --record-topics"));
+    }
     // Installed where DDS was set up; a ConfigError here, before the run, if not.
     const SampleCodec& codec = sample_codec();
     // std::set: topics in name order, the order of their channels and of each step's samples.
@@ -305,7 +363,7 @@ class RunRecorderNode : public Component {
             gate == Gate::kRobotStreams ? Subscription::robot_streams(keys) : Subscription::instances(keys);
         Input<Msg>* input = &ctx.subscribe<Msg>(name, subscription);
         streams_.push_back(std::make_unique<TopicStream<Msg>>(input, codec.serializer(topic.type_name), keys,
-                                                             gate == Gate::kRobotStreams));
+                                                             gate == Gate::kRobotStreams, scene_ && name == foxglove::kSceneSource));
       });
       topics_.push_back(&topic);
     }
@@ -361,7 +419,13 @@ class RunRecorderNode : public Component {
     }
     writer_ = std::make_unique<mcap::Writer>(file_, options_);
     channels_ = mcap::add_topic_channels(*writer_, topics_);
-    writer_thread_ = std::make_unique<WriterThread>(Sink{writer_.get(), mode_, step_s_});
+    Scene* scene = nullptr;
+    if (scene_) {  // after the topics' schemas and channels: their ids stay those of a file without it
+      scene_state_ = std::make_unique<Scene>();
+      scene_state_->channel = foxglove::add_robot_poses_channel(*writer_);
+      scene = scene_state_.get();
+    }
+    writer_thread_ = std::make_unique<WriterThread>(Sink{writer_.get(), mode_, step_s_, scene});
   }
 
   void close() {
@@ -383,6 +447,7 @@ class RunRecorderNode : public Component {
     log::info(name_, std::to_string(topics_.size()) + " topics, " + std::to_string(messages) + " messages, " +
                          std::to_string(writer_->file_bytes()) + " bytes -> " + file_);
     writer_.reset();
+    scene_state_.reset();
     streams_.clear();
     if (!failure.empty()) {
       throw RunError(failure);
@@ -391,6 +456,7 @@ class RunRecorderNode : public Component {
 
   mcap::WriterOptions options_;
   std::string file_;
+  bool scene_ = false;  // foxglove_scene
   std::string name_;
   TimeMode mode_ = TimeMode::kLockstep;
   double step_s_ = 0.0;
@@ -398,7 +464,8 @@ class RunRecorderNode : public Component {
   std::vector<std::unique_ptr<TopicStreamBase>> streams_;  // parallel to topics_
   std::vector<std::uint16_t> channels_;                    // parallel to topics_
   std::unique_ptr<mcap::Writer> writer_;
-  std::unique_ptr<WriterThread> writer_thread_;  // after writer_: stopped before it is closed
+  std::unique_ptr<Scene> scene_state_;           // the writer thread's while it runs
+  std::unique_ptr<WriterThread> writer_thread_;  // after writer_ and scene_state_: stopped before they go
 };
 
 }  // namespace

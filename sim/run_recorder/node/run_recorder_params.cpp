@@ -17,7 +17,10 @@ const params::ParamTable<RunRecorderParams>& run_recorder_param_table() {
           .add("topics", &RunRecorderParams::topics, "", params::any<std::vector<std::string>>(),
                "topics to record; empty = every topic a component of the scenario publishes (keyed by robot_id, "
                "(robot_id, target_id) or unkeyed)")
-          .add("chunk_kb", &RunRecorderParams::chunk_kb, "KB", params::positive(), "uncompressed records per MCAP chunk");
+          .add("chunk_kb", &RunRecorderParams::chunk_kb, "KB", params::positive(), "uncompressed records per MCAP chunk")
+          .add("foxglove_scene", &RunRecorderParams::foxglove_scene, "", params::any<bool>(),
+               "also write foxglove/robot_poses (foxglove.PosesInFrame, JSON) from plant/state, at most every 50 ms "
+               "of the samples' stamps (robodds run --record-foxglove-scene)");
   return table;
 }
 

@@ -16,6 +16,7 @@ struct RunRecorderParams {
   std::string compression = "zstd";
   std::vector<std::string> topics;  // empty: every topic the scenario's components publish
   double chunk_kb = 1024.0;
+  bool foxglove_scene = false;
 };
 
 const params::ParamTable<RunRecorderParams>& run_recorder_param_table();

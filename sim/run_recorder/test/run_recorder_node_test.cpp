@@ -1,9 +1,11 @@
 // The run recorder on the in-memory bus: every published topic it is given, through gated inputs,
 // one channel per topic in name order, each step's samples in topic then instance order, log_time
-// the sample's sim step (ns), publish_time its stamp; bad parameters named.
+// the sample's sim step (ns), publish_time its stamp; foxglove_scene's derived channel; bad
+// parameters named.
 #include "sim/run_recorder/node/run_recorder_node.hpp"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <string>
@@ -17,6 +19,7 @@
 #include "runtime/component/registry.hpp"
 #include "runtime/mcap/mcap_reader.hpp"
 #include "runtime/testing/node_test_scenario.hpp"
+#include "system/foxglove/robot_poses.hpp"
 
 ROBODDS_DECLARE_COMPONENT(run_recorder);
 
@@ -170,6 +173,89 @@ TEST(RunRecorderNode, RecordsOnlyTheTopicsNamed) {
   const mcap::McapContents contents = mcap::read_mcap(file);
   ASSERT_EQ(contents.report.channels.size(), 1u);
   EXPECT_EQ(contents.messages.size(), 8u);
+  std::remove(file.c_str());
+}
+
+TEST(RunRecorderNode, TheFoxgloveSceneFollowsThePlantStateBatchesOncePer50MsOfTheirStamps) {
+  set_sample_codec(std::make_shared<SpellingCodec>());
+  const std::string file = file_in_temp("run_recorder_scene.mcap");
+  Harness h(ScenarioText("run_recorder_node", 0.01, 0.07)
+                .robots({1, 2})
+                .component("{name: rec, type: run_recorder, params: {file: " + file + ", foxglove_scene: true}}"));
+  constexpr std::int64_t kStampStepNs = 20'000'000;  // stamps 20 ms apart, steps 10 ms: due is the stamps'
+  h.feed([&h](std::uint64_t step) {
+    for (std::uint32_t robot : {2u, 1u}) {
+      idl::VelocityCommand c;
+      c.robot_id(robot);
+      h.publish("plant/cmd", c, step, step + 1);
+      idl::RobotState s;
+      s.robot_id(robot);
+      s.x(robot);
+      s.y(static_cast<double>(step));
+      s.theta(robot == 2 ? M_PI : 0.0);
+      h.publish_stamped("plant/state", s, step, step + 1, static_cast<std::int64_t>(step) * kStampStepNs);
+    }
+  });
+  h.assign_producers({{"plant/state", {{1, {"feeder"}}, {2, {"feeder"}}}}, {"plant/cmd", {{1, {"feeder"}}, {2, {"feeder"}}}}});
+  h.run({"rec"});
+  const mcap::McapContents contents = mcap::read_mcap(file);
+  ASSERT_TRUE(contents.report.valid());
+  ASSERT_EQ(contents.report.channels.size(), 3u);
+  EXPECT_EQ(contents.report.channels[0].topic, "plant/cmd") << "the topics' channels keep their ids";
+  EXPECT_EQ(contents.report.channels[1].topic, "plant/state");
+  const mcap::ChannelInfo& scene = contents.report.channels[2];
+  EXPECT_EQ(scene.topic, foxglove::kRobotPosesTopic);
+  EXPECT_EQ(scene.message_encoding, "json");
+  ASSERT_EQ(contents.report.schemas.size(), 3u);
+  EXPECT_EQ(contents.report.schemas[2].name, foxglove::kPosesInFrameSchemaName);
+  EXPECT_EQ(contents.report.schemas[2].encoding, "jsonschema");
+  EXPECT_EQ(contents.report.schemas[2].data, foxglove::poses_in_frame_json_schema());
+  // Steps 0..7, stamps 0, 20, ..., 140 ms: due at 0, 60 and 120 ms (steps 0, 3, 6), each written
+  // right after its step's plant/state samples, with every robot's pose of that step.
+  std::vector<std::uint64_t> scene_steps;
+  for (std::size_t i = 0; i < contents.messages.size(); ++i) {
+    const mcap::Message& m = contents.messages[i];
+    if (m.channel_id != scene.id) {
+      continue;
+    }
+    const std::uint64_t step = m.log_time / 10'000'000u;
+    scene_steps.push_back(step);
+    EXPECT_EQ(m.log_time, step * 10'000'000u) << "the sim time of its step";
+    EXPECT_EQ(m.publish_time, step * kStampStepNs) << "the plant/state samples' stamp";
+    ASSERT_GE(i, 2u);
+    EXPECT_EQ(std::string(contents.messages[i - 1].data.begin(), contents.messages[i - 1].data.end()),
+              "robodds::idl::RobotState robot 2 step " + std::to_string(step));
+    const nlohmann::json v = nlohmann::json::parse(m.data.begin(), m.data.end());
+    EXPECT_EQ(v["timestamp"]["sec"].get<std::int64_t>() * 1'000'000'000 + v["timestamp"]["nsec"].get<std::int64_t>(),
+              static_cast<std::int64_t>(m.publish_time));
+    ASSERT_EQ(v["poses"].size(), 2u) << "every robot";
+    for (int k = 0; k < 2; ++k) {
+      EXPECT_EQ(v["poses"][k]["position"]["x"].get<double>(), k + 1.0) << "robot id order";
+      EXPECT_EQ(v["poses"][k]["position"]["y"].get<double>(), static_cast<double>(step)) << "that step's pose";
+    }
+    EXPECT_NEAR(v["poses"][1]["orientation"]["z"].get<double>(), 1.0, 1e-12);  // pi about z
+  }
+  EXPECT_EQ(scene_steps, (std::vector<std::uint64_t>{0, 3, 6}));
+  std::remove(file.c_str());
+}
+
+TEST(RunRecorderNode, TheFoxgloveSceneWithoutPlantStateIsRefused) {
+  set_sample_codec(std::make_shared<SpellingCodec>());
+  const std::string file = file_in_temp("run_recorder_scene_bad.mcap");
+  {
+    Harness h(scenario_recording_to(file, ", foxglove_scene: true, topics: [plant/cmd]"));
+    feed_state_and_commands(h);
+    EXPECT_NE(h.run_error<ConfigError>({"rec"}).find("draws the robots from plant/state: add it to --record-topics"),
+              std::string::npos);
+  }
+  {
+    Harness h(ScenarioText("run_recorder_node", 0.01, 0.03)
+                  .robots({1, 2, 3})
+                  .component("{name: rec, type: run_recorder, params: {file: " + file + ", foxglove_scene: true}}"));
+    feed_pairs(h, true);
+    EXPECT_NE(h.run_error<ConfigError>({"rec"}).find("draws the robots from plant/state: no component of the scenario publishes it"),
+              std::string::npos);
+  }
   std::remove(file.c_str());
 }
 

@@ -1,19 +1,29 @@
 #pragma once
-// `--foxglove-scene` of `robodds bridge` and `robodds record`: the robots' latest poses as one
-// foxglove.PosesInFrame message (Foxglove's well-known schema, JSON encoding), which Foxglove's 3D
-// panel draws without any configuration. Plain C++, no sockets, no DDS: the commands feed it the
-// robots' state samples.
+// `--foxglove-scene` of `robodds bridge` and `robodds record`, `--record-foxglove-scene` of
+// `robodds run`: the robots' latest poses as one foxglove.PosesInFrame message (Foxglove's
+// well-known schema, JSON encoding), which Foxglove's 3D panel draws without any configuration.
+// Plain C++, no sockets, no DDS: the commands feed it the robots' state samples.
 
 #include <cstdint>
 #include <map>
 #include <string>
 
+#include "runtime/mcap/mcap_writer.hpp"
+
 namespace robodds::foxglove {
+
+/// The topic the robots' poses are drawn from (the plant's true states, idl::RobotState).
+inline constexpr const char* kSceneSource = "plant/state";
+/// At most one scene message per 50 ms of the samples' stamps (20 Hz: enough for a 3D view).
+inline constexpr std::int64_t kScenePeriodNs = 50'000'000;
 
 /// The derived channel's topic, schema name and JSON Schema text.
 inline constexpr const char* kRobotPosesTopic = "foxglove/robot_poses";
 inline constexpr const char* kPosesInFrameSchemaName = "foxglove.PosesInFrame";
 std::string poses_in_frame_json_schema();
+
+/// Adds the foxglove/robot_poses schema (jsonschema) and channel (json) to `writer`; its id.
+std::uint16_t add_robot_poses_channel(mcap::Writer& writer);
 
 class RobotPoses {
  public:

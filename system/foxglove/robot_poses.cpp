@@ -1,4 +1,4 @@
-#include "tools/foxglove/robot_poses.hpp"
+#include "system/foxglove/robot_poses.hpp"
 
 #include <cmath>
 
@@ -25,6 +25,11 @@ std::string poses_in_frame_json_schema() {
                 {"poses", {{"type", "array"},
                            {"items", {{"type", "object"}, {"properties", {{"position", vector3}, {"orientation", quaternion}}}}}}}}}}
       .dump();
+}
+
+std::uint16_t add_robot_poses_channel(mcap::Writer& writer) {
+  const std::uint16_t schema = writer.add_schema(kPosesInFrameSchemaName, "jsonschema", poses_in_frame_json_schema());
+  return writer.add_channel(schema, kRobotPosesTopic, "json");
 }
 
 void RobotPoses::update(std::uint32_t robot_id, double x, double y, double theta) { robots_[robot_id] = Pose{x, y, theta}; }

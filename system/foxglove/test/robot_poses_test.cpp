@@ -1,4 +1,4 @@
-#include "tools/foxglove/robot_poses.hpp"
+#include "system/foxglove/robot_poses.hpp"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
