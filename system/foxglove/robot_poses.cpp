@@ -32,18 +32,43 @@ std::uint16_t add_robot_poses_channel(mcap::Writer& writer) {
   return writer.add_channel(schema, kRobotPosesTopic, "json");
 }
 
-void RobotPoses::update(std::uint32_t robot_id, double x, double y, double theta) { robots_[robot_id] = Pose{x, y, theta}; }
+RobotPoses::RobotPoses() = default;
+RobotPoses::~RobotPoses() = default;
+RobotPoses::RobotPoses(RobotPoses&&) noexcept = default;
+RobotPoses& RobotPoses::operator=(RobotPoses&&) noexcept = default;
 
-std::string RobotPoses::json(std::int64_t stamp_ns) const {
-  nlohmann::json poses = nlohmann::json::array();
-  for (const auto& [id, p] : robots_) {
-    // A rotation by theta about z: (0, 0, sin(theta/2), cos(theta/2)).
-    poses.push_back({{"position", {{"x", p.x}, {"y", p.y}, {"z", 0.0}}},
-                     {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", std::sin(p.theta / 2)}, {"w", std::cos(p.theta / 2)}}}});
+void RobotPoses::update(std::uint32_t robot_id, double x, double y, double theta) {
+  const auto [it, added] = robots_.insert_or_assign(robot_id, Pose{x, y, theta});
+  if (added) {
+    message_.reset();  // one pose more: rebuilt by the next json()
   }
-  const std::int64_t sec = stamp_ns / 1000000000;
-  const std::int64_t nsec = stamp_ns % 1000000000;
-  return nlohmann::json{{"timestamp", {{"sec", sec}, {"nsec", nsec}}}, {"frame_id", "world"}, {"poses", poses}}.dump();
+}
+
+std::string RobotPoses::json(std::int64_t stamp_ns) {
+  if (!message_) {
+    nlohmann::json poses = nlohmann::json::array();
+    for (std::size_t i = 0; i < robots_.size(); ++i) {
+      poses.push_back({{"position", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}}},
+                       {"orientation", {{"x", 0.0}, {"y", 0.0}, {"z", 0.0}, {"w", 0.0}}}});
+    }
+    message_ = std::make_unique<nlohmann::json>(nlohmann::json{
+        {"timestamp", {{"sec", 0}, {"nsec", 0}}}, {"frame_id", "world"}, {"poses", std::move(poses)}});
+  }
+  nlohmann::json& m = *message_;
+  m["timestamp"]["sec"] = stamp_ns / 1000000000;
+  m["timestamp"]["nsec"] = stamp_ns % 1000000000;
+  auto pose = m["poses"].begin();
+  for (const auto& [id, p] : robots_) {
+    nlohmann::json& position = (*pose)["position"];
+    position["x"] = p.x;
+    position["y"] = p.y;
+    // A rotation by theta about z: (0, 0, sin(theta/2), cos(theta/2)).
+    nlohmann::json& orientation = (*pose)["orientation"];
+    orientation["z"] = std::sin(p.theta / 2);
+    orientation["w"] = std::cos(p.theta / 2);
+    ++pose;
+  }
+  return m.dump();
 }
 
 bool RobotPoses::due(std::int64_t stamp_ns, std::int64_t period_ns) {
