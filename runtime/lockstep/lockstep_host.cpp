@@ -87,11 +87,13 @@ void check_inputs_have_producers(const RunContext& run, const LockstepHost::Slot
           const std::string& names = topic_info(input->topic()).key;
           std::string listed;
           for (const std::uint64_t k : *declared) listed += (listed.empty() ? "" : ", ") + instance_key_text(names, k);
+          const std::string& component = slot->spec->name;
           throw ConfigError(located(run.scenario->file, "components",
-                                    "lockstep: component '" + slot->spec->name + "' waits at every step for " + input->topic() +
-                                        " (" + instance_key_text(names, key) + "), an instance its producer '" +
-                                        topic->second.at(robot).front() + "' does not publish (the scenario's producers declare " +
-                                        listed + "); give the producer that instance, or take it out of '" + slot->spec->name + "'"));
+                                    "lockstep: component '" + component + "' waits at every step for " + input->topic() + " (" +
+                                        instance_key_text(names, key) + "), an instance its producer '" +
+                                        topic->second.at(robot).front() + "' does not publish (the scenario's producers " +
+                                        "declare " + listed + "); give the producer that instance, or take it out of '" +
+                                        component + "'"));
         }
       }
     }

@@ -198,7 +198,9 @@ TEST(HostLoop, AnInstanceNoProducerDeclaresIsRefusedBeforeTheFirstTick) {
   const std::uint64_t pair12 = 1ULL << 32 | 2, pair23 = 2ULL << 32 | 3;
   NodeHarness h(kScenario);
   h.add_script("consumer",
-               [=](ComponentContext& ctx) { ctx.subscribe<idl::UwbRanges>("sensor/uwb", Subscription::instances({pair12, pair23})); },
+               [=](ComponentContext& ctx) {
+                 ctx.subscribe<idl::UwbRanges>("sensor/uwb", Subscription::instances({pair12, pair23}));
+               },
                [](const StepInfo&) {});
   h.assign_producers({{"sensor/uwb", {{1, {"uwb"}}, {2, {"uwb"}}}}});
   h.produce_instances({{"sensor/uwb", {pair12, 2ULL << 32 | 1}}});

@@ -51,7 +51,8 @@ ChainLink uwb(std::uint64_t robot, std::uint64_t peer, std::uint64_t step) {
 }
 
 TEST(InstancesOf, EachPairOfTheTopicsOnceAscending) {
-  const std::vector<ChainLink> links = {uwb(2, 3, 0), uwb(1, 2, 0), uwb(2, 3, 2), uwb(1, 2, 2), {"sensor/odometry", "o", 0, 5, 1}};
+  const std::vector<ChainLink> links = {uwb(2, 3, 0), uwb(1, 2, 0), uwb(2, 3, 2), uwb(1, 2, 2),
+                                        {"sensor/odometry", "o", 0, 5, 1}};
   const auto instances = instances_of(links, {"sensor/uwb", "estimate/relative_pose"});
   ASSERT_EQ(instances.size(), 1u) << "a topic without links maps to nothing, a topic not asked for is left out";
   EXPECT_EQ(instances.at("sensor/uwb"), (std::vector<std::uint64_t>{pair(1, 2), pair(2, 3)}));
