@@ -39,7 +39,8 @@ class SampleCodec {
 };
 
 /// The program's codec (installed by runtime/dds where make_dds_bus / make_raw_bus set up DDS,
-/// before any run starts, or by a test); ConfigError "no sample codec installed" otherwise. The
+/// and by the launcher before the producer check's dry configure, before any run starts; or by a
+/// test); ConfigError "no sample codec installed" otherwise. The
 /// reference stays valid until the next set_sample_codec().
 const SampleCodec& sample_codec();
 void set_sample_codec(std::shared_ptr<const SampleCodec> codec);

@@ -14,7 +14,8 @@ std::shared_ptr<const SampleCodec> make_dds_sample_codec();
 /// Installs make_dds_sample_codec() as the program's codec (set_sample_codec()) unless one is
 /// installed;
 /// make_dds_bus() and make_raw_bus() call it, so every process that sets up
-/// DDS, co-located or a host across processes, has it before its components are configured.
+/// DDS, co-located or a host across processes, has it before its components are configured; and
+/// the launcher's producer check (runtime/launch) before its dry configure of the components.
 void install_dds_sample_codec();
 
 }  // namespace robodds

@@ -71,10 +71,15 @@ std::string InputBase::label_of(std::uint64_t key) const {
   }
   // Not seen yet: spell the key with the topic's key field names ("robot_id, target_id").
   const std::string& names = options_.key_names;
-  const std::size_t comma = names.find(',');
   if (options_.by_robot) {
+    const std::size_t comma = names.find(',');
     return names.substr(0, comma) + "=" + std::to_string(key) + " (any " + names.substr(comma + 2) + ")";
   }
+  return instance_key_text(names, key);
+}
+
+std::string instance_key_text(const std::string& names, std::uint64_t key) {
+  const std::size_t comma = names.find(',');
   if (names.empty()) {
     return "instance " + std::to_string(key);
   }

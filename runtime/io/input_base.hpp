@@ -24,6 +24,10 @@
 
 namespace robodds {
 
+/// Instance `key` of a topic keyed `key_names` (TopicInfo::key, e.g. "robot_id, peer_id") spelled
+/// for messages: "robot_id=2 peer_id=3", "robot_id=2", "instance K" without key names.
+std::string instance_key_text(const std::string& key_names, std::uint64_t key);
+
 class InputBase {
  public:
   InputBase(std::string topic, std::string owner, const StepState* state, Notifier* notifier, detail::InputOptions options)
@@ -48,6 +52,8 @@ class InputBase {
   bool gated() const { return !options_.ignore_step && !options_.expected.empty(); }
   /// The instances (by_robot(): robot ids) needed at every due step, in key order.
   const std::vector<std::uint64_t>& expected() const { return options_.expected; }
+  /// Its streams are robots (Subscription::robot_streams): expected() holds robot ids.
+  bool by_robot() const { return options_.by_robot; }
   /// The robot of expected key `key` (a robot id itself for robot streams).
   std::uint32_t robot_of(std::uint64_t key) const {
     return options_.by_robot ? static_cast<std::uint32_t>(key) : robot_of_instance(key);

@@ -19,6 +19,7 @@
 #include "runtime/bus/colocated_bus.hpp"
 #include "runtime/launch/added_components.hpp"
 #include "runtime/launch/coordinator_scenario.hpp"
+#include "runtime/dds/dds_sample_codec.hpp"
 #include "runtime/dds/security_files.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/launch/failed_summary.hpp"
@@ -372,6 +373,9 @@ static ScenarioProducers check_producers(const ComponentRegistry& registry, cons
   }
   registry.check_scenario(scenario);
   check_standby_deployment(scenario, mode, single_process);
+  // Installed before DDS is set up: the dry configure below may decode samples (a replay source
+  // declares the instances its recording holds), as the run's own configure does.
+  install_dds_sample_codec();
   ScenarioProducers producers = scenario_producers(registry, scenario, mode);
   check_one_producer_per_instance(scenario, producers);
   return producers;

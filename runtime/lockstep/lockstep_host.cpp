@@ -55,8 +55,10 @@ void check_history_bound(const RunContext& run, const HostOptions& options, cons
 }
 
 /// Lockstep: ConfigError when a component's gated input waits for an instance no component of the
-/// scenario publishes (RunContext::assigned_producers): it would wait at step 0 until the step
-/// timeout and then fail; say so before the first tick, naming the component, topic and robot.
+/// scenario publishes (RunContext::assigned_producers), or, for a topic whose producers declare
+/// its instances (RunContext::produced_instances, e.g. pairs of robots), for an instance none of
+/// them declares: it would wait at step 0 until the step timeout and then fail; say so before the
+/// first tick, naming the component, topic and robot or instance.
 void check_inputs_have_producers(const RunContext& run, const LockstepHost::Slots& slots) {
   if (!run.assigned_producers) {
     return;  // a component without a scenario: its producers are not known
@@ -67,6 +69,11 @@ void check_inputs_have_producers(const RunContext& run, const LockstepHost::Slot
         continue;
       }
       const auto topic = run.assigned_producers->find(input->topic());
+      const std::vector<std::uint64_t>* declared = nullptr;  // ascending (produced_instances())
+      if (run.produced_instances && !input->by_robot()) {
+        const auto it = run.produced_instances->find(input->topic());
+        if (it != run.produced_instances->end() && !it->second.empty()) declared = &it->second;
+      }
       for (std::uint64_t key : input->expected()) {
         const std::uint32_t robot = input->robot_of(key);
         if (topic == run.assigned_producers->end() || topic->second.count(robot) == 0) {
@@ -75,6 +82,18 @@ void check_inputs_have_producers(const RunContext& run, const LockstepHost::Slot
                                         " of robot " + std::to_string(robot) +
                                         ", which no component of the scenario publishes (add its producer for that robot, "
                                         "or take the robot out of '" + slot->spec->name + "')"));
+        }
+        if (declared != nullptr && !std::binary_search(declared->begin(), declared->end(), key)) {
+          const std::string& names = topic_info(input->topic()).key;
+          std::string listed;
+          for (const std::uint64_t k : *declared) listed += (listed.empty() ? "" : ", ") + instance_key_text(names, k);
+          const std::string& component = slot->spec->name;
+          throw ConfigError(located(run.scenario->file, "components",
+                                    "lockstep: component '" + component + "' waits at every step for " + input->topic() + " (" +
+                                        instance_key_text(names, key) + "), an instance its producer '" +
+                                        topic->second.at(robot).front() + "' does not publish (the scenario's producers " +
+                                        "declare " + listed + "); give the producer that instance, or take it out of '" +
+                                        component + "'"));
         }
       }
     }

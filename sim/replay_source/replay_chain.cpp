@@ -47,4 +47,46 @@ std::vector<std::string> late_topics(const std::vector<ChainLink>& links) {
   return out;
 }
 
+std::map<std::string, std::vector<std::uint64_t>> instances_of(const std::vector<ChainLink>& links,
+                                                              const std::set<std::string>& topics) {
+  std::map<std::string, std::set<std::uint64_t>> found;
+  for (const ChainLink& l : links) {
+    if (topics.count(l.topic) != 0) found[l.topic].insert(l.key);
+  }
+  std::map<std::string, std::vector<std::uint64_t>> out;
+  for (const auto& [topic, keys] : found) out[topic].assign(keys.begin(), keys.end());  // std::set: ascending
+  return out;
+}
+
+namespace {
+
+std::string robot_list(const std::vector<std::uint32_t>& robots) {
+  std::string out;
+  for (const std::uint32_t r : robots) out += (out.empty() ? "" : ", ") + std::to_string(r);
+  return out.empty() ? "none" : out;
+}
+
+bool has(const std::vector<std::uint32_t>& robots, std::uint32_t robot) {
+  return std::find(robots.begin(), robots.end(), robot) != robots.end();
+}
+
+}  // namespace
+
+std::string foreign_pair(const std::vector<ChainLink>& links, const std::set<std::string>& topics,
+                         const std::vector<std::uint32_t>& served, const std::vector<std::uint32_t>& robots) {
+  for (const ChainLink& l : links) {
+    if (topics.count(l.topic) == 0) continue;
+    const auto robot = static_cast<std::uint32_t>(l.key >> 32);
+    const auto peer = static_cast<std::uint32_t>(l.key & 0xffffffffULL);
+    if (!has(robots, robot) || !has(robots, peer)) {
+      return l.stream + ": robot " + std::to_string(has(robots, robot) ? peer : robot) +
+             " is not a robot of the scenario (its robots: " + robot_list(robots) + ")";
+    }
+    if (!has(served, robot)) {
+      return l.stream + ": robot " + std::to_string(robot) + " is not one of the replay's robots (" + robot_list(served) + ")";
+    }
+  }
+  return {};
+}
+
 }  // namespace robodds::replay_source

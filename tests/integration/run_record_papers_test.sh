@@ -14,9 +14,13 @@
 #     distance of plant_state.csv);
 #   - each recorded co-located and with --deploy processes gives byte-identical files;
 #   - the checks can fail: a flipped payload byte fails the official reader, a changed CSV value
-#     fails the comparison.
+#     fails the comparison;
+#   - replay (issue 25, docs/record-replay.md "In lockstep"): paper 3's relative estimator alone,
+#     re-run on its recording through replay_source (sensor/uwb pairs, sensor/odometry,
+#     plant/state), gives byte-identical estimate_relative_pose*.csv, and other ones with another
+#     window_epochs; a robot the recording lacks and a pair the scenario lacks, one line each.
 # Args: ROBODDS SRC DOMAIN. Needs node and tests/npm/node_modules (scripts/npm_setup.sh). 11-18 s on
-# a loaded 2-vCPU machine.
+# a loaded 2-vCPU machine (the replay part: < 1.5 s of it).
 source "$(dirname "$0")/lib.sh"
 CHECK="$SRC/tests/npm/check_mcap.mjs"
 MATCH="$SRC/tests/integration/recording_matches_csvs.py"
@@ -96,6 +100,54 @@ for pair in directions:
 print(f"ok: sensor/uwb: {len(uwb)} messages, every direction at every 50 Hz step, ranges near the true distances")
 PY
 grep -q "channels: *10" <("$ROBODDS" info "$WORK/paper3.mcap") || fail "paper 3: not 10 channels: $("$ROBODDS" info "$WORK/paper3.mcap")"
+
+# Replay (issue 25): paper 3's relative estimator alone re-run on this recording (replay_source of
+# sensor/uwb, keyed by pairs of robots, sensor/odometry and plant/state for the evaluator's truth):
+# the same estimate_relative_pose*.csv byte for byte; recorded itself (--record), its recorder
+# waits for the sensor/uwb pairs the replay declares (every sample recorded); with another window
+# the estimates differ, as many lines. Then a scenario robot the recording lacks (the estimator
+# waits for its pairs) and a recorded pair of a robot the scenario lacks, one line each.
+python3 - "$SRC/sim/scenarios/paper3_exp2.yaml" "$WORK" <<'PY'
+import sys, yaml
+scenario = yaml.safe_load(open(sys.argv[1]))
+kept = [c for c in scenario["components"] if c["type"] in ("uwb_relative_estimator", "evaluator")]
+assert [c["name"] for c in kept] == ["estimator1", "evaluator"], "paper3_exp2.yaml's components changed: update this test"
+scenario["components"] = [{"name": "replay", "type": "replay_source",
+                           "params": {"file": "paper3.mcap", "topics": ["sensor/uwb", "sensor/odometry", "plant/state"]}}] + kept
+del scenario["groups"]
+yaml.safe_dump(scenario, open(sys.argv[2] + "/paper3_replay.yaml", "w"), sort_keys=False)
+robots = scenario["robots"]
+scenario["robots"] = robots + [{"id": 4, "x": 3.0, "y": 3.0, "theta": 0.0}]
+yaml.safe_dump(scenario, open(sys.argv[2] + "/paper3_replay_robot4.yaml", "w"), sort_keys=False)
+scenario["robots"] = [r for r in robots if r["id"] != 3]
+yaml.safe_dump(scenario, open(sys.argv[2] + "/paper3_replay_no_robot3.yaml", "w"), sort_keys=False)
+PY
+replayed() {  # replayed NAME [ARGS...]: the re-run in $WORK/NAME (its scenario reads paper3.mcap from $WORK)
+  local name="$1" rc=0
+  shift
+  (cd "$WORK" && timeout -k 5 60 "$ROBODDS" run paper3_replay.yaml --duration 20 --domain "$DOMAIN" --out "$name" --no-plots "$@") \
+    >"$WORK/$name.log" 2>&1 || rc=$?
+  [[ $rc -eq 0 ]] || fail "the paper 3 re-run $name exited $rc: $(tail -5 "$WORK/$name.log")"
+}
+replayed paper3_replayed --record paper3_replayed.mcap
+for f in "$WORK"/paper3/estimate_relative_pose*.csv; do
+  cmp "$f" "$WORK/paper3_replayed/$(basename "$f")" || fail "paper 3 re-run on its recording: $(basename "$f") differs"
+done
+uwb_count() { "$ROBODDS" info "$1" | awk '$2 == "sensor/uwb" {print $(NF-1)}'; }
+! grep -q "not recorded" "$WORK/paper3_replayed.log" || fail "the re-run's recorder left topics out: $(grep "not recorded" "$WORK/paper3_replayed.log")"
+[[ -n $(uwb_count "$WORK/paper3.mcap") && $(uwb_count "$WORK/paper3_replayed.mcap") == "$(uwb_count "$WORK/paper3.mcap")" ]] ||
+  fail "the re-run recorded $(uwb_count "$WORK/paper3_replayed.mcap") sensor/uwb samples, the original $(uwb_count "$WORK/paper3.mcap")"
+replayed paper3_tuned --set estimator1.window_epochs=20
+for f in "$WORK"/paper3/estimate_relative_pose*.csv; do
+  [[ $(wc -l <"$f") -eq $(wc -l <"$WORK/paper3_tuned/$(basename "$f")") ]] || fail "tuned paper 3 re-run: $(basename "$f") has other lines"
+done
+! cmp -s "$WORK/paper3/estimate_relative_pose.csv" "$WORK/paper3_tuned/estimate_relative_pose.csv" ||
+  fail "paper 3 re-run with window_epochs 20: estimate_relative_pose.csv did not change"
+echo "ok: paper 3's estimator re-run on the recording: 5 estimate_relative_pose*.csv byte-identical ($(wc -l <"$WORK/paper3/estimate_relative_pose.csv") lines), $(uwb_count "$WORK/paper3_replayed.mcap") sensor/uwb recorded again; window_epochs 20 differs"
+(cd "$WORK" && expect_error 2 "paper3_replay_robot4\.yaml: components: lockstep: component 'estimator1' waits at every step for sensor/uwb \(robot_id=1 peer_id=4\), an instance its producer 'replay' does not publish" -- \
+  "$ROBODDS" run paper3_replay_robot4.yaml --duration 20 --domain "$DOMAIN" --out robot4 --no-plots)
+(cd "$WORK" && expect_error 2 "replay: paper3\.mcap cannot drive this run: sensor/uwb \(robot_id=1 peer_id=3\): robot 3 is not a robot of the scenario \(its robots: 1, 2\)" -- \
+  "$ROBODDS" run paper3_replay_no_robot3.yaml --duration 20 --domain "$DOMAIN" --out no_robot3 --no-plots)
 
 # The checks can fail: one payload byte flipped (the last message's last byte, in the last chunk,
 # uncompressed), one CSV double changed by one bit.

@@ -192,6 +192,29 @@ TEST(HostLoop, AnInputWaitTimesOutNamingComponentTopicInstanceAndStep) {
   EXPECT_TRUE(seen->empty());
 }
 
+TEST(HostLoop, AnInstanceNoProducerDeclaresIsRefusedBeforeTheFirstTick) {
+  // A pair-keyed topic's producers declare its instances (RunContext::produced_instances): a
+  // consumer waiting for another one would wait until its input timeout; refused at configuration.
+  const std::uint64_t pair12 = 1ULL << 32 | 2, pair23 = 2ULL << 32 | 3;
+  NodeHarness h(kScenario);
+  h.add_script("consumer",
+               [=](ComponentContext& ctx) {
+                 ctx.subscribe<idl::UwbRanges>("sensor/uwb", Subscription::instances({pair12, pair23}));
+               },
+               [](const StepInfo&) {});
+  h.assign_producers({{"sensor/uwb", {{1, {"uwb"}}, {2, {"uwb"}}}}});
+  h.produce_instances({{"sensor/uwb", {pair12, 2ULL << 32 | 1}}});
+  h.options().input_timeout_s = 30.0;  // not reached: refused before the first tick
+  const std::string error = h.run_error<ConfigError>({"consumer"});
+  EXPECT_EQ(error.substr(error.find("components: ")),
+            "components: lockstep: component 'consumer' waits at every step for sensor/uwb (robot_id=2 peer_id=3), an instance "
+            "its producer 'uwb' does not publish (the scenario's producers declare robot_id=1 peer_id=2, robot_id=2 peer_id=1); "
+            "give the producer that instance, or take it out of 'consumer'");
+  h.produce_instances({{"sensor/uwb", {pair12, pair23}}});
+  h.options().input_timeout_s = 0.2;  // declared: it waits (nobody publishes here) and times out
+  EXPECT_NE(h.run_error<RunError>({"consumer"}).find("waited 0.2 s at step 0 for topic sensor/uwb"), std::string::npos);
+}
+
 /// Outputs of a two-stage pipeline (producer -> relay with delay 1 -> estimate/pose), and in
 /// *max_outstanding the most ticks the coordinator had sent but not seen acknowledged.
 std::vector<std::pair<std::uint64_t, double>> pipeline_outputs(std::size_t window, std::uint64_t* max_outstanding) {

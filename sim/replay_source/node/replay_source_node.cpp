@@ -3,7 +3,9 @@
 // it (SampleCodec) and publishes it at that step through a normal Output with the recorded
 // next_step, so every consumer's lockstep wait, the producer checks and the evaluator see what
 // they saw in the recorded run. Being a component, it is the scenario's producer of its topics:
-// the one-producer check refuses a scenario that also runs their original producers.
+// the one-producer check refuses a scenario that also runs their original producers. For a topic
+// keyed by a pair of robots (robot_id, peer_id) it declares the pairs the recording holds, as the
+// original producer declared the peers it measured (ComponentContext::publishes_instances()).
 #include "sim/replay_source/node/replay_source_node.hpp"
 
 #include <map>
@@ -40,7 +42,8 @@ class TypedStream : public Stream {
 
   ChainLink add(const std::uint8_t* data, std::size_t size) override {
     auto sample = std::static_pointer_cast<Msg>(sample_codec().deserialize(idl::type_name<Msg>(), data, size));
-    const ChainLink link{topic_, topic_ + " (" + idl::instance_label(*sample) + ")", sample->header().step(), sample->header().next_step()};
+    const ChainLink link{topic_, topic_ + " (" + idl::instance_label(*sample) + ")", sample->header().step(),
+                         sample->header().next_step(), idl::instance_key(*sample)};
     by_step_[link.step].push_back(std::move(sample));
     return link;
   }
@@ -93,20 +96,18 @@ class ReplaySourceNode : public Component {
       if (streams_.count(topic) != 0) {
         throw ConfigError(name_ + ".topics: " + topic + " is listed twice");
       }
+      if (info.key == "robot_id, peer_id") {
+        pair_topics_.insert(topic);  // its instances are the pairs the recording holds: declared below
+      }
       idl::dispatch_type(info.type_name, [&](auto tag) {
         using Msg = typename decltype(tag)::type;
         streams_[topic] = std::make_unique<TypedStream<Msg>>(topic, ctx.advertise<Msg>(topic));
       });
     }
-    // The samples are decoded with the run's sample codec, which runtime/dds installs when it sets
-    // up DDS: before the run's own configure, after the dry configure of the producer check (no
-    // DDS yet: it only needs the topics above). Decoded here when possible, so that a recording
-    // that cannot drive the run stops it before it starts (a ConfigError, exit 2), else in on_start().
-    if (codec_installed()) load();
-  }
-
-  void on_start() override {
-    if (!loaded_) load();
+    // Decoded at every configure, the producer check's dry ones included (the launcher installs
+    // the sample codec before them): a pair-keyed topic's instances are declared from the samples,
+    // and a recording that cannot drive the run stops it before anything starts (exit 2).
+    load(ctx);
   }
 
   void on_step(const StepInfo& info) override {
@@ -116,17 +117,7 @@ class ReplaySourceNode : public Component {
   }
 
  private:
-  static bool codec_installed() {
-    try {
-      sample_codec();
-      return true;
-    } catch (const ConfigError&) {  // "no sample codec installed"
-      return false;
-    }
-  }
-
-  void load() {
-    loaded_ = true;
+  void load(ComponentContext& ctx) {
     const mcap::McapContents contents = read_recording(params_.file);
     if (contents.report.truncated_at) {
       log::warn(name_, params_.file + ": " + contents.report.recovery() + "; replaying what was recovered");
@@ -151,7 +142,15 @@ class ReplaySourceNode : public Component {
       // A consumer would wait for the missing first samples until its input timeout: say why first.
       log::warn(name_, params_.file + ": " + late + ", not 0: was the recorder started after the run?");
     }
-    const std::string problem = chain_problem(std::move(links), last_step_);
+    std::vector<std::uint32_t> served;
+    for (const RobotSpec& r : ctx.robots()) served.push_back(r.id);
+    std::vector<std::uint32_t> robots;
+    for (const RobotSpec& r : ctx.scenario().robots) robots.push_back(r.id);
+    std::string problem = foreign_pair(links, pair_topics_, served, robots);
+    // Only the producer of a pair-keyed topic knows its instances before the run (the run's
+    // recorder waits for exactly these at each due step): here, the pairs recorded.
+    for (auto& [topic, keys] : instances_of(links, pair_topics_)) ctx.publishes_instances(topic, std::move(keys));
+    if (problem.empty()) problem = chain_problem(std::move(links), last_step_);
     if (!problem.empty()) {
       throw ConfigError(name_ + ": " + params_.file + " cannot drive this run: " + problem);
     }
@@ -160,7 +159,7 @@ class ReplaySourceNode : public Component {
   std::string name_;
   ReplaySourceParams params_;
   std::uint64_t last_step_ = 0;
-  bool loaded_ = false;
+  std::set<std::string> pair_topics_;  // replayed topics keyed (robot_id, peer_id)
   std::map<std::string, std::unique_ptr<Stream>> streams_;  // by topic: a fixed publishing order
 };
 

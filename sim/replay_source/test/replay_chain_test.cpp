@@ -43,5 +43,38 @@ TEST(LateTopics, ATopicWithoutAStepZeroSampleIsNamed) {
   EXPECT_TRUE(late_topics({{"p", "p (1)", 0, 10}, {"p", "p (2)", 50, 60}}).empty()) << "one instance at step 0 is enough";
 }
 
+constexpr std::uint64_t pair(std::uint64_t robot, std::uint64_t peer) { return robot << 32 | peer; }
+
+ChainLink uwb(std::uint64_t robot, std::uint64_t peer, std::uint64_t step) {
+  const std::string label = "robot_id=" + std::to_string(robot) + " peer_id=" + std::to_string(peer);
+  return {"sensor/uwb", "sensor/uwb (" + label + ")", step, step + 2, pair(robot, peer)};
+}
+
+TEST(InstancesOf, EachPairOfTheTopicsOnceAscending) {
+  const std::vector<ChainLink> links = {uwb(2, 3, 0), uwb(1, 2, 0), uwb(2, 3, 2), uwb(1, 2, 2),
+                                        {"sensor/odometry", "o", 0, 5, 1}};
+  const auto instances = instances_of(links, {"sensor/uwb", "estimate/relative_pose"});
+  ASSERT_EQ(instances.size(), 1u) << "a topic without links maps to nothing, a topic not asked for is left out";
+  EXPECT_EQ(instances.at("sensor/uwb"), (std::vector<std::uint64_t>{pair(1, 2), pair(2, 3)}));
+  EXPECT_TRUE(instances_of(links, {}).empty());
+}
+
+TEST(ForeignPair, PairsOfTheScenarioRobotsHaveNone) {
+  EXPECT_EQ(foreign_pair({uwb(1, 2, 0), uwb(2, 1, 0), uwb(3, 1, 0)}, {"sensor/uwb"}, {1, 2, 3}, {1, 2, 3}), "");
+  EXPECT_EQ(foreign_pair({{"sensor/odometry", "o", 0, 5, 9}}, {"sensor/uwb"}, {1}, {1}), "") << "only the pair topics";
+}
+
+TEST(ForeignPair, APeerOrRobotTheScenarioDoesNotHaveIsNamed) {
+  EXPECT_EQ(foreign_pair({uwb(1, 2, 0), uwb(1, 3, 0)}, {"sensor/uwb"}, {1, 2}, {1, 2}),
+            "sensor/uwb (robot_id=1 peer_id=3): robot 3 is not a robot of the scenario (its robots: 1, 2)");
+  EXPECT_EQ(foreign_pair({uwb(4, 1, 0)}, {"sensor/uwb"}, {1, 2}, {1, 2}),
+            "sensor/uwb (robot_id=4 peer_id=1): robot 4 is not a robot of the scenario (its robots: 1, 2)");
+}
+
+TEST(ForeignPair, ARobotTheReplayDoesNotServeIsNamed) {
+  EXPECT_EQ(foreign_pair({uwb(1, 2, 0), uwb(2, 1, 0)}, {"sensor/uwb"}, {1}, {1, 2}),
+            "sensor/uwb (robot_id=2 peer_id=1): robot 2 is not one of the replay's robots (1)");
+}
+
 }  // namespace
 }  // namespace robodds::replay_source

@@ -1,7 +1,9 @@
 // The replay_source node on the in-memory bus, on recordings written here with our MCAP writer and
 // the DDS sample codec (the bytes a recorder gets off the wire): each sample published at its
 // recorded step with its recorded next_step; a recording that cannot drive the run, a topic not in
-// it, a schema that is not ours and real time are ConfigErrors naming why.
+// it, a schema that is not ours and real time are ConfigErrors naming why. A pair-keyed topic's
+// instances are the recorded pairs, declared at every configure (the producer check's dry one too),
+// and a pair of a robot the scenario does not have is refused.
 #include "sim/replay_source/node/replay_source_node.hpp"
 
 #include <gtest/gtest.h>
@@ -15,6 +17,7 @@
 #include "runtime/bus/sample_codec.hpp"
 #include "runtime/component/registry.hpp"
 #include "runtime/dds/dds_sample_codec.hpp"
+#include "runtime/host/producer_check.hpp"
 #include "runtime/mcap/mcap_writer.hpp"
 #include "runtime/testing/node_test_scenario.hpp"
 #include "tests/support/temp_file.hpp"
@@ -105,6 +108,59 @@ TEST(ReplaySourceNode, RealTimeIsRefused) {
   Harness h(scenario(recording({{0, kNeverAgain, 1.0}})));
   h.set_mode(TimeMode::kRealtime);
   EXPECT_NE(h.run_error<ConfigError>({"replay"}).find("replay_source runs in lockstep only"), std::string::npos);
+}
+
+/// A recording of sensor/uwb with the directions (robot, peer) at steps 0, 2, 4 (each announcing
+/// the next, the last one step 6).
+std::string uwb_recording(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& directions) {
+  install_dds_sample_codec();
+  const std::string path = test_support::write_test_file("uwb.mcap", "");
+  mcap::Writer writer(path, mcap::WriterOptions{});
+  const std::string type = "robodds::idl::UwbRanges";
+  const auto channel = writer.add_channel(writer.add_schema(type, "omgidl", idl_schema_text(type)), "sensor/uwb", "cdr", {});
+  std::uint32_t sequence = 0;
+  for (std::uint64_t step = 0; step <= 4; step += 2) {
+    for (const auto& [robot, peer] : directions) {
+      idl::UwbRanges m;
+      m.robot_id(robot);
+      m.peer_id(peer);
+      m.header().step(step);
+      m.header().next_step(step + 2);
+      m.header().stamp_ns(static_cast<std::int64_t>(step) * 10'000'000);
+      const std::vector<std::uint8_t> bytes = sample_codec().serialize(type, &m);
+      writer.write(channel, ++sequence, 1000 + step, 1000 + step, bytes.data(), bytes.size());
+    }
+  }
+  writer.close();
+  return path;
+}
+
+std::string uwb_scenario(const std::string& file) {
+  return ScenarioText("replay_uwb", 0.01, 0.04)
+      .robots({1, 2, 3})
+      .component("{name: replay, type: replay_source, params: {file: " + file + ", topics: [sensor/uwb]}}");
+}
+
+TEST(ReplaySourceNode, DeclaresThePairsTheRecordingHoldsInTheDryConfigure) {
+  Harness h(uwb_scenario(uwb_recording({{2, 3}, {1, 2}, {1, 3}})));
+  // What every host finds before the run (RunContext::produced_instances): the recorded pairs.
+  const ScenarioProducers producers = scenario_producers(h.registry(), h.scenario(), TimeMode::kLockstep);
+  const ProducedInstances instances = produced_instances(h.registry(), h.scenario(), producers, TimeMode::kLockstep);
+  ASSERT_EQ(instances.count("sensor/uwb"), 1u);
+  EXPECT_EQ(instances.at("sensor/uwb"), (std::vector<std::uint64_t>{1ULL << 32 | 2, 1ULL << 32 | 3, 2ULL << 32 | 3}));
+  const auto& ranges = h.record<idl::UwbRanges>("sensor/uwb");
+  h.run({"replay"});
+  EXPECT_EQ(ranges.size(), 9u) << "three directions at steps 0, 2, 4";
+}
+
+TEST(ReplaySourceNode, APairOfARobotTheScenarioDoesNotHaveIsRefused) {
+  Harness h(uwb_scenario(uwb_recording({{1, 2}, {1, 4}})));
+  const std::string error = h.run_error<ConfigError>({"replay"});
+  EXPECT_NE(error.find("replay: "), std::string::npos) << error;
+  EXPECT_NE(error.find("uwb.mcap cannot drive this run: sensor/uwb (robot_id=1 peer_id=4): robot 4 is not a robot of the "
+                       "scenario (its robots: 1, 2, 3)"),
+            std::string::npos)
+      << error;
 }
 
 }  // namespace
