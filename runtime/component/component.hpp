@@ -4,6 +4,7 @@
 // rate) and then calls on_step() at each due step on the host's executor thread.
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <set>
@@ -138,6 +139,8 @@ class ComponentContext {
   std::uint64_t seed_for(const std::string& stream) const;
   double step_s() const { return run_.scenario->step_s; }
   TimeMode mode() const { return run_.mode; }
+  /// Every component of the run lives in this process (co-located).
+  bool single_process() const { return run_.single_process; }
   /// Who the scenario lets publish each topic instance (RunContext::assigned_producers): what a
   /// recorder of every published topic subscribes to. Null outside a scenario run, and while
   /// scenario_producers() configures the components to find them.
@@ -222,6 +225,27 @@ class ComponentContext {
     }
     inputs_.push_back(std::move(input));
     return *raw;
+  }
+
+  /// A run whose components all live in this process (co-located): `on_sample` gets every sample
+  /// of `topic` they write, inside the writer's write(), in write order, with no checks (see
+  /// delivery_check()), no producer rule and no lockstep wait. For a recorder of such a run: an
+  /// Input's queue, gate and bookkeeping cost it about as much CPU on the step as the recording
+  /// itself (docs/performance.md, "Recording in the run"). ConfigError in any other run, where
+  /// samples come from other processes on DDS threads and only an Input orders them.
+  template <class Msg>
+  void observe_local(const std::string& topic, std::function<void(const Msg&, const SampleMeta&)> on_sample) {
+    const TopicInfo& info = checked_topic<Msg>(topic);
+    if (!run_.single_process) {
+      throw ConfigError(spec_.name + ": observe_local(" + topic + ") needs every component in this process");
+    }
+    SampleCallback callback = [on_sample = std::move(on_sample)](const void* sample, const SampleMeta& meta) {
+      on_sample(*static_cast<const Msg*>(sample), meta);
+    };
+    const std::string owner = spec_.name;
+    ReaderEventCallback on_event = [owner, topic](const std::string& event) { log::warn(owner, topic + ": " + event); };
+    readers_.push_back(run_.bus->reader(topic, info.type_name, qos_profile_for(info, run_.mode, run_.single_process),
+                                        std::move(callback), std::move(on_event)));
   }
 
   template <class Msg>

@@ -15,8 +15,7 @@
 
 #include "robodds/idl/robodds_visit.hpp"
 #include "runtime/io/input_base.hpp"
-#include "runtime/io/sample_checks.hpp"
-#include "runtime/io/sample_fields.hpp"
+#include "runtime/io/sample_verdict.hpp"
 
 namespace robodds {
 
@@ -151,17 +150,7 @@ class Input : public InputBase {
       i = add_instance(key, stream, idl::instance_label(sample));
       slots_.emplace_back();
     }
-    // In lockstep the checks depend on the sample alone: when another reader of this delivery
-    // passed them (SampleMeta::checks_passed), they would pass again. A co-located run's every
-    // reader of a topic (e.g. the run's recorder beside the components) checks it once.
-    const bool shared = meta.checks_passed != nullptr && state_->mode == TimeMode::kLockstep;
-    std::optional<SampleCheckFailure> failed;
-    if (!shared || !*meta.checks_passed) {
-      failed = first_failed_check(sample);
-      if (shared && !failed) {
-        *meta.checks_passed = true;
-      }
-    }
+    const CheckResult failed = delivery_check(sample, meta, state_->mode);
     const std::string& label = instances_[i].label;
     Stream& s = streams_[instances_[i].stream];
     Progress& p = s.progress;
@@ -191,21 +180,6 @@ class Input : public InputBase {
                       meta.writer_id);
     }
     return wake;
-  }
-
-  /// Why `sample` is refused: a non-finite number first, then the plausibility checks of its
-  /// message type (runtime/io/sample_checks.hpp); nullopt when it passes.
-  std::optional<SampleCheckFailure> first_failed_check(const Msg& sample) const {
-    const std::string bad_field = first_non_finite_field(sample);
-    if (!bad_field.empty()) {
-      return SampleCheckFailure{detail::kRejectNonFinite, bad_field, "is not finite"};
-    }
-    if (std::optional<SampleCheckFailure> failed =
-            check_sample(sample, state_->mode, state_->mode == TimeMode::kRealtime ? wall_clock_now_ns() : 0)) {
-      failed->detail += " [" + failed->reason + "]";
-      return failed;
-    }
-    return std::nullopt;
   }
 
   /// One instance's samples. pending[head..] are not taken yet, in arrival order: a vector whose

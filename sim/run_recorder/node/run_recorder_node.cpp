@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <deque>
 #include <exception>
+#include <iterator>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <set>
@@ -20,10 +22,12 @@
 #include "runtime/topics/topic_names.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
+#include "runtime/bus/key_index.hpp"
 #include "runtime/bus/sample_codec.hpp"
 #include "runtime/component/registry.hpp"
 #include "runtime/config/param_table_reader.hpp"
 #include "runtime/config/params.hpp"
+#include "runtime/io/sample_verdict.hpp"
 #include "runtime/mcap/mcap_writer.hpp"
 #include "runtime/mcap/topic_channels.hpp"
 #include "sim/run_recorder/node/run_recorder_params.hpp"
@@ -49,30 +53,42 @@ struct Sink {
   Scene* scene = nullptr;  // null: no scene channel (the writer thread's)
 };
 
-/// The samples one topic gave at one step, written later by the writer thread.
+/// The samples one topic gave at one step, written later by the writer thread. A batch is used
+/// again once written (WriterThread::push hands a written one back): its sample vector keeps its
+/// capacity, so a step allocates nothing and the writer thread frees nothing the step allocated.
 class Batch {
  public:
+  explicit Batch(std::size_t stream) : stream_(stream) {}
   virtual ~Batch() = default;
   /// `bytes`: the writer thread's buffer, reused for every sample (no allocation per sample).
   virtual void write(const Sink& sink, std::vector<std::uint8_t>& bytes) = 0;
   virtual std::size_t size() const = 0;
+  /// Forgets the samples, keeps the storage.
+  virtual void clear() = 0;
+  /// The recorder's topic stream this batch belongs to (its index).
+  std::size_t stream() const { return stream_; }
+
+ private:
+  std::size_t stream_;
 };
 
 template <class Msg>
 class TypedBatch : public Batch {
  public:
   /// `scene_source`: the batch is of foxglove::kSceneSource, from which the scene is drawn.
-  TypedBatch(const SampleSerializer* serializer, std::uint16_t channel, std::uint32_t* sequence, std::int64_t taken_ns,
-             std::vector<Msg> samples, bool scene_source)
-      : serializer_(serializer),
-        channel_(channel),
-        sequence_(sequence),
-        taken_ns_(taken_ns),
-        samples_(std::move(samples)),
-        scene_source_(scene_source) {}
+  TypedBatch(std::size_t stream, const SampleSerializer* serializer, std::uint16_t channel, std::uint32_t* sequence,
+             bool scene_source)
+      : Batch(stream), serializer_(serializer), channel_(channel), sequence_(sequence), scene_source_(scene_source) {}
+
+  /// Filled by the step before it is queued.
+  std::vector<Msg>& samples() { return samples_; }
+  /// The order to write samples() in, as indices (empty: as they are).
+  std::vector<std::uint32_t>& order() { return order_; }
+  void set_taken_ns(std::int64_t taken_ns) { taken_ns_ = taken_ns; }
 
   void write(const Sink& sink, std::vector<std::uint8_t>& bytes) override {
-    for (const Msg& sample : samples_) {
+    for (std::size_t i = 0; i < samples_.size(); ++i) {
+      const Msg& sample = at(i);
       serializer_->serialize(&sample, bytes);
       sink.writer->write(channel_, ++*sequence_, static_cast<std::uint64_t>(log_time_ns(sink, sample)),
                          static_cast<std::uint64_t>(sample.header().stamp_ns()), bytes.data(), bytes.size());
@@ -84,8 +100,15 @@ class TypedBatch : public Batch {
     }
   }
   std::size_t size() const override { return samples_.size(); }
+  void clear() override {
+    samples_.clear();
+    order_.clear();
+  }
 
  private:
+  /// The i-th sample in the file's order.
+  const Msg& at(std::size_t i) const { return samples_[order_.empty() ? i : order_[i]]; }
+
   /// Lockstep: the sim time of the sample's step (ns), as its stamp: the same in every deployment.
   /// Real time: when the recorder took it (at most one of its steps after arrival).
   std::int64_t log_time_ns(const Sink& sink, const Msg& sample) const {
@@ -100,7 +123,8 @@ class TypedBatch : public Batch {
   /// `robodds record --foxglove-scene`): every pose is then no newer than its message.
   void write_scene(const Sink& sink, Scene& scene) const {
     const Msg* newest = nullptr;
-    for (const Msg& sample : samples_) {
+    for (std::size_t i = 0; i < samples_.size(); ++i) {
+      const Msg& sample = at(i);
       scene.poses.update(sample.robot_id(), sample.x(), sample.y(), sample.theta());
       if (newest == nullptr || sample.header().stamp_ns() > newest->header().stamp_ns()) {
         newest = &sample;
@@ -118,8 +142,9 @@ class TypedBatch : public Batch {
   const SampleSerializer* serializer_;  // the topic's, used by the writer thread only
   std::uint16_t channel_;
   std::uint32_t* sequence_;  // the topic's, touched by the writer thread only
-  std::int64_t taken_ns_;
+  std::int64_t taken_ns_ = 0;
   std::vector<Msg> samples_;
+  std::vector<std::uint32_t> order_;
   bool scene_source_;
 };
 
@@ -146,15 +171,23 @@ class WriterThread {
     }
   }
 
-  /// Queues `batch`; rethrows (as RunError) what the writer thread failed with.
-  void push(std::unique_ptr<Batch> batch) {
+  /// Queues `batch`; gives back a written batch of the same stream to fill next (null: none yet).
+  /// Rethrows (as RunError) what the writer thread failed with.
+  std::unique_ptr<Batch> push(std::unique_ptr<Batch> batch) {
     std::unique_lock<std::mutex> lock(mutex_);
     room_.wait(lock, [this] { return queue_.size() < kMaxQueued || failed_; });
     rethrow_locked();
+    const std::size_t stream = batch->stream();
     queue_.push_back(std::move(batch));
     if (queue_.size() == kWakeAt) {
       ready_.notify_one();
     }
+    if (stream >= written_.size() || written_[stream].empty()) {
+      return nullptr;
+    }
+    std::unique_ptr<Batch> spare = std::move(written_[stream].back());
+    written_[stream].pop_back();
+    return spare;
   }
 
   /// Writes what is queued and stops the thread; rethrows its failure (once).
@@ -191,7 +224,15 @@ class WriterThread {
       } catch (const std::exception& e) {
         error = e.what();
       }
+      for (auto& batch : taken) {
+        batch->clear();  // outside the lock: keeps the storage
+      }
       lock.lock();
+      for (auto& batch : taken) {
+        const std::size_t stream = batch->stream();
+        if (written_.size() <= stream) written_.resize(stream + 1);
+        written_[stream].push_back(std::move(batch));
+      }
       if (!error.empty()) {
         failed_ = true;
         error_ = error;
@@ -215,6 +256,8 @@ class WriterThread {
   std::mutex mutex_;
   std::condition_variable ready_, room_;
   std::deque<std::unique_ptr<Batch>> queue_;
+  // Written batches by stream, for push() to hand back: at most as many as were queued at once.
+  std::vector<std::vector<std::unique_ptr<Batch>>> written_;
   bool done_ = false;
   bool failed_ = false;
   std::string error_;
@@ -224,26 +267,32 @@ class WriterThread {
 class TopicStreamBase {
  public:
   virtual ~TopicStreamBase() = default;
-  /// Takes the samples the lockstep rule lets it read now, instance by instance in key order,
-  /// each instance's in its producer's order, as one batch (null: none).
-  virtual std::unique_ptr<Batch> collect(std::uint16_t channel, std::int64_t taken_ns) = 0;
+  /// Takes the samples it may write now, instance by instance in key order, each instance's in its
+  /// producer's order, as one batch (null: none). An input stream takes what the lockstep rule
+  /// lets it read; a local stream those of steps before `step_limit`.
+  virtual std::unique_ptr<Batch> collect(std::uint16_t channel, std::int64_t taken_ns, std::uint64_t step_limit) = 0;
+  /// A written batch of this stream, to fill next (WriterThread::push).
+  virtual void reuse(std::unique_ptr<Batch> batch) = 0;
   virtual std::uint64_t messages() const = 0;
 };
 
 template <class Msg>
 class TopicStream : public TopicStreamBase {
  public:
-  TopicStream(Input<Msg>* input, std::unique_ptr<SampleSerializer> serializer, std::vector<std::uint64_t> keys,
-              bool by_robot, bool scene_source)
-      : input_(input),
+  TopicStream(std::size_t index, Input<Msg>* input, std::unique_ptr<SampleSerializer> serializer,
+              std::vector<std::uint64_t> keys, bool by_robot, bool scene_source)
+      : index_(index),
+        input_(input),
         serializer_(std::move(serializer)),
         keys_(std::move(keys)),
         by_robot_(by_robot),
         scene_source_(scene_source) {}
 
-  std::unique_ptr<Batch> collect(std::uint16_t channel, std::int64_t taken_ns) override {
-    std::vector<Msg> samples;
-    samples.reserve(last_size_);  // one allocation per step, not one per doubling
+  std::unique_ptr<Batch> collect(std::uint16_t channel, std::int64_t taken_ns, std::uint64_t /*step_limit*/) override {
+    if (!spare_) {
+      spare_ = std::make_unique<TypedBatch<Msg>>(index_, serializer_.get(), channel, &sequence_, scene_source_);
+    }
+    std::vector<Msg>& samples = spare_->samples();
     if (by_robot_) {
       input_->take_new_of_robots(keys_, samples);
     } else {
@@ -252,21 +301,147 @@ class TopicStream : public TopicStreamBase {
     if (samples.empty()) {
       return nullptr;
     }
-    last_size_ = samples.size();
     messages_ += samples.size();
-    return std::make_unique<TypedBatch<Msg>>(serializer_.get(), channel, &sequence_, taken_ns, std::move(samples),
-                                             scene_source_);
+    spare_->set_taken_ns(taken_ns);
+    return std::move(spare_);
   }
+  void reuse(std::unique_ptr<Batch> batch) override { spare_.reset(static_cast<TypedBatch<Msg>*>(batch.release())); }
   std::uint64_t messages() const override { return messages_; }
 
  private:
+  std::size_t index_;
   Input<Msg>* input_;
   std::unique_ptr<SampleSerializer> serializer_;
   std::vector<std::uint64_t> keys_;
   bool by_robot_;
   bool scene_source_;
+  std::unique_ptr<TypedBatch<Msg>> spare_;  // the next batch to fill: new, or a written one again
   std::uint64_t messages_ = 0;
-  std::size_t last_size_ = 0;   // samples of the last non-empty step
+  std::uint32_t sequence_ = 0;  // the channel's, written by the writer thread
+};
+
+/// A topic of a co-located lockstep run, observed on the bus (ComponentContext::observe_local()):
+/// every sample its components write, kept by step in write order until the step is over, then
+/// written in the order an input stream gives (the file is byte-identical to a recording across
+/// processes: integration.run_record, integration.run_record_papers). Only the samples of the
+/// instances an input stream would take are kept, and only those that pass an input's checks.
+/// The step path copies each sample once and moves none: the generated IDL types' copy and move
+/// are out-of-line member-by-member calls, which a sort or a partition would repeat per sample.
+template <class Msg>
+class LocalStream : public TopicStreamBase {
+ public:
+  LocalStream(std::size_t index, std::unique_ptr<SampleSerializer> serializer, const std::vector<std::uint64_t>& keys,
+              bool by_robot, bool scene_source)
+      : index_(index), serializer_(std::move(serializer)), by_robot_(by_robot), scene_source_(scene_source) {
+    for (std::uint64_t key : keys) {
+      wanted_.insert(key);
+    }
+  }
+
+  /// Inside the writer's write(), on the step's thread.
+  void on_sample(const Msg& sample, const SampleMeta& meta) {
+    const std::uint64_t key = idl::instance_key(sample);
+    if (wanted_.find(by_robot_ ? key >> 32 : key) == KeyIndex::kNone || delivery_check(sample, meta, TimeMode::kLockstep)) {
+      return;  // not an instance the recording takes, or refused (the run's own inputs count it)
+    }
+    if (by_robot_) {
+      first_seen_.insert(key);  // numbers the robot's instances in the order they first appear
+    }
+    bucket(sample.header().step()).push_back(sample);
+  }
+
+  std::unique_ptr<Batch> collect(std::uint16_t channel, std::int64_t taken_ns, std::uint64_t step_limit) override {
+    if (pending_.empty() || pending_.front().step >= step_limit) {
+      return nullptr;
+    }
+    if (!spare_) {
+      spare_ = std::make_unique<TypedBatch<Msg>>(index_, serializer_.get(), channel, &sequence_, scene_source_);
+    }
+    std::vector<Msg>& samples = spare_->samples();
+    std::size_t steps = 0;
+    while (!pending_.empty() && pending_.front().step < step_limit) {
+      std::vector<Msg>& done = pending_.front().samples;
+      if (samples.empty()) {
+        samples.swap(done);  // the batch takes the step's storage; the step gets the batch's (empty)
+      } else {
+        samples.insert(samples.end(), done.begin(), done.end());  // more than one step: only at a run's end
+        done.clear();
+      }
+      spare_samples_.push_back(std::move(done));
+      pending_.pop_front();
+      ++steps;
+    }
+    order(samples, steps > 1, spare_->order());
+    messages_ += samples.size();
+    spare_->set_taken_ns(taken_ns);
+    return std::move(spare_);
+  }
+  void reuse(std::unique_ptr<Batch> batch) override { spare_.reset(static_cast<TypedBatch<Msg>*>(batch.release())); }
+  std::uint64_t messages() const override { return messages_; }
+
+ private:
+  struct StepSamples {
+    std::uint64_t step = 0;
+    std::vector<Msg> samples;  // in write order
+  };
+
+  /// The samples of `step`; a new step's storage is one a batch gave back.
+  std::vector<Msg>& bucket(std::uint64_t step) {
+    auto it = pending_.end();
+    while (it != pending_.begin() && std::prev(it)->step > step) {
+      --it;  // an older step than the newest: a sample for a step before (not from the plant loop)
+    }
+    if (it != pending_.begin() && std::prev(it)->step == step) {
+      return std::prev(it)->samples;
+    }
+    StepSamples fresh{step, {}};
+    if (!spare_samples_.empty()) {
+      fresh.samples = std::move(spare_samples_.back());
+      spare_samples_.pop_back();
+    }
+    return pending_.insert(it, std::move(fresh))->samples;
+  }
+
+  /// An input stream's order, as indices into `samples` (left empty when it is theirs already):
+  /// by instance key, or by robot and then each robot's instances in the order they first
+  /// appeared; the samples of an instance by step (when a batch holds several) and in write order.
+  void order(const std::vector<Msg>& samples, bool several_steps, std::vector<std::uint32_t>& order) const {
+    ranks_.clear();
+    for (const Msg& sample : samples) {
+      const std::uint64_t key = idl::instance_key(sample);
+      const std::uint64_t instance = by_robot_ ? (key >> 32 << 32) | first_seen_.find(key) : key;
+      ranks_.push_back(Rank{by_robot_ ? key >> 32 : instance, several_steps ? sample.header().step() : 0, instance});
+    }
+    if (std::is_sorted(ranks_.begin(), ranks_.end())) {
+      return;
+    }
+    order.resize(samples.size());
+    for (std::uint32_t i = 0; i < order.size(); ++i) {
+      order[i] = i;
+    }
+    std::stable_sort(order.begin(), order.end(), [this](std::uint32_t a, std::uint32_t b) { return ranks_[a] < ranks_[b]; });
+  }
+
+  struct Rank {
+    std::uint64_t stream;    // the instance key, or the robot id (by robot)
+    std::uint64_t step;      // 0 unless the batch holds several steps
+    std::uint64_t instance;  // key, or robot and first-seen number (by robot)
+    bool operator<(const Rank& o) const {
+      return stream != o.stream ? stream < o.stream : step != o.step ? step < o.step : instance < o.instance;
+    }
+  };
+
+  std::size_t index_;
+  std::unique_ptr<SampleSerializer> serializer_;
+  KeyIndex wanted_;  // instance keys, or robot ids (by_robot_)
+  bool by_robot_;
+  bool scene_source_;
+  KeyIndex first_seen_;                         // by_robot_: instance key -> how many came before it
+  std::deque<StepSamples> pending_;             // by step, ascending: written, not yet taken
+  std::vector<std::vector<Msg>> spare_samples_;  // emptied storage for the next steps
+  mutable std::vector<Rank> ranks_;              // order()'s, kept for its storage
+  std::unique_ptr<TypedBatch<Msg>> spare_;
+  std::uint64_t messages_ = 0;
   std::uint32_t sequence_ = 0;  // the channel's, written by the writer thread
 };
 
@@ -336,6 +511,10 @@ class RunRecorderNode : public Component {
     }
     // Installed where DDS was set up; a ConfigError here, before the run, if not.
     const SampleCodec& codec = sample_codec();
+    // A co-located lockstep run: every sample is written in this process, on the step's thread, so
+    // the recorder observes the bus instead of reading it through inputs (the same file, less CPU
+    // on the step). Across processes and in real time, lockstep-gated inputs order what arrives.
+    const bool observe_local = mode_ == TimeMode::kLockstep && ctx.single_process();
     // std::set: topics in name order, the order of their channels and of each step's samples.
     std::vector<std::string> skipped;
     for (const std::string& name : names) {
@@ -359,11 +538,21 @@ class RunRecorderNode : public Component {
       }
       idl::dispatch_type(topic.type_name, [&](auto tag) {
         using Msg = typename decltype(tag)::type;
+        const bool by_robot = gate == Gate::kRobotStreams;
+        const bool scene_source = scene_ && name == foxglove::kSceneSource;
+        if (observe_local) {
+          auto stream = std::make_unique<LocalStream<Msg>>(streams_.size(), codec.serializer(topic.type_name), keys, by_robot,
+                                                           scene_source);
+          LocalStream<Msg>* raw = stream.get();
+          ctx.observe_local<Msg>(name, [raw](const Msg& sample, const SampleMeta& meta) { raw->on_sample(sample, meta); });
+          streams_.push_back(std::move(stream));
+          return;
+        }
         const Subscription subscription =
             gate == Gate::kRobotStreams ? Subscription::robot_streams(keys) : Subscription::instances(keys);
         Input<Msg>* input = &ctx.subscribe<Msg>(name, subscription);
-        streams_.push_back(std::make_unique<TopicStream<Msg>>(input, codec.serializer(topic.type_name), keys,
-                                                             gate == Gate::kRobotStreams, scene_ && name == foxglove::kSceneSource));
+        streams_.push_back(std::make_unique<TopicStream<Msg>>(streams_.size(), input, codec.serializer(topic.type_name),
+                                                             keys, by_robot, scene_source));
       });
       topics_.push_back(&topic);
     }
@@ -383,21 +572,10 @@ class RunRecorderNode : public Component {
     }
   }
 
-  void on_step(const StepInfo&) override {
-    open();
-    if (!writer_thread_) {
-      return;
-    }
-    const std::int64_t taken_ns = mode_ == TimeMode::kRealtime ? wall_clock_now_ns() : 0;
-    for (std::size_t i = 0; i < streams_.size(); ++i) {
-      if (std::unique_ptr<Batch> batch = streams_[i]->collect(channels_[i], taken_ns)) {
-        writer_thread_->push(std::move(batch));
-      }
-    }
-  }
+  void on_step(const StepInfo& info) override { collect_all(info.step); }
 
   void on_finish(const StepInfo& info) override {
-    on_step(info);
+    collect_all(info.step + 1);  // the last step included
     close();
   }
 
@@ -411,6 +589,23 @@ class RunRecorderNode : public Component {
   }
 
  private:
+  /// Queues each topic's batch of what it may write now; local streams: steps before `step_limit`.
+  void collect_all(std::uint64_t step_limit) {
+    open();
+    if (!writer_thread_) {
+      return;
+    }
+    const std::int64_t taken_ns = mode_ == TimeMode::kRealtime ? wall_clock_now_ns() : 0;
+    // Local streams take the steps before this one (all written: the host runs step by step).
+    for (std::size_t i = 0; i < streams_.size(); ++i) {
+      if (std::unique_ptr<Batch> batch = streams_[i]->collect(channels_[i], taken_ns, step_limit)) {
+        if (std::unique_ptr<Batch> written = writer_thread_->push(std::move(batch))) {
+          streams_[i]->reuse(std::move(written));
+        }
+      }
+    }
+  }
+
   /// Creates the file with its schemas and channels, once; not at configure (a run that never
   /// starts writes nothing; `robodds run` checked the path is writable before the run).
   void open() {
