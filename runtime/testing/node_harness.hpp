@@ -122,6 +122,9 @@ class NodeHarness {
 
   /// The time mode of run() (default lockstep).
   void set_mode(TimeMode mode) { mode_ = mode; }
+  /// RunContext::single_process of run() (default true, a co-located run; false: the components
+  /// read as a host of a run across processes would, on this in-memory bus).
+  void set_single_process(bool single_process) { single_process_ = single_process; }
   /// RunContext::deploy_label of run() (default empty: the evaluator writes no "run" section).
   void set_deploy_label(std::string label) { deploy_label_ = std::move(label); }
 
@@ -175,7 +178,7 @@ class NodeHarness {
     run.notifier = &notifier_;
     run.mode = mode_;
     run.output_dir = output_dir_;
-    run.single_process = true;
+    run.single_process = single_process_;
     run.deploy_label = deploy_label_;
     run.assigned_producers = assigned_;
     run.produced_instances = produced_;
@@ -205,6 +208,7 @@ class NodeHarness {
   ComponentRegistry registry_;
   HostOptions options_;
   TimeMode mode_ = TimeMode::kLockstep;
+  bool single_process_ = true;
   std::string deploy_label_;
   std::shared_ptr<const AssignedProducers> assigned_;
   std::shared_ptr<const ProducedInstances> produced_;

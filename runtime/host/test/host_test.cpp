@@ -11,6 +11,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "robodds/idl/robodds.h"
@@ -102,6 +103,37 @@ TEST(HostLoop, EveryTickIsDeliveredRunAndAcknowledged) {
 // A co-located `robodds run` (HostOptions::lockstep_in_memory): the coordinator and the host
 // half exchange ticks and acknowledgements through the host's own in-memory bus, so nothing of the
 // protocol reaches the run's bus (DDS there), and the components see the same steps and samples.
+/// Adds a "consumer" type that observes plant/state on the bus (observe_local) into *seen: robot
+/// and step of each sample, in write order.
+void add_observer(NodeHarness& h, std::shared_ptr<std::vector<std::pair<std::uint32_t, std::uint64_t>>> seen) {
+  h.add_script("consumer",
+               [seen](ComponentContext& ctx) {
+                 ctx.observe_local<idl::RobotState>("plant/state", [seen](const idl::RobotState& s, const SampleMeta&) {
+                   seen->emplace_back(s.robot_id(), s.header().step());
+                 });
+               },
+               [](const StepInfo&) {});
+}
+
+TEST(HostLoop, ObserveLocalSeesEveryWriteInOrderAndNeedsEveryComponentInTheProcess) {
+  NodeHarness h(kScenario);
+  add_producer(h);
+  auto seen = std::make_shared<std::vector<std::pair<std::uint32_t, std::uint64_t>>>();
+  add_observer(h, seen);
+  h.run({"producer", "consumer"});
+  ASSERT_EQ(seen->size(), 22u) << "11 steps, 2 robots";
+  for (std::size_t i = 0; i < seen->size(); ++i) {
+    EXPECT_EQ((*seen)[i], std::make_pair(static_cast<std::uint32_t>(1 + i % 2), static_cast<std::uint64_t>(i / 2)));
+  }
+
+  NodeHarness across(kScenario);
+  add_producer(across);
+  add_observer(across, std::make_shared<std::vector<std::pair<std::uint32_t, std::uint64_t>>>());
+  across.set_single_process(false);
+  EXPECT_NE(across.run_error<ConfigError>({"producer", "consumer"}).find("observe_local(plant/state) needs every component in this process"),
+            std::string::npos);
+}
+
 TEST(HostLoop, InMemoryLockstepKeepsTicksAndAcksOffTheBusWithTheSameResults) {
   NodeHarness h(kScenario);
   add_producer(h);

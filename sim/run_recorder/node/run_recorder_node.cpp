@@ -344,9 +344,6 @@ class LocalStream : public TopicStreamBase {
     if (wanted_.find(by_robot_ ? key >> 32 : key) == KeyIndex::kNone || delivery_check(sample, meta, TimeMode::kLockstep)) {
       return;  // not an instance the recording takes, or refused (the run's own inputs count it)
     }
-    if (by_robot_) {
-      first_seen_.insert(key);  // numbers the robot's instances in the order they first appear
-    }
     bucket(sample.header().step()).push_back(sample);
   }
 
@@ -403,14 +400,13 @@ class LocalStream : public TopicStreamBase {
   }
 
   /// An input stream's order, as indices into `samples` (left empty when it is theirs already):
-  /// by instance key, or by robot and then each robot's instances in the order they first
-  /// appeared; the samples of an instance by step (when a batch holds several) and in write order.
+  /// by instance key (by robot: robot, then step when a batch holds several, then key), each
+  /// instance's samples in write order.
   void order(const std::vector<Msg>& samples, bool several_steps, std::vector<std::uint32_t>& order) const {
     ranks_.clear();
     for (const Msg& sample : samples) {
       const std::uint64_t key = idl::instance_key(sample);
-      const std::uint64_t instance = by_robot_ ? (key >> 32 << 32) | first_seen_.find(key) : key;
-      ranks_.push_back(Rank{by_robot_ ? key >> 32 : instance, several_steps ? sample.header().step() : 0, instance});
+      ranks_.push_back(Rank{by_robot_ ? key >> 32 : key, several_steps ? sample.header().step() : 0, key});
     }
     if (std::is_sorted(ranks_.begin(), ranks_.end())) {
       return;
@@ -425,9 +421,9 @@ class LocalStream : public TopicStreamBase {
   struct Rank {
     std::uint64_t stream;    // the instance key, or the robot id (by robot)
     std::uint64_t step;      // 0 unless the batch holds several steps
-    std::uint64_t instance;  // key, or robot and first-seen number (by robot)
+    std::uint64_t key;       // the instance key
     bool operator<(const Rank& o) const {
-      return stream != o.stream ? stream < o.stream : step != o.step ? step < o.step : instance < o.instance;
+      return stream != o.stream ? stream < o.stream : step != o.step ? step < o.step : key < o.key;
     }
   };
 
@@ -436,7 +432,6 @@ class LocalStream : public TopicStreamBase {
   KeyIndex wanted_;  // instance keys, or robot ids (by_robot_)
   bool by_robot_;
   bool scene_source_;
-  KeyIndex first_seen_;                         // by_robot_: instance key -> how many came before it
   std::deque<StepSamples> pending_;             // by step, ascending: written, not yet taken
   std::vector<std::vector<Msg>> spare_samples_;  // emptied storage for the next steps
   mutable std::vector<Rank> ranks_;              // order()'s, kept for its storage

@@ -1,5 +1,6 @@
-// The run recorder on the in-memory bus: every published topic it is given, through gated inputs,
-// one channel per topic in name order, each step's samples in topic then instance order, log_time
+// The run recorder on the in-memory bus: every published topic it is given, observed on the bus
+// in a co-located run and through gated inputs as a host of a run across processes (the same
+// bytes), one channel per topic in name order, each step's samples in topic then instance order, log_time
 // the sample's sim step (ns), publish_time its stamp; foxglove_scene's derived channel; bad
 // parameters named.
 #include "sim/run_recorder/node/run_recorder_node.hpp"
@@ -8,6 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,6 +47,9 @@ class SpellingCodec : public SampleCodec {
       text += spelled(*static_cast<const idl::RobotState*>(sample));
     } else if (type_name == idl::type_name<idl::VelocityCommand>()) {
       text += spelled(*static_cast<const idl::VelocityCommand*>(sample));
+    } else if (type_name == idl::type_name<idl::RangeMeasurement>()) {
+      const auto& m = *static_cast<const idl::RangeMeasurement*>(sample);
+      text += spelled(m) + " target " + std::to_string(m.target_id());
     } else if (type_name == idl::type_name<idl::UwbRanges>()) {
       const auto& m = *static_cast<const idl::UwbRanges*>(sample);
       text += spelled(m) + " peer " + std::to_string(m.peer_id());
@@ -125,6 +132,63 @@ void feed_pairs(Harness& h, bool declare) {
   if (declare) {
     h.produce_instances({{"sensor/uwb", {pair(1, 2), pair(1, 3), pair(2, 1)}}});
   }
+}
+
+/// The bytes of a recording of three steps of plant/state, plant/cmd (by robot), sensor/range (by
+/// robot, two targets for robot 1) and sensor/uwb (declared pairs), each step's samples written
+/// out of key order; `single_process`: co-located (the recorder observes the bus) or as a host of
+/// a run across processes (it reads through inputs).
+std::string recording_of_every_key_kind(bool single_process) {
+  set_sample_codec(std::make_shared<SpellingCodec>());
+  const std::string file = file_in_temp(single_process ? "run_recorder_local.mcap" : "run_recorder_inputs.mcap");
+  Harness h(ScenarioText("run_recorder_node", 0.01, 0.03)
+                .robots({1, 2, 3})
+                .component("{name: rec, type: run_recorder, params: {file: " + file + ", compression: none}}"));
+  h.set_single_process(single_process);
+  h.feed([&h](std::uint64_t step) {
+    for (const auto& [robot, target] : {std::pair{2u, 9u}, std::pair{1u, 5u}, std::pair{1u, 4u}}) {
+      idl::RangeMeasurement r;
+      r.robot_id(robot);
+      r.target_id(target);
+      h.publish("sensor/range", r, step, step + 1);
+    }
+    for (const auto& [robot, peer] : {std::pair{2u, 1u}, std::pair{1u, 3u}, std::pair{1u, 2u}}) {
+      idl::UwbRanges u;
+      u.robot_id(robot);
+      u.peer_id(peer);
+      h.publish("sensor/uwb", u, step, step + 1);
+    }
+    for (std::uint32_t robot : {2u, 1u}) {
+      idl::VelocityCommand c;
+      c.robot_id(robot);
+      h.publish("plant/cmd", c, step, step + 1);
+      idl::RobotState s;
+      s.robot_id(robot);
+      h.publish("plant/state", s, step, step + 1);
+    }
+  });
+  const std::map<std::uint32_t, std::vector<std::string>> robots_1_2{{1, {"feeder"}}, {2, {"feeder"}}};
+  h.assign_producers({{"plant/state", robots_1_2}, {"plant/cmd", robots_1_2}, {"sensor/range", robots_1_2}, {"sensor/uwb", robots_1_2}});
+  h.produce_instances({{"sensor/uwb", {pair(1, 2), pair(1, 3), pair(2, 1)}}});
+  h.run({"rec"});
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::remove(file.c_str());
+  return bytes;
+}
+
+TEST(RunRecorderNode, ObservingTheBusCoLocatedWritesWhatInputsWouldAcrossProcesses) {
+  const std::string local = recording_of_every_key_kind(true);
+  const std::string inputs = recording_of_every_key_kind(false);
+  ASSERT_FALSE(local.empty());
+  EXPECT_TRUE(local == inputs) << "co-located " << local.size() << " bytes, through inputs " << inputs.size() << " bytes";
+  // Robot 1's targets in key order (4, then 5; written 5 first), then robot 2's.
+  const std::size_t five = local.find("RangeMeasurement robot 1 step 0 target 5");
+  const std::size_t four = local.find("RangeMeasurement robot 1 step 0 target 4");
+  const std::size_t nine = local.find("RangeMeasurement robot 2 step 0 target 9");
+  ASSERT_NE(five, std::string::npos);
+  EXPECT_LT(four, five);
+  EXPECT_LT(five, nine);
 }
 
 TEST(RunRecorderNode, RecordsPairKeyedTopicsForTheInstancesTheirProducersDeclare) {
