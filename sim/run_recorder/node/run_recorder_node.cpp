@@ -276,48 +276,65 @@ class TopicStreamBase {
   virtual std::uint64_t messages() const = 0;
 };
 
+/// What both kinds of stream share: the batch they fill next (a new one, or a written one again),
+/// the topic's serializer, message count and channel sequence.
 template <class Msg>
-class TopicStream : public TopicStreamBase {
+class BatchingStream : public TopicStreamBase {
  public:
-  TopicStream(std::size_t index, Input<Msg>* input, std::unique_ptr<SampleSerializer> serializer,
-              std::vector<std::uint64_t> keys, bool by_robot, bool scene_source)
-      : index_(index),
-        input_(input),
-        serializer_(std::move(serializer)),
-        keys_(std::move(keys)),
-        by_robot_(by_robot),
-        scene_source_(scene_source) {}
+  BatchingStream(std::size_t index, std::unique_ptr<SampleSerializer> serializer, bool scene_source)
+      : index_(index), serializer_(std::move(serializer)), scene_source_(scene_source) {}
 
-  std::unique_ptr<Batch> collect(std::uint16_t channel, std::int64_t taken_ns, std::uint64_t /*step_limit*/) override {
+  void reuse(std::unique_ptr<Batch> batch) override { spare_.reset(static_cast<TypedBatch<Msg>*>(batch.release())); }
+  std::uint64_t messages() const override { return messages_; }
+
+ protected:
+  /// The batch to fill now: empty, its storage kept from earlier steps.
+  TypedBatch<Msg>& next_batch(std::uint16_t channel) {
     if (!spare_) {
       spare_ = std::make_unique<TypedBatch<Msg>>(index_, serializer_.get(), channel, &sequence_, scene_source_);
     }
-    std::vector<Msg>& samples = spare_->samples();
+    return *spare_;
+  }
+  /// next_batch(), filled, for the writer thread; null when it holds no sample.
+  std::unique_ptr<Batch> hand_over(std::int64_t taken_ns) {
+    if (!spare_ || spare_->size() == 0) {
+      return nullptr;
+    }
+    messages_ += spare_->size();
+    spare_->set_taken_ns(taken_ns);
+    return std::move(spare_);
+  }
+
+ private:
+  std::size_t index_;
+  std::unique_ptr<SampleSerializer> serializer_;  // used by the writer thread only
+  bool scene_source_;
+  std::unique_ptr<TypedBatch<Msg>> spare_;
+  std::uint64_t messages_ = 0;
+  std::uint32_t sequence_ = 0;  // the channel's, written by the writer thread
+};
+
+template <class Msg>
+class TopicStream : public BatchingStream<Msg> {
+ public:
+  TopicStream(std::size_t index, Input<Msg>* input, std::unique_ptr<SampleSerializer> serializer,
+              std::vector<std::uint64_t> keys, bool by_robot, bool scene_source)
+      : BatchingStream<Msg>(index, std::move(serializer), scene_source), input_(input), keys_(std::move(keys)), by_robot_(by_robot) {}
+
+  std::unique_ptr<Batch> collect(std::uint16_t channel, std::int64_t taken_ns, std::uint64_t /*step_limit*/) override {
+    std::vector<Msg>& samples = this->next_batch(channel).samples();
     if (by_robot_) {
       input_->take_new_of_robots(keys_, samples);
     } else {
       input_->take_new(keys_, samples);
     }
-    if (samples.empty()) {
-      return nullptr;
-    }
-    messages_ += samples.size();
-    spare_->set_taken_ns(taken_ns);
-    return std::move(spare_);
+    return this->hand_over(taken_ns);
   }
-  void reuse(std::unique_ptr<Batch> batch) override { spare_.reset(static_cast<TypedBatch<Msg>*>(batch.release())); }
-  std::uint64_t messages() const override { return messages_; }
 
  private:
-  std::size_t index_;
   Input<Msg>* input_;
-  std::unique_ptr<SampleSerializer> serializer_;
   std::vector<std::uint64_t> keys_;
   bool by_robot_;
-  bool scene_source_;
-  std::unique_ptr<TypedBatch<Msg>> spare_;  // the next batch to fill: new, or a written one again
-  std::uint64_t messages_ = 0;
-  std::uint32_t sequence_ = 0;  // the channel's, written by the writer thread
 };
 
 /// A topic of a co-located lockstep run, observed on the bus (ComponentContext::observe_local()):
@@ -328,11 +345,11 @@ class TopicStream : public TopicStreamBase {
 /// The step path copies each sample once and moves none: the generated IDL types' copy and move
 /// are out-of-line member-by-member calls, which a sort or a partition would repeat per sample.
 template <class Msg>
-class LocalStream : public TopicStreamBase {
+class LocalStream : public BatchingStream<Msg> {
  public:
   LocalStream(std::size_t index, std::unique_ptr<SampleSerializer> serializer, const std::vector<std::uint64_t>& keys,
               bool by_robot, bool scene_source)
-      : index_(index), serializer_(std::move(serializer)), by_robot_(by_robot), scene_source_(scene_source) {
+      : BatchingStream<Msg>(index, std::move(serializer), scene_source), by_robot_(by_robot) {
     for (std::uint64_t key : keys) {
       wanted_.insert(key);
     }
@@ -351,10 +368,8 @@ class LocalStream : public TopicStreamBase {
     if (pending_.empty() || pending_.front().step >= step_limit) {
       return nullptr;
     }
-    if (!spare_) {
-      spare_ = std::make_unique<TypedBatch<Msg>>(index_, serializer_.get(), channel, &sequence_, scene_source_);
-    }
-    std::vector<Msg>& samples = spare_->samples();
+    TypedBatch<Msg>& batch = this->next_batch(channel);
+    std::vector<Msg>& samples = batch.samples();
     std::size_t steps = 0;
     while (!pending_.empty() && pending_.front().step < step_limit) {
       std::vector<Msg>& done = pending_.front().samples;
@@ -368,13 +383,9 @@ class LocalStream : public TopicStreamBase {
       pending_.pop_front();
       ++steps;
     }
-    order(samples, steps > 1, spare_->order());
-    messages_ += samples.size();
-    spare_->set_taken_ns(taken_ns);
-    return std::move(spare_);
+    order(samples, steps > 1, batch.order());
+    return this->hand_over(taken_ns);
   }
-  void reuse(std::unique_ptr<Batch> batch) override { spare_.reset(static_cast<TypedBatch<Msg>*>(batch.release())); }
-  std::uint64_t messages() const override { return messages_; }
 
  private:
   struct StepSamples {
@@ -427,17 +438,11 @@ class LocalStream : public TopicStreamBase {
     }
   };
 
-  std::size_t index_;
-  std::unique_ptr<SampleSerializer> serializer_;
   KeyIndex wanted_;  // instance keys, or robot ids (by_robot_)
   bool by_robot_;
-  bool scene_source_;
   std::deque<StepSamples> pending_;             // by step, ascending: written, not yet taken
   std::vector<std::vector<Msg>> spare_samples_;  // emptied storage for the next steps
   mutable std::vector<Rank> ranks_;              // order()'s, kept for its storage
-  std::unique_ptr<TypedBatch<Msg>> spare_;
-  std::uint64_t messages_ = 0;
-  std::uint32_t sequence_ = 0;  // the channel's, written by the writer thread
 };
 
 /// How the recorder waits for a topic's instances, from its key: one per robot that has a
