@@ -64,8 +64,9 @@ class RelativePoseModule : public MetricsModule {
   void finish(bool /*completed*/) override { settle(true); }
 
   /// "stages": {"<stage>": {position_error_m_mean, position_error_m_std, heading_error_deg_mean,
-  /// heading_error_deg_std, epochs, invalid_epochs}} for each recorded relative pose topic; means
-  /// and stds only with epochs.
+  /// heading_error_deg_std, epochs, invalid_epochs, consistency}} for each recorded relative pose
+  /// topic; means and stds only with epochs; consistency (sim/evaluator/consistency.hpp) from step
+  /// 0, every estimate with truth against the covariance it reports.
   void write_metrics(JsonWriter& json) const override {
     if (metrics_ == nullptr) {
       return;
@@ -81,6 +82,17 @@ class RelativePoseModule : public MetricsModule {
       }
       json.value("epochs", static_cast<std::int64_t>(stage.epochs));
       json.value("invalid_epochs", static_cast<std::int64_t>(stage.invalid_epochs));
+      ConsistencyStats consistency;
+      for (const RelativeRecorder* recorder : recorders_) {
+        if (recorder->stage() == name) {
+          consistency = pooled(consistency, recorder->consistency());
+        }
+      }
+      if (consistency.samples > 0) {
+        json.begin_object("consistency");
+        write_consistency(json, consistency);
+        json.end_object();
+      }
       json.end_object();
     }
     json.end_object();

@@ -8,15 +8,18 @@
 #include <algorithm>
 #include <cstdint>
 #include <deque>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "common/angle.hpp"
 #include "common/model/pose2.hpp"
 #include "common/number_text.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/io/io.hpp"
 #include "runtime/io/sample_format.hpp"
+#include "sim/evaluator/consistency.hpp"
 #include "sim/evaluator/metrics/relative_pose/relative_pose_metrics.hpp"
 #include "sim/evaluator/metrics/relative_pose/truth_by_robot.hpp"
 #include "sim/evaluator/module/recorder.hpp"
@@ -110,6 +113,14 @@ class RelativeRecorder : public TopicRecorder {
         if (s.valid()) {
           metrics_.add_valid(stage_, t_s, i, j, {s.x(), s.y(), s.theta()});
         }
+        EstimateError e;
+        e.step = step;
+        e.valid = s.valid();
+        e.ex = s.x() - between.x;
+        e.ey = s.y() - between.y;
+        e.etheta = wrap_angle(s.theta() - between.theta);
+        std::copy(s.cov().begin(), s.cov().end(), e.cov.begin());
+        consistency_of(idl::instance_key(s)).add(e);
       } else {
         text_ += ",,,";
       }
@@ -121,11 +132,22 @@ class RelativeRecorder : public TopicRecorder {
     }
     file_.write(text_);
   }
+  /// Its estimates against the covariance they report (valid ones, with truth), pooled over pairs.
+  ConsistencyStats consistency() const {
+    ConsistencyStats all;
+    for (const auto& [key, tracker] : consistency_) {
+      all = pooled(all, tracker.stats());
+    }
+    return all;
+  }
+  const std::string& stage() const { return stage_; }
   /// The oldest step of truth this recorder may still need.
   std::uint64_t truth_needed_from() const {
     return pending_.empty() ? last_step_ : pending_.front().header().step();
   }
  private:
+  ConsistencyTracker& consistency_of(std::uint64_t pair) { return consistency_.try_emplace(pair, step_s_).first->second; }
+
   std::string stage_;
   Input<Msg>* input_;
   std::vector<std::uint64_t> keys_;
@@ -134,6 +156,7 @@ class RelativeRecorder : public TopicRecorder {
   RelativePoseMetrics& metrics_;
   std::string text_;
   std::deque<Msg> pending_;     // taken, waiting for the truth of their step
+  std::map<std::uint64_t, ConsistencyTracker> consistency_;  // by pair
   std::uint64_t last_step_ = 0; // the newest step taken
 };
 
