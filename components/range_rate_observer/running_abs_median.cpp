@@ -26,11 +26,22 @@ void RunningAbsMedian::add(double x) {
     throw std::invalid_argument("running median: non-finite value " + shortest_text(x));
   }
   const double value = std::abs(x);
-  if (sorted_.size() == ring_.size()) {
-    // Full: the oldest value leaves; it is the one at next_ in the ring.
-    sorted_.erase(std::lower_bound(sorted_.begin(), sorted_.end(), ring_[next_]));
+  const auto to = std::upper_bound(sorted_.begin(), sorted_.end(), value);
+  if (sorted_.size() < ring_.size()) {
+    sorted_.insert(to, value);
+  } else {
+    // Full: the oldest value (at next_ in the ring) leaves and the new one takes its place; only
+    // the values between the two positions move (a third of the window on average, not all of
+    // it as an erase plus an insert would: ~3x cheaper at 256).
+    const auto from = std::lower_bound(sorted_.begin(), sorted_.end(), ring_[next_]);
+    if (to <= from) {
+      std::move_backward(to, from, from + 1);  // the values in [to, from) are > value
+      *to = value;
+    } else {
+      std::move(from + 1, to, from);  // the values in (from, to) are <= value
+      *(to - 1) = value;
+    }
   }
-  sorted_.insert(std::upper_bound(sorted_.begin(), sorted_.end(), value), value);
   ring_[next_] = value;
   next_ = (next_ + 1) % ring_.size();
 }

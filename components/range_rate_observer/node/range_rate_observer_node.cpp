@@ -118,8 +118,8 @@ class RangeRateObserverNode : public Component {
         continue;
       }
       log::info(name_, "robot " + std::to_string(id) + ": range noise estimated sigma " +
-                           shortest_text(std::round(robot.sta.noise_sigma_m() * 1e3) * 1e-3) + " m (floor " + shortest_text(params_.sta.noise_floor_m) +
-                           " m), restart threshold " + shortest_text(std::round(robot.sta.restart_threshold_m() * 1e2) * 1e-2) + " m, " +
+                           shortest_text(std::round(robot.sta.noise_sigma_m() * 1e3) / 1e3) + " m (floor " + shortest_text(params_.sta.noise_floor_m) +
+                           " m), restart threshold " + shortest_text(std::round(robot.sta.restart_threshold_m() * 1e2) / 1e2) + " m, " +
                            std::to_string(robot.sta.restarts()) + " restarts (super-twisting)");
     }
   }

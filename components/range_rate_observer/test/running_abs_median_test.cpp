@@ -2,8 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
+#include <vector>
 
 #include "common/random.hpp"
 
@@ -54,6 +58,24 @@ TEST(RunningAbsMedian, EstimatesAGaussianSigmaAndIgnoresAMinorityOfJumps) {
     EXPECT_NEAR(clean.sigma(), 2.83, 0.25 * 2.83) << seed;
     EXPECT_NEAR(jumpy.sigma(), 2.83, 0.35 * 2.83) << seed;  // the median of the other 90 %: ~1.13x wider
     EXPECT_LT(jumpy.sigma(), 5.0) << seed;
+  }
+}
+
+TEST(RunningAbsMedian, AgreesWithSortingTheLastValues) {
+  // The in-place replacement of the oldest value against a sort of the last `window` |x|, with
+  // ties (rounded values) and both directions of the move.
+  for (const std::size_t window : {1u, 2u, 7u, 64u}) {
+    RandomEngine engine(window);
+    RunningAbsMedian m(window);
+    std::vector<double> all;
+    for (int k = 0; k < 2000; ++k) {
+      const double x = std::round(4.0 * standard_normal(engine)) / 2.0;
+      m.add(x);
+      all.push_back(std::abs(x));
+      std::vector<double> last(all.end() - static_cast<std::ptrdiff_t>(std::min(all.size(), window)), all.end());
+      std::sort(last.begin(), last.end());
+      ASSERT_EQ(m.median_abs(), last[(last.size() - 1) / 2]) << "window " << window << ", value " << k;
+    }
   }
 }
 
