@@ -117,10 +117,12 @@ class RangeRateObserverNode : public Component {
       if (!robot.sta.started()) {
         continue;
       }
-      log::info(name_, "robot " + std::to_string(id) + ": range noise estimated sigma " +
-                           shortest_text(std::round(robot.sta.noise_sigma_m() * 1e3) / 1e3) + " m (floor " + shortest_text(params_.sta.noise_floor_m) +
-                           " m), restart threshold " + shortest_text(std::round(robot.sta.restart_threshold_m() * 1e2) / 1e2) + " m, " +
-                           std::to_string(robot.sta.restarts()) + " restarts (super-twisting)");
+      const double sigma_m = std::round(robot.sta.noise_sigma_m() * 1e3) / 1e3;
+      const double threshold_m = std::round(robot.sta.restart_threshold_m() * 1e2) / 1e2;
+      log::info(name_, "robot " + std::to_string(id) + ": range noise estimated sigma " + shortest_text(sigma_m) +
+                           " m (floor " + shortest_text(params_.sta.noise_floor_m) + " m), restart threshold " +
+                           shortest_text(threshold_m) + " m, " + std::to_string(robot.sta.restarts()) +
+                           " restarts (super-twisting)");
     }
   }
 
