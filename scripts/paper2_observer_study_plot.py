@@ -215,8 +215,8 @@ def main(argv):
                           None, "BIAS, accel (1 m/s^2): signed mean rate error on the signal with noise "
                           "(the linear observer's lag is -2 a / w whatever the noise)")
     table_by_observer(rows, "orbit", [(r, s) for r in rates for s in noisy], "restarts_per_run", None,
-                      "Restarts per run at the default restart_jump_m 5 m (orbit signal with noise; the study "
-                      "itself runs with restarts off)")
+                      "Restarts per run at the default restart rule (restart_sigmas 7 on the estimated noise, floor "
+                      "0.5 m; orbit signal with noise; the study itself runs with restarts off)")
     for signal in [s for s in ("orbit", "accel") if pick(rows, signal=s)]:
         equal_noise_table(rows, signal)
 

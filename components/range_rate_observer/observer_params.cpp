@@ -13,8 +13,10 @@ const params::ParamTable<SuperTwistingParams>& super_twisting_param_table() {
                "gain on sgn(e); above the largest |range acceleration| to follow")
           .add("c", &P::c, "1/s^2", params::positive(), "gain on e in the rate equation")
           .add("d", &P::d, "1/s", params::non_negative("0 = plain super-twisting"), "linear gain on e, J of eq. (3)")
-          .add("restart_jump_m", &P::restart_jump_m, "m", params::non_negative("0 = never restart"),
-               "a range step the rate misses by more than this restarts the observer")
+          .add("restart_sigmas", &P::restart_sigmas, "", params::non_negative("0 = never restart"),
+               "a range step the rate misses by more than this many times its estimated spread restarts the observer")
+          .add("noise_floor_m", &P::noise_floor_m, "m", params::positive(),
+               "the range sensor's configured noise sigma: floor of the online noise estimate")
           .add("restart_window_s", &P::restart_window_s, "s", params::positive(),
                "after a restart: least-squares window that sets range and rate; not valid until full");
   return table;
@@ -26,8 +28,10 @@ const params::ParamTable<LinearObserverParams>& linear_observer_param_table() {
       params::ParamTable<P>("Linear baseline range-rate observer, eq. (9) as read in README.md.")
           .add("k1", &P::k1, "1/s", params::positive(), "gain on the range error in the range equation")
           .add("k2", &P::k2, "1/s^2", params::positive(), "gain on the range error in the rate equation")
-          .add("restart_jump_m", &P::restart_jump_m, "m", params::non_negative("0 = never restart"),
-               "a range step the rate misses by more than this restarts the observer")
+          .add("restart_sigmas", &P::restart_sigmas, "", params::non_negative("0 = never restart"),
+               "a range step the rate misses by more than this many times its estimated spread restarts the observer")
+          .add("noise_floor_m", &P::noise_floor_m, "m", params::positive(),
+               "the range sensor's configured noise sigma: floor of the online noise estimate")
           .add("restart_window_s", &P::restart_window_s, "s", params::positive(),
                "after a restart: least-squares window that sets range and rate; not valid until full");
   return table;

@@ -24,9 +24,15 @@ struct SuperTwistingParams {
   /// The "+c x1" printed in eq. (2) makes the error grow; see README.md.
   double c = 1.0;
   double d = 1.0;
-  /// The step is measured between two samples; it means a new target or range source. The
-  /// observer restarts at the new range instead of a transient of hundreds of m/s.
-  double restart_jump_m = 5.0;
+  /// A range step between two samples that the rate misses by more than restart_sigmas times
+  /// its estimated spread means a new target or range source: the observer restarts at the new
+  /// range instead of a transient of hundreds of m/s. The spread is estimated online from the
+  /// steps themselves (robustly, never below noise_floor_m), so range noise alone does not
+  /// restart it, whatever the sensor's true noise (issue 27). 7 at the 0.5 m floor: 4.95 m, the
+  /// fixed 5 m of before.
+  double restart_sigmas = 7.0;
+  /// The range noise (sigma, m) the sensor is configured with: the floor of the online estimate.
+  double noise_floor_m = 0.5;
   /// After a restart the state is re-initialised from a least-squares line through the samples
   /// of this long a window (s); the estimate is not valid until the window is full.
   double restart_window_s = 0.5;
@@ -44,7 +50,8 @@ struct SuperTwistingParams {
 struct LinearObserverParams {
   double k1 = 3.0;
   double k2 = 2.25;
-  double restart_jump_m = 5.0;    // as SuperTwistingParams::restart_jump_m
+  double restart_sigmas = 7.0;    // as SuperTwistingParams::restart_sigmas
+  double noise_floor_m = 0.5;     // as SuperTwistingParams::noise_floor_m
   double restart_window_s = 0.5;  // as SuperTwistingParams::restart_window_s
 
   void validate() const;

@@ -1,5 +1,6 @@
 #include "components/range_rate_observer/node/range_rate_observer_node.hpp"
 
+#include <cmath>
 #include <map>
 #include <stdexcept>
 
@@ -106,6 +107,22 @@ class RangeRateObserverNode : public Component {
       out.publish_final(e);
     } else {
       out.publish(e);
+    }
+  }
+
+  /// The noise each robot's observers estimated (issue 27: estimated, not assumed): one line per
+  /// robot at the end of the run, beside the restarts the evaluator counts.
+  void on_finish(const StepInfo&) override {
+    for (const auto& [id, robot] : robots_) {
+      if (!robot.sta.started()) {
+        continue;
+      }
+      const double sigma_m = std::round(robot.sta.noise_sigma_m() * 1e3) / 1e3;
+      const double threshold_m = std::round(robot.sta.restart_threshold_m() * 1e2) / 1e2;
+      log::info(name_, "robot " + std::to_string(id) + ": range noise estimated sigma " + shortest_text(sigma_m) +
+                           " m (floor " + shortest_text(params_.sta.noise_floor_m) + " m), restart threshold " +
+                           shortest_text(threshold_m) + " m, " + std::to_string(robot.sta.restarts()) +
+                           " restarts (super-twisting)");
     }
   }
 

@@ -92,7 +92,7 @@ double RangeSignal::rate_mps(double t_s) const {
 ObserverConfig super_twisting_config() {
   ObserverConfig config;
   config.super_twisting = true;
-  config.sta.restart_jump_m = 0.0;
+  config.sta.restart_sigmas = 0.0;
   return config;
 }
 
@@ -102,18 +102,18 @@ ObserverConfig linear_config(double w_radps) {
   config.w_radps = w_radps;
   config.linear.k1 = 2.0 * w_radps;
   config.linear.k2 = w_radps * w_radps;
-  config.linear.restart_jump_m = 0.0;
+  config.linear.restart_sigmas = 0.0;
   return config;
 }
 
 RunResult run_observer(const ObserverConfig& observer, const RangeSignal& signal, const RunSpec& spec) {
   if (observer.super_twisting) {
     SuperTwistingParams with_jump = observer.sta;
-    with_jump.restart_jump_m = SuperTwistingParams{}.restart_jump_m;
+    with_jump.restart_sigmas = SuperTwistingParams{}.restart_sigmas;
     return run(SuperTwistingObserver(observer.sta), SuperTwistingObserver(with_jump), signal, spec);
   }
   LinearObserverParams with_jump = observer.linear;
-  with_jump.restart_jump_m = LinearObserverParams{}.restart_jump_m;
+  with_jump.restart_sigmas = LinearObserverParams{}.restart_sigmas;
   return run(LinearRangeRateObserver(observer.linear), LinearRangeRateObserver(with_jump), signal, spec);
 }
 

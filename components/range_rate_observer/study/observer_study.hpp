@@ -47,7 +47,7 @@ struct RangeSignal {
   double rate_mps(double t_s) const;
 };
 
-/// One observer of the study, restarts disabled (restart_jump_m = 0: noise must not restart it).
+/// One observer of the study, restarts disabled (restart_sigmas = 0: noise must not restart it).
 struct ObserverConfig {
   bool super_twisting = true;
   /// Linear only: k1 = 2 w, k2 = w^2 (critically damped, both poles at -w).
@@ -72,7 +72,7 @@ struct RunSpec {
 struct RunResult {
   double rms_error_mps = 0.0;   // RMS of the rate error over t >= steady_from_s
   double mean_error_mps = 0.0;  // signed mean of the rate error over t >= steady_from_s
-  /// Restarts of a copy of the observer with the default restart_jump_m (5 m) fed the same
+  /// Restarts of a copy of the observer with the default restart rule (restart_sigmas 7, floor 0.5 m) fed the same
   /// samples: how often noise alone would restart it.
   std::size_t restarts_at_default_jump = 0;
 };
@@ -104,7 +104,7 @@ struct StudyRow {
   /// Signed mean rate error of the TOTAL runs, mean over seeds: a bias (lag) under noise; ~0 on
   /// the orbit, whose acceleration changes sign.
   double total_bias_mps = 0.0;
-  double restarts_per_run = 0.0;  // of the TOTAL runs, at the default restart_jump_m
+  double restarts_per_run = 0.0;  // of the TOTAL runs, at the default restart rule
 };
 
 /// Rows ordered signal, rate, sigma, observer (super-twisting first, then the linear gains).

@@ -40,8 +40,14 @@ TEST(SuperTwistingParams, EachBadGainNamesItsKey) {
   p = SuperTwistingParams{};
   p.d = 0.0;
   EXPECT_EQ(validation_error(p), "");
-  p.restart_jump_m = kNan;
-  EXPECT_EQ(validation_error(p).rfind("restart_jump_m: ", 0), 0u);
+  p.restart_sigmas = kNan;
+  EXPECT_EQ(validation_error(p).rfind("restart_sigmas: ", 0), 0u);
+  p = SuperTwistingParams{};
+  p.restart_sigmas = -1.0;
+  EXPECT_EQ(validation_error(p), "restart_sigmas: must be >= 0 and finite (0 = never restart) (got -1)");
+  p = SuperTwistingParams{};
+  p.noise_floor_m = 0.0;  // noise-free, the missed steps are millimetres: no floor, no threshold
+  EXPECT_EQ(validation_error(p), "noise_floor_m: must be > 0 and finite (got 0)");
   p = SuperTwistingParams{};
   p.restart_window_s = 0.0;
   EXPECT_EQ(validation_error(p), "restart_window_s: must be > 0 and finite (got 0)");
@@ -62,13 +68,13 @@ TEST(LinearObserverParams, DefaultsAreValidAndBadGainsNamed) {
 
 TEST(ObserverParamTables, DocumentEveryFieldWithItsDefault) {
   const params::ParamDoc doc = super_twisting_param_table().doc();
-  ASSERT_EQ(doc.params.size(), 6u);
+  ASSERT_EQ(doc.params.size(), 7u);
   EXPECT_EQ(doc.params[0].key, "a");
   EXPECT_EQ(doc.params[0].default_yaml, "2.12");
   EXPECT_EQ(doc.params[0].range, "(0, 2.5)");
   EXPECT_EQ(doc.params[3].range, ">= 0 (0 = plain super-twisting)");
   const params::ParamDoc linear = linear_observer_param_table().doc();
-  ASSERT_EQ(linear.params.size(), 4u);
+  ASSERT_EQ(linear.params.size(), 5u);
   EXPECT_EQ(linear.params[1].key, "k2");
   EXPECT_EQ(linear.params[1].default_yaml, "2.25");
 }
