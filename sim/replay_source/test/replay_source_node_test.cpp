@@ -78,6 +78,50 @@ TEST(ReplaySourceNode, PublishesEachSampleAtItsRecordedStepWithItsNextStep) {
   }
 }
 
+/// The DDS codec, counting the samples it decodes.
+class CountingCodec : public SampleCodec {
+ public:
+  std::vector<std::uint8_t> serialize(const std::string& type_name, const void* sample) const override {
+    return dds_->serialize(type_name, sample);
+  }
+  std::shared_ptr<void> deserialize(const std::string& type_name, const std::uint8_t* data, std::size_t size) const override {
+    ++decoded;
+    return dds_->deserialize(type_name, data, size);
+  }
+  mutable int decoded = 0;
+
+ private:
+  std::shared_ptr<const SampleCodec> dds_ = make_dds_sample_codec();
+};
+
+TEST(ReplaySourceNode, DecodesEachSampleOnceForTheDryConfiguresAndTheRun) {
+  const auto codec = std::make_shared<CountingCodec>();
+  set_sample_codec(codec);
+  Harness h(scenario(recording({{0, 2, 10.0}, {2, 4, 12.0}, {4, 6, 14.0}})));
+  // What `robodds run` does: the producer check's dry configure, then the run's configure (each a
+  // new component object).
+  scenario_producers(h.registry(), h.scenario(), TimeMode::kLockstep);
+  const auto& fixes = h.record<idl::PositionMeasurement>("sensor/position");
+  h.run({"replay"});
+  EXPECT_EQ(fixes.size(), 3u);
+  EXPECT_EQ(codec->decoded, 3) << "each recorded sample decoded once in the process";
+  set_sample_codec(make_dds_sample_codec());
+}
+
+TEST(ReplaySourceNode, ARecordingRewrittenBetweenTwoRunsIsReadAgain) {
+  const std::string path = recording({{0, 2, 10.0}, {2, 4, 12.0}, {4, 6, 14.0}});
+  {
+    Harness h(scenario(path));
+    const auto& fixes = h.record<idl::PositionMeasurement>("sensor/position");
+    h.run({"replay"});
+    ASSERT_EQ(fixes.size(), 3u);
+  }
+  ASSERT_EQ(recording({{0, 2, 10.0}, {2, 6, 12.0}, {4, 6, 14.0}}), path) << "the same file, the same size";
+  Harness h(scenario(path));
+  EXPECT_NE(h.run_error<ConfigError>({"replay"}).find("the sample of step 2 announces step 6 but the next one recorded is of step 4"),
+            std::string::npos);
+}
+
 TEST(ReplaySourceNode, ALostSampleStopsTheRunBeforeItStarts) {
   Harness h(scenario(recording({{0, 2, 10.0}, {4, 6, 14.0}})));
   EXPECT_NE(h.run_error<ConfigError>({"replay"}).find(
