@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -36,10 +37,13 @@ struct Fix {
 };
 
 /// A recording of sensor/position (robot 1) with these fixes, under schema `schema_name`.
-std::string recording(const std::vector<Fix>& fixes, const std::string& schema_name = "robodds::idl::PositionMeasurement") {
+std::string recording(const std::vector<Fix>& fixes, const std::string& schema_name = "robodds::idl::PositionMeasurement",
+                      mcap::Compression compression = mcap::Compression::kZstd) {
   install_dds_sample_codec();
   const std::string path = test_support::write_test_file("rec.mcap", "");
-  mcap::Writer writer(path, mcap::WriterOptions{});
+  mcap::WriterOptions options;
+  options.compression = compression;
+  mcap::Writer writer(path, options);
   const std::string type = "robodds::idl::PositionMeasurement";
   const auto schema = writer.add_schema(schema_name, "omgidl", idl_schema_text(type));
   const auto channel = writer.add_channel(schema, "sensor/position", "cdr", {});
@@ -109,14 +113,17 @@ TEST(ReplaySourceNode, DecodesEachSampleOnceForTheDryConfiguresAndTheRun) {
 }
 
 TEST(ReplaySourceNode, ARecordingRewrittenBetweenTwoRunsIsReadAgain) {
-  const std::string path = recording({{0, 2, 10.0}, {2, 4, 12.0}, {4, 6, 14.0}});
+  const std::string schema = "robodds::idl::PositionMeasurement";
+  const std::string path = recording({{0, 2, 10.0}, {2, 4, 12.0}, {4, 6, 14.0}}, schema, mcap::Compression::kNone);
+  const auto size = std::filesystem::file_size(path);
   {
     Harness h(scenario(path));
     const auto& fixes = h.record<idl::PositionMeasurement>("sensor/position");
     h.run({"replay"});
     ASSERT_EQ(fixes.size(), 3u);
   }
-  ASSERT_EQ(recording({{0, 2, 10.0}, {2, 6, 12.0}, {4, 6, 14.0}}), path) << "the same file, the same size";
+  ASSERT_EQ(recording({{0, 2, 10.0}, {2, 6, 12.0}, {4, 6, 14.0}}, schema, mcap::Compression::kNone), path);
+  ASSERT_EQ(std::filesystem::file_size(path), size) << "the same file, the same size: its stamp tells them apart";
   Harness h(scenario(path));
   EXPECT_NE(h.run_error<ConfigError>({"replay"}).find("the sample of step 2 announces step 6 but the next one recorded is of step 4"),
             std::string::npos);
