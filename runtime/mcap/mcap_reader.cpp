@@ -182,7 +182,11 @@ class Scanner {
     c.last_log_time = std::max(c.last_log_time, v.log_time);
     ++c.messages;
     c.bytes += v.size;
-    if (on_message_) on_message_(v);
+    if (on_message_) {
+      MessageView with_channel = v;
+      with_channel.channel = &channels_.at(v.channel_id);  // defined: checked by the callers
+      on_message_(with_channel);
+    }
   }
 
   static MessageView parse_message(FieldReader& f) {

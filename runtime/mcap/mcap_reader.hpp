@@ -44,6 +44,7 @@ struct MessageView {
   std::uint64_t publish_time;
   const std::uint8_t* data;
   std::size_t size;
+  const ChannelInfo* channel;  // the message's channel (defined before it)
 };
 
 struct Message {
@@ -92,7 +93,9 @@ struct ReadReport {
   std::string recovery() const;
 };
 
-/// Reads `path`, calling `on_message` for every message in file order (may be empty).
+/// Reads `path`, calling `on_message` for every message in file order (may be empty). A caller
+/// that wants a few channels keeps only theirs (MessageView::channel): every record is still read
+/// and checked, and the report covers every channel.
 ReadReport scan_mcap(const std::string& path, OnDamage on_damage,
                      const std::function<void(const MessageView&)>& on_message);
 

@@ -3,21 +3,40 @@
 #include <algorithm>
 #include <limits>
 #include <map>
+#include <unordered_map>
 
 namespace robodds::replay_source {
 
-std::string chain_problem(std::vector<ChainLink> links, std::uint64_t last_step) {
+std::string chain_problem(const std::vector<ChainLink>& links, std::uint64_t last_step) {
   std::uint64_t recorded_until = 0;
   for (const ChainLink& l : links) recorded_until = std::max(recorded_until, l.step);
-  std::stable_sort(links.begin(), links.end(), [](const ChainLink& a, const ChainLink& b) {
+  // Sorted by stream name, then step, equal ones in their given order: a stable sort of indices by
+  // the stream's rank among the names (a recording holds few streams and many samples: integers
+  // are compared and moved, not names and links).
+  std::unordered_map<std::string, std::uint32_t> rank;
+  for (const ChainLink& l : links) rank.emplace(l.stream, 0);
+  std::vector<const std::string*> names;
+  names.reserve(rank.size());
+  for (const auto& [name, r] : rank) names.push_back(&name);
+  std::sort(names.begin(), names.end(), [](const std::string* a, const std::string* b) { return *a < *b; });
+  for (std::size_t i = 0; i < names.size(); ++i) rank[*names[i]] = static_cast<std::uint32_t>(i);
+  struct Key {
+    std::uint32_t stream;
+    std::uint64_t step;
+    std::size_t index;
+  };
+  std::vector<Key> order;
+  order.reserve(links.size());
+  for (std::size_t i = 0; i < links.size(); ++i) order.push_back({rank.at(links[i].stream), links[i].step, i});
+  std::stable_sort(order.begin(), order.end(), [](const Key& a, const Key& b) {
     return a.stream != b.stream ? a.stream < b.stream : a.step < b.step;
   });
   constexpr std::uint64_t kNever = std::numeric_limits<std::uint64_t>::max();
-  for (std::size_t i = 0; i < links.size(); ++i) {
-    const ChainLink& l = links[i];
-    const bool last_of_stream = i + 1 == links.size() || links[i + 1].stream != l.stream;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const ChainLink& l = links[order[i].index];
+    const bool last_of_stream = i + 1 == order.size() || order[i + 1].stream != order[i].stream;
     if (!last_of_stream) {
-      const ChainLink& next = links[i + 1];
+      const ChainLink& next = links[order[i + 1].index];
       if (next.step == l.step) {
         return l.stream + ": two samples of step " + std::to_string(l.step) + " (two runs in one file?)";
       }

@@ -27,7 +27,7 @@ struct ChainLink {
 /// its last recorded step) but the re-run does (<= last_step) is cut short. A stream whose last
 /// announced step lies inside the recording and never came has ended (its producer moved the robot
 /// to another key, e.g. a new target): not a problem, as in the original run.
-std::string chain_problem(std::vector<ChainLink> links, std::uint64_t last_step);
+std::string chain_problem(const std::vector<ChainLink>& links, std::uint64_t last_step);
 
 /// "TOPIC: its first recorded sample is of step N" for each topic none of whose samples is of
 /// step 0: a recorder that joined after the run started (a warning: a topic may also start late

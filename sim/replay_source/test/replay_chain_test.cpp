@@ -37,6 +37,15 @@ TEST(ChainProblem, AnInstanceThatEndsInsideTheRecordingEnded) {
   EXPECT_EQ(chain_problem({{"r", "r (1,1)", 0, 10}, {"r", "r (1,2)", 10, 20}, {"r", "r (1,2)", 20, 30}}, 25), "");
 }
 
+TEST(ChainProblem, OfSeveralTheFirstStreamByNameIsNamed) {
+  // Given in any order: "a (10)" sorts before "a (2)" by name, so its problem is the one named.
+  const std::vector<ChainLink> links = {{"a", "a (2)", 0, 10},  {"a", "a (2)", 20, 30},  {"a", "a (10)", 30, 40},
+                                        {"a", "a (10)", 0, 10}, {"a", "a (10)", 10, 20}};
+  EXPECT_EQ(chain_problem(links, 25),
+            "a (10): the sample of step 10 announces step 20 but the next one recorded is of step 30 "
+            "(samples were lost while recording)");
+}
+
 TEST(LateTopics, ATopicWithoutAStepZeroSampleIsNamed) {
   EXPECT_EQ(late_topics({{"p", "p (1)", 0, 10}, {"o", "o (1)", 37, 38}, {"o", "o (2)", 40, 41}}),
             (std::vector<std::string>{"o: its first recorded sample is of step 37"}));

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -36,10 +37,13 @@ struct Fix {
 };
 
 /// A recording of sensor/position (robot 1) with these fixes, under schema `schema_name`.
-std::string recording(const std::vector<Fix>& fixes, const std::string& schema_name = "robodds::idl::PositionMeasurement") {
+std::string recording(const std::vector<Fix>& fixes, const std::string& schema_name = "robodds::idl::PositionMeasurement",
+                      mcap::Compression compression = mcap::Compression::kZstd) {
   install_dds_sample_codec();
   const std::string path = test_support::write_test_file("rec.mcap", "");
-  mcap::Writer writer(path, mcap::WriterOptions{});
+  mcap::WriterOptions options;
+  options.compression = compression;
+  mcap::Writer writer(path, options);
   const std::string type = "robodds::idl::PositionMeasurement";
   const auto schema = writer.add_schema(schema_name, "omgidl", idl_schema_text(type));
   const auto channel = writer.add_channel(schema, "sensor/position", "cdr", {});
@@ -76,6 +80,53 @@ TEST(ReplaySourceNode, PublishesEachSampleAtItsRecordedStepWithItsNextStep) {
     EXPECT_DOUBLE_EQ(fixes[i].x(), 10.0 + 2.0 * static_cast<double>(i));
     EXPECT_EQ(fixes[i].robot_id(), 1u);
   }
+}
+
+/// The DDS codec, counting the samples it decodes.
+class CountingCodec : public SampleCodec {
+ public:
+  std::vector<std::uint8_t> serialize(const std::string& type_name, const void* sample) const override {
+    return dds_->serialize(type_name, sample);
+  }
+  std::shared_ptr<void> deserialize(const std::string& type_name, const std::uint8_t* data, std::size_t size) const override {
+    ++decoded;
+    return dds_->deserialize(type_name, data, size);
+  }
+  mutable int decoded = 0;
+
+ private:
+  std::shared_ptr<const SampleCodec> dds_ = make_dds_sample_codec();
+};
+
+TEST(ReplaySourceNode, DecodesEachSampleOnceForTheDryConfiguresAndTheRun) {
+  const auto codec = std::make_shared<CountingCodec>();
+  set_sample_codec(codec);
+  Harness h(scenario(recording({{0, 2, 10.0}, {2, 4, 12.0}, {4, 6, 14.0}})));
+  // What `robodds run` does: the producer check's dry configure, then the run's configure (each a
+  // new component object).
+  scenario_producers(h.registry(), h.scenario(), TimeMode::kLockstep);
+  const auto& fixes = h.record<idl::PositionMeasurement>("sensor/position");
+  h.run({"replay"});
+  EXPECT_EQ(fixes.size(), 3u);
+  EXPECT_EQ(codec->decoded, 3) << "each recorded sample decoded once in the process";
+  set_sample_codec(make_dds_sample_codec());
+}
+
+TEST(ReplaySourceNode, ARecordingRewrittenBetweenTwoRunsIsReadAgain) {
+  const std::string schema = "robodds::idl::PositionMeasurement";
+  const std::string path = recording({{0, 2, 10.0}, {2, 4, 12.0}, {4, 6, 14.0}}, schema, mcap::Compression::kNone);
+  const auto size = std::filesystem::file_size(path);
+  {
+    Harness h(scenario(path));
+    const auto& fixes = h.record<idl::PositionMeasurement>("sensor/position");
+    h.run({"replay"});
+    ASSERT_EQ(fixes.size(), 3u);
+  }
+  ASSERT_EQ(recording({{0, 2, 10.0}, {2, 6, 12.0}, {4, 6, 14.0}}, schema, mcap::Compression::kNone), path);
+  ASSERT_EQ(std::filesystem::file_size(path), size) << "the same file, the same size: its stamp tells them apart";
+  Harness h(scenario(path));
+  EXPECT_NE(h.run_error<ConfigError>({"replay"}).find("the sample of step 2 announces step 6 but the next one recorded is of step 4"),
+            std::string::npos);
 }
 
 TEST(ReplaySourceNode, ALostSampleStopsTheRunBeforeItStarts) {
