@@ -103,6 +103,7 @@ class RangeRateObserverNode : public Component {
     e.range_rate(observer.estimate().rate_mps);
     e.valid(observer.valid());
     e.restarted(restarted);
+    e.range_noise_std_m(observer.noise_sigma_m());
     if (final_sample) {
       out.publish_final(e);
     } else {

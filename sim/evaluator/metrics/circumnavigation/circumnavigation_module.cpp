@@ -2,8 +2,11 @@
 // the settling time, radius and spacing errors; per recorded observer topic its range-rate
 // errors; and how close |r''| came to the observer's bound b (circumnavigation_metrics.hpp).
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -24,6 +27,9 @@ class CircumnavigationModule : public MetricsModule {
   /// designed for), else its default.
   void configure(MetricsSetup& setup) override {
     metrics_.reset();
+    for (auto& by_robot : noise_std_m_) {
+      by_robot.clear();
+    }
     if (!setup.recorded("plant/state") || !setup.recorded("mission/target")) {
       return;
     }
@@ -46,8 +52,9 @@ class CircumnavigationModule : public MetricsModule {
     });
     for (const auto& [topic, kind] : {std::pair{"observer/range_rate", ObserverKind::kSta},
                                       std::pair{"observer/range_rate_linear", ObserverKind::kLinear}}) {
-      setup.on<idl::RangeRateEstimate>(topic, [&m, kind = kind](const idl::RangeRateEstimate& e) {
+      setup.on<idl::RangeRateEstimate>(topic, [this, &m, kind = kind](const idl::RangeRateEstimate& e) {
         m.add_estimate(kind, e.robot_id(), {e.header().step(), e.target_id(), e.range_rate(), e.valid(), e.restarted()});
+        noise_std_m_[static_cast<std::size_t>(kind)][e.robot_id()] = e.range_noise_std_m();
       });
     }
   }
@@ -111,6 +118,17 @@ class CircumnavigationModule : public MetricsModule {
       optional("max_error_after_restart_mps", o.max_error_after_restart_mps);
       json.value("restarts", static_cast<std::int64_t>(o.restarts));
       json.value("matched_samples", static_cast<std::int64_t>(o.matched));
+      if (!noise_std_m_[k].empty()) {
+        // The range noise the observers estimated (issue 27), at their last sample: the mean over
+        // the robots (m), and the largest.
+        double sum = 0.0, largest = 0.0;
+        for (const auto& [robot, sigma] : noise_std_m_[k]) {
+          sum += sigma;
+          largest = std::max(largest, sigma);
+        }
+        json.value("range_noise_std_m", sum / static_cast<double>(noise_std_m_[k].size()));
+        json.value("range_noise_std_max_m", largest);
+      }
       json.end_object();
     }
     if (any_observer) {
@@ -122,6 +140,7 @@ class CircumnavigationModule : public MetricsModule {
 
  private:
   std::unique_ptr<CircumnavigationMetrics> metrics_;  // null: the mission is not recorded
+  std::array<std::map<std::uint32_t, double>, kObserverKinds> noise_std_m_;  // by kind: robot -> its last estimate, m
   bool b_is_default_ = false;  // the scenario declares no range_accel_bound_mps2, b is its default
   std::string component_name_;
 };

@@ -74,6 +74,7 @@ void feed_paper2(NodeHarness& h) {
         e.range_rate(sta ? 0.5 : -0.25);
         e.valid(true);
         e.restarted(sta && robot == 1 && step == 6);
+        e.range_noise_std_m(sta ? 0.1 * robot : 0.0);  // the last estimates: 0.1 and 0.2 m (sta)
         h.publish(topic, e, step, step + 1);
       }
     }
@@ -101,7 +102,8 @@ TEST(EvaluatorNode, RecordsTargetKeyedTopicsPerRobotAndWritesThePaper2Metrics) {
       << "alone on each target: no gaps; " << summary;
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("observer": \{\s*"sta": \{\s*"steady_rmse_mps": 0.5,\s*)"
                                                     R"("convergence_s": -1,\s*"max_error_after_restart_mps": 0.5,\s*)"
-                                                    R"("restarts": 1,\s*"matched_samples": 22\s*\},\s*)"
+                                                    R"("restarts": 1,\s*"matched_samples": 22,\s*)"
+                                                    R"("range_noise_std_m": 0.15,\s*"range_noise_std_max_m": 0.2\s*\},\s*)"
                                                     R"("linear": \{\s*"steady_rmse_mps": 0.25,\s*"restarts": 0,)")))
       << "no transient window in 0.1 s; " << summary;
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("range_accel_over_b_fraction": 0,\s*"range_accel_b": 3.5,)")))
