@@ -13,7 +13,8 @@
 #   - C sends garbage text, a binary frame, malformed JSON, a subscribe to an unknown channel and an
 #     unsubscribe of an unknown subscription: one error status each, one log line each, A served on;
 #   - A gets plant/state unadvertised when the run ends (its last writer gone);
-#   - D reads --foxglove-scene's foxglove/robot_poses: foxglove.PosesInFrame (JSON), the recorded poses;
+#   - D reads --foxglove-scene's foxglove/robot_poses: foxglove.PosesInFrame (JSON), the recorded
+#     poses, at most one message per 50 ms of the stamps;
 #   - SIGINT stops the bridge within 5 s with its receive->send latency line.
 # Before that, bad command lines: one line, exit 2, and --duration 1. Args: ROBODDS SRC DOMAIN PORT
 # (PORT and PORT+1). ~25 s.
@@ -149,7 +150,11 @@ for m in scene["messages"]:
         assert match, f"robot {robot} at {t}: {pose['position']} is none of its states of the last 0.1 s"
         theta = match[0]["theta"]
         assert abs(pose["orientation"]["z"] - math.sin(theta / 2)) < 1e-12 and abs(pose["orientation"]["w"] - math.cos(theta / 2)) < 1e-12, pose
-print(f"ok: --foxglove-scene: {len(scene['messages'])} foxglove.PosesInFrame messages (JSON), each robot's pose one of its recorded states")
+# At most one scene per 50 ms of the stamps (not one per plant/state sample: 300/s here).
+times = [m["timestamp"]["sec"] * 1_000_000_000 + m["timestamp"]["nsec"] for m in scene["messages"]]
+gap = min(b - a for a, b in zip(times, times[1:]))
+assert gap >= 50_000_000, f"two scene messages {gap / 1e6} ms of stamps apart: at most one per 50 ms"
+print(f"ok: --foxglove-scene: {len(scene['messages'])} foxglove.PosesInFrame messages (JSON) >= {gap / 1e6:.1f} ms apart, each robot's pose one of its recorded states")
 
 port = figures["b_port"]
 b = re.search(r"client 127\.0\.0\.1:%d (?:disconnected|failed|did not answer the close): (\d+) messages sent, (\d+) dropped" % port, log)

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -71,17 +72,19 @@ class BridgeCommand : public Command {
     // The socket first: a port in use fails before anything joins the domain.
     bridge::WsServer server(hub, address_, static_cast<std::uint16_t>(port_), log_line);
 
-    // --foxglove-scene: the derived channel (0 until plant/state's first sample) and the poses.
+    // --foxglove-scene: the derived channel (0 until plant/state's first sample) and the scene, sent
+    // at most once per foxglove::kScenePeriodNs of the samples' stamps (SceneFeed): 200 robots at
+    // 100 Hz would otherwise be 20,000 messages/s of 200 poses each to every subscribed client.
     if (foxglove_scene_) {
       require_scene_source(topics, "--topics");
     }
     std::mutex scene_mutex;
     std::uint32_t scene_channel = 0;
-    foxglove::RobotPoses poses;
-    bool scene_error_logged = false;
+    SceneFeed scene("bridge");
     const auto publish_scene = [&](const RawSample& s, std::int64_t received) {
       std::lock_guard<std::mutex> lock(scene_mutex);
-      if (!update_poses(poses, s.data, s.size, "bridge", scene_error_logged)) {
+      const std::optional<std::string> text = scene.take(s.data, s.size, s.source_time_ns);
+      if (!text) {
         return;
       }
       if (scene_channel == 0) {
@@ -94,8 +97,7 @@ class BridgeCommand : public Command {
       sample->channel_id = scene_channel;
       sample->receive_time_ns = static_cast<std::uint64_t>(s.reception_time_ns);
       sample->receive_steady_ns = received;
-      const std::string text = poses.json(s.source_time_ns);
-      sample->payload.assign(text.begin(), text.end());
+      sample->payload.assign(text->begin(), text->end());
       server.wake(hub.publish(sample));
     };
 
@@ -146,6 +148,9 @@ class BridgeCommand : public Command {
             server.wake(hub.remove_channel(scene_channel));
             scene_channel = 0;
           }
+          // A next run starts afresh: its robots only, its stamps (a lockstep run's restart at 0)
+          // due at once.
+          scene = SceneFeed("bridge");
         }
       });
     }

@@ -220,19 +220,14 @@ class RecordCommand : public Command {
     const std::size_t scene_topic = foxglove_scene_ ? require_scene_source(topics, "the topics") : topics.size();
     // The file first: an unwritable --out fails before anything joins the domain.
     McapParts parts(out_, static_cast<std::uint64_t>(max_size_mb_ * 1e6), options, topics, foxglove_scene_);
-    foxglove::RobotPoses poses;
-    bool scene_error_logged = false;
+    SceneFeed scene("record");
     const auto write = [&](const Pending& p) {
       parts.write(p);
       if (p.topic != scene_topic) {
         return;
       }
-      if (!update_poses(poses, p.bytes.data(), p.bytes.size(), "record", scene_error_logged)) {
-        return;
-      }
-      const auto stamp = static_cast<std::int64_t>(p.publish_time_ns);
-      if (poses.due(stamp, foxglove::kScenePeriodNs)) {
-        parts.write_scene(p.log_time_ns, p.publish_time_ns, poses.json(stamp));
+      if (const auto json = scene.take(p.bytes.data(), p.bytes.size(), static_cast<std::int64_t>(p.publish_time_ns))) {
+        parts.write_scene(p.log_time_ns, p.publish_time_ns, *json);
       }
     };
 

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <memory>
+#include <utility>
 
-#include "idl/idl_schema.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
@@ -19,20 +19,24 @@ std::size_t require_scene_source(const std::vector<const TopicInfo*>& topics, co
   return static_cast<std::size_t>(found - topics.begin());
 }
 
-bool update_poses(foxglove::RobotPoses& poses, const std::uint8_t* data, std::size_t size, const std::string& tool,
-                  bool& error_logged) {
+SceneFeed::SceneFeed(std::string tool) : tool_(std::move(tool)) {}
+
+std::optional<std::string> SceneFeed::take(const std::uint8_t* data, std::size_t size, std::int64_t stamp_ns) {
   try {
     const std::shared_ptr<void> decoded = sample_codec().deserialize(idl::type_name<idl::RobotState>(), data, size);
     const auto& state = *static_cast<const idl::RobotState*>(decoded.get());
-    poses.update(state.robot_id(), state.x(), state.y(), state.theta());
-    return true;
+    poses_.update(state.robot_id(), state.x(), state.y(), state.theta());
   } catch (const ConfigError& e) {
-    if (!error_logged) {
-      log::warn(tool, std::string("--foxglove-scene: a ") + kSceneSource + " sample does not decode: " + e.what());
-      error_logged = true;
+    if (!error_logged_) {
+      log::warn(tool_, std::string("--foxglove-scene: a ") + kSceneSource + " sample does not decode: " + e.what());
+      error_logged_ = true;
     }
-    return false;
+    return std::nullopt;
   }
+  if (!poses_.due(stamp_ns, foxglove::kScenePeriodNs)) {
+    return std::nullopt;
+  }
+  return poses_.json(stamp_ns);
 }
 
 }  // namespace robodds
