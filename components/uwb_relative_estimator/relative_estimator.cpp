@@ -131,10 +131,12 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
     uwb.valid = solved.status == TrackStatus::kOk;
     if (uwb.valid) {
       PeerState& peer = peers_[k];
-      const double epoch_std_m = robust_residual_std_m(own_array_, setups_[k].array, *peers[k].ranges_m, uwb.pose);
-      peer.range_noise.add(epoch_std_m);
-      // The running median keeps a lucky epoch from shrinking the covariance; this epoch's own
-      // spread, when larger, widens it while the link biases line up badly (they last ~2 s).
+      const Eigen::MatrixXd& ranges = *peers[k].ranges_m;
+      peer.range_noise.add(robust_residual_std_m(own_array_, setups_[k].array, ranges, uwb.pose));
+      // The running median of robust stds is the noise level (a lucky epoch does not shrink it);
+      // this epoch's plain residual std, when larger, widens it while the link biases line up
+      // badly (they last ~2 s) or a range the fit followed is far off (non-line-of-sight).
+      const double epoch_std_m = residual_rms_std_m(own_array_, setups_[k].array, ranges, uwb.pose);
       uwb.covariance = range_fix_covariance(own_array_, setups_[k].array, uwb.pose,
                                             std::max(peer.range_noise.std_m(), epoch_std_m),
                                             params_.uncertainty.range_common_std_m);

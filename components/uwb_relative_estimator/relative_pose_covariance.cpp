@@ -44,21 +44,45 @@ const params::ParamTable<UncertaintyParams>& uncertainty_param_table() {
 
 void UncertaintyParams::validate() const { uncertainty_param_table().check_ranges(*this); }
 
-double robust_residual_std_m(const model::UwbArray& own, const model::UwbArray& other, const Eigen::MatrixXd& ranges_m,
-                             const model::Pose2& pose) {
-  const std::size_t n = static_cast<std::size_t>(ranges_m.size());
-  if (n <= 3) {
-    return 0.0;
-  }
+namespace {
+
+/// |r_kl - d_kl(pose)| of every range.
+std::vector<double> absolute_residuals(const model::UwbArray& own, const model::UwbArray& other,
+                                       const Eigen::MatrixXd& ranges_m, const model::Pose2& pose) {
   std::vector<double> absolute;
-  absolute.reserve(n);
+  absolute.reserve(static_cast<std::size_t>(ranges_m.size()));
   for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
     for (Eigen::Index l = 0; l < ranges_m.cols(); ++l) {
       absolute.push_back(std::abs(ranges_m(k, l) - predicted_range(pose, own.nodes_m[static_cast<std::size_t>(k)],
                                                                    other.nodes_m[static_cast<std::size_t>(l)])));
     }
   }
-  return kMadToStd * median(std::move(absolute)) * std::sqrt(static_cast<double>(n) / static_cast<double>(n - 3));
+  return absolute;
+}
+
+}  // namespace
+
+double robust_residual_std_m(const model::UwbArray& own, const model::UwbArray& other, const Eigen::MatrixXd& ranges_m,
+                             const model::Pose2& pose) {
+  const std::size_t n = static_cast<std::size_t>(ranges_m.size());
+  if (n <= 3) {
+    return 0.0;
+  }
+  return kMadToStd * median(absolute_residuals(own, other, ranges_m, pose)) *
+         std::sqrt(static_cast<double>(n) / static_cast<double>(n - 3));
+}
+
+double residual_rms_std_m(const model::UwbArray& own, const model::UwbArray& other, const Eigen::MatrixXd& ranges_m,
+                          const model::Pose2& pose) {
+  const std::size_t n = static_cast<std::size_t>(ranges_m.size());
+  if (n <= 3) {
+    return 0.0;
+  }
+  double sum = 0.0;
+  for (const double r : absolute_residuals(own, other, ranges_m, pose)) {
+    sum += r * r;
+  }
+  return std::sqrt(sum / static_cast<double>(n - 3));
 }
 
 Eigen::Matrix3d range_fix_covariance(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,

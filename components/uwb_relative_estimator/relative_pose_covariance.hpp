@@ -43,6 +43,12 @@ const params::ParamTable<UncertaintyParams>& uncertainty_param_table();
 double robust_residual_std_m(const model::UwbArray& own, const model::UwbArray& other, const Eigen::MatrixXd& ranges_m,
                              const model::Pose2& pose);
 
+/// Plain std of one range from one epoch's residuals: sqrt(sum r_kl^2 / (n - 3)). Not robust on
+/// purpose: a range far off that the fit followed (plain least squares, or Huber within its scale)
+/// moved the pose, and this epoch's covariance should say so. 0 when n <= 3.
+double residual_rms_std_m(const model::UwbArray& own, const model::UwbArray& other, const Eigen::MatrixXd& ranges_m,
+                          const model::Pose2& pose);
+
 /// Covariance of the least-squares eq. (1) pose at `pose` when every range has an independent error
 /// of std `independent_std_m` and all share one of std `common_std_m`:
 /// s_i^2 (J^T J)^-1 + s_c^2 a a^T, a = (J^T J)^-1 J^T 1, J the K L x 3 Jacobian of the predicted
