@@ -72,8 +72,8 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
     peers_.push_back(PeerState{RelativePoseTracker(own_array_, peer.array, params_.solver, params_.tracker),
                                RelativePoseFilter(params_.pf), RelativePoseFilter(params_.pf),
                                RandomEngine(derive_seed(seed, stream + "/pf")),
-                               RandomEngine(derive_seed(seed, stream + "/pf_baseline")), peer.known_start, {}, std::nullopt,
-                               std::nullopt});
+                               RandomEngine(derive_seed(seed, stream + "/pf_baseline")), RangeNoiseLevel(params_.uncertainty),
+                               peer.known_start, Eigen::Matrix3d::Zero(), {}, std::nullopt, std::nullopt});
   }
   for (std::size_t a = 0; a < setups_.size(); ++a) {
     for (std::size_t b = a + 1; b < setups_.size(); ++b) {
@@ -129,6 +129,18 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
     StageEstimate& uwb = out.stages[static_cast<std::size_t>(Stage::kUwb)];
     uwb.pose = solved.pose;
     uwb.valid = solved.status == TrackStatus::kOk;
+    if (uwb.valid) {
+      PeerState& peer = peers_[k];
+      const Eigen::MatrixXd& ranges = *peers[k].ranges_m;
+      peer.range_noise.add(robust_residual_std_m(own_array_, setups_[k].array, ranges, uwb.pose));
+      // The running median of robust stds is the noise level (a lucky epoch does not shrink it);
+      // this epoch's plain residual std, when larger, widens it while the link biases line up
+      // badly (they last ~2 s) or a range the fit followed is far off (non-line-of-sight).
+      const double epoch_std_m = residual_rms_std_m(own_array_, setups_[k].array, ranges, uwb.pose);
+      uwb.covariance = range_fix_covariance(own_array_, setups_[k].array, uwb.pose,
+                                            std::max(peer.range_noise.std_m(), epoch_std_m),
+                                            params_.uncertainty.range_common_std_m);
+    }
   }
   std::vector<PairMeasurement> link_edges;
   for (std::size_t l = 0; l < link_ranges.size(); ++l) {
@@ -146,14 +158,20 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
     PeerState& peer = peers_[k];
     const StageEstimate& uwb = result.peers[k].stages[static_cast<std::size_t>(Stage::kUwb)];
     if (peer.odometry_pose) {
+      peer.odometry_covariance =
+          propagate_relative_covariance(peer.odometry_covariance, *peer.odometry_pose, own_increment,
+                                        peers[k].odometry_increment, params_.window.odometry_xy_std_m,
+                                        params_.window.odometry_theta_std_rad);
       peer.odometry_pose = model::compose(model::between(own_increment, *peer.odometry_pose), peers[k].odometry_increment);
     } else if (uwb.valid) {
       peer.odometry_pose = uwb.pose;  // no known start: dead reckoning from the first valid fix
+      peer.odometry_covariance = uwb.covariance;
     }
     StageEstimate& odometry = result.peers[k].stages[static_cast<std::size_t>(Stage::kOdometry)];
     odometry.valid = peer.odometry_pose.has_value();
     if (odometry.valid) {
       odometry.pose = *peer.odometry_pose;
+      odometry.covariance = peer.odometry_covariance;
     }
   }
   result.stage_ms[static_cast<std::size_t>(Stage::kOdometry)] = ms_since(start);
@@ -256,6 +274,12 @@ void RelativeEstimator::run_window(const model::Pose2& own_increment, const std:
     // to a finite pose.
     window.valid = converged && placed(k) && std::isfinite(window.pose.x) && std::isfinite(window.pose.y) &&
                    std::isfinite(window.pose.theta);
+    if (window.valid) {
+      // The fixes' dominant errors (the pair's common mode, tau ~10 s; the link biases, ~2 s) last
+      // about as long as the window or longer: averaging them over the window is given no credit.
+      window.covariance = range_fix_covariance(own_array_, setups_[k].array, window.pose,
+                                               peers_[k].range_noise.std_m(), params_.uncertainty.range_common_std_m);
+    }
   }
 }
 

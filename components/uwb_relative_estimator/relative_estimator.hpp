@@ -38,6 +38,7 @@
 #include "common/random.hpp"
 #include "components/uwb_relative_estimator/relative_estimator_params.hpp"
 #include "components/uwb_relative_estimator/relative_pf.hpp"
+#include "components/uwb_relative_estimator/relative_pose_covariance.hpp"
 #include "components/uwb_relative_estimator/relative_pose_tracker.hpp"
 #include "components/uwb_relative_estimator/sliding_window.hpp"
 
@@ -51,8 +52,12 @@ const char* stage_name(Stage stage);
 struct StageEstimate {
   model::Pose2 pose;  // peer in this robot's body frame: x forward, y left (m), theta CCW (rad)
   bool valid = false;
-  /// Covariance of [x, y, theta] (m^2, m rad, rad^2) where the stage has one (the filters: the
-  /// particles' weighted covariance); zero otherwise.
+  /// Covariance of [x, y, theta] (m^2, m rad, rad^2): the filters' particles' weighted covariance;
+  /// uwb: the least-squares fit's (range_fix_covariance, with the range noise estimated from the
+  /// residuals); window: the same at the window's pose (the fixes' errors last longer than the
+  /// window, so averaging them is given no credit); odometry: propagated from the start (zero
+  /// when known, else the first fix's) with the window's odometry stds per epoch. Zero when not
+  /// valid.
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Zero();
 };
 
@@ -119,6 +124,9 @@ class RelativeEstimator {
   /// Eq. (1) status counts of link `index` (links() order).
   const TrackerCounts& link_tracker_counts(std::size_t index) const { return link_trackers_.at(index).counts(); }
   const EstimatorCounts& counts() const { return counts_; }
+  /// The independent range std (m) estimated for peer `index` (constructor order): the running
+  /// median of its eq. (1) residual stds, at least uncertainty.range_std_floor_m.
+  double range_noise_std_m(std::size_t index) const { return peers_.at(index).range_noise.std_m(); }
   /// Eq. (1) status counts of peer `index` (constructor order).
   const TrackerCounts& tracker_counts(std::size_t index) const { return peers_.at(index).tracker.counts(); }
 
@@ -129,7 +137,9 @@ class RelativeEstimator {
     RelativePoseFilter baseline;
     RandomEngine pf_random;
     RandomEngine baseline_random;
+    RangeNoiseLevel range_noise;  // independent range std seen in this peer's eq. (1) residuals
     std::optional<model::Pose2> odometry_pose;
+    Eigen::Matrix3d odometry_covariance = Eigen::Matrix3d::Zero();
     std::deque<bool> window_edges;  // per epoch in the window: an eq. (1) edge to this peer
     std::optional<double> last_fix_s;     // last epoch with a valid eq. (1) pose (the window's edges)
     std::optional<double> last_frame_s;   // last epoch with an accepted frame (the baseline's input)

@@ -27,7 +27,9 @@ const params::ParamTable<RelativeEstimatorParams>& relative_estimator_param_tabl
           .include_as("window", &P::window, window_weights_param_table(), "eq. (2): constant information matrices")
           .include_as("solver", &P::solver, solver_param_table(), "eq. (1): single-epoch solve (the paper: loss none)")
           .include_as("tracker", &P::tracker, tracker_param_table(), "eq. (1) epoch after epoch: cold-start recovery")
-          .include_as("pf", &P::pf, relative_pf_param_table(), "eq. (3)-(6) particle filter and the baseline [22]");
+          .include_as("pf", &P::pf, relative_pf_param_table(), "eq. (3)-(6) particle filter and the baseline [22]")
+          .include_as("uncertainty", &P::uncertainty, uncertainty_param_table(),
+                      "reported covariances of the uwb, window and odometry stages (issue 27)");
   return table;
 }
 
@@ -37,6 +39,7 @@ void RelativeEstimatorParams::validate() const {
   solver.validate();
   tracker.validate();
   pf.validate();
+  uncertainty.validate();
 }
 
 }  // namespace robodds::uwb_relative_estimator

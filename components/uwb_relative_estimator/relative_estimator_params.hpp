@@ -6,6 +6,7 @@
 // except where this struct overrides a library default, as noted).
 #include "common/param_table.hpp"
 #include "components/uwb_relative_estimator/relative_pf_params.hpp"
+#include "components/uwb_relative_estimator/relative_pose_covariance.hpp"
 #include "components/uwb_relative_estimator/relative_pose_solver.hpp"
 #include "components/uwb_relative_estimator/relative_pose_tracker.hpp"
 #include "components/uwb_relative_estimator/sliding_window.hpp"
@@ -28,6 +29,7 @@ struct RelativeEstimatorParams {
   SolverOptions solver = paper_solver_options();  // keys solver.* (eq. 1)
   TrackerParams tracker;                          // keys tracker.* (cold-start recovery)
   RelativePfParams pf;                            // keys pf.* (eq. 3-6 and the baseline [22])
+  UncertaintyParams uncertainty;                  // keys uncertainty.* (reported covariances, issue 27)
 
   /// Throws std::invalid_argument "key: reason (got value)" for the first bad field (the included
   /// structs' keys carry their prefix).

@@ -12,6 +12,7 @@
 #include "common/angle.hpp"
 #include "common/number_text.hpp"
 #include "common/param_checks.hpp"
+#include "components/uwb_relative_estimator/median.hpp"
 
 namespace robodds::uwb_relative_estimator {
 namespace {
@@ -23,17 +24,6 @@ constexpr double kPeriodSlackS = 1e-6;
 bool usable(const SolverResult& r) {
   return r.converged && std::isfinite(r.final_cost) && std::isfinite(r.pose.x) && std::isfinite(r.pose.y) &&
          std::isfinite(r.pose.theta);
-}
-
-double median(std::vector<double> values) {
-  const std::size_t n = values.size();
-  const auto middle = values.begin() + static_cast<std::ptrdiff_t>(n / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  const double upper = *middle;
-  if (n % 2 == 1) {
-    return upper;
-  }
-  return 0.5 * (upper + *std::max_element(values.begin(), middle));
 }
 
 std::string deg_text(double rad) { return shortest_text(std::round(rad * 180.0 / kPi * 10.0) / 10.0); }

@@ -1,0 +1,165 @@
+#include "components/uwb_relative_estimator/relative_pose_covariance.hpp"
+
+#include <cmath>
+#include <algorithm>
+#include <limits>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Cholesky>
+
+#include "common/angle.hpp"
+#include "components/uwb_relative_estimator/median.hpp"
+#include "components/uwb_relative_estimator/relative_pose.hpp"
+
+namespace robodds::uwb_relative_estimator {
+namespace {
+
+/// 1 / Phi^-1(3/4): the MAD of a normal distribution times this is its std.
+constexpr double kMadToStd = 1.4826;
+
+/// x' = inverse(m_i) x m_j as a function of (x, m_i, m_j) stacked in a 9-vector.
+Eigen::Vector3d dead_reckon(const Eigen::Matrix<double, 9, 1>& v) {
+  const model::Pose2 x{v(0), v(1), v(2)};
+  const model::Pose2 own{v(3), v(4), v(5)};
+  const model::Pose2 other{v(6), v(7), v(8)};
+  const model::Pose2 out = model::compose(model::between(own, x), other);
+  return Eigen::Vector3d(out.x, out.y, out.theta);
+}
+
+}  // namespace
+
+const params::ParamTable<UncertaintyParams>& uncertainty_param_table() {
+  using P = UncertaintyParams;
+  static const params::ParamTable<P> table =
+      params::ParamTable<P>("Reported covariances of the uwb, window and odometry stages (issue 27).")
+          .add("range_std_floor_m", &P::range_std_floor_m, "m", params::positive(),
+               "floor of the independent per-range std estimated from the residuals (the configured range noise)")
+          .add("range_common_std_m", &P::range_common_std_m, "m", params::non_negative(),
+               "std of the range error common to all links of a robot pair (one epoch cannot see it)")
+          .add("noise_window_epochs", &P::noise_window_epochs, "epochs", params::at_least(1),
+               "epochs whose residual std form the running median of the range noise");
+  return table;
+}
+
+void UncertaintyParams::validate() const { uncertainty_param_table().check_ranges(*this); }
+
+namespace {
+
+/// |r_kl - d_kl(pose)| of every range.
+std::vector<double> absolute_residuals(const model::UwbArray& own, const model::UwbArray& other,
+                                       const Eigen::MatrixXd& ranges_m, const model::Pose2& pose) {
+  std::vector<double> absolute;
+  absolute.reserve(static_cast<std::size_t>(ranges_m.size()));
+  for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
+    for (Eigen::Index l = 0; l < ranges_m.cols(); ++l) {
+      absolute.push_back(std::abs(ranges_m(k, l) - predicted_range(pose, own.nodes_m[static_cast<std::size_t>(k)],
+                                                                   other.nodes_m[static_cast<std::size_t>(l)])));
+    }
+  }
+  return absolute;
+}
+
+}  // namespace
+
+double robust_residual_std_m(const model::UwbArray& own, const model::UwbArray& other, const Eigen::MatrixXd& ranges_m,
+                             const model::Pose2& pose) {
+  const std::size_t n = static_cast<std::size_t>(ranges_m.size());
+  if (n <= 3) {
+    return 0.0;
+  }
+  return kMadToStd * median(absolute_residuals(own, other, ranges_m, pose)) *
+         std::sqrt(static_cast<double>(n) / static_cast<double>(n - 3));
+}
+
+double residual_rms_std_m(const model::UwbArray& own, const model::UwbArray& other, const Eigen::MatrixXd& ranges_m,
+                          const model::Pose2& pose) {
+  const std::size_t n = static_cast<std::size_t>(ranges_m.size());
+  if (n <= 3) {
+    return 0.0;
+  }
+  double sum = 0.0;
+  for (const double r : absolute_residuals(own, other, ranges_m, pose)) {
+    sum += r * r;
+  }
+  return std::sqrt(sum / static_cast<double>(n - 3));
+}
+
+Eigen::Matrix3d range_fix_covariance(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
+                                     double independent_std_m, double common_std_m) {
+  const Eigen::Index n = static_cast<Eigen::Index>(own.nodes_m.size() * other.nodes_m.size());
+  Eigen::MatrixXd jacobian(n, 3);
+  const double c = std::cos(pose.theta);
+  const double s = std::sin(pose.theta);
+  Eigen::Index row = 0;
+  for (const Eigen::Vector2d& node_i : own.nodes_m) {
+    for (const Eigen::Vector2d& node_j : other.nodes_m) {
+      // d = |p|, p = t + R(theta) n_j - n_i: dd/dt = p / d, dd/dtheta = p . (dR/dtheta n_j) / d.
+      const Eigen::Vector2d rotated_derivative(-s * node_j.x() - c * node_j.y(), c * node_j.x() - s * node_j.y());
+      const Eigen::Vector2d p(pose.x + c * node_j.x() - s * node_j.y() - node_i.x(),
+                              pose.y + s * node_j.x() + c * node_j.y() - node_i.y());
+      const double d = p.norm();
+      if (!(d > 0.0)) {
+        return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());  // coincident nodes: no gradient
+      }
+      jacobian.row(row++) << p.x() / d, p.y() / d, p.dot(rotated_derivative) / d;
+    }
+  }
+  const Eigen::Matrix3d information = jacobian.transpose() * jacobian;
+  const Eigen::LDLT<Eigen::Matrix3d> ldlt(information);
+  // A condition number beyond ~1e12 leaves (J^T J)^-1 meaningless in double precision.
+  const Eigen::Vector3d d = ldlt.vectorD().cwiseAbs();
+  if (ldlt.info() != Eigen::Success || !(d.minCoeff() > 1e-12 * d.maxCoeff())) {
+    return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  }
+  const Eigen::Matrix3d inverse = ldlt.solve(Eigen::Matrix3d::Identity());
+  const Eigen::Vector3d common_shift = inverse * (jacobian.transpose() * Eigen::VectorXd::Ones(n));
+  return independent_std_m * independent_std_m * inverse +
+         common_std_m * common_std_m * common_shift * common_shift.transpose();
+}
+
+Eigen::Matrix3d propagate_relative_covariance(const Eigen::Matrix3d& covariance, const model::Pose2& x,
+                                              const model::Pose2& own_increment, const model::Pose2& other_increment,
+                                              double xy_std_m, double theta_std_rad) {
+  Eigen::Matrix<double, 9, 1> v;
+  v << x.x, x.y, x.theta, own_increment.x, own_increment.y, own_increment.theta, other_increment.x, other_increment.y,
+      other_increment.theta;
+  // Central differences: the map is smooth and cheap; 1e-6 (m, rad) keeps the truncation and the
+  // rounding error both near 1e-10.
+  constexpr double h = 1e-6;
+  Eigen::Matrix<double, 3, 9> jacobian;
+  for (int c = 0; c < 9; ++c) {
+    Eigen::Matrix<double, 9, 1> plus = v;
+    Eigen::Matrix<double, 9, 1> minus = v;
+    plus(c) += h;
+    minus(c) -= h;
+    Eigen::Vector3d difference = dead_reckon(plus) - dead_reckon(minus);
+    difference(2) = wrap_angle(difference(2));
+    jacobian.col(c) = difference / (2.0 * h);
+  }
+  Eigen::Matrix<double, 9, 9> input = Eigen::Matrix<double, 9, 9>::Zero();
+  input.topLeftCorner<3, 3>() = covariance;
+  const Eigen::Vector3d increment_variance(xy_std_m * xy_std_m, xy_std_m * xy_std_m, theta_std_rad * theta_std_rad);
+  input.block<3, 3>(3, 3) = increment_variance.asDiagonal();
+  input.block<3, 3>(6, 6) = increment_variance.asDiagonal();
+  const Eigen::Matrix3d out = jacobian * input * jacobian.transpose();
+  return 0.5 * (out + out.transpose());  // symmetric to the last bit
+}
+
+RangeNoiseLevel::RangeNoiseLevel(const UncertaintyParams& params) : params_(params) { params_.validate(); }
+
+void RangeNoiseLevel::add(double residual_std_m) {
+  recent_.push_back(residual_std_m);
+  while (recent_.size() > static_cast<std::size_t>(params_.noise_window_epochs)) {
+    recent_.pop_front();
+  }
+}
+
+double RangeNoiseLevel::std_m() const {
+  if (recent_.empty()) {
+    return params_.range_std_floor_m;
+  }
+  return std::max(params_.range_std_floor_m, median(std::vector<double>(recent_.begin(), recent_.end())));
+}
+
+}  // namespace robodds::uwb_relative_estimator

@@ -1,0 +1,82 @@
+#pragma once
+// Covariances that the eq. (1), eq. (2) and dead-reckoning stages report with their relative poses
+// (issue 27: "every estimate topic carries an uncertainty that is consistent"; "noise estimated,
+// not assumed"). A UWB range of one epoch is modelled as r_kl = d_kl(x) + u_kl + c: u_kl
+// independent per node pair (white noise and the per-link bias, both seen in the epoch's
+// residuals: estimated), c common to all K x L ranges of the robot pair (shifts every range alike:
+// it moves the fit along the line between the robots and leaves no residual, so it cannot be
+// estimated from one epoch and is configured). The eq. (1) pose is the least-squares fit; its
+// covariance is the linearised sandwich (J^T J)^-1 J^T Cov(r) J (J^T J)^-1 at the solution.
+// Pure: Eigen + std; m, rad; covariances of (x, y, theta) in m^2, m rad, rad^2.
+
+#include <cstddef>
+#include <deque>
+
+#include <Eigen/Core>
+
+#include "common/model/pose2.hpp"
+#include "common/model/uwb_array.hpp"
+#include "common/param_table.hpp"
+
+namespace robodds::uwb_relative_estimator {
+
+// Units, ranges and one-line descriptions: uncertainty_param_table() in relative_pose_covariance.cpp
+// (the one source). Defaults: the initialisers.
+struct UncertaintyParams {
+  /// Floor of the estimated independent per-range std (the configured range noise): the estimate
+  /// never goes below it, so a lucky run of small residuals does not make a stage over-confident.
+  double range_std_floor_m = 0.05;
+  /// Std of the error common to all ranges of a robot pair (not observable in one epoch).
+  double range_common_std_m = 0.30;
+  /// Epochs whose residual std form the running median of the independent range std.
+  int noise_window_epochs = 50;
+  /// Throws std::invalid_argument "key: requirement (got value)".
+  void validate() const;
+};
+
+const params::ParamTable<UncertaintyParams>& uncertainty_param_table();
+
+/// Robust std of one range from one epoch's residuals r_kl - d_kl(pose): 1.4826 x the median
+/// absolute residual (MAD about zero: the fit's residuals have mean ~0), times sqrt(n / (n - 3))
+/// for the three fitted parameters. 0 when n <= 3 (no degree of freedom left). `ranges_m` must
+/// match the arrays (require_valid_ranges).
+double robust_residual_std_m(const model::UwbArray& own, const model::UwbArray& other, const Eigen::MatrixXd& ranges_m,
+                             const model::Pose2& pose);
+
+/// Plain std of one range from one epoch's residuals: sqrt(sum r_kl^2 / (n - 3)). Not robust on
+/// purpose: a range far off that the fit followed (plain least squares, or Huber within its scale)
+/// moved the pose, and this epoch's covariance should say so. 0 when n <= 3.
+double residual_rms_std_m(const model::UwbArray& own, const model::UwbArray& other, const Eigen::MatrixXd& ranges_m,
+                          const model::Pose2& pose);
+
+/// Covariance of the least-squares eq. (1) pose at `pose` when every range has an independent error
+/// of std `independent_std_m` and all share one of std `common_std_m`:
+/// s_i^2 (J^T J)^-1 + s_c^2 a a^T, a = (J^T J)^-1 J^T 1, J the K L x 3 Jacobian of the predicted
+/// ranges. NaN entries when J^T J is singular (a degenerate geometry: nothing to report).
+Eigen::Matrix3d range_fix_covariance(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
+                                     double independent_std_m, double common_std_m);
+
+/// Dead reckoning of a relative pose x (peer j in robot i's frame) over one epoch,
+/// x' = inverse(m_i) x m_j: the covariance P of x propagated to x', plus both increments' noise
+/// (std `xy_std_m` on x and y, `theta_std_rad` on theta, independent per robot and epoch).
+Eigen::Matrix3d propagate_relative_covariance(const Eigen::Matrix3d& covariance, const model::Pose2& x,
+                                              const model::Pose2& own_increment, const model::Pose2& other_increment,
+                                              double xy_std_m, double theta_std_rad);
+
+/// The independent range std one (robot, peer) pair sees: the running median of the last
+/// noise_window_epochs per-epoch robust_residual_std_m (robust over time too: an epoch with
+/// a non-line-of-sight range does not move it), never below the floor.
+class RangeNoiseLevel {
+ public:
+  explicit RangeNoiseLevel(const UncertaintyParams& params);
+  /// One epoch's robust residual std (m, >= 0).
+  void add(double residual_std_m);
+  /// The running median, at least the floor (the floor before the first add()).
+  double std_m() const;
+
+ private:
+  UncertaintyParams params_;
+  std::deque<double> recent_;
+};
+
+}  // namespace robodds::uwb_relative_estimator
