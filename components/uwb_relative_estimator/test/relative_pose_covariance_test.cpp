@@ -13,19 +13,12 @@
 #include "common/random.hpp"
 #include "components/uwb_relative_estimator/relative_pose.hpp"
 #include "components/uwb_relative_estimator/relative_pose_solver.hpp"
+#include "components/uwb_relative_estimator/test/true_ranges.hpp"
 
 namespace robodds::uwb_relative_estimator {
 namespace {
 
-Eigen::MatrixXd true_ranges(const UwbArray& own, const UwbArray& other, const model::Pose2& pose) {
-  Eigen::MatrixXd ranges(own.nodes_m.size(), other.nodes_m.size());
-  for (std::size_t k = 0; k < own.nodes_m.size(); ++k) {
-    for (std::size_t l = 0; l < other.nodes_m.size(); ++l) {
-      ranges(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) = predicted_range(pose, own.nodes_m[k], other.nodes_m[l]);
-    }
-  }
-  return ranges;
-}
+using testing::true_ranges;
 
 /// Sample covariance of error vectors (mean removed).
 Eigen::Matrix3d sample_covariance(const std::vector<Eigen::Vector3d>& errors) {

@@ -1,4 +1,5 @@
 #include "components/uwb_relative_estimator/relative_pose_solver.hpp"
+#include "components/uwb_relative_estimator/test/true_ranges.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,15 +15,7 @@
 namespace robodds::uwb_relative_estimator {
 namespace {
 
-Eigen::MatrixXd true_ranges(const UwbArray& own, const UwbArray& other, const model::Pose2& pose) {
-  Eigen::MatrixXd ranges(own.nodes_m.size(), other.nodes_m.size());
-  for (std::size_t k = 0; k < own.nodes_m.size(); ++k) {
-    for (std::size_t l = 0; l < other.nodes_m.size(); ++l) {
-      ranges(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) = predicted_range(pose, own.nodes_m[k], other.nodes_m[l]);
-    }
-  }
-  return ranges;
-}
+using testing::true_ranges;
 
 double position_error(const model::Pose2& a, const model::Pose2& b) { return std::hypot(a.x - b.x, a.y - b.y); }
 double heading_error(const model::Pose2& a, const model::Pose2& b) { return std::abs(wrap_angle(a.theta - b.theta)); }
