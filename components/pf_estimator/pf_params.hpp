@@ -45,6 +45,12 @@ struct PfParams {
   ResamplingScheme resampling = ResamplingScheme::kSystematic;
 
   double measurement_std_m = 1.51;
+  /// The fix noise actually seen is estimated from the innovations (fix_noise_estimator.hpp): the
+  /// running median over this many fixes, never below measurement_std_m; it replaces
+  /// measurement_std_m in the likelihood, the gate and the lost-filter monitor. 0 = off (the
+  /// configured noise is assumed). 300 fixes = 30 s at 10 Hz: long enough that a lost filter's
+  /// large innovations (recovered within ~1-5 s) do not pass for noise.
+  int noise_window_fixes = 300;
 
   double odom_v_std_mps = 0.05;
   /// Turn-rate noise per particle and prediction: odom_omega_std_radps + odom_omega_std_per_mps
@@ -102,6 +108,13 @@ struct PfParams {
   /// are learned from motion.
   bool init_theta_known = false;
   double init_theta_rad = 0.0;
+  /// A heading given as known is confirmed by the fixes' displacement (heading_prior_check.hpp)
+  /// before the filter says confirmed(); a displacement more than this off the prior's redraws
+  /// the cloud (a recovery). 0 = the prior is trusted unchecked (before issue 27).
+  double prior_heading_tolerance_rad = 0.5236;
+  /// confirmed() also needs this many accepted fixes since the last (re)initialisation: a cloud
+  /// placed around one fix, or redrawn, has not been tested against the fixes yet.
+  int confirm_fixes = 10;
   double init_fix_std_m = 1.51;
 
   /// Throws std::invalid_argument naming the first offending key: the table's ranges, then
