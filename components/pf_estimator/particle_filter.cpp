@@ -151,7 +151,7 @@ bool ParticleFilter::confirmed() const {
          (verdict == HeadingPriorCheck::Verdict::kNotNeeded || verdict == HeadingPriorCheck::Verdict::kConfirmed);
 }
 
-void ParticleFilter::predict(double v_mps, double omega_radps, double dt_s) {
+void ParticleFilter::predict(double v_mps, double omega_radps, double dt_s, double omega_var_radps2) {
   require_finite_input("predict", "v_mps", v_mps);
   require_finite_input("predict", "omega_radps", omega_radps);
   require_finite_input("predict", "dt_s", dt_s);
@@ -167,8 +167,14 @@ void ParticleFilter::predict(double v_mps, double omega_radps, double dt_s) {
   const bool diffuse_theta = params_.process_theta_std_rad > 0.0;
   // Wheel-like odometry errs in proportion to the wheels' motion: almost no turn noise at
   // standstill, where nothing observes the heading.
-  const double omega_std = params_.odom_omega_std_radps + params_.odom_omega_std_per_mps * std::abs(v_mps) +
-                           params_.odom_omega_std_fraction * std::abs(omega_radps);
+  const double model_omega_std = params_.odom_omega_std_radps + params_.odom_omega_std_per_mps * std::abs(v_mps) +
+                                 params_.odom_omega_std_fraction * std::abs(omega_radps);
+  // A sensor that says its turn rate is noisier (also at standstill, where the fixes cannot
+  // correct the heading it turns) is believed: otherwise the heading drifts with that noise while
+  // the spread stays put (issue 27, finding 4: 7-9 deg off at a reported 2 deg).
+  const double omega_std = params_.use_odometry_variance && omega_var_radps2 > 0.0
+                               ? std::max(model_omega_std, std::sqrt(omega_var_radps2))
+                               : model_omega_std;
   const double slip_walk_std = params_.turn_slip_walk_std_radpm * std::sqrt(std::abs(v_mps) * dt_s);
   for (Eigen::Index i = 0; i < num_particles_; ++i) {
     const model::Twist noisy_odometry{v_mps + noise(params_.odom_v_std_mps),

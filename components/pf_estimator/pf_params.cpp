@@ -76,6 +76,8 @@ const params::ParamTable<PfParams>& pf_param_table() {
                "turn-rate noise per particle and prediction, x |v| (wheel errors grow with speed)")
           .add("odom_omega_std_fraction", &PfParams::odom_omega_std_fraction, "", non_negative(),
                "turn-rate noise per particle and prediction, x |omega|")
+          .add("use_odometry_variance", &PfParams::use_odometry_variance, "", params::any<bool>(),
+               "true: the turn-rate noise is at least the std each odometry sample claims (var_omega)")
           .add("process_pos_std_m", &PfParams::process_pos_std_m, "m", non_negative(),
                "extra x and y diffusion per prediction")
           .add("process_theta_std_rad", &PfParams::process_theta_std_rad, "rad", non_negative(),

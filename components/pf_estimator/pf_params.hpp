@@ -60,6 +60,8 @@ struct PfParams {
   double odom_omega_std_radps = 0.005;
   double odom_omega_std_per_mps = 0.02;
   double odom_omega_std_fraction = 0.02;
+  /// The turn-rate noise is at least the std the odometry claims for each sample (var_omega).
+  bool use_odometry_variance = true;
   /// Additive. Keeps the cloud from collapsing onto a few resampled copies when odometry is very
   /// precise or the robot stands.
   double process_pos_std_m = 0.02;

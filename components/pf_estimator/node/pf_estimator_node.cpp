@@ -85,7 +85,7 @@ class PfEstimatorNode : public Component {
 
   static void predict(ParticleFilter& filter, const idl::Odometry& odometry) {
     if (filter.initialized() && odometry.dt_s() > 0.0) {
-      filter.predict(odometry.v(), odometry.omega(), odometry.dt_s());
+      filter.predict(odometry.v(), odometry.omega(), odometry.dt_s(), odometry.var_omega());
     }
   }
 

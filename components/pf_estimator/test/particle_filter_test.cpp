@@ -512,6 +512,28 @@ TEST(ParticleFilter, HeadingSpreadDoesNotGrowAtStandstill) {
   EXPECT_LT(std_max - std_start, 1.0 * kDeg);
 }
 
+// Issue 27, finding 4: an odometry that says its turn rate is noisy also at standstill (the
+// simulated one: white wheel noise, var_omega 0.0089 (rad/s)^2 per 50 Hz sample) turns the
+// heading there; the spread must follow, or the filter is over-confident while nothing observes it.
+double heading_std_after_standing(bool use_odometry_variance, double omega_var) {
+  PfParams params = first_fix_params();
+  params.init_theta_known = true;
+  params.use_odometry_variance = use_odometry_variance;
+  ParticleFilter filter(params, 12);
+  filter.update(0.0, 0.0);
+  for (int step = 0; step < 3000; ++step) {  // 60 s
+    filter.predict(0.0, 0.0, 0.02, omega_var);
+  }
+  return std::sqrt(filter.estimate().covariance(2, 2));
+}
+
+TEST(ParticleFilter, HeadingSpreadFollowsTheTurnNoiseTheOdometryClaimsAtStandstill) {
+  const double expected = std::sqrt(3000.0) * std::sqrt(0.0089) * 0.02;  // random walk: 0.103 rad
+  EXPECT_NEAR(heading_std_after_standing(true, 0.0089), expected, 0.1 * expected);
+  EXPECT_LT(heading_std_after_standing(false, 0.0089), 0.1 * expected) << "the claim ignored";
+  EXPECT_LT(heading_std_after_standing(true, 0.0), 0.1 * expected) << "no claim: the wheel model";
+}
+
 TEST(ParticleFilter, NoTurnNoiseWithoutWheelMotion) {
   PfParams params = first_fix_params();
   params.odom_omega_std_radps = 0.0;  // only the motion-proportional parts
