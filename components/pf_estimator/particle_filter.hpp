@@ -60,7 +60,7 @@ class ParticleFilter {
   /// ignored (odometry without a pose carries no position information).
   /// Throws std::invalid_argument (state untouched) on non-finite input or dt_s < 0.
   /// omega_var_radps2: the variance the odometry claims for this omega sample ((rad/s)^2, 0 = none):
-  /// with use_odometry_variance the turn noise is at least its std (issue 27, finding 4).
+  /// with use_odometry_variance the turn noise at standstill is at least its std (issue 27, finding 4).
   void predict(double v_mps, double omega_radps, double dt_s, double omega_var_radps2 = 0.0);
 
   /// Checks the fix against the cloud first (gate_probability): an inconsistent fix is rejected
