@@ -46,9 +46,12 @@ CASES = {
                    {"plant": {"disturbance_at_s": DISTURBANCE_AT_S, "disturbance_dx_m": 10.0}}, {}),
     "kidnap_90deg": ("robot turned 90 deg at t = %g s" % DISTURBANCE_AT_S,
                      {"plant": {"disturbance_at_s": DISTURBANCE_AT_S, "disturbance_dtheta_rad": math.pi / 2}}, {}),
-    # One way-point at the start: the robot settles on it and stands (stop_when_done) for 600 s.
+    # One way-point at the start: the robot settles on it and stands (stop_when_done) for 600 s. The
+    # known heading is trusted (prior_heading_tolerance_rad 0): unconfirmed, the robot would first
+    # creep ~10 m to confirm it (issue 27), and the case is about standing.
     "standstill_600s": ("standing 600 s, heading known at the start",
-                        {"mission": {"waypoints": [[50.0, 10.0]]}, "estimator": {"init_theta_known": True, "init_theta_rad": 0.0}},
+                        {"mission": {"waypoints": [[50.0, 10.0]]},
+                         "estimator": {"init_theta_known": True, "init_theta_rad": 0.0, "prior_heading_tolerance_rad": 0.0}},
                         {"duration_s": 600.0}),
 }
 STANDSTILL_FROM_S = 10.0  # s: heading spread growth of the standstill case is measured from here
@@ -99,6 +102,23 @@ def recovery_times(series):
             heading = t - DISTURBANCE_AT_S
             break
     return position, heading
+
+
+def overconfident_heading_samples(run_dir):
+    """(valid samples, valid samples with a heading error beyond 3 reported sigmas, worst such error rad)."""
+    truth = {row["header.step"]: row for row in read_rows(os.path.join(run_dir, "plant_state.csv"))}
+    valid = bad = 0
+    worst = 0.0
+    for e in read_rows(os.path.join(run_dir, "estimate_pose.csv")):
+        s = truth.get(e["header.step"])
+        if s is None or e["valid"] not in ("1", "true", "True"):
+            continue
+        valid += 1
+        dth = abs(math.atan2(math.sin(float(e["theta"]) - float(s["theta"])), math.cos(float(e["theta"]) - float(s["theta"]))))
+        if dth > 3.0 * math.sqrt(max(float(e["cov[8]"]), 0.0)):
+            bad += 1
+            worst = max(worst, dth)
+    return valid, bad, worst
 
 
 def standstill_growth(series):
@@ -175,6 +195,9 @@ def main(argv):
                 row["heading_std_start_deg"], growth = (v / DEG for v in standstill_growth(series))
                 row["heading_std_growth_deg"] = growth
                 row["path_length_m"] = m["robots"]["1"]["path_length_m"]
+                row["valid_samples"], row["overconfident_heading_samples"], worst = \
+                    overconfident_heading_samples(os.path.join(args.out, label))
+                row["worst_overconfident_heading_deg"] = worst / DEG
             rows.append(row)
         table[case] = rows
         reached = " ".join(str(r["reached"]) for r in rows)
@@ -211,7 +234,11 @@ def main(argv):
                 need(r["heading_recovery_s"] is not None, "%s seed %d: heading never recovered" % (case, s))
         elif case == "standstill_600s":
             growth = [r["heading_std_growth_deg"] for r in rows]
-            recovery = "heading std growth %.2f / %.2f deg" % (min(growth), max(growth))
+            bad = [r["overconfident_heading_samples"] for r in rows]
+            # Issue 27's bound (no valid sample with a heading error beyond 3 sigma) is reported, not
+            # required: it fails with the default filter (docs/results/paper1.md, "Degraded sensing").
+            recovery = "heading std growth %.2f / %.2f deg; valid with heading error > 3 sigma: %d / %d samples, on %d seeds" % (
+                min(growth), max(growth), min(bad), max(bad), sum(1 for b in bad if b))
             required = "heading spread grows < 5 deg"
             reached = "-"
             for s, g in zip(seeds, growth):

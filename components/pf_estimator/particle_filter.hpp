@@ -24,6 +24,8 @@
 
 #include "common/random.hpp"
 #include "components/pf_estimator/consistency.hpp"
+#include "components/pf_estimator/fix_noise_estimator.hpp"
+#include "components/pf_estimator/heading_prior_check.hpp"
 #include "components/pf_estimator/particle_set.hpp"
 #include "components/pf_estimator/pf_params.hpp"
 #include "components/pf_estimator/pose_estimate.hpp"
@@ -57,7 +59,9 @@ class ParticleFilter {
   /// distance travelled. dt_s == 0 changes nothing; before initialisation the call is
   /// ignored (odometry without a pose carries no position information).
   /// Throws std::invalid_argument (state untouched) on non-finite input or dt_s < 0.
-  void predict(double v_mps, double omega_radps, double dt_s);
+  /// omega_var_radps2: the variance the odometry claims for this omega sample ((rad/s)^2, 0 = none):
+  /// with use_odometry_variance the turn noise at standstill is at least its std (issue 27, finding 4).
+  void predict(double v_mps, double omega_radps, double dt_s, double omega_var_radps2 = 0.0);
 
   /// Checks the fix against the cloud first (gate_probability): an inconsistent fix is rejected
   /// and changes nothing but the inconsistency monitor; when that says the filter is lost
@@ -85,6 +89,14 @@ class ParticleFilter {
   /// Number of recoveries (cloud redrawn around a fix) since construction.
   std::size_t recovery_count() const { return recovery_count_; }
   const InconsistencyMonitor& monitor() const { return monitor_; }
+  /// The measurements back the belief (issue 27): confirm_fixes accepted fixes since the last
+  /// (re)initialisation and, for a heading given as known, the fixes' displacement agrees with it
+  /// (HeadingPriorCheck). The node publishes valid only when this holds.
+  bool confirmed() const;
+  const HeadingPriorCheck& heading_prior_check() const { return prior_check_; }
+  /// The fix std per axis (m) the filter uses: estimated from the innovations
+  /// (PfParams::noise_window_fixes), never below measurement_std_m.
+  double measurement_std_estimate_m() const { return noise_.std_m(); }
 
   /// Fixes whose component-wise median centres a recovery.
   static constexpr std::size_t kRecoveryFixes = 5;
@@ -113,6 +125,7 @@ class ParticleFilter {
 
  private:
   double draw_heading();
+  void start_confirmation();
   double noise(double std_dev);
   void reset_weights_to_uniform();
   void resample();
@@ -138,6 +151,9 @@ class ParticleFilter {
 
   double gate_nis_;  // +inf without a gate
   InconsistencyMonitor monitor_;
+  FixNoiseEstimator noise_;  // kept across recoveries: the sensor did not change
+  HeadingPriorCheck prior_check_;
+  std::size_t accepted_since_init_ = 0;  // fixes used since the last (re)initialisation
   double last_update_nis_ = 0.0;
   bool last_update_rejected_ = false;
   std::size_t rejected_count_ = 0;

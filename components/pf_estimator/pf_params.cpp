@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "common/angle.hpp"
 #include "common/number_text.hpp"
 #include "common/param_checks.hpp"
 #include "components/pf_estimator/consistency.hpp"
@@ -64,7 +65,9 @@ const params::ParamTable<PfParams>& pf_param_table() {
           .add_enum("resampling", &PfParams::resampling, resampling_scheme_from_string, to_string,
                     {"systematic", "residual"}, "how a degenerate particle set is redrawn")
           .add("measurement_std_m", &PfParams::measurement_std_m, "m", positive(),
-               "s_x = s_y in eq. (5); 1.51 ~ sqrt(2.28) matches the sensor")
+               "s_x = s_y in eq. (5); 1.51 ~ sqrt(2.28) matches the sensor; the floor of the estimated fix noise")
+          .add("noise_window_fixes", &PfParams::noise_window_fixes, "fixes", shown_as(params::at_least(0), ">= 0; 0 = assume measurement_std_m"),
+               "the fix noise is the running median of the innovations over this many fixes (likelihood, gate, monitor)")
           .add("odom_v_std_mps", &PfParams::odom_v_std_mps, "m/s", non_negative(),
                "noise added to the odometry speed per particle and prediction")
           .add("odom_omega_std_radps", &PfParams::odom_omega_std_radps, "rad/s", non_negative(),
@@ -73,6 +76,10 @@ const params::ParamTable<PfParams>& pf_param_table() {
                "turn-rate noise per particle and prediction, x |v| (wheel errors grow with speed)")
           .add("odom_omega_std_fraction", &PfParams::odom_omega_std_fraction, "", non_negative(),
                "turn-rate noise per particle and prediction, x |omega|")
+          .add("use_odometry_variance", &PfParams::use_odometry_variance, "", params::any<bool>(),
+               "true: at standstill the turn-rate noise is at least the std each odometry sample claims (var_omega)")
+          .add("standstill_speed_mps", &PfParams::standstill_speed_mps, "m/s", non_negative(),
+               "below this odometry speed the robot counts as standing (the fixes cannot see its heading)")
           .add("process_pos_std_m", &PfParams::process_pos_std_m, "m", non_negative(),
                "extra x and y diffusion per prediction")
           .add("process_theta_std_rad", &PfParams::process_theta_std_rad, "rad", non_negative(),
@@ -106,6 +113,11 @@ const params::ParamTable<PfParams>& pf_param_table() {
           .add("init_theta_known", &PfParams::init_theta_known, "", params::any<bool>(),
                "true: every particle starts with init_theta_rad (the paper's assumption)")
           .add("init_theta_rad", &PfParams::init_theta_rad, "rad", finite(), "initial heading if known, world frame")
+          .add("prior_heading_tolerance_rad", &PfParams::prior_heading_tolerance_rad, "rad",
+               shown_as(non_negative("0 = the prior is trusted"), "[0, pi/2)"),
+               "a known initial heading counts once the fixes moved within this of it; beyond: redraw the cloud")
+          .add("confirm_fixes", &PfParams::confirm_fixes, "fixes", params::at_least(0),
+               "accepted fixes after a (re)initialisation before the estimate can be valid")
           .add("init_fix_std_m", &PfParams::init_fix_std_m, "m", positive(), "spread around the first fix (first_fix mode)");
   return table;
 }
@@ -126,6 +138,9 @@ void PfParams::validate() const {
   }
   if (!(recovery_bias_window_fixes >= 1.0)) {
     reject("recovery_bias_window_fixes", "must be >= 1", recovery_bias_window_fixes);
+  }
+  if (!(prior_heading_tolerance_rad < 0.5 * kPi)) {
+    reject("prior_heading_tolerance_rad", "must be in [0, pi/2)", prior_heading_tolerance_rad);
   }
   if (!(recovery_uniform_heading_fraction <= 1.0)) {
     reject("recovery_uniform_heading_fraction", "must be in [0, 1]", recovery_uniform_heading_fraction);

@@ -13,8 +13,9 @@ LIMIT=0.5        # s, the controller's default estimate_timeout_s
 MARGIN=0.3       # s, for a loaded machine (control period 0.01 s, evaluator delay)
 epoch=$(( $(date +%s%N) + 4000000000 ))  # step 0 in 4 s: every host has started and matched
 # The start heading is given to the filter (valid from the start, so the robot tracks before the
-# kill): with an unknown heading the estimate is valid only after ~14 s of creeping (issue 12).
-KNOWN_START=(--set estimator.init_theta_known=true --set estimator.init_theta_rad=0)
+# kill): with an unknown heading the estimate is valid only after ~14 s of creeping (issue 12), with a
+# known one checked against the fixes (issue 27) after ~4 m; prior_heading_tolerance_rad 0 trusts it.
+KNOWN_START=(--set estimator.init_theta_known=true --set estimator.init_theta_rad=0 --set estimator.prior_heading_tolerance_rad=0)
 for group in sim sensors estimation control evaluation; do
   "$ROBODDS" host --scenario "$SCENARIO" --group "$group" --realtime $(rt_priority_flag) --epoch-ns "$epoch" --duration "$DURATION" \
     --domain "$DOMAIN" --out "$WORK/out" "${KNOWN_START[@]}" >"$WORK/$group.log" 2>&1 &

@@ -85,7 +85,7 @@ class PfEstimatorNode : public Component {
 
   static void predict(ParticleFilter& filter, const idl::Odometry& odometry) {
     if (filter.initialized() && odometry.dt_s() > 0.0) {
-      filter.predict(odometry.v(), odometry.omega(), odometry.dt_s());
+      filter.predict(odometry.v(), odometry.omega(), odometry.dt_s(), odometry.var_omega());
     }
   }
 
@@ -102,7 +102,9 @@ class PfEstimatorNode : public Component {
       for (int i = 0; i < 9; ++i) {
         m.cov()[static_cast<std::size_t>(i)] = e.covariance(i / 3, i % 3);
       }
-      m.valid(next_validity(e, validity_, was_valid));
+      // The spread alone is no proof (a heading given as known has none): the measurements must
+      // have confirmed the belief first (issue 27).
+      m.valid(filter.confirmed() && next_validity(e, validity_, was_valid));
       m.restarts(static_cast<std::uint32_t>(filter.recovery_count()));  // a consumer sees each redraw, even one it missed
     }
     return m;

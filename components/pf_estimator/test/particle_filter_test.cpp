@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -66,6 +67,7 @@ struct SimulationConfig {
   int odom_steps_per_fix = 5;  // 10 Hz fixes
   double odom_v_noise_mps = 0.05;
   double odom_omega_noise_radps = 0.02;
+  double fix_std_m = kFixStd;  // what the simulated sensor does (the filter may assume otherwise)
   model::Pose2 start{5.0, -3.0, 2.0};
 };
 
@@ -99,8 +101,8 @@ SimulationResult simulate(ParticleFilter& filter, const SimulationConfig& config
     if (step % config.odom_steps_per_fix != 0) {
       continue;
     }
-    const double z_x = truth.x + kFixStd * standard_normal(world);
-    const double z_y = truth.y + kFixStd * standard_normal(world);
+    const double z_x = truth.x + config.fix_std_m * standard_normal(world);
+    const double z_y = truth.y + config.fix_std_m * standard_normal(world);
     filter.update(z_x, z_y);
     const Eigen::Vector3d mean = filter.estimate().mean;
     result.estimates.push_back(mean);
@@ -510,6 +512,28 @@ TEST(ParticleFilter, HeadingSpreadDoesNotGrowAtStandstill) {
   EXPECT_LT(std_max - std_start, 1.0 * kDeg);
 }
 
+// Issue 27, finding 4: an odometry that says its turn rate is noisy also at standstill (the
+// simulated one: white wheel noise, var_omega 0.0089 (rad/s)^2 per 50 Hz sample) turns the
+// heading there; the spread must follow, or the filter is over-confident while nothing observes it.
+double heading_std_after_standing(bool use_odometry_variance, double omega_var) {
+  PfParams params = first_fix_params();
+  params.init_theta_known = true;
+  params.use_odometry_variance = use_odometry_variance;
+  ParticleFilter filter(params, 12);
+  filter.update(0.0, 0.0);
+  for (int step = 0; step < 3000; ++step) {  // 60 s
+    filter.predict(0.0, 0.0, 0.02, omega_var);
+  }
+  return std::sqrt(filter.estimate().covariance(2, 2));
+}
+
+TEST(ParticleFilter, HeadingSpreadFollowsTheTurnNoiseTheOdometryClaimsAtStandstill) {
+  const double expected = std::sqrt(3000.0) * std::sqrt(0.0089) * 0.02;  // random walk: 0.103 rad
+  EXPECT_NEAR(heading_std_after_standing(true, 0.0089), expected, 0.1 * expected);
+  EXPECT_LT(heading_std_after_standing(false, 0.0089), 0.1 * expected) << "the claim ignored";
+  EXPECT_LT(heading_std_after_standing(true, 0.0), 0.1 * expected) << "no claim: the wheel model";
+}
+
 TEST(ParticleFilter, NoTurnNoiseWithoutWheelMotion) {
   PfParams params = first_fix_params();
   params.odom_omega_std_radps = 0.0;  // only the motion-proportional parts
@@ -577,6 +601,7 @@ std::size_t recoveries_while_creeping_sideways(double recovery_bias_nis, double 
   params.init_theta_known = true;
   params.init_theta_rad = 0.0;
   params.recovery_bias_nis = recovery_bias_nis;
+  params.prior_heading_tolerance_rad = 0.0;  // the prior check would catch this 90 deg error too
   ParticleFilter filter(params, 46);
   RandomEngine world(derive_seed(46, "creep"));
   double truth_y = 0.0;
@@ -630,6 +655,116 @@ TEST(ParticleFilter, FivePercentOutliersAreRejectedWithoutHarm) {
     EXPECT_EQ(tracked.recovery_count(), 0u) << offset;
     EXPECT_GE(tracked.rejected_count(), static_cast<std::size_t>(outliers)) << offset;
     EXPECT_LT(rmse, 0.5) << offset;
+  }
+}
+
+// Issue 27, finding 2: fixes 3x noisier (variance) than configured. The filter estimates the noise
+// it sees from its innovations and uses it; assuming the configured noise, it takes correct fixes
+// for outliers and keeps redrawing its cloud.
+struct NoisyRun {
+  std::unique_ptr<ParticleFilter> filter;
+  SimulationResult result;
+};
+
+NoisyRun run_with_noisier_fixes(int noise_window_fixes, std::uint64_t seed) {
+  PfParams params = first_fix_params();
+  params.noise_window_fixes = noise_window_fixes;
+  SimulationConfig config;
+  config.duration_s = 120.0;
+  config.fix_std_m = std::sqrt(3.0 * 2.28);
+  NoisyRun run{std::make_unique<ParticleFilter>(params, seed), {}};
+  run.result = simulate(*run.filter, config, seed);
+  return run;
+}
+
+TEST(ParticleFilter, EstimatesTheFixNoiseItSeesAndTracksWithFixesThreeTimesNoisier) {
+  for (const std::uint64_t seed : {5u, 6u, 7u}) {
+    const NoisyRun run = run_with_noisier_fixes(300, seed);
+    const ParticleFilter* filter = run.filter.get();
+    const SimulationResult& result = run.result;
+    RecordProperty("seed" + std::to_string(seed) + "_noise_std_m", std::to_string(filter->measurement_std_estimate_m()));
+    RecordProperty("seed" + std::to_string(seed) + "_recoveries", std::to_string(filter->recovery_count()));
+    EXPECT_NEAR(filter->measurement_std_estimate_m(), std::sqrt(3.0 * 2.28), 0.15 * std::sqrt(3.0 * 2.28)) << seed;
+    EXPECT_LE(filter->recovery_count(), 3u) << seed;
+    EXPECT_LT(filter->rejected_count(), 36u) << seed;  // 3 % of 1200 correct fixes
+    EXPECT_LT(result.estimate_rmse_m, 0.5 * result.fix_rmse_m) << seed;
+    EXPECT_LT(result.final_heading_error_rad, 10.0 * kDeg) << seed;
+  }
+}
+
+TEST(ParticleFilter, AssumingTheConfiguredNoiseFixesThreeTimesNoisierLookLikeALostFilter) {
+  const NoisyRun run = run_with_noisier_fixes(0, 5);
+  EXPECT_DOUBLE_EQ(run.filter->measurement_std_estimate_m(), kFixStd);
+  // 1200 fixes, all correct: a fifth rejected as outliers (246 on this seed; with the estimate: < 3 %).
+  EXPECT_GT(run.filter->rejected_count(), 180u);
+}
+
+TEST(ParticleFilter, NoiseEstimateStaysAtTheFloorWhenTheFixesAreAsConfigured) {
+  PfParams params = first_fix_params();
+  SimulationConfig config;
+  ParticleFilter filter(params, 8);
+  simulate(filter, config, 8);
+  EXPECT_LT(filter.measurement_std_estimate_m(), 1.15 * kFixStd);
+  EXPECT_GE(filter.measurement_std_estimate_m(), kFixStd);
+}
+
+// Issue 27, finding 3: a heading given as known is confirmed by the fixes' displacement before the
+// filter says confirmed(); a wrong one is contradicted and redrawn. Returns the worst heading error
+// while valid as the node says it (rad), the first time valid (s; -1 never) and the recoveries.
+struct PriorRun {
+  double worst_confirmed_error_rad = 0.0;
+  double confirmed_at_s = -1.0;
+  std::size_t recoveries = 0;
+};
+
+PriorRun drive_with_prior(double prior_error_rad, std::uint64_t seed) {
+  PfParams params = first_fix_params();
+  const SimulationConfig config;
+  params.init_theta_known = true;
+  params.init_theta_rad = config.start.theta + prior_error_rad;
+  ParticleFilter filter(params, seed);
+  RandomEngine world(derive_seed(seed, "prior"));
+  model::Pose2 truth = config.start;
+  PriorRun run;
+  bool valid = false;
+  for (int step = 1; step <= 3000; ++step) {  // 60 s
+    const model::Twist twist{0.3, 0.02};  // creeping, as the controller does while not valid
+    truth = model::integrate_exact(truth, twist, 0.02);
+    filter.predict(twist.v + 0.05 * standard_normal(world), twist.omega + 0.02 * standard_normal(world), 0.02);
+    if (step % 5 != 0) {
+      continue;
+    }
+    filter.update(truth.x + kFixStd * standard_normal(world), truth.y + kFixStd * standard_normal(world));
+    // What the node publishes as valid: confirmed and the spread within its default limits.
+    valid = filter.confirmed() && next_validity(filter.estimate(), {3.0, 0.2, 0.35}, valid);
+    if (valid) {
+      const double error = std::abs(wrap_angle(filter.estimate().mean.z() - truth.theta));
+      run.worst_confirmed_error_rad = std::max(run.worst_confirmed_error_rad, error);
+      if (run.confirmed_at_s < 0.0) {
+        run.confirmed_at_s = step * 0.02;
+      }
+    }
+  }
+  run.recoveries = filter.recovery_count();
+  return run;
+}
+
+TEST(ParticleFilter, AHeadingGivenAsKnownButWrongIsNeverConfirmedAndIsRedrawn) {
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    for (const double error : {2.0944, -2.0944, kPi}) {
+      const PriorRun run = drive_with_prior(error, seed);
+      EXPECT_GE(run.recoveries, 1u) << seed << " " << error;
+      EXPECT_LT(run.worst_confirmed_error_rad, 30.0 * kDeg) << seed << " " << error;
+    }
+  }
+}
+
+TEST(ParticleFilter, ARightHeadingGivenAsKnownIsConfirmedAfterAFewMetres) {
+  for (const std::uint64_t seed : {1u, 2u, 3u}) {
+    const PriorRun run = drive_with_prior(0.05, seed);
+    EXPECT_EQ(run.recoveries, 0u) << seed;
+    EXPECT_GT(run.confirmed_at_s, 0.0) << seed;
+    EXPECT_LT(run.confirmed_at_s, 30.0) << seed << ": 9 m at 0.3 m/s";
   }
 }
 

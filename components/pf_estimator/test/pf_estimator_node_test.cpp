@@ -21,12 +21,17 @@ using robodds::testing::of_instance;
 using robodds::testing::ScenarioText;
 using Harness = robodds::testing::ComponentHarness<robodds::component_registration::register_pf_estimator>;
 
-// Steps 0..20 at 100 Hz, fixes at 10 Hz (steps 0, 10, 20), odometry at every step.
-const std::string kScenario =
-    ScenarioText("pf_estimator_node", 0.01, 0.2)
-        .seed(5)
-        .robots({1, 2})
-        .component("{name: pf, type: pf_estimator, params: {num_particles: 500, resample_threshold: 250.0, init_theta_known: true}}");
+// Steps 0..20 at 100 Hz, fixes at 10 Hz (steps 0, 10, 20), odometry at every step. `checks`:
+// extra parameters, e.g. to turn off the confirmation by the measurements (issue 27), which a
+// robot standing still for 0.2 s cannot give.
+std::string scenario(const std::string& checks) {
+  return ScenarioText("pf_estimator_node", 0.01, 0.2)
+      .seed(5)
+      .robots({1, 2})
+      .component("{name: pf, type: pf_estimator, params: {num_particles: 500, resample_threshold: 250.0, "
+                 "init_theta_known: true" + checks + "}}");
+}
+const std::string kNoConfirmation = ", prior_heading_tolerance_rad: 0, confirm_fixes: 0";
 
 /// Where the fixes put each robot (m, world).
 double fix_x(std::uint32_t robot) { return robot == 1 ? 10.0 : 50.0; }
@@ -52,7 +57,7 @@ void publish_fix(NodeHarness& h, std::uint32_t robot, std::uint64_t step, std::u
 }
 
 TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
-  Harness h(kScenario);
+  Harness h(scenario(kNoConfirmation));
   h.feed([&h](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
       publish_standstill_odometry(h, robot, step);
@@ -83,6 +88,27 @@ TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
   }
 }
 
+// Issue 27: a heading given as known is a belief, not a measurement. A robot standing still (the
+// fixes cannot confirm the heading) with two fixes is not valid however small the spread.
+TEST(PfEstimatorNode, AHeadingGivenAsKnownIsNotValidBeforeTheMeasurementsConfirmIt) {
+  for (const char* checks : {"", ", prior_heading_tolerance_rad: 0", ", confirm_fixes: 0"}) {
+    Harness h(scenario(checks));
+    h.feed([&h](std::uint64_t step) {
+      for (std::uint32_t robot : {1u, 2u}) {
+        publish_standstill_odometry(h, robot, step);
+        if (step % 10 == 0) {
+          publish_fix(h, robot, step, step + 10);
+        }
+      }
+    });
+    const auto& estimates = h.record<idl::PoseEstimate>("estimate/pose");
+    h.run({"pf"});
+    for (const idl::PoseEstimate& e : estimates) {
+      EXPECT_FALSE(e.valid()) << "params" << checks << ", step " << e.header().step();
+    }
+  }
+}
+
 // A robot that has not moved yet has an unknown heading: the position alone is not a valid pose.
 TEST(PfEstimatorNode, UnknownHeadingIsNotValidUnlessTheHeadingCheckIsOff) {
   for (const char* heading_check : {"0.2", "0"}) {
@@ -90,7 +116,7 @@ TEST(PfEstimatorNode, UnknownHeadingIsNotValidUnlessTheHeadingCheckIsOff) {
                   .seed(5)
                   .robots({1})
                   .component(std::string("{name: pf, type: pf_estimator, params: {num_particles: 500, resample_threshold: 250.0, "
-                                         "valid_max_heading_std_rad: ") +
+                                         "confirm_fixes: 0, valid_max_heading_std_rad: ") +
                              heading_check + "}}"));
     h.feed([&h](std::uint64_t step) {
       publish_standstill_odometry(h, 1, step);
@@ -125,7 +151,7 @@ TEST(PfEstimatorNode, RealTimeEstimateTurnsInvalidWhenTheSensorsGoStale) {
                 .seed(5)
                 .robots({1})
                 .component("{name: pf, type: pf_estimator, params: {num_particles: 300, resample_threshold: 150.0, "
-                           "input_timeout_s: 0.2, init_theta_known: true}}"));
+                           "input_timeout_s: 0.2, init_theta_known: true, prior_heading_tolerance_rad: 0, confirm_fixes: 0}}"));
   h.set_mode(TimeMode::kRealtime);
   constexpr std::uint64_t kLastFed = 30;  // the sensors stop after 0.3 s
   h.feed([&h](std::uint64_t step) {
