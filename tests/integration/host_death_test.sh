@@ -40,28 +40,45 @@ wait_exits() {
 }
 
 # --- lockstep ---
-RUN=$((RANDOM + 1000))
-L=(host --scenario "$S" --domain "$DOMAIN" --run-id "$RUN" --duration 1000)
-for g in control sim sensing; do start_host "ls_$g" "${L[@]}" --group "$g"; done
-start_host ls_evaluation "${L[@]}" --group evaluation --out "$WORK/lockstep"
-start_host ls_coordinator "${L[@]}" --coordinate
-sleep 4  # discovery (~1 s) and a few hundred steps
-for name in ls_control ls_sim ls_sensing ls_evaluation ls_coordinator; do
-  [[ ! -e "$WORK/$name.exit" ]] || fail "$name ended before the kill: $(tail -3 "$WORK/$name.log")"
-done
-kill -9 "$(cat "$WORK/ls_sensing.pid")"
-killed=$(now_s)
-wait_exits 20 ls_control ls_sim ls_evaluation ls_coordinator
-for name in ls_control ls_sim ls_evaluation ls_coordinator; do
-  read -r rc ended <"$WORK/$name.exit"
+# lockstep_run P: the hosts as P_control, P_sim, ..., the sensing host killed mid-run; waits for
+# the others to end (at most 20 s). Outputs in $WORK/P.
+lockstep_run() {
+  local p=$1 name
+  RUN=$((RANDOM + 1000))
+  L=(host --scenario "$S" --domain "$DOMAIN" --run-id "$RUN" --duration 1000)
+  for g in control sim sensing; do start_host "${p}_$g" "${L[@]}" --group "$g"; done
+  start_host "${p}_evaluation" "${L[@]}" --group evaluation --out "$WORK/$p"
+  start_host "${p}_coordinator" "${L[@]}" --coordinate
+  sleep 4  # discovery (~1 s) and a few hundred steps
+  for name in control sim sensing evaluation coordinator; do
+    [[ ! -e "$WORK/${p}_$name.exit" ]] || fail "${p}_$name ended before the kill: $(tail -3 "$WORK/${p}_$name.log")"
+  done
+  kill -9 "$(cat "$WORK/${p}_sensing.pid")"
+  killed=$(now_s)
+  wait_exits 20 "${p}_control" "${p}_sim" "${p}_evaluation" "${p}_coordinator"
+}
+lockstep_run ls
+# Fast DDS 2.9.1 as Debian builds it (with assertions) may abort a host whose lease timer for a
+# remote participant fires while that participant's proxy is being removed (PDP.cpp:1140,
+# `GUID_t::unknown() != remote_participant->m_guid`; seen once in ~10 whole-suite runs, and once in
+# robodds-fuzz): a defect of the library, not of the host's handling (docs/deployment.md, "Known
+# Fast DDS defects"). Only then is the case run once more; any other failure fails at once.
+P=ls
+if aborted=$(grep -l "PDP.cpp:1140" "$WORK"/ls_*.log 2>/dev/null) && [[ -n "$aborted" ]]; then
+  echo "lockstep: $(basename "$aborted" .log) aborted in Fast DDS (PDP.cpp:1140, a known 2.9.1 defect): running the case again"
+  lockstep_run ls2
+  P=ls2
+fi
+for name in control sim evaluation coordinator; do
+  read -r rc ended <"$WORK/${P}_$name.exit"
   took=$(echo "$ended - $killed" | bc)
-  echo "lockstep: $name exit $rc, $took s after the kill"
-  [[ $rc -ne 0 && $rc -ne 3 ]] || fail "$name exited $rc after the sensing host was killed: $(tail -3 "$WORK/$name.log")"
-  (( $(echo "$took < 4.0" | bc) )) || fail "$name took $took s (> 4 s) to end after the kill: $(tail -3 "$WORK/$name.log")"
-  grep -qE "group 'sensing' lost at step [0-9]+: its participant 'robodds-sensing' dropped" "$WORK/$name.log" ||
-    fail "$name does not name the lost group: $(tail -3 "$WORK/$name.log")"
+  echo "lockstep: ${P}_$name exit $rc, $took s after the kill"
+  [[ $rc -ne 0 && $rc -ne 3 ]] || fail "${P}_$name exited $rc after the sensing host was killed: $(tail -3 "$WORK/${P}_$name.log")"
+  (( $(echo "$took < 4.0" | bc) )) || fail "${P}_$name took $took s (> 4 s) to end after the kill: $(tail -3 "$WORK/${P}_$name.log")"
+  grep -qE "group 'sensing' lost at step [0-9]+: its participant 'robodds-sensing' dropped" "$WORK/${P}_$name.log" ||
+    fail "${P}_$name does not name the lost group: $(tail -3 "$WORK/${P}_$name.log")"
 done
-python3 - "$WORK/lockstep/summary.json" <<'PY' || fail "lockstep summary.json does not name the lost group"
+python3 - "$WORK/$P/summary.json" <<'PY' || fail "lockstep summary.json does not name the lost group"
 import json, re, sys
 s = json.load(open(sys.argv[1]))
 assert s["status"] == "failed", s["status"]
