@@ -207,11 +207,10 @@ class ComponentContext {
     }
     auto input = std::make_unique<Input<Msg>>(topic, spec_.name, state_, run_.notifier, std::move(options));
     Input<Msg>* raw = input.get();
-    const std::string owner = spec_.name;
     SampleCallback on_sample = [raw](const void* sample, const SampleMeta& meta) {
       raw->on_sample(*static_cast<const Msg*>(sample), meta);
     };
-    ReaderEventCallback on_event = [owner, topic](const std::string& event) { log::warn(owner, topic + ": " + event); };
+    ReaderEventCallback on_event = reader_events(topic);
     const std::string profile = qos_profile_for(info, run_.mode, run_.single_process);
     if (raw->filters_keys()) {
       // Keys of robots outside the scenario are dropped by the transport before it keeps any
@@ -242,10 +241,8 @@ class ComponentContext {
     SampleCallback callback = [on_sample = std::move(on_sample)](const void* sample, const SampleMeta& meta) {
       on_sample(*static_cast<const Msg*>(sample), meta);
     };
-    const std::string owner = spec_.name;
-    ReaderEventCallback on_event = [owner, topic](const std::string& event) { log::warn(owner, topic + ": " + event); };
     readers_.push_back(run_.bus->reader(topic, info.type_name, qos_profile_for(info, run_.mode, run_.single_process),
-                                        std::move(callback), std::move(on_event)));
+                                        std::move(callback), reader_events(topic)));
   }
 
   template <class Msg>
@@ -263,6 +260,11 @@ class ComponentContext {
   const std::vector<std::unique_ptr<InputBase>>& inputs() const { return inputs_; }
 
  private:
+  /// What a reader of `topic` reports (an incompatible QoS, a lost sample): a warning by this component.
+  ReaderEventCallback reader_events(const std::string& topic) const {
+    return [owner = spec_.name, topic](const std::string& event) { log::warn(owner, topic + ": " + event); };
+  }
+
   /// InputOptions::producer_assigned of `topic` in a scenario run: a writer may publish a robot's
   /// instances if its process runs a component the scenario assigns to them, or if the scenario
   /// assigns them none; empty (the first writer rule) without RunContext::assigned_producers or

@@ -56,8 +56,8 @@ void publish_fix(NodeHarness& h, std::uint32_t robot, std::uint64_t step, std::u
   h.publish("sensor/position", fix, step, next_step);
 }
 
-TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
-  Harness h(scenario(kNoConfirmation));
+/// Robots 1 and 2 standing still: odometry at every step, a fix every 10 steps.
+void feed_standstill_with_fixes(NodeHarness& h) {
   h.feed([&h](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
       publish_standstill_odometry(h, robot, step);
@@ -66,6 +66,11 @@ TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
       }
     }
   });
+}
+
+TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
+  Harness h(scenario(kNoConfirmation));
+  feed_standstill_with_fixes(h);
   const auto& estimates = h.record<idl::PoseEstimate>("estimate/pose");
   h.run({"pf"});
 
@@ -93,14 +98,7 @@ TEST(PfEstimatorNode, PublishesAnEstimatePerRobotAndStepNearItsFixes) {
 TEST(PfEstimatorNode, AHeadingGivenAsKnownIsNotValidBeforeTheMeasurementsConfirmIt) {
   for (const char* checks : {"", ", prior_heading_tolerance_rad: 0", ", confirm_fixes: 0"}) {
     Harness h(scenario(checks));
-    h.feed([&h](std::uint64_t step) {
-      for (std::uint32_t robot : {1u, 2u}) {
-        publish_standstill_odometry(h, robot, step);
-        if (step % 10 == 0) {
-          publish_fix(h, robot, step, step + 10);
-        }
-      }
-    });
+    feed_standstill_with_fixes(h);
     const auto& estimates = h.record<idl::PoseEstimate>("estimate/pose");
     h.run({"pf"});
     for (const idl::PoseEstimate& e : estimates) {
