@@ -100,7 +100,7 @@ CheckResult check_relative_pose_estimate(const idl::RelativePoseEstimate& s) {
 
 CheckResult check_range_rate_estimate(const idl::RangeRateEstimate& s) {
   return first({within("range", s.range(), kPos), within("range_rate", s.range_rate(), kSpeed),
-                variance("range_noise_std_m", s.range_noise_std_m())});
+                variance("range_noise_std_m", s.range_noise_std_m()), variance("range_rate_std_mps", s.range_rate_std_mps())});
 }
 
 CheckResult check_waypoint_mission(const idl::WaypointMission& s) {

@@ -11,6 +11,7 @@
 
 #include "common/number_text.hpp"
 #include "components/range_rate_observer/observer_laws.hpp"
+#include "components/range_rate_observer/rate_uncertainty.hpp"
 #include "components/range_rate_observer/running_abs_median.hpp"
 
 namespace robodds::range_rate_observer {
@@ -22,13 +23,19 @@ struct RangeRateEstimate {
   /// false while a restart window fills (see RangeRateObserver::update): do not use the
   /// estimate then.
   bool valid = true;
+  /// m/s, the std of rate_mps's error (rate_uncertainty.hpp): measured while valid; inside a
+  /// restart window the std of the window line's slope (the initial rate std with one sample).
+  double rate_std_mps = 0.0;
 };
 
 template <class Params, ObserverDerivative (*Derivative)(const Params&, double, double)>
 class RangeRateObserver {
  public:
-  /// Throws std::invalid_argument (from Params::validate) for bad gains.
-  explicit RangeRateObserver(Params params) : params_(std::move(params)) { params_.validate(); }
+  /// Throws std::invalid_argument (from Params::validate) for bad gains or uncertainty parameters.
+  explicit RangeRateObserver(Params params, RateUncertaintyParams uncertainty = {})
+      : params_(std::move(params)), uncertainty_params_(uncertainty), uncertainty_(uncertainty) {
+    params_.validate();
+  }
 
   /// Feeds the range measured at time_s (s, strictly increasing) and returns the estimate at
   /// time_s. The first sample starts the observer at (range, rate 0), valid at once: the
@@ -61,7 +68,7 @@ class RangeRateObserver {
                                   ", range_m " + shortest_text(range_m) + ")");
     }
     if (!started_) {
-      start_at(time_s, range_m, 0.0);
+      start_at(time_s, range_m, 0.0, uncertainty_params_.initial_rate_std_mps);
       restart_requested_ = false;
       return estimate_;
     }
@@ -97,6 +104,8 @@ class RangeRateObserver {
     estimate_.rate_mps += dt * derivative.rate_mps2;
     error_m_ = range_m - estimate_.range_m;
     last_range_m_ = range_m;
+    uncertainty_.add(time_s, range_m, estimate_.rate_mps);
+    estimate_.rate_std_mps = uncertainty_.std_mps();
     return estimate_;
   }
 
@@ -131,8 +140,11 @@ class RangeRateObserver {
   const Params& params() const { return params_; }
 
  private:
-  void start_at(double time_s, double range_m, double rate_mps) {
-    estimate_ = {time_s, range_m, rate_mps, true};
+  /// Starts (valid) from rate_mps, whose error has std rate_std_mps.
+  void start_at(double time_s, double range_m, double rate_mps, double rate_std_mps) {
+    uncertainty_.restart(rate_std_mps);
+    uncertainty_.add(time_s, range_m, rate_mps);
+    estimate_ = {time_s, range_m, rate_mps, true, uncertainty_.std_mps()};
     error_m_ = 0.0;
     last_range_m_ = range_m;
     window_open_ = false;
@@ -170,19 +182,27 @@ class RangeRateObserver {
     last_range_m_ = range_m;
     double line_range_m = range_m;
     double slope_mps = estimate_.rate_mps;  // one sample: the rate held from before the restart
+    double slope_std_mps = uncertainty_params_.initial_rate_std_mps;
     if (w.count >= 2) {
       const double n = static_cast<double>(w.count);
+      const double spread_s2 = w.sum_tt - w.sum_t * w.sum_t / n;  // sum (t - t_mean)^2
       slope_mps = (n * w.sum_tr - w.sum_t * w.sum_r) / (n * w.sum_tt - w.sum_t * w.sum_t);
       line_range_m = w.r0_m + (w.sum_r - slope_mps * w.sum_t) / n + slope_mps * t;
+      // The slope's noise (range sigma: the estimate, never below the configured floor) and its
+      // lag: it is the rate at the window's centre, t - mean t before the newest sample.
+      const double sigma_m = std::max(noise_sigma_m(), params_.noise_floor_m);
+      const double lag_s = t - w.sum_t / n;
+      const double accel_term = uncertainty_params_.range_accel_mps2 * lag_s;
+      slope_std_mps = std::sqrt(sigma_m * sigma_m / spread_s2 + accel_term * accel_term);
     }
     // 1e-9 s: a window of 0.5 s at 50 Hz must close at the 26th sample whatever the rounding.
     if (w.count >= 2 && t >= params_.restart_window_s - 1e-9) {
-      start_at(time_s, line_range_m, slope_mps);
+      start_at(time_s, line_range_m, slope_mps, slope_std_mps);
       error_m_ = range_m - line_range_m;
       last_range_m_ = range_m;
       return;
     }
-    estimate_ = {time_s, line_range_m, slope_mps, false};
+    estimate_ = {time_s, line_range_m, slope_mps, false, slope_std_mps};
   }
 
   /// Least-squares sums of a restart window, times and ranges relative to its first sample.
@@ -205,6 +225,8 @@ class RangeRateObserver {
   static constexpr double kUntrainedWidening = 3.0;
 
   Params params_;
+  RateUncertaintyParams uncertainty_params_;
+  RateUncertainty uncertainty_;
   RunningAbsMedian unexplained_steps_{kNoiseWindow};
   RangeRateEstimate estimate_;
   double error_m_ = 0.0;       // s - s_hat at the last sample, m

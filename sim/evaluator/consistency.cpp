@@ -21,6 +21,13 @@ double mahalanobis_squared_xy(const EstimateError& e) {
   return (d * e.ex * e.ex - (b + c) * e.ex * e.ey + a * e.ey * e.ey) / det;
 }
 
+void write_counts(JsonWriter& json, const ConsistencyStats& s) {
+  json.value("samples", static_cast<std::int64_t>(s.samples));
+  json.value("valid_samples", static_cast<std::int64_t>(s.valid_samples));
+  json.value("overconfident_samples", static_cast<std::int64_t>(s.overconfident));
+  json.value("overconfident_fraction", s.overconfident_fraction);
+}
+
 }  // namespace
 
 bool overconfident(const EstimateError& e) {
@@ -35,26 +42,42 @@ bool overconfident(const EstimateError& e) {
   return std::abs(e.etheta) > bound;
 }
 
+bool overconfident_scalar(bool valid, double error, double variance) {
+  if (!valid) {
+    return false;
+  }
+  const double bound = variance > 0.0 && std::isfinite(variance) ? 3.0 * std::sqrt(variance) : 0.0;
+  return std::abs(error) > bound;
+}
+
 void ConsistencyTracker::add(const EstimateError& e) {
+  record(e.step, e.valid, overconfident(e), std::hypot(e.ex, e.ey), std::abs(e.etheta));
+}
+
+void ConsistencyTracker::add_scalar(std::uint64_t step, bool valid, double error, double variance) {
+  record(step, valid, overconfident_scalar(valid, error, variance), std::abs(error), 0.0);
+}
+
+void ConsistencyTracker::record(std::uint64_t step, bool valid, bool over, double error, double heading_error) {
   ++stats_.samples;
-  if (!e.valid) {
+  if (!valid) {
     in_run_ = false;
     return;
   }
   ++stats_.valid_samples;
-  stats_.worst_position_error_valid_m = std::max(stats_.worst_position_error_valid_m, std::hypot(e.ex, e.ey));
-  stats_.worst_heading_error_valid_rad = std::max(stats_.worst_heading_error_valid_rad, std::abs(e.etheta));
-  if (!overconfident(e)) {
+  stats_.worst_position_error_valid_m = std::max(stats_.worst_position_error_valid_m, error);
+  stats_.worst_heading_error_valid_rad = std::max(stats_.worst_heading_error_valid_rad, heading_error);
+  if (!over) {
     in_run_ = false;
     return;
   }
   ++stats_.overconfident;
   if (!in_run_) {
     in_run_ = true;
-    run_first_ = e.step;
+    run_first_ = step;
   }
   // A run of samples from run_first_ to this one spans their steps plus this sample's own.
-  const double run_s = static_cast<double>(e.step - run_first_ + 1) * step_s_;
+  const double run_s = static_cast<double>(step - run_first_ + 1) * step_s_;
   stats_.longest_overconfident_s = std::max(stats_.longest_overconfident_s, run_s);
 }
 
@@ -65,12 +88,15 @@ ConsistencyStats ConsistencyTracker::stats() const {
 }
 
 void write_consistency(JsonWriter& json, const ConsistencyStats& s) {
-  json.value("samples", static_cast<std::int64_t>(s.samples));
-  json.value("valid_samples", static_cast<std::int64_t>(s.valid_samples));
-  json.value("overconfident_samples", static_cast<std::int64_t>(s.overconfident));
-  json.value("overconfident_fraction", s.overconfident_fraction);
+  write_counts(json, s);
   json.value("worst_position_error_valid_m", s.worst_position_error_valid_m);
   json.value("worst_heading_error_valid_deg", s.worst_heading_error_valid_rad * 180.0 / kPi);
+  json.value("longest_overconfident_s", s.longest_overconfident_s);
+}
+
+void write_scalar_consistency(JsonWriter& json, const ConsistencyStats& s, const char* worst_key) {
+  write_counts(json, s);
+  json.value(worst_key, s.worst_position_error_valid_m);
   json.value("longest_overconfident_s", s.longest_overconfident_s);
 }
 

@@ -40,6 +40,9 @@ struct ConsistencyStats {
 
 /// True when `e`, valid, lies outside the 3 sigma its covariance reports (position or heading).
 bool overconfident(const EstimateError& e);
+/// A scalar estimate (e.g. a range rate): true when valid and |error| > 3 sqrt(variance); a
+/// variance of zero (or not finite) with a nonzero error always is.
+bool overconfident_scalar(bool valid, double error, double variance);
 
 /// Accumulates one stream of estimates (step order) of one robot or pair.
 class ConsistencyTracker {
@@ -47,9 +50,14 @@ class ConsistencyTracker {
   /// `step_s`: s per step, for the run lengths.
   explicit ConsistencyTracker(double step_s) : step_s_(step_s) {}
   void add(const EstimateError& e);
+  /// A scalar estimate at `step`: |error| goes into worst_position_error_valid_m (whatever its
+  /// unit: write_scalar_consistency names it), the heading figures stay 0.
+  void add_scalar(std::uint64_t step, bool valid, double error, double variance);
   ConsistencyStats stats() const;
 
  private:
+  void record(std::uint64_t step, bool valid, bool over, double error, double heading_error);
+
   double step_s_;
   ConsistencyStats stats_;
   bool in_run_ = false;
@@ -63,5 +71,8 @@ ConsistencyStats pooled(const ConsistencyStats& a, const ConsistencyStats& b);
 /// overconfident_samples, overconfident_fraction, worst_position_error_valid_m,
 /// worst_heading_error_valid_deg, longest_overconfident_s.
 void write_consistency(JsonWriter& json, const ConsistencyStats& s);
+/// The same for a scalar estimate: samples, valid_samples, overconfident_samples,
+/// overconfident_fraction, `worst_key` (the largest |error| while valid) and longest_overconfident_s.
+void write_scalar_consistency(JsonWriter& json, const ConsistencyStats& s, const char* worst_key);
 
 }  // namespace robodds::evaluator

@@ -17,9 +17,13 @@
 namespace robodds::range_rate_observer {
 namespace {
 
+/// m/s: the start's rate std when the robot's body sets no top speed (uncertainty.initial_rate_std_mps
+/// 0): nothing bounds the rate then; 5 m/s covers 15 m/s at 3 stds, beyond the papers' robots.
+constexpr double kUnlimitedSpeedInitialRateStdMps = 5.0;
+
 /// One robot's pair of observers on its range stream.
 struct RobotObservers {
-  explicit RobotObservers(const ObserverNodeParams& p) : sta(p.sta), linear(p.linear) {}
+  RobotObservers(const ObserverNodeParams& p, const RateUncertaintyParams& u) : sta(p.sta, u), linear(p.linear, u) {}
   SuperTwistingObserver sta;
   LinearRangeRateObserver linear;
   std::uint32_t target_id = 0;
@@ -40,10 +44,13 @@ class RangeRateObserverNode : public Component {
              shortest_text(bound.mps2) + " m/s^2 of " + bound.key +
              ": the observer would not follow the accelerations the guidance allows (raise sta.b or declare the bound)");
     }
+    // A restart's rate is a window line's slope, the rate at the window's centre: off by up to
+    // the largest range acceleration times half the window (the reported std says so).
+    params_.uncertainty.range_accel_mps2 = bound.mps2;
     ctx.set_rate_hz(params_.rate_hz, "rate_hz");
     name_ = ctx.name();
     for (const RobotSpec& robot : ctx.robots()) {
-      robots_.emplace(robot.id, RobotObservers(params_));
+      robots_.emplace(robot.id, RobotObservers(params_, uncertainty_of(ctx, robot.id)));
     }
     ranges_ = &ctx.subscribe<idl::RangeMeasurement>("sensor/range", Subscription::robot_streams(ctx.robot_keys()));
     sta_out_ = &ctx.advertise<idl::RangeRateEstimate>("observer/range_rate");
@@ -104,6 +111,7 @@ class RangeRateObserverNode : public Component {
     e.valid(observer.valid());
     e.restarted(restarted);
     e.range_noise_std_m(observer.noise_sigma_m());
+    e.range_rate_std_mps(observer.estimate().rate_std_mps);
     if (final_sample) {
       out.publish_final(e);
     } else {
@@ -125,6 +133,17 @@ class RangeRateObserverNode : public Component {
                            shortest_text(threshold_m) + " m, " + std::to_string(robot.sta.restarts()) +
                            " restarts (super-twisting)");
     }
+  }
+
+  /// The robot's uncertainty parameters: initial_rate_std_mps 0 becomes its top speed / 3, or
+  /// kUnlimitedSpeedInitialRateStdMps for a body without a top speed.
+  RateUncertaintyParams uncertainty_of(const ComponentContext& ctx, std::uint32_t robot) const {
+    RateUncertaintyParams u = params_.uncertainty;
+    if (u.initial_rate_std_mps == 0.0) {
+      const double top_mps = system::robot_body(ctx.scenario(), robot).limits.max_speed_mps;
+      u.initial_rate_std_mps = top_mps > 0.0 ? top_mps / 3.0 : kUnlimitedSpeedInitialRateStdMps;
+    }
+    return u;
   }
 
   ObserverNodeParams params_;

@@ -12,7 +12,9 @@ const params::ParamTable<ObserverNodeParams>& observer_node_param_table() {
           .add("rate_hz", &P::rate_hz, "Hz", params::positive(), "publication rate; the range sensor's rate")
           .include_as("sta", &P::sta, super_twisting_param_table(), "super-twisting observer, eq. (1) (observer/range_rate)")
           .include_as("linear", &P::linear, linear_observer_param_table(),
-                      "linear baseline observer, eq. (9) (observer/range_rate_linear)");
+                      "linear baseline observer, eq. (9) (observer/range_rate_linear)")
+          .include_as("uncertainty", &P::uncertainty, rate_uncertainty_param_table(),
+                      "the range_rate_std_mps both observers report (issue 27)");
   return table;
 }
 

@@ -4,8 +4,17 @@
 
 #include "common/param_table.hpp"
 #include "components/range_rate_observer/observer_params.hpp"
+#include "components/range_rate_observer/rate_uncertainty.hpp"
 
 namespace robodds::range_rate_observer {
+
+/// The node's defaults of the uncertainty keys: the library's, but initial_rate_std_mps 0 (the
+/// robot's top speed / 3, from the scenario's robot_body fact).
+inline RateUncertaintyParams node_uncertainty_defaults() {
+  RateUncertaintyParams u;
+  u.initial_rate_std_mps = 0.0;
+  return u;
+}
 
 // Units, ranges and descriptions: observer_node_param_table() (the one source). Defaults: the
 // member initialisers here and in observer_params.hpp.
@@ -13,6 +22,7 @@ struct ObserverNodeParams {
   double rate_hz = 50.0;
   SuperTwistingParams sta;       // keys sta.*
   LinearObserverParams linear;   // keys linear.*
+  RateUncertaintyParams uncertainty = node_uncertainty_defaults();  // keys uncertainty.* (both observers' reported rate std)
 
   /// Throws std::invalid_argument "key: reason (got value)" for the first bad field.
   void validate() const;

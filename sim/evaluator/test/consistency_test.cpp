@@ -73,5 +73,25 @@ TEST(ConsistencyTracker, WorstErrorsWhileValidAndTheLongestOverconfidentRun) {
   EXPECT_DOUBLE_EQ(both.overconfident_fraction, 0.75);
 }
 
+TEST(ConsistencyTracker, ScalarEstimatesAreJudgedAgainstThreeReportedStds) {
+  EXPECT_FALSE(overconfident_scalar(true, 0.29, 0.01));
+  EXPECT_TRUE(overconfident_scalar(true, -0.31, 0.01));
+  EXPECT_FALSE(overconfident_scalar(false, 5.0, 0.01));
+  EXPECT_TRUE(overconfident_scalar(true, 0.001, 0.0)) << "a claim of no error that the error contradicts";
+  EXPECT_FALSE(overconfident_scalar(true, 0.0, 0.0));
+  ConsistencyTracker t(0.02);
+  t.add_scalar(0, true, 0.1, 0.01);   // inside
+  t.add_scalar(1, true, 0.5, 0.01);   // outside
+  t.add_scalar(2, true, -0.4, 0.01);  // outside
+  t.add_scalar(3, false, 9.0, 0.01);  // not valid: not judged, not the worst
+  const ConsistencyStats s = t.stats();
+  EXPECT_EQ(s.samples, 4u);
+  EXPECT_EQ(s.valid_samples, 3u);
+  EXPECT_EQ(s.overconfident, 2u);
+  EXPECT_NEAR(s.longest_overconfident_s, 0.04, 1e-12);
+  EXPECT_DOUBLE_EQ(s.worst_position_error_valid_m, 0.5);
+  EXPECT_DOUBLE_EQ(s.worst_heading_error_valid_rad, 0.0);
+}
+
 }  // namespace
 }  // namespace robodds::evaluator

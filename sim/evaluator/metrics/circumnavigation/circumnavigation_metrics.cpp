@@ -271,7 +271,7 @@ void CircumnavigationMetrics::handle(ObserverKind kind, Stream& stream, const Ra
       stream.last_target = e.target_id;
     }
   }
-  if (truth == nullptr || !truth->active || !e.valid) {
+  if (truth == nullptr || !truth->active) {
     return;
   }
   auto target = targets_.find(e.target_id);
@@ -282,6 +282,13 @@ void CircumnavigationMetrics::handle(ObserverKind kind, Stream& stream, const Ra
   const double rdot =
       range_derivatives(s.x, s.y, s.theta, s.v, s.omega, 0.0, target->second.first, target->second.second).rdot;
   const double err = e.range_rate - rdot;
+  if (!stream.consistency) {
+    stream.consistency.emplace(step_s_);
+  }
+  stream.consistency->add_scalar(e.step, e.valid, err, e.range_rate_std * e.range_rate_std);
+  if (!e.valid) {
+    return;
+  }
   ++totals.matched;
   const std::uint64_t since_start = e.step - stream.start_step;
   if (since_start >= steps(kTransientFromS) && since_start <= steps(kTransientToS)) {
@@ -407,6 +414,9 @@ CircumnavigationSummary CircumnavigationMetrics::summary() const {
     double worst = 0.0;
     for (const auto& [id, r] : robots_) {
       const Stream& s = r.streams[k];
+      if (s.consistency) {
+        o.consistency = pooled(o.consistency, s.consistency->stats());
+      }
       if (!s.any) {
         continue;
       }

@@ -18,6 +18,8 @@
 #include <utility>
 #include <vector>
 
+#include "sim/evaluator/consistency.hpp"
+
 namespace robodds::evaluator {
 
 /// The tolerances and windows of the metrics (issue 10's acceptance table), in one place.
@@ -59,6 +61,7 @@ struct RateEstimateSample {
   double range_rate = 0.0;  // m/s
   bool valid = false;
   bool restarted = false;
+  double range_rate_std = 0.0;  // m/s, the std the observer reports for range_rate (issue 27)
 };
 
 enum class ObserverKind { kSta = 0, kLinear = 1 };
@@ -116,6 +119,9 @@ struct ObserverMetrics {
   std::optional<double> max_error_after_restart_mps; // nullopt: no restart
   std::size_t restarts = 0;
   std::size_t matched = 0;  // estimates compared with truth
+  /// Issue 27: valid estimates whose error is outside 3 reported stds (consistency.hpp), from
+  /// each robot's first sample, while its robot is active; pooled over the robots.
+  ConsistencyStats consistency;
 };
 
 struct CircumnavigationSummary {
@@ -173,6 +179,7 @@ class CircumnavigationMetrics {
     bool run_open = false;  // a run of samples within the tolerance is going on
     std::uint64_t run_from = 0;
     double convergence_s = -1.0;
+    std::optional<ConsistencyTracker> consistency;  // from the first estimate matched with truth
   };
   struct Robot {
     std::deque<TruthEntry> truth;  // step order; the first `closed` are evaluated

@@ -53,7 +53,8 @@ class CircumnavigationModule : public MetricsModule {
     for (const auto& [topic, kind] : {std::pair{"observer/range_rate", ObserverKind::kSta},
                                       std::pair{"observer/range_rate_linear", ObserverKind::kLinear}}) {
       setup.on<idl::RangeRateEstimate>(topic, [this, &m, kind = kind](const idl::RangeRateEstimate& e) {
-        m.add_estimate(kind, e.robot_id(), {e.header().step(), e.target_id(), e.range_rate(), e.valid(), e.restarted()});
+        m.add_estimate(kind, e.robot_id(),
+                       {e.header().step(), e.target_id(), e.range_rate(), e.valid(), e.restarted(), e.range_rate_std_mps()});
         noise_std_m_[static_cast<std::size_t>(kind)][e.robot_id()] = e.range_noise_std_m();
       });
     }
@@ -129,6 +130,9 @@ class CircumnavigationModule : public MetricsModule {
         json.value("range_noise_std_m", sum / static_cast<double>(noise_std_m_[k].size()));
         json.value("range_noise_std_max_m", largest);
       }
+      json.begin_object("consistency");
+      write_scalar_consistency(json, o.consistency, "worst_error_valid_mps");
+      json.end_object();
       json.end_object();
     }
     if (any_observer) {

@@ -205,6 +205,7 @@ struct Line {
   std::function<double(double)> err;
   std::function<bool(double)> invalid = [](double) { return false; };
   std::function<bool(double)> restart = [](double t) { return t == 0.0; };  // a first sample's flag is no restart
+  std::function<double(double)> std_mps = [](double) { return 0.0; };        // the reported rate std
 };
 double true_rate(const PlantSample& s) {
   const double dx = s.x - kTarget1.target_x;
@@ -220,8 +221,8 @@ RunFn line(const Line& sta, const Line& linear) {
     }
     const PlantSample s{k, 300.0 + 8.0 * t * std::cos(0.3), 600.0 + 8.0 * t * std::sin(0.3), 0.3, 8.0, 0.0};
     d.truth[1] = s;
-    d.sta[1] = {k, 1, true_rate(s) + sta.err(t), !sta.invalid(t), sta.restart(t)};
-    d.linear[1] = {k, 1, true_rate(s) + linear.err(t), !linear.invalid(t), linear.restart(t)};
+    d.sta[1] = {k, 1, true_rate(s) + sta.err(t), !sta.invalid(t), sta.restart(t), sta.std_mps(t)};
+    d.linear[1] = {k, 1, true_rate(s) + linear.err(t), !linear.invalid(t), linear.restart(t), linear.std_mps(t)};
     return d;
   };
 }
@@ -245,6 +246,26 @@ TEST(CircumnavigationMetrics, ObserverErrorsAgainstTheTruthRate) {
   // Convergence needs 200 s: a run of 600 s that gets within 0.2 m/s at 450 s has not converged.
   Line late{[](double t) { return t < 450.0 ? 1.0 : 0.0; }};
   EXPECT_EQ(run(line(late, late), step_at(600.0)).observers[0].convergence_s, -1.0);
+}
+
+TEST(CircumnavigationMetrics, ObserverConsistencyJudgesTheErrorAgainstTheReportedStd) {
+  // 0.3 m/s off throughout, reported at 0.2 m/s (inside 3 stds) but at 0.05 m/s from 100 s to 110 s
+  // (outside: over-confident for 10 s), invalid from 200 s to 205 s (not judged).
+  Line sta{[](double) { return 0.3; }, [](double t) { return t >= 200.0 && t < 205.0; }, [](double t) { return t == 0.0; },
+           [](double t) { return t >= 100.0 && t < 110.0 ? 0.05 : 0.2; }};
+  // 1 m/s off for 50 s, then exact, reported at 0.01 m/s: over-confident while off.
+  Line linear{[](double t) { return t < 50.0 ? 1.0 : 0.0; }, [](double) { return false; }, [](double t) { return t == 0.0; },
+              [](double) { return 0.01; }};
+  const CircumnavigationSummary s = run(line(sta, linear), step_at(300.0), 2.2, 2);
+  const ConsistencyStats& c = s.observers[static_cast<std::size_t>(ObserverKind::kSta)].consistency;
+  EXPECT_EQ(c.samples, step_at(300.0) + 1);
+  EXPECT_EQ(c.valid_samples, c.samples - step_at(5.0));
+  EXPECT_EQ(c.overconfident, step_at(10.0));
+  EXPECT_NEAR(c.overconfident_fraction, static_cast<double>(step_at(10.0)) / static_cast<double>(c.valid_samples), 1e-12);
+  EXPECT_NEAR(c.longest_overconfident_s, 10.0, 1e-9);
+  EXPECT_NEAR(c.worst_position_error_valid_m, 0.3, 1e-9) << "the worst |rate error| while valid (m/s)";
+  const ConsistencyStats& l = s.observers[static_cast<std::size_t>(ObserverKind::kLinear)].consistency;
+  EXPECT_EQ(l.overconfident, step_at(50.0));
 }
 
 TEST(CircumnavigationMetrics, ARestartOpensItsWindows) {

@@ -75,6 +75,7 @@ void feed_paper2(NodeHarness& h) {
         e.valid(true);
         e.restarted(sta && robot == 1 && step == 6);
         e.range_noise_std_m(sta ? 0.1 * robot : 0.0);  // the last estimates: 0.1 and 0.2 m (sta)
+        e.range_rate_std_mps(0.1);  // sta 0.5 m/s off: over-confident; linear 0.25: within 3 stds
         h.publish(topic, e, step, step + 1);
       }
     }
@@ -103,9 +104,15 @@ TEST(EvaluatorNode, RecordsTargetKeyedTopicsPerRobotAndWritesThePaper2Metrics) {
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("observer": \{\s*"sta": \{\s*"steady_rmse_mps": 0.5,\s*)"
                                                     R"("convergence_s": -1,\s*"max_error_after_restart_mps": 0.5,\s*)"
                                                     R"("restarts": 1,\s*"matched_samples": 22,\s*)"
-                                                    R"("range_noise_std_m": 0.15,\s*"range_noise_std_max_m": 0.2\s*\},\s*)"
+                                                    R"("range_noise_std_m": 0.15,\s*"range_noise_std_max_m": 0.2,\s*)"
+                                                    R"("consistency": \{\s*"samples": 22,\s*"valid_samples": 22,\s*)"
+                                                    R"("overconfident_samples": 22,\s*"overconfident_fraction": 1,\s*)"
+                                                    R"("worst_error_valid_mps": 0.5,\s*"longest_overconfident_s": 0.11\s*\}\s*\},\s*)"
                                                     R"("linear": \{\s*"steady_rmse_mps": 0.25,\s*"restarts": 0,)")))
       << "no transient window in 0.1 s; " << summary;
+  EXPECT_TRUE(std::regex_search(summary, std::regex(R"("linear": \{[^}]*"consistency": \{\s*"samples": 22,\s*"valid_samples": 22,\s*)"
+                                                    R"("overconfident_samples": 0,)")))
+      << summary;
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("range_accel_over_b_fraction": 0,\s*"range_accel_b": 3.5,)")))
       << summary;
 }
