@@ -41,6 +41,10 @@ class RangeRateObserverNode : public Component {
              ": the observer would not follow the accelerations the guidance allows (raise sta.b or declare the bound)");
     }
     ctx.set_rate_hz(params_.rate_hz, "rate_hz");
+    // rate_hz is the range sensor's rate: a slower sensor would leave steps without a range, whose
+    // estimate is the last one published again as if new (issue 27: 10 Hz ranges into a 50 Hz
+    // observer were accepted silently). Checked against the scenario's range sensor before the run.
+    ctx.expects_rate_of("sensor/range", "rate_hz", InputRateAssumption::Kind::kSameRate);
     name_ = ctx.name();
     for (const RobotSpec& robot : ctx.robots()) {
       robots_.emplace(robot.id, RobotObservers(params_));
