@@ -59,10 +59,12 @@ def run(job):
 
 
 def get(summary, path):
+    """The figure at `path` below "metrics"; NaN for null (a tail figure of a phase that did not
+    settle, whose "not_settled" says why): it fails every bound."""
     node = summary["metrics"]
     for part in path.split("."):
         node = node[part]
-    return node
+    return float("nan") if node is None else node
 
 
 def main(argv):

@@ -50,6 +50,18 @@ void ComponentContext::set_rate_hz(double rate_hz, const std::string& key) {
                  std::to_string(1.0 / step_s()) + " Hz) divided by a whole number");
   }
   state_->period_steps = static_cast<std::uint64_t>(rounded);
+  rate_key_ = key;
+}
+
+void ComponentContext::expects_rate_of(const std::string& topic, const std::string& key, InputRateAssumption::Kind kind,
+                                       std::vector<std::uint32_t> robots) {
+  rate_assumptions_.push_back(InputRateAssumption{kind, topic, key, 0.0, false, std::move(robots)});
+}
+
+void ComponentContext::limits_age_of(const std::string& topic, const std::string& key, double value_s, bool realtime_only,
+                                     std::vector<std::uint32_t> robots) {
+  rate_assumptions_.push_back(
+      InputRateAssumption{InputRateAssumption::Kind::kAgeLimit, topic, key, value_s, realtime_only, std::move(robots)});
 }
 
 void ComponentContext::require_longer_than_period(const std::string& key, double value_s) {

@@ -32,6 +32,29 @@ struct StepInfo {
 
 class ComponentContext;
 
+/// What a component assumes of the rate of an input's producer: declared at configure
+/// (ComponentContext::expects_rate_of(), limits_age_of()) and checked before the run against the
+/// scenario's producers (check_input_rates(), runtime/host/producer_check.hpp), since no component
+/// may read another's parameters.
+struct InputRateAssumption {
+  enum class Kind {
+    kSameRate,       // the producer samples at this component's rate (e.g. an observer whose rate is
+                     // "the sensor's rate"): slower is an error (one sample passed on as several
+                     // new ones), faster a warning (samples between two of its steps are batched)
+    kAtLeastMyRate,  // at least one sample per period of this component: slower is a warning
+                     // (periods without a new sample)
+    kAgeLimit,       // `value_s` judges the input stale: it must be longer than the producer's
+                     // period (else stale between any two samples: an error where it applies, a
+                     // warning where not) and should be two (else one lost sample: a warning)
+  };
+  Kind kind = Kind::kSameRate;
+  std::string topic;
+  std::string key;                    // this component's parameter that states it (rate_hz, input_timeout_s)
+  double value_s = 0.0;               // kAgeLimit: the limit, s
+  bool realtime_only = false;         // kAgeLimit: the limit applies in real time only
+  std::vector<std::uint32_t> robots;  // whose instances it reads; empty: this component's robots
+};
+
 class Component {
  public:
   virtual ~Component() = default;
@@ -179,6 +202,20 @@ class ComponentContext {
   /// simulation rate (ConfigError naming `key` otherwise).
   void set_rate_hz(double rate_hz, const std::string& key);
   std::uint64_t period_steps() const { return state_->period_steps; }
+  /// The parameter set_rate_hz() was given ("" before it was called: every step, no rate of its own).
+  const std::string& rate_key() const { return rate_key_; }
+
+  /// This component assumes `topic` arrives at its own rate (its parameter `key`, e.g. rate_hz:
+  /// "the sensor's rate"; kSameRate) or at least at it (kAtLeastMyRate); call set_rate_hz() first.
+  /// `robots`: whose instances it reads, if not its own robots (e.g. every team mate's pose).
+  void expects_rate_of(const std::string& topic, const std::string& key, InputRateAssumption::Kind kind,
+                       std::vector<std::uint32_t> robots = {});
+  /// Parameter `key` (`value_s`) judges `topic` stale (kAgeLimit), in real time only when
+  /// `realtime_only`; `robots` as above.
+  void limits_age_of(const std::string& topic, const std::string& key, double value_s, bool realtime_only,
+                     std::vector<std::uint32_t> robots = {});
+  /// What expects_rate_of() and limits_age_of() declared, in order.
+  const std::vector<InputRateAssumption>& rate_assumptions() const { return rate_assumptions_; }
   /// A freshness limit (parameter `key`, `value_s` s) must be longer than this component's period
   /// (call set_rate_hz() first): an input is only judged stale after at least one of its own due
   /// steps has passed without it. ConfigError naming the key otherwise.
@@ -288,6 +325,8 @@ class ComponentContext {
   std::vector<std::shared_ptr<void>> outputs_;
   std::vector<std::shared_ptr<ReaderHandle>> readers_;
   bool records_run_ = false;
+  std::string rate_key_;
+  std::vector<InputRateAssumption> rate_assumptions_;
   ProducedInstances declared_instances_;
   RunRecording recording_;
   ComputeTimes compute_times_;

@@ -1,9 +1,11 @@
 #include "runtime/host/producer_check.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <vector>
 
+#include "common/number_text.hpp"
 #include "runtime/component/component.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/bus/memory_bus.hpp"
@@ -55,7 +57,13 @@ ComponentTopics dry_configure(const ComponentRegistry& registry, const Scenario&
   ComponentContext context(run, spec, scenario_component_params(type, spec), &state);
   std::unique_ptr<Component> component = type.create();
   component->configure(context);
-  return ComponentTopics{bus.topics, bus.read_topics, context.records_run(), context.declared_instances()};
+  ComponentTopics out{bus.topics, bus.read_topics, context.records_run(), context.declared_instances(), std::nullopt, "", {}};
+  if (!context.rate_key().empty()) {
+    out.period_s = static_cast<double>(context.period_steps()) * scenario.step_s;
+    out.rate_key = context.rate_key();
+  }
+  out.rate_assumptions = context.rate_assumptions();
+  return out;
 }
 
 }  // namespace
@@ -91,12 +99,104 @@ ProducedInstances produced_instances(const ComponentRegistry& registry, const Sc
   return out;
 }
 
-ScenarioProducers scenario_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode) {
+ScenarioProducers producers_of(const std::map<std::string, ComponentTopics>& components) {
   ScenarioProducers producers;
-  for (auto& [name, topics] : scenario_component_topics(registry, scenario, mode)) {
-    producers[name] = std::move(topics.publishes);
+  for (const auto& [name, topics] : components) {
+    producers[name] = topics.publishes;
   }
   return producers;
+}
+
+ScenarioProducers scenario_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode) {
+  return producers_of(scenario_component_topics(registry, scenario, mode));
+}
+
+namespace {
+
+/// "10 Hz" of a period in s (to 6 significant figures: 1 / (10 x 0.01) is not exactly 10).
+std::string hz_text(double period_s) {
+  const double hz = 1.0 / period_s;
+  const double scale = std::pow(10.0, 5 - std::floor(std::log10(hz)));
+  return shortest_text(std::round(hz * scale) / scale) + " Hz";
+}
+
+std::string seconds_text(double s) { return shortest_text(std::round(s * 1e6) / 1e6) + " s"; }
+
+bool reads_from(const std::vector<std::uint32_t>& producer_robots, const std::vector<std::uint32_t>& read) {
+  return std::any_of(read.begin(), read.end(), [&](std::uint32_t r) {
+    return std::find(producer_robots.begin(), producer_robots.end(), r) != producer_robots.end();
+  });
+}
+
+}  // namespace
+
+std::vector<std::string> check_input_rates(const Scenario& scenario, const std::map<std::string, ComponentTopics>& components,
+                                           TimeMode mode) {
+  using Kind = InputRateAssumption::Kind;
+  std::vector<std::string> warnings;
+  for (const ComponentSpec& consumer : scenario.components) {
+    const auto c = components.find(consumer.name);
+    if (c == components.end()) {
+      continue;
+    }
+    for (const InputRateAssumption& a : c->second.rate_assumptions) {
+      const std::vector<std::uint32_t>& read = a.robots.empty() ? consumer.robots : a.robots;
+      const TopicInfo& info = topic_info(a.topic);
+      const bool unkeyed = info.key == "-" || info.key.empty();
+      for (const ComponentSpec& producer : scenario.components) {
+        const auto p = components.find(producer.name);
+        if (p == components.end() || p->second.publishes.count(a.topic) == 0 || !p->second.period_s ||
+            (!unkeyed && !reads_from(producer.robots, read))) {
+          continue;
+        }
+        const double produced_s = *p->second.period_s;
+        const std::string where = consumer.name + "." + a.key;
+        const std::string source = "its producer '" + producer.name + "' samples " + a.topic + " at " + hz_text(produced_s) +
+                                   " (" + producer.name + "." + p->second.rate_key + ")";
+        const double tolerance_s = 1e-9 * produced_s;
+        if (a.kind == Kind::kAgeLimit) {
+          const std::string limit = seconds_text(a.value_s) + " judges " + a.topic + " stale";
+          const std::string unaffected =
+              a.realtime_only && mode != TimeMode::kRealtime ? "; real time only: this lockstep run is not affected" : "";
+          if (a.value_s <= produced_s + tolerance_s) {
+            const std::string reason = limit + ", but " + source + ", one every " + seconds_text(produced_s) +
+                                       ": the input would be stale between any two samples (raise " + a.key + " to " +
+                                       seconds_text(2.0 * produced_s) + " or more, or the producer's rate)";
+            if (!a.realtime_only || mode == TimeMode::kRealtime) {
+              throw ConfigError(located(scenario.file, where, reason));
+            }
+            warnings.push_back(located(scenario.file, where, reason + unaffected));
+          } else if (a.value_s < 2.0 * produced_s - tolerance_s) {
+            warnings.push_back(located(scenario.file, where,
+                                       limit + ", less than two of its producer's periods: " + source +
+                                           ", so one lost sample makes it stale" + unaffected));
+          }
+          continue;
+        }
+        if (!c->second.period_s) {
+          continue;  // a consumer without a rate of its own assumes none
+        }
+        const double own_s = *c->second.period_s;
+        const std::string own = consumer.name + " runs at " + hz_text(own_s);
+        if (produced_s > own_s + tolerance_s) {
+          const std::string reason = own + " and assumes " + a.topic + (a.kind == Kind::kSameRate ? " at that rate" : " at least at that rate") +
+                                     ", but " + source + ": " + std::to_string(static_cast<long long>(std::llround(produced_s / own_s)) - 1) +
+                                     " of its steps in " + std::to_string(static_cast<long long>(std::llround(produced_s / own_s))) +
+                                     " have no new sample";
+          if (a.kind == Kind::kSameRate) {
+            throw ConfigError(located(scenario.file, where,
+                                      reason + " and would pass the last one on as new; give both the same rate"));
+          }
+          warnings.push_back(located(scenario.file, where, reason));
+        } else if (a.kind == Kind::kSameRate && produced_s < own_s - tolerance_s) {
+          warnings.push_back(located(scenario.file, where,
+                                     own + " and assumes " + a.topic + " at that rate, but " + source +
+                                         ": it takes several samples per step"));
+        }
+      }
+    }
+  }
+  return warnings;
 }
 
 namespace {

@@ -6,10 +6,13 @@
 // publishes them for (its robots).
 
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "runtime/bus/bus.hpp"
+#include "runtime/component/component.hpp"
 #include "runtime/component/registry.hpp"
 #include "runtime/config/scenario.hpp"
 
@@ -35,10 +38,28 @@ struct ComponentTopics {
   std::set<std::string> subscribes;
   bool wants_run_health = false;  // its host reads run/health across processes
   ProducedInstances instances;     // ComponentContext::publishes_instances(): topic -> keys
+  /// Its period (s) and the parameter that set it (ComponentContext::set_rate_hz()); nullopt: it
+  /// set no rate (it runs every step and its rate says nothing of its samples').
+  std::optional<double> period_s;
+  std::string rate_key;
+  std::vector<InputRateAssumption> rate_assumptions;  // ComponentContext::expects_rate_of(), limits_age_of()
 };
 /// Component instance name -> its topics, in time mode `mode`.
 std::map<std::string, ComponentTopics> scenario_component_topics(const ComponentRegistry& registry, const Scenario& scenario,
                                                                  TimeMode mode);
+/// The topics each component publishes, from scenario_component_topics() (what
+/// scenario_producers() returns).
+ScenarioProducers producers_of(const std::map<std::string, ComponentTopics>& components);
+
+/// The rate assumptions each component declared on its inputs (InputRateAssumption) against the
+/// rates of the scenario's producers of those inputs (those serving a robot whose instances it
+/// reads): ConfigError, one line naming the scenario file, both components, their keys and both
+/// rates, for the first mismatch that breaks an assumption (a producer slower than a kSameRate
+/// consumer; an age limit not longer than the producer's period, where the limit applies in time
+/// mode `mode`); the mismatches that are legitimate but worth knowing are returned as warning
+/// lines, in scenario order. Producers that set no rate are not judged.
+std::vector<std::string> check_input_rates(const Scenario& scenario, const std::map<std::string, ComponentTopics>& components,
+                                           TimeMode mode);
 
 /// The instances the components of `scenario` declare for the topics they publish
 /// (ComponentContext::publishes_instances(), RunContext::produced_instances): each topic's keys

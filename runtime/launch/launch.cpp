@@ -363,11 +363,12 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   return stats;
 }
 
-/// The registered scenario checks (shared facts), one producer per topic instance and where
-/// standbys may run, before anything starts. Returns the scenario's producers it found, for the
-/// run (InProcessRun::producers): finding them configures every component once.
+/// The registered scenario checks (shared facts), one producer per topic instance, where
+/// standbys may run and the components' input rate assumptions (warnings logged when `warn`),
+/// before anything starts. Returns the scenario's producers it found, for the run
+/// (InProcessRun::producers): finding them configures every component once.
 static ScenarioProducers check_producers(const ComponentRegistry& registry, const Scenario& scenario, TimeMode mode,
-                                         bool single_process) {
+                                         bool single_process, bool warn = true) {
   for (const ComponentSpec& component : scenario.components) {
     registry.type_of(scenario, component);  // FILE: components.NAME.type: unknown ... did you mean
   }
@@ -376,8 +377,15 @@ static ScenarioProducers check_producers(const ComponentRegistry& registry, cons
   // Installed before DDS is set up: the dry configure below may decode samples (a replay source
   // declares the instances its recording holds), as the run's own configure does.
   install_dds_sample_codec();
-  ScenarioProducers producers = scenario_producers(registry, scenario, mode);
+  const std::map<std::string, ComponentTopics> components = scenario_component_topics(registry, scenario, mode);
+  ScenarioProducers producers = producers_of(components);
   check_one_producer_per_instance(scenario, producers);
+  const std::vector<std::string> rate_warnings = check_input_rates(scenario, components, mode);
+  if (warn) {
+    for (const std::string& warning : rate_warnings) {
+      log::warn("scenario", warning);
+    }
+  }
   return producers;
 }
 
@@ -437,7 +445,8 @@ int run_host(const ComponentRegistry& registry, const HostArgs& args, const std:
   const std::string who = !args.member.empty() ? args.member : !args.group.empty() ? args.group : !args.type.empty() ? args.type : "host";
   apply_rt_priority_option(args.rt_priority, who, standalone);
   const Scenario scenario = host_scenario(registry, args);
-  const ScenarioProducers producers = check_producers(registry, scenario, time_mode(args.realtime), false);
+  // A child of `robodds run --deploy processes`: its parent logged the scenario's warnings once.
+  const ScenarioProducers producers = check_producers(registry, scenario, time_mode(args.realtime), false, standalone);
   if (!args.out.empty() && args.deploy != to_string(Deploy::kProcesses)) {
     make_output_dir(args.out);  // a child of `robodds run --deploy processes` gets a checked one
   }

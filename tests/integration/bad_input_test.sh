@@ -40,6 +40,19 @@ expect_error 2 "t8\.yaml: components: lockstep: component 'plant' waits at every
 sed -e '/name: uwb2/,+3d' -e 's/, uwb2\]/]/' "$SRC/sim/scenarios/paper3_exp2.yaml" >"$WORK/t8b.yaml"
 expect_error 2 "t8b\.yaml: components: lockstep: component 'estimator1' waits at every step for sensor/uwb of robot 2, which no component of the scenario publishes" -- \
   "${R[@]}" "$WORK/t8b.yaml"
+# Issue 27: a consumer's rate assumption against its producer's rate, checked before the first tick.
+# The paper-2 observer's rate is the range sensor's: a 10 Hz sensor into the 50 Hz observer.
+sed 's/{name: range_sensor, type: range_sensor, params: {noise_sigma_m: 0.0}}/{name: range_sensor, type: range_sensor, params: {noise_sigma_m: 0.0, rate_hz: 10}}/' \
+  "$SRC/sim/scenarios/paper2_circumnavigation.yaml" >"$WORK/t9.yaml"
+grep -q "rate_hz: 10}}" "$WORK/t9.yaml" || fail "t9.yaml: the range sensor's rate was not changed"
+expect_error 2 "t9\.yaml: observer\.rate_hz: observer runs at 50 Hz and assumes sensor/range at that rate, but its producer 'range_sensor' samples sensor/range at 10 Hz \(range_sensor\.rate_hz\)" -- \
+  "${R[@]}" "$WORK/t9.yaml"
+# Paper 1 in real time with 1 Hz fixes: the filter's 0.5 s input timeout would call them stale between any two.
+sed 's/{name: position_sensor, type: position_sensor}/{name: position_sensor, type: position_sensor, params: {rate_hz: 1}}/' \
+  "$SRC/sim/scenarios/paper1_waypoints.yaml" >"$WORK/t10.yaml"
+grep -q "rate_hz: 1}}" "$WORK/t10.yaml" || fail "t10.yaml: the position sensor's rate was not changed"
+expect_error 2 "t10\.yaml: estimator\.input_timeout_s: 0\.5 s judges sensor/position stale, but its producer 'position_sensor' samples sensor/position at 1 Hz" -- \
+  "${R[@]}" "$WORK/t10.yaml" --realtime --duration 1
 
 # QoS files: missing, malformed, broken element, unknown profile.
 expect_error 2 "nope\.xml: QoS profile file not found" -- "${R[@]}" "$S" --qos "$WORK/nope.xml"

@@ -16,7 +16,9 @@ for phase in ("phase1", "phase2"):
     settle, radius = m[phase]["settle_time_s"], m[phase]["radius_rmse_m"]
     if not 0 <= settle <= 600:
         bad.append(f"{phase}.settle_time_s {settle} (bound 0-600 s)")
-    if radius > 1.2:
+    if radius is None:  # not settled: no tail figure (issue 27)
+        bad.append(f"{phase}.radius_rmse_m null: {m[phase].get('not_settled')}")
+    elif radius > 1.2:
         bad.append(f"{phase}.radius_rmse_m {radius} (bound 1.2 m)")
 for observer in ("sta", "linear"):
     o = m["observer"][observer]

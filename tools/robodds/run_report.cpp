@@ -275,13 +275,20 @@ std::vector<std::string> run_report_lines(const RunReportInput& in) {
   if (const SummaryLeaf* reason = find(in.summary, "reason"); reason != nullptr) {
     out.push_back("  " + padded("reason") + unquoted(reason->json));
   }
+  // Issue 27: whether the mission was accomplished, or why not (summary.json "mission"); it takes
+  // one of the figures' lines, so the report stays within its 15.
+  const SummaryLeaf* mission = find(in.summary, "mission");
+  if (mission != nullptr) {
+    out.push_back("  " + padded("mission") + unquoted(mission->json));
+  }
   if (in.summary.empty() && !in.summary_note.empty()) {
     out.push_back("  (" + in.summary_note + ")");
   }
   std::vector<std::string> figures = headline_lines(in.headline, in.summary);
-  if (figures.size() > kMaxHeadlineLines) {
-    const std::size_t more = figures.size() - (kMaxHeadlineLines - 1);
-    figures.resize(kMaxHeadlineLines - 1);
+  const std::size_t max_figures = kMaxHeadlineLines - (mission != nullptr ? 1 : 0);
+  if (figures.size() > max_figures) {
+    const std::size_t more = figures.size() - (max_figures - 1);
+    figures.resize(max_figures - 1);
     figures.push_back("  (+" + std::to_string(more) + " more lines: --verbose, or summary.json)");
   }
   out.insert(out.end(), figures.begin(), figures.end());

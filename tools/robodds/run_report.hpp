@@ -28,7 +28,8 @@ struct RunReportInput {
   std::size_t plot_files = 0;
 };
 
-/// Most metric lines the report prints; the rest are counted on one line (summary.json has them).
+/// Most metric lines the report prints, the mission line (summary.json "mission") included; the
+/// rest are counted on one line (summary.json has them).
 inline constexpr std::size_t kMaxHeadlineLines = 9;
 
 /// The report, one string per line (no newlines): at most kMaxHeadlineLines + 6 = 15 lines.

@@ -2,10 +2,14 @@
 #include "components/circumnavigation_controller/node/circumnavigation_controller_node.hpp"
 
 #include <map>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "common/estimate_age.hpp"
+#include "common/number_text.hpp"
+#include "components/circumnavigation_controller/estimate_gap_hold.hpp"
 #include "components/circumnavigation_controller/guidance_law.hpp"
 #include "components/circumnavigation_controller/node/circumnavigation_controller_params.hpp"
 #include "robodds/idl/robodds.h"
@@ -39,20 +43,36 @@ class CircumnavigationControllerNode : public Component {
     auto& p = ctx.params();
     const CircumnavigationControllerParams params = read_params(p, circumnavigation_controller_param_table());
     p.validate(params.guidance);
+    p.check([&] {
+      try {
+        params.gap_hold.validate();
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("gap_hold." + std::string(e.what()));  // its keys in this component's table
+      }
+    });
     ctx.set_rate_hz(params.rate_hz, "rate_hz");
     ctx.require_longer_than_period("estimate_timeout_s", params.estimate_timeout_s);
     ctx.require_longer_than_period("peer_timeout_s", params.peer_timeout_s);
+    std::vector<std::uint32_t> team;  // the spacing reads every robot's pose
+    for (const RobotSpec& robot : ctx.scenario().robots) {
+      team.push_back(robot.id);
+    }
+    ctx.limits_age_of(to_string(params.observer_topic), "estimate_timeout_s", params.estimate_timeout_s, /*realtime_only=*/true);
+    ctx.limits_age_of("estimate/pose", "peer_timeout_s", params.peer_timeout_s, /*realtime_only=*/true, team);
     const system::RangeAccelBound bound = system::range_accel_bound(ctx.scenario());  // the shared fact
     p.check([&] { check_observer_bound(params.guidance, bound.mps2, bound.key); });
     warn_about_lower_body_limits(ctx, params.guidance);
     estimate_timeout_s_ = params.estimate_timeout_s;
+    max_accel_mps2_ = params.guidance.max_accel_mps2;
+    hold_s_ = params.gap_hold.hold_s;
     peer_timeout_s_ = params.peer_timeout_s;
     dt_s_ = static_cast<double>(ctx.period_steps()) * ctx.step_s();
     step_s_ = ctx.step_s();
     realtime_ = ctx.mode() == TimeMode::kRealtime;
     name_ = ctx.name();
     for (const RobotSpec& robot : ctx.robots()) {
-      robots_.emplace(robot.id, Robot{GuidanceLaw(params.guidance), "(not started)", model::Twist{}, control::LateEstimateWatch{}});
+      robots_.emplace(robot.id, Robot{GuidanceLaw(params.guidance), "(not started)", model::Twist{}, control::LateEstimateWatch{},
+                                      EstimateGapHold(params.gap_hold)});
     }
     std::vector<std::uint64_t> all_robots;
     for (const RobotSpec& robot : ctx.scenario().robots) {
@@ -78,21 +98,31 @@ class CircumnavigationControllerNode : public Component {
       cmd.mode(idl::VELOCITY);
       const idl::TargetAssignment* task = team_.at(id).task;
       const idl::RangeRateEstimate* estimate = observer_->latest_of_robot(id);
-      const std::string why_zero = zero_reason(id, task, estimate);
-      if (why_zero.empty()) {
+      const ZeroReason why = zero_reason(id, task, estimate);
+      std::string state;  // for the log: "" steering, else why not
+      if (why.text.empty()) {
         // A late estimate (real time: frozen, not yet stale) is no news: the law would ramp on it
         // (issue 24, finding 5), so the last command is held until it is fresh or stale.
         if (!estimate_is_late(id, robot, *estimate)) {
           robot.last_command = robot.law.step(estimate->range(), estimate->range_rate(), task->desired_radius(),
                                               gaps_of(id, *task), dt_s_);
         }
-        cmd.v(robot.last_command.v);
-        cmd.omega(robot.last_command.omega);
+        robot.hold.steered(robot.last_command);
+      } else if (const std::optional<model::Twist> held = why.gap ? robot.hold.gap(dt_s_, max_accel_mps2_) : std::nullopt) {
+        // Issue 27: a brief gap of the estimate (a restart window, a target switch) does not stop
+        // a robot that was steering: its last curvature, slowing, for at most gap_hold.hold_s.
+        robot.last_command = *held;
+        robot.law.continue_from(held->v);
+        state = "holding its last curvature at reduced speed (at most " + shortest_text(hold_s_) + " s): " + why.text;
       } else {
         robot.law.reset();  // the robot stops; it starts again from rest
+        robot.hold.stopped();
         robot.last_command = model::Twist{};
+        state = "zero command: " + why.text;
       }
-      report(id, robot, why_zero);
+      cmd.v(robot.last_command.v);
+      cmd.omega(robot.last_command.omega);
+      report(id, robot, state);
       cmd_out_->publish(cmd);
     }
   }
@@ -100,9 +130,18 @@ class CircumnavigationControllerNode : public Component {
  private:
   struct Robot {
     GuidanceLaw law;
-    std::string last_reason = "(not started)";  // why the last command was zero ("" = steering)
-    model::Twist last_command;                   // m/s, rad/s: what the law last gave
+    std::string last_reason = "(not started)";  // what the last command was ("" = steering), for the log
+    model::Twist last_command;                   // m/s, rad/s: what was last commanded
     control::LateEstimateWatch late;             // of its observer estimates
+    EstimateGapHold hold;                        // through a brief gap of the estimate (issue 27)
+  };
+
+  /// Why a robot's law may not run: "" it may; `gap` when the estimate is only briefly unusable
+  /// (its restart window, a target switch the observer has not followed yet), which a steering
+  /// robot may ride through (EstimateGapHold). A stale estimate (real time) is no gap: it stops.
+  struct ZeroReason {
+    std::string text;
+    bool gap = false;
   };
 
   /// Real time: the observer's estimate is older than two of its periods (by this process's
@@ -120,33 +159,36 @@ class CircumnavigationControllerNode : public Component {
     return late;
   }
 
-  /// Why robot `id` must get a zero command, or "" when the law may run.
-  std::string zero_reason(std::uint32_t id, const idl::TargetAssignment* task, const idl::RangeRateEstimate* estimate) const {
+  /// Why robot `id` must not steer, or "" when the law may run.
+  ZeroReason zero_reason(std::uint32_t id, const idl::TargetAssignment* task, const idl::RangeRateEstimate* estimate) const {
     if (task == nullptr) {
-      return "no task on mission/target yet";
+      return {"no task on mission/target yet"};
     }
     if (!task->active()) {
-      return "no target (LEAVE on mission/target)";
+      return {"no target (LEAVE on mission/target)"};
     }
     if (!(task->desired_radius() > 0.0)) {
-      return "desired_radius: must be > 0 (got " + std::to_string(task->desired_radius()) + ") for target " +
-             std::to_string(task->target_id());
+      return {"desired_radius: must be > 0 (got " + std::to_string(task->desired_radius()) + ") for target " +
+              std::to_string(task->target_id())};
     }
     if (estimate == nullptr) {
-      return "no estimate on " + observer_->topic() + " yet";
+      return {"no estimate on " + observer_->topic() + " yet"};
     }
     if (estimate->target_id() != task->target_id()) {
-      return "the estimate on " + observer_->topic() + " is of target " + std::to_string(estimate->target_id()) +
-             ", the task's is " + std::to_string(task->target_id());
+      return {"the estimate on " + observer_->topic() + " is of target " + std::to_string(estimate->target_id()) +
+                  ", the task's is " + std::to_string(task->target_id()),
+              true};
     }
     if (realtime_ && !observer_->fresh(id, estimate_timeout_s_)) {
-      return "the estimate on " + observer_->topic() + " is older than estimate_timeout_s " +
-             std::to_string(estimate_timeout_s_) + " s";  // the receive time of this process, not the stamp
+      // The receive time of this process, not the stamp. Not a gap to ride through: a silent
+      // observer may be dead (it was already held while late, up to estimate_timeout_s).
+      return {"the estimate on " + observer_->topic() + " is older than estimate_timeout_s " +
+              std::to_string(estimate_timeout_s_) + " s"};
     }
     if (!estimate->valid()) {
-      return "the estimate on " + observer_->topic() + " is not valid (observer restart window)";
+      return {"the estimate on " + observer_->topic() + " is not valid (observer restart window)", true};
     }
-    return "";
+    return {};
   }
 
   /// The gaps of robot `id` among the robots with the same active target and a known (in real
@@ -174,20 +216,22 @@ class CircumnavigationControllerNode : public Component {
     return team_.at(robot).pose != nullptr && (!realtime_ || poses_->fresh(robot, peer_timeout_s_));
   }
 
-  /// Says once why a robot's commands are zero, and once when it steers again.
-  void report(std::uint32_t id, Robot& robot, const std::string& why_zero) {
-    if (why_zero == robot.last_reason) {
+  /// Says once why a robot's commands are zero (or held), and once when it steers again.
+  void report(std::uint32_t id, Robot& robot, const std::string& state) {
+    if (state == robot.last_reason) {
       return;
     }
-    if (why_zero.empty()) {
+    if (state.empty()) {
       log::info(name_, "robot " + std::to_string(id) + ": steering (" + observer_->topic() + ")");
     } else {
-      log::info(name_, "robot " + std::to_string(id) + ": zero command: " + why_zero);
+      log::info(name_, "robot " + std::to_string(id) + ": " + state);
     }
-    robot.last_reason = why_zero;
+    robot.last_reason = state;
   }
 
   double estimate_timeout_s_ = 0.5;
+  double max_accel_mps2_ = 0.5;  // the law's: how fast a held robot slows
+  double hold_s_ = 1.0;          // gap_hold.hold_s
   double peer_timeout_s_ = 1.0;
   double dt_s_ = 0.02;
   double step_s_ = 0.01;

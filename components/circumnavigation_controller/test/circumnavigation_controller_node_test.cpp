@@ -77,6 +77,7 @@ struct Feed {
   std::uint32_t target2 = 1;
   double bearing2_deg = 90.0;
   std::uint64_t invalid_step = kNeverAgain;  // the estimate is not valid at this one step
+  std::uint64_t invalid_from = kNeverAgain;  // ... and from this step on
 };
 
 /// Runs the controller of `scenario_yaml` with missions at step 0 (never again), poses and
@@ -90,7 +91,8 @@ std::vector<idl::VelocityCommand> run(const std::string& scenario_yaml, const Fe
     }
     h.publish("estimate/pose", pose_at(1, 0.0), step, step + 1);
     h.publish("estimate/pose", pose_at(2, f.bearing2_deg), step, step + 1);
-    h.publish("observer/range_rate", estimate(f.range, f.range_rate, f.valid && step != f.invalid_step), step, step + 1);
+    h.publish("observer/range_rate", estimate(f.range, f.range_rate, f.valid && step != f.invalid_step && step < f.invalid_from),
+                                                  step, step + 1);
   });
   const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
   h.run({"controller"});
@@ -125,11 +127,39 @@ TEST(CircumnavigationControllerNode, CommandsZeroWhileTheEstimateIsNotValid) {
 TEST(CircumnavigationControllerNode, AfterAZeroCommandTheSpeedStartsFromRestAgain) {
   Feed f;
   f.invalid_step = 3;
-  const auto commands = run(scenario("start_cruising: false"), f);
+  const auto commands = run(scenario("start_cruising: false, gap_hold: {hold_s: 0}"), f);
   ASSERT_EQ(commands.size(), 6u);
   EXPECT_NEAR(commands[2].v(), 0.03, 1e-12);
   EXPECT_EQ(commands[3].v(), 0.0);
   EXPECT_NEAR(commands[4].v(), 0.01, 1e-12) << "the robot stood still at step 3: |dV/dt| <= max_accel from rest";
+}
+
+// Issue 27: a steering robot whose estimate is invalid for a moment (an observer restart) keeps
+// its last curvature, slowing at max_accel, and steers on from that speed when it is valid again.
+TEST(CircumnavigationControllerNode, ABriefInvalidEstimateHoldsTheLastCurvatureAtReducedSpeed) {
+  Feed f;
+  f.invalid_step = 3;
+  const auto commands = run(scenario("start_cruising: false"), f);  // gap_hold: its defaults, 1 s at half speed
+  ASSERT_EQ(commands.size(), 6u);
+  EXPECT_NEAR(commands[2].v(), 0.03, 1e-12);
+  EXPECT_NEAR(commands[3].v(), 0.02, 1e-12) << "held: towards half speed at max_accel 0.5 m/s^2";
+  ASSERT_NE(commands[2].omega(), 0.0);
+  EXPECT_NEAR(commands[3].omega() / commands[3].v(), commands[2].omega() / commands[2].v(), 1e-9) << "the same curvature";
+  EXPECT_NEAR(commands[4].v(), 0.03, 1e-12) << "steering again from the held speed, not from rest";
+}
+
+TEST(CircumnavigationControllerNode, AGapLongerThanTheHoldStopsTheRobot) {
+  Feed f;
+  f.invalid_from = 2;
+  f.bearing2_deg = 180.0;  // evenly spaced: cruising at V0
+  const auto commands = run(scenario("gap_hold: {hold_s: 0.04}"), f);  // 2 steps at 50 Hz
+  ASSERT_EQ(commands.size(), 6u);
+  EXPECT_EQ(commands[1].v(), 10.0) << "cruising at V0";
+  EXPECT_NEAR(commands[2].v(), 9.99, 1e-12) << "held, slowing";
+  EXPECT_NEAR(commands[3].v(), 9.98, 1e-12) << "held, slowing";
+  EXPECT_EQ(commands[4].v(), 0.0) << "0.06 s > hold_s: stop";
+  EXPECT_EQ(commands[4].omega(), 0.0);
+  EXPECT_EQ(commands[5].v(), 0.0) << "and stays stopped";
 }
 
 TEST(CircumnavigationControllerNode, FarFromTheTargetTurnsTowardsItFromRestAtMaxAccel) {

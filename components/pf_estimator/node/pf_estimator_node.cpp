@@ -27,6 +27,9 @@ class PfEstimatorNode : public Component {
     ctx.set_rate_hz(rate_hz, "rate_hz");
     input_timeout_s_ = node_params.input_timeout_s;
     ctx.require_longer_than_period("input_timeout_s", input_timeout_s_);
+    // Each sensor must deliver within the timeout (issue 27: a 1 Hz fix against 0.5 s was accepted).
+    ctx.limits_age_of("sensor/odometry", "input_timeout_s", input_timeout_s_, /*realtime_only=*/true);
+    ctx.limits_age_of("sensor/position", "input_timeout_s", input_timeout_s_, /*realtime_only=*/true);
     realtime_ = ctx.mode() == TimeMode::kRealtime;
     for (const RobotSpec& robot : ctx.robots()) {
       filters_.emplace(robot.id, std::make_unique<ParticleFilter>(params, ctx.seed_for("robot" + std::to_string(robot.id))));

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <map>
+#include <string>
+#include <utility>
 #include <stdexcept>
 
 #include "common/number_text.hpp"
@@ -48,6 +50,23 @@ class RangeRateObserverNode : public Component {
     // the largest range acceleration times half the window (the reported std says so).
     params_.uncertainty.range_accel_mps2 = bound.mps2;
     ctx.set_rate_hz(params_.rate_hz, "rate_hz");
+    // rate_hz is the range sensor's rate: a slower sensor would leave steps without a range, whose
+    // estimate is the last one published again as if new (issue 27: 10 Hz ranges into a 50 Hz
+    // observer were accepted silently). Checked against the scenario's range sensor before the run.
+    ctx.expects_rate_of("sensor/range", "rate_hz", InputRateAssumption::Kind::kSameRate);
+    // A restart window's least-squares slope needs several ranges: one shorter than two sample
+    // periods closes at its second sample, and the rate restarts from one difference of two noisy
+    // ranges (the old rule: up to 90 m/s off at 0.5 m of noise, README.md "Restart window").
+    const double period_s = static_cast<double>(ctx.period_steps()) * ctx.step_s();
+    for (const auto& [key, window_s] : {std::pair<std::string, double>{"sta.restart_window_s", params_.sta.restart_window_s},
+                                        {"linear.restart_window_s", params_.linear.restart_window_s}}) {
+      if (window_s < 2.0 * period_s - 1e-9) {
+        p.fail(key + ": " + shortest_text(window_s) + " s spans fewer than two periods of the range samples (" +
+               shortest_text(period_s) + " s at rate_hz " + shortest_text(params_.rate_hz) +
+               "): the restarted rate would rest on one difference of two noisy ranges; make it at least " +
+               shortest_text(2.0 * period_s) + " s");
+      }
+    }
     name_ = ctx.name();
     for (const RobotSpec& robot : ctx.robots()) {
       robots_.emplace(robot.id, RobotObservers(params_, uncertainty_of(ctx, robot.id)));

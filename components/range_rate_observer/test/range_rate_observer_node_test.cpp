@@ -127,6 +127,26 @@ TEST(RangeRateObserverNode, GainsOutsideThePapersConditionsAreConfigErrorsNaming
   }
 }
 
+// Issue 27: the restart window must span at least two range sample periods (the observer's rate
+// is the sensor's), or the restarted rate rests on one difference of two noisy ranges.
+TEST(RangeRateObserverNode, ARestartWindowShorterThanTwoSamplePeriodsIsAConfigError) {
+  {
+    Harness h(scenario("rate_hz: 2, sta: {restart_window_s: 0.5}"));  // 0.5 s periods: the window holds 2 samples
+    const std::string error = h.run_error<ConfigError>({"observer"});
+    EXPECT_NE(error.find("sta.restart_window_s: 0.5 s spans fewer than two periods of the range samples (0.5 s at rate_hz 2): "
+                         "the restarted rate would rest on one difference of two noisy ranges; make it at least 1 s"),
+              std::string::npos)
+        << error;
+  }
+  {
+    Harness h(scenario("rate_hz: 2, sta: {restart_window_s: 1}, linear: {restart_window_s: 0.9}"));
+    EXPECT_NE(h.run_error<ConfigError>({"observer"}).find("linear.restart_window_s: 0.9 s spans"), std::string::npos);
+  }
+  Harness h(scenario("rate_hz: 5"));  // 0.2 s periods: the default 0.5 s window holds 3 samples
+  feed(h);
+  EXPECT_EQ(h.run_error<ConfigError>({"observer"}), "");
+}
+
 // b must cover the range accelerations the mission allows: the scenario's shared fact
 // range_accel_bound_mps2 (default 2.2), never another component's parameter.
 TEST(RangeRateObserverNode, AGainBBelowTheScenariosRangeAccelerationBoundIsAConfigError) {

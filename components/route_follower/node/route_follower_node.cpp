@@ -22,6 +22,7 @@ class RouteFollowerNode : public Component {
     p.validate(params.route);
     ctx.set_rate_hz(params.rate_hz, "rate_hz");
     ctx.require_longer_than_period("estimate_timeout_s", params.estimate_timeout_s);
+    ctx.limits_age_of("estimate/pose", "estimate_timeout_s", params.estimate_timeout_s, /*realtime_only=*/true);
     estimate_timeout_s_ = params.estimate_timeout_s;
     dt_s_ = static_cast<double>(ctx.period_steps()) * ctx.step_s();
     realtime_ = ctx.mode() == TimeMode::kRealtime;

@@ -82,6 +82,20 @@ class UwbRelativeEstimatorNode : public Component {
         p.fail(e.what());
       }
     }
+    // What the epochs assume of the sensors (checked against the scenario's sensors before the run):
+    // a frame and an odometry sample per epoch at least, and frames within uwb_timeout_s.
+    std::vector<std::uint32_t> measured;  // robots whose UWB sensors measure the pairs read
+    for (const std::uint64_t key : uwb_keys) {
+      measured.push_back(static_cast<std::uint32_t>(key >> 32));
+    }
+    std::vector<std::uint32_t> moving;  // robots whose odometry is read
+    for (const std::uint64_t id : odometry_ids) {
+      moving.push_back(static_cast<std::uint32_t>(id));
+    }
+    ctx.expects_rate_of("sensor/uwb", "rate_hz", InputRateAssumption::Kind::kAtLeastMyRate, measured);
+    ctx.expects_rate_of("sensor/odometry", "rate_hz", InputRateAssumption::Kind::kAtLeastMyRate, moving);
+    ctx.limits_age_of("sensor/uwb", "uwb_timeout_s", params_.uwb_timeout_s, /*realtime_only=*/false, measured);
+    ctx.limits_age_of("sensor/odometry", "odometry_timeout_s", params_.odometry_timeout_s, /*realtime_only=*/true, moving);
     std::sort(uwb_keys.begin(), uwb_keys.end());
     uwb_keys.erase(std::unique(uwb_keys.begin(), uwb_keys.end()), uwb_keys.end());  // links shared by robots
     ranges_ = &ctx.subscribe<idl::UwbRanges>("sensor/uwb", Subscription::instances(uwb_keys));

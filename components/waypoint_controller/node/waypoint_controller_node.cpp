@@ -32,6 +32,7 @@ class WaypointControllerNode : public Component {
     p.validate(params_);  // the body is checked where it is declared (system::check_facts)
     ctx.set_rate_hz(rate_hz, "rate_hz");
     ctx.require_longer_than_period("estimate_timeout_s", estimate_timeout_s_);
+    ctx.limits_age_of("estimate/pose", "estimate_timeout_s", estimate_timeout_s_, /*realtime_only=*/true);
     realtime_ = ctx.mode() == TimeMode::kRealtime;
     period_s_ = 1.0 / rate_hz;
     step_s_ = ctx.step_s();

@@ -6,6 +6,9 @@
 // folder under sim/evaluator/metrics/ and includes no other module.
 
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "common/json_writer.hpp"
 #include "sim/evaluator/module/metrics_setup.hpp"
@@ -30,6 +33,16 @@ class MetricsModule {
   virtual void write_single_robot(JsonWriter& /*json*/, std::uint32_t /*robot*/) const {}
   /// Its keys of "metrics" itself (pooled figures, a paper's sections).
   virtual void write_metrics(JsonWriter& /*json*/) const {}
+  /// Its verdict on the mission it evaluates (summary.json "mission", issue 27): nullopt when it
+  /// judges none (its topics are not recorded); empty when the mission was accomplished; else one
+  /// short reason per shortfall ("1 of 18 way-points reached", "phase 2: formation never settled").
+  /// Called after finish().
+  virtual std::optional<std::vector<std::string>> mission_shortfalls() const { return std::nullopt; }
 };
+
+/// summary.json's "mission" from the modules' verdicts (MetricsModule::mission_shortfalls()):
+/// nullopt when no module judges a mission; "complete" when none falls short; else
+/// "incomplete: " and every reason, "; "-separated, in module order.
+std::optional<std::string> mission_verdict(const std::vector<std::optional<std::vector<std::string>>>& verdicts);
 
 }  // namespace robodds::evaluator

@@ -1,6 +1,7 @@
 #include "sim/evaluator/node/evaluator_node.hpp"
 
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -154,6 +155,17 @@ class EvaluatorNode : public Component {
     JsonWriter json;
     json.begin_object();
     write_status_section(json, end, recording_->figures());
+    if (end.completed) {
+      // Issue 27: a run that completed may still have missed its mission; say why (a failed run
+      // says why in "reason").
+      std::vector<std::optional<std::vector<std::string>>> verdicts;
+      for (const auto& module : modules_) {
+        verdicts.push_back(module->mission_shortfalls());
+      }
+      if (const std::optional<std::string> mission = mission_verdict(verdicts)) {
+        json.value("mission", *mission);
+      }
+    }
     json.value("scenario", context_->scenario().name);
     if (!context_->scenario().description.empty()) {
       json.value("description", context_->scenario().description);  // the plots' subtitle (sim/report)

@@ -30,6 +30,7 @@ class PlantNode : public Component {
     p.validate(params_);
     ctx.set_rate_hz(rate_hz, "rate_hz");
     ctx.require_longer_than_period("command_timeout_s", params_.command_timeout_s);
+    ctx.limits_age_of("plant/cmd", "command_timeout_s", params_.command_timeout_s, /*realtime_only=*/true);
     for (const RobotSpec& robot : ctx.robots()) {
       robots_[robot.id] = Robot{model::Pose2{robot.x, robot.y, robot.theta}, model::Twist{}, false,
                                 system::robot_body(ctx.scenario(), robot.id)};

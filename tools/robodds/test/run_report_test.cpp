@@ -140,6 +140,37 @@ TEST(RunReport, AtMostFifteenLinesHowEverManyFigures) {
   EXPECT_EQ(lines[2 + kMaxHeadlineLines - 1], "  (+22 more lines: --verbose, or summary.json)");
 }
 
+TEST(RunReport, AMissionThatFellShortSaysWhyAfterTheStatusAndTakesAFigureLine) {
+  evaluator::Headline many;
+  std::string metrics;
+  for (int i = 0; i < 30; ++i) {
+    many.push_back({"f" + std::to_string(i), "", "{k" + std::to_string(i) + "}"});
+    metrics += std::string(i == 0 ? "" : ", ") + "\"k" + std::to_string(i) + "\": " + std::to_string(i);
+  }
+  RunReportInput in;
+  in.summary = leaves_of(R"({"status": "degraded", "reason": "r", "mission": "incomplete: phase 1: formation never settled", )"
+                         R"("metrics": {)" + metrics +
+                         R"(}, "inputs": {"c": {"t": {"rejected": {"a": 1}, "adjusted": {"b": 1}}}}, "hosts": {"h": {"late_steps": 1}}})");
+  in.headline = many;
+  in.ticks = 10;
+  in.step_s = 0.1;
+  in.out_dir = "o";
+  const std::vector<std::string> lines = run_report_lines(in);
+  ASSERT_EQ(lines.size(), 15U) << "the mission line takes one of the figures' lines";
+  EXPECT_EQ(lines[2], "  mission           incomplete: phase 1: formation never settled");
+  EXPECT_EQ(lines[3 + kMaxHeadlineLines - 2], "  (+23 more lines: --verbose, or summary.json)");
+}
+
+TEST(RunReport, ACompleteMissionIsOneLineToo) {
+  RunReportInput in;
+  in.summary = leaves_of(R"({"status": "completed", "mission": "complete", "steps": 101, "step_s": 0.01})");
+  in.step_s = 0.01;
+  in.out_dir = "o";
+  const std::vector<std::string> expected = {"completed: 1 s simulated", "  mission           complete",
+                                             "results: o (summary.json, 0 CSV files; --verbose prints every figure)"};
+  EXPECT_EQ(run_report_lines(in), expected);
+}
+
 TEST(RunReport, WithoutSummarySaysWhy) {
   RunReportInput in;
   in.summary_note = "no summary.json in o: the scenario has no evaluator";

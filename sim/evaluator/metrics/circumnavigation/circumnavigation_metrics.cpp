@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "common/angle.hpp"
+#include "common/number_text.hpp"
 
 namespace robodds::evaluator {
 
@@ -390,11 +391,24 @@ CircumnavigationSummary CircumnavigationMetrics::summary() const {
     PhaseMetrics m;
     m.start_s = static_cast<double>(ph.start_step) * step_s_;
     if (ph.any) {
+      m.evaluated = true;
       if (ph.settled) {
         m.settle_time_s = static_cast<double>(ph.settled_from - ph.start_step) * step_s_;
       }
-      m.radius_rmse_m = ph.radius.over_window_ending(ph.last_step).rms();
-      m.spacing_rmse_deg = ph.spacing.over_window_ending(ph.last_step).rms();
+      // The tail window's first step: (last - window, last], within the phase.
+      const std::uint64_t window = steps(kTailWindowS);
+      const std::uint64_t tail_from = std::max(ph.start_step, ph.last_step + 1 > window ? ph.last_step + 1 - window : 0);
+      if (!ph.settled) {
+        m.not_settled = "never settled (radius within " + shortest_text(kSettleRadiusTolM) + " m and every gap within " +
+                        shortest_text(kSettleGapTolDeg) + " deg did not hold to the phase's end)";
+      } else if (ph.settled_from > tail_from) {
+        const double held_s = std::round(static_cast<double>(ph.last_step + 1 - ph.settled_from) * step_s_ * 10.0) / 10.0;
+        m.not_settled = "settled only " + shortest_text(held_s) +
+                        " s before the phase's end: its last " + shortest_text(kTailWindowS) + " s include the approach";
+      } else {
+        m.radius_rmse_m = ph.radius.over_window_ending(ph.last_step).rms();
+        m.spacing_rmse_deg = ph.spacing.over_window_ending(ph.last_step).rms();
+      }
       for (std::size_t k = 0; k < kObserverKinds; ++k) {
         steady[k].add(ph.observer[k].over_window_ending(ph.last_step));
       }

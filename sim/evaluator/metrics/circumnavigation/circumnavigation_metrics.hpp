@@ -108,6 +108,12 @@ class TailSum {
 struct PhaseMetrics {
   double start_s = 0.0;                   // the phase's first step, s
   double settle_time_s = -1.0;            // s after start_s; -1: not settled at the phase's end
+  bool evaluated = false;                 // a step with an active robot was evaluated (else nobody took part)
+  /// The tail figures below are of a settled formation only: the last kTailWindowS of the phase
+  /// (or the whole phase, when shorter) all lie after its settling. Otherwise they are nullopt and
+  /// this says why ("never settled", "settled only 120 s before the phase's end"): a tail RMSE over
+  /// the approach would be misleading (issue 27). Empty: settled, or no data.
+  std::string not_settled;
   std::optional<double> radius_rmse_m;    // last kTailWindowS of the phase, pooled over robots
   std::optional<double> spacing_rmse_deg; // same, pooled over the gaps of every team
 };

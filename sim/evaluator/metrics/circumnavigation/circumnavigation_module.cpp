@@ -4,12 +4,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "common/number_text.hpp"
 #include "robodds/idl/robodds.h"
@@ -77,7 +79,8 @@ class CircumnavigationModule : public MetricsModule {
     }
   }
 
-  /// "phase1", "phase2", ... {settle_time_s, radius_rmse_m, spacing_rmse_deg}, "observer":
+  /// "phase1", "phase2", ... {settle_time_s, radius_rmse_m, spacing_rmse_deg; both null and
+  /// "not_settled": why, when the phase's tail is not of a settled formation}, "observer":
   /// {"sta": {...}, "linear": {...}} for each recorded observer topic, and
   /// range_accel_over_b_fraction. A figure without data is left out.
   void write_metrics(JsonWriter& json) const override {
@@ -96,8 +99,15 @@ class CircumnavigationModule : public MetricsModule {
       json.begin_object("phase" + std::to_string(i + 1));
       json.value("start_s", phase.start_s);
       json.value("settle_time_s", phase.settle_time_s);
-      optional("radius_rmse_m", phase.radius_rmse_m);
-      optional("spacing_rmse_deg", phase.spacing_rmse_deg);
+      if (phase.not_settled.empty()) {
+        optional("radius_rmse_m", phase.radius_rmse_m);
+        optional("spacing_rmse_deg", phase.spacing_rmse_deg);
+      } else {
+        // Issue 27: no tail figure of a formation that had not settled; null and the reason.
+        json.value("radius_rmse_m", std::nan(""));
+        json.value("spacing_rmse_deg", std::nan(""));
+        json.value("not_settled", phase.not_settled);
+      }
       json.end_object();
     }
     const bool any_observer = m.expects(ObserverKind::kSta) || m.expects(ObserverKind::kLinear);
@@ -142,6 +152,24 @@ class CircumnavigationModule : public MetricsModule {
     json.value("range_accel_b", m.b());
   }
 
+  /// Paper 2's mission: the formation settled in every phase of the mission.
+  std::optional<std::vector<std::string>> mission_shortfalls() const override {
+    if (metrics_ == nullptr) {
+      return std::nullopt;
+    }
+    const CircumnavigationSummary s = metrics_->summary();
+    if (s.phases.empty()) {
+      return std::vector<std::string>{"no robot was assigned a target"};
+    }
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < s.phases.size(); ++i) {
+      if (s.phases[i].evaluated && s.phases[i].settle_time_s < 0.0) {
+        out.push_back("phase " + std::to_string(i + 1) + ": formation never settled");
+      }
+    }
+    return out;
+  }
+
  private:
   std::unique_ptr<CircumnavigationMetrics> metrics_;  // null: the mission is not recorded
   std::array<std::map<std::uint32_t, double>, kObserverKinds> noise_std_m_;  // by kind: robot -> its last estimate, m
@@ -155,6 +183,7 @@ std::unique_ptr<MetricsModule> make_circumnavigation_module() { return std::make
 /// range-rate errors.
 Headline circumnavigation_headline() {
   return {{"{*}", "phase*", "settling: {settle_time_s} s, radius RMSE {radius_rmse_m} m, spacing RMSE {spacing_rmse_deg} deg"},
+          {"{*}", "phase*", "no tail figures: {not_settled}"},  // only a phase whose tail is not of a settled formation
           {"observer {*}", "observer.*", "range-rate RMSE {transient_rmse_mps} m/s transient, {steady_rmse_mps} m/s steady"}};
 }
 

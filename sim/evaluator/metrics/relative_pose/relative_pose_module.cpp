@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -96,6 +97,25 @@ class RelativePoseModule : public MetricsModule {
       json.end_object();
     }
     json.end_object();
+  }
+
+  /// Paper 3's mission: the relative pose it is about (estimate/relative_pose, stage "pf") was
+  /// valid at some epoch from metrics_after_s on. The other stages are the paper's comparisons:
+  /// not judged. nullopt when that topic is not recorded.
+  std::optional<std::vector<std::string>> mission_shortfalls() const override {
+    if (metrics_ == nullptr) {
+      return std::nullopt;
+    }
+    const auto stages = metrics_->stages();
+    const auto pf = stages.find(relative_stage_of("estimate/relative_pose"));
+    if (pf == stages.end()) {
+      return std::nullopt;
+    }
+    if (pf->second.epochs > 0) {
+      return std::vector<std::string>{};
+    }
+    return std::vector<std::string>{pf->second.invalid_epochs > 0 ? "relative pose estimate never valid"
+                                                                  : "no relative pose estimate"};
   }
 
  private:

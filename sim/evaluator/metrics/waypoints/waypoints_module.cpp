@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -33,6 +35,8 @@ struct RobotFigures {
   MatchedError position;  // estimate/pose against truth
   MatchedError heading;
   WaypointTracker waypoints;
+  bool estimated = false;    // an estimate/pose sample came
+  bool ever_valid = false;   // ... and one of them was valid
 };
 
 class WaypointsModule : public MetricsModule {
@@ -59,6 +63,8 @@ class WaypointsModule : public MetricsModule {
       RobotFigures& r = robot(m.robot_id());
       r.position.add(s);
       r.heading.add(s);
+      r.estimated = true;
+      r.ever_valid = r.ever_valid || m.valid();
     });
     setup.on<idl::ControllerStatus>("control/status", [this](const idl::ControllerStatus& m) {
       robot(m.robot_id()).waypoints.add_status({m.header().step(), m.waypoints_reached(), m.waypoints_total(), m.done(),
@@ -147,6 +153,36 @@ class WaypointsModule : public MetricsModule {
     if (!heading_rmse_rad.empty()) {
       json.value("heading_rmse_deg", heading_rmse_rad.rmse() * kDegPerRad);
     }
+  }
+
+  /// Paper 1's mission: every served robot reached all its way-points ("robot N: " before each
+  /// reason when it serves several); a robot whose estimate was never valid says so too.
+  std::optional<std::vector<std::string>> mission_shortfalls() const override {
+    if (!status_recorded_) {
+      return std::nullopt;
+    }
+    std::vector<std::string> out;
+    bool judged = false;
+    for (std::uint64_t key : served_) {
+      const RobotFigures* r = robots_.find(static_cast<std::uint32_t>(key));
+      if (r == nullptr || !r->waypoints.has_status() || !r->waypoints.has_mission()) {
+        continue;
+      }
+      judged = true;
+      const std::string who = served_.size() > 1 ? "robot " + std::to_string(key) + ": " : "";
+      const WaypointMetrics m = r->waypoints.metrics(r->truth.empty() ? nullptr : &r->truth.last(), step_s_);
+      if (m.waypoints_reached < m.waypoints_total) {
+        out.push_back(who + std::to_string(m.waypoints_reached) + " of " + std::to_string(m.waypoints_total) +
+                      " way-points reached");
+      }
+      if (r->estimated && !r->ever_valid) {
+        out.push_back(who + "estimate never valid");
+      }
+    }
+    if (!judged) {
+      return std::nullopt;
+    }
+    return out;
   }
 
  private:

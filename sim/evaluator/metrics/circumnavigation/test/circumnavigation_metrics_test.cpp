@@ -155,14 +155,48 @@ TEST(CircumnavigationMetrics, AGapErrorCountsInSpacingAndSettling) {
   // Robot 2 6 deg ahead: its gaps are 96 and 84 deg instead of 90 (+6, -6; two gaps of four exact).
   const auto ahead = [](double deg) { return [deg](std::uint32_t id, double) { return id == 2 ? deg * kDeg : 0.0; }; };
   const CircumnavigationSummary six = run(formation(none, ahead(6.0)), step_at(600.0));
-  EXPECT_NEAR(*six.phases[0].spacing_rmse_deg, std::sqrt(18.0), 1e-9);
   EXPECT_EQ(six.phases[0].settle_time_s, -1.0) << "6 deg is out of the 5 deg tolerance";
+  EXPECT_FALSE(six.phases[0].spacing_rmse_deg.has_value()) << "not settled: no tail figure (issue 27)";
+  EXPECT_EQ(six.phases[0].not_settled.rfind("never settled", 0), 0u) << six.phases[0].not_settled;
   const CircumnavigationSummary four = run(formation(none, ahead(4.0)), step_at(600.0));
+  EXPECT_TRUE(four.phases[0].not_settled.empty()) << four.phases[0].not_settled;
   EXPECT_NEAR(*four.phases[0].spacing_rmse_deg, std::sqrt(8.0), 1e-9);
   EXPECT_EQ(four.phases[0].settle_time_s, 0.0);
   EXPECT_NEAR(*four.phases[0].radius_rmse_m, 0.0, 1e-9);
   const auto ahead_until_100 = [](std::uint32_t id, double t) { return id == 2 && t < 100.0 ? 6.0 * kDeg : 0.0; };
   EXPECT_NEAR(run(formation(none, ahead_until_100), step_at(600.0)).phases[0].settle_time_s, 100.0, kStep);
+}
+
+TEST(CircumnavigationMetrics, APhaseThatNeverSettledHasNoTailFiguresButSaysWhy) {
+  // Issue 27: a phase cut short (the switch at 600 s) while robot 2 is still 10 m out: its last
+  // 200 s are the approach. Was: radius RMSE 5 m reported as if it were the settled error.
+  const auto off_until_700 = [](std::uint32_t id, double t) { return id == 2 && t < 700.0 ? 10.0 : 0.0; };
+  const PhaseMetrics p = run(formation(off_until_700, none), step_at(600.0)).phases[0];
+  EXPECT_TRUE(p.evaluated);
+  EXPECT_EQ(p.settle_time_s, -1.0);
+  EXPECT_FALSE(p.radius_rmse_m.has_value());
+  EXPECT_FALSE(p.spacing_rmse_deg.has_value());
+  EXPECT_EQ(p.not_settled, "never settled (radius within 5 m and every gap within 5 deg did not hold to the phase's end)");
+}
+
+TEST(CircumnavigationMetrics, APhaseSettledLessThanTheTailWindowBeforeItsEndHasNoTailFigures) {
+  // Settled at 450 s, the phase ends at 600 s: the last 200 s (400, 600] include 50 s of approach.
+  const auto off_until = [](double until) {
+    return [until](std::uint32_t id, double t) { return id == 2 && t < until ? 10.0 : 0.0; };
+  };
+  const PhaseMetrics late = run(formation(off_until(450.0), none), step_at(600.0)).phases[0];
+  EXPECT_NEAR(late.settle_time_s, 450.0, kStep) << "it did settle";
+  EXPECT_FALSE(late.radius_rmse_m.has_value());
+  EXPECT_EQ(late.not_settled, "settled only 150.5 s before the phase's end: its last 200 s include the approach");
+  // Settled at 400 s: the window (400, 600] is all settled: the tail figures are given.
+  const PhaseMetrics in_time = run(formation(off_until(400.5), none), step_at(600.0)).phases[0];
+  EXPECT_TRUE(in_time.not_settled.empty()) << in_time.not_settled;
+  ASSERT_TRUE(in_time.radius_rmse_m.has_value());
+  EXPECT_NEAR(*in_time.radius_rmse_m, 0.0, 1e-9);
+  // A phase shorter than the window that settled at its start: the whole phase is its tail.
+  const PhaseMetrics short_phase = run(formation(none, none), step_at(150.0)).phases[0];
+  EXPECT_TRUE(short_phase.not_settled.empty()) << short_phase.not_settled;
+  EXPECT_TRUE(short_phase.radius_rmse_m.has_value());
 }
 
 TEST(CircumnavigationMetrics, PhasesFollowAssignmentChangesAndOnlyActiveRobotsCount) {
@@ -348,8 +382,11 @@ TEST(CircumnavigationMetrics, ArrivalOrderAcrossTopicsDoesNotMatter) {
   const CircumnavigationSummary b = run(fn, step_at(500.0), 2.2, 7, true);
   ASSERT_EQ(a.phases.size(), b.phases.size());
   EXPECT_EQ(a.phases[0].settle_time_s, b.phases[0].settle_time_s);
-  EXPECT_EQ(*a.phases[0].radius_rmse_m, *b.phases[0].radius_rmse_m);
-  EXPECT_EQ(*a.phases[0].spacing_rmse_deg, *b.phases[0].spacing_rmse_deg);
+  // Robot 1 on its line never settles: no tail figures, the same reason (issue 27).
+  EXPECT_FALSE(a.phases[0].radius_rmse_m.has_value());
+  EXPECT_TRUE(a.phases[0].radius_rmse_m == b.phases[0].radius_rmse_m);
+  EXPECT_TRUE(a.phases[0].spacing_rmse_deg == b.phases[0].spacing_rmse_deg);
+  EXPECT_EQ(a.phases[0].not_settled, b.phases[0].not_settled);
   for (std::size_t k = 0; k < kObserverKinds; ++k) {
     EXPECT_EQ(a.observers[k].matched, step_at(500.0) + 1 - (k == 0 ? 72u : 0u)) << "invalid every 7 s";
     EXPECT_EQ(a.observers[k].matched, b.observers[k].matched);

@@ -42,8 +42,9 @@ components:
      observer/range_rate_linear], metrics_after_s: 0.0}}
 )";
 
-void feed_paper2(NodeHarness& h) {
-  h.feed([&h](std::uint64_t step) {
+/// `robot1_x`: where robot 1 stands (11: 1 m outside its first circle).
+void feed_paper2(NodeHarness& h, double robot1_x = 11.0) {
+  h.feed([&h, robot1_x](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u}) {
       const bool second = robot == 1 && step >= 6;  // robot 1 on target 2 from step 6
       const std::uint32_t target = second ? 2 : 1;
@@ -59,7 +60,7 @@ void feed_paper2(NodeHarness& h) {
       }
       idl::RobotState s;
       s.robot_id(robot);
-      s.x(robot == 1 ? 11.0 : -11.0);
+      s.x(robot == 1 ? robot1_x : -11.0);
       h.publish("plant/state", s, step, step + 1);
       idl::RangeMeasurement r;
       r.robot_id(robot);
@@ -114,6 +115,24 @@ TEST(EvaluatorNode, RecordsTargetKeyedTopicsPerRobotAndWritesThePaper2Metrics) {
                                                     R"("overconfident_samples": 0,)")))
       << summary;
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("range_accel_over_b_fraction": 0,\s*"range_accel_b": 3.5,)")))
+      << summary;
+  EXPECT_TRUE(std::regex_search(summary, std::regex(R"("status": "completed",\s*"mission": "complete",)"))) << summary;
+}
+
+// Issue 27: robot 1 stands 19 m outside its first circle (and 8.6 m outside its second): neither
+// phase settles. Their tail figures are null with the reason, and the mission says it fell short.
+TEST(EvaluatorNode, APhaseThatNeverSettledWritesNullTailFiguresAndAnIncompleteMission) {
+  NodeHarness h(kPaper2Scenario);
+  add_evaluator(h);
+  feed_paper2(h, 30.0);
+  h.run({"evaluator"});
+  const std::string summary = text_of(h.output_dir() + "/summary.json");
+  EXPECT_TRUE(std::regex_search(summary, std::regex(R"("phase1": \{\s*"start_s": 0,\s*"settle_time_s": -1,\s*)"
+                                                    R"("radius_rmse_m": null,\s*"spacing_rmse_deg": null,\s*)"
+                                                    R"("not_settled": "never settled \(radius within 5 m)")))
+      << summary;
+  EXPECT_TRUE(std::regex_search(summary, std::regex(R"("mission": "incomplete: phase 1: formation never settled; )"
+                                                    R"(phase 2: formation never settled",)")))
       << summary;
 }
 

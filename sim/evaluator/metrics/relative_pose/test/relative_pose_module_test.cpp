@@ -54,8 +54,9 @@ double pf_offset_m(std::uint32_t robot, std::uint32_t peer) {
   return robot == 1 ? (peer == 2 ? 0.5 : 1.0) : (peer == 1 ? 1.5 : 2.0);
 }
 
-void feed_relative(NodeHarness& h) {
-  h.feed([&h](std::uint64_t step) {
+/// `pf_valid`: the pf stage's estimates are valid (else none is).
+void feed_relative(NodeHarness& h, bool pf_valid = true) {
+  h.feed([&h, pf_valid](std::uint64_t step) {
     for (std::uint32_t robot : {1u, 2u, 3u}) {
       const model::Pose2 pose = world_pose(robot, step);
       idl::RobotState s;
@@ -77,7 +78,7 @@ void feed_relative(NodeHarness& h) {
         e.x(truth.x + pf_offset_m(robot, peer) + (step < 5 ? 100.0 : 0.0));
         e.y(truth.y);
         e.theta(truth.theta + 0.1);
-        e.valid(true);
+        e.valid(pf_valid);
         if (robot == 1 && peer == 3 && step == 6) {
           e.x(std::numeric_limits<double>::quiet_NaN());
         }
@@ -153,6 +154,19 @@ TEST(EvaluatorNode, RecordsRelativePosesWithTheirTruthAndWritesTheStageErrors) {
   EXPECT_NEAR(std::stod(robot1_from_2.substr(0, robot1_from_2.find(','))), 0.0, 1e-12) << csv[3];
   EXPECT_NE(csv[3].find(",-1.5707963267948966"), std::string::npos) << csv[3];
   EXPECT_EQ(lines_of(h.output_dir() + "/plant_state.csv").size(), 1u + 33u);
+  EXPECT_TRUE(std::regex_search(summary, std::regex(R"("status": "completed",\s*"mission": "complete",)"))) << summary;
+}
+
+// Issue 27: paper 3's mission is its relative pose (the pf stage): never valid is an incomplete
+// mission, whatever the comparison stages (uwb) did.
+TEST(EvaluatorNode, ARelativePoseNeverValidIsAnIncompleteMission) {
+  NodeHarness h(kRelativeScenario);
+  add_evaluator(h);
+  feed_relative(h, false);
+  h.run({"evaluator"});
+  const std::string summary = text_of(h.output_dir() + "/summary.json");
+  EXPECT_TRUE(std::regex_search(summary, std::regex(R"("mission": "incomplete: relative pose estimate never valid",)")))
+      << summary;
 }
 
 TEST(EvaluatorNode, ARelativeTopicInAOneRobotScenarioIsAConfigError) {

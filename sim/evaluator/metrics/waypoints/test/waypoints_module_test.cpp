@@ -58,5 +58,77 @@ components:
   }
 }
 
+// Issue 27: summary.json's "mission" says whether the robot reached every way-point, and names
+// an estimate that was never valid. `reached`: way-points reached by the last status (of 2).
+std::string waypoint_run_summary(std::uint32_t reached, bool valid) {
+  NodeHarness h(R"(name: evaluator_waypoints
+step_s: 0.01
+duration_s: 0.1
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: evaluator, type: evaluator, params: {topics: [plant/state, estimate/pose, control/status, mission/waypoints],
+     metrics_after_s: 0.0}}
+)");
+  add_evaluator(h);
+  h.feed([&h, reached, valid](std::uint64_t step) {
+    if (step == 0) {
+      idl::WaypointMission mission;
+      mission.robot_id(1);
+      mission.waypoints({idl::Waypoint(), idl::Waypoint()});
+      h.publish("mission/waypoints", mission, step, kNeverAgain);
+    }
+    idl::RobotState s;
+    s.robot_id(1);
+    h.publish("plant/state", s, step, step + 1);
+    idl::PoseEstimate e;
+    e.robot_id(1);
+    e.valid(valid);
+    h.publish("estimate/pose", e, step, step + 1);
+    idl::ControllerStatus c;
+    c.robot_id(1);
+    c.waypoints_total(2);
+    c.waypoints_reached(step >= 5 ? reached : 0);
+    c.done(step >= 5 && reached == 2);
+    h.publish("control/status", c, step, step + 1);
+  });
+  h.run({"evaluator"});
+  return text_of(h.output_dir() + "/summary.json");
+}
+
+TEST(EvaluatorNode, TheMissionIsCompleteWhenEveryWaypointWasReached) {
+  const std::string summary = waypoint_run_summary(2, true);
+  EXPECT_TRUE(std::regex_search(summary, std::regex(R"("status": "completed",\s*"mission": "complete",)"))) << summary;
+}
+
+TEST(EvaluatorNode, AMissionShortOfItsWaypointsSaysHowManyAndANeverValidEstimate) {
+  const std::string summary = waypoint_run_summary(1, false);
+  EXPECT_TRUE(std::regex_search(summary, std::regex(R"("mission": "incomplete: 1 of 2 way-points reached; estimate never valid",)")))
+      << summary;
+  EXPECT_TRUE(std::regex_search(waypoint_run_summary(1, true), std::regex(R"("mission": "incomplete: 1 of 2 way-points reached",)")));
+}
+
+TEST(EvaluatorNode, WithoutAWaypointMissionThereIsNoMissionVerdict) {
+  NodeHarness h(R"(name: evaluator_no_mission
+step_s: 0.01
+duration_s: 0.05
+seed: 1
+robots:
+  - {id: 1}
+components:
+  - {name: evaluator, type: evaluator, params: {topics: [plant/state], metrics_after_s: 0.0}}
+)");
+  add_evaluator(h);
+  h.feed([&h](std::uint64_t step) {
+    idl::RobotState s;
+    s.robot_id(1);
+    h.publish("plant/state", s, step, step + 1);
+  });
+  h.run({"evaluator"});
+  const std::string summary = text_of(h.output_dir() + "/summary.json");
+  EXPECT_EQ(summary.find("\"mission\""), std::string::npos) << summary;
+}
+
 }  // namespace
 }  // namespace robodds::evaluator

@@ -1,0 +1,60 @@
+#include "components/circumnavigation_controller/estimate_gap_hold.hpp"
+
+#include <cmath>
+
+#include "common/param_checks.hpp"
+#include "components/circumnavigation_controller/guidance_law.hpp"
+
+namespace robodds::circumnavigation_controller {
+
+const params::ParamTable<HoldParams>& hold_param_table() {
+  using P = HoldParams;
+  static const params::ParamTable<P> table =
+      params::ParamTable<P>("Hold through a brief gap of the estimate (issue 27): keep the last curvature, slow down, then stop.")
+          .add("hold_s", &P::hold_s, "s", params::non_negative("0 = stop at once"),
+               "longest gap of the range-rate estimate (restart window, target switch; not a stale one) a steering robot "
+               "rides through on its last curvature; longer: it stops")
+          .add("speed_fraction", &P::speed_fraction, "", params::shown_as(params::positive(), "(0, 1]"),
+               "while held, the speed tends to this fraction of the last command's at most max_accel_mps2");
+  return table;
+}
+
+void HoldParams::validate() const {
+  hold_param_table().check_ranges(*this);
+  if (!(speed_fraction <= 1.0)) {
+    param_checks::reject("speed_fraction", "must be in (0, 1] (a fraction of the last speed)", speed_fraction);
+  }
+}
+
+EstimateGapHold::EstimateGapHold(const HoldParams& params) : params_(params) { params_.validate(); }
+
+void EstimateGapHold::steered(const model::Twist& command) {
+  armed_ = true;
+  holding_ = false;
+  last_ = command;
+  speed_mps_ = command.v;
+  gap_s_ = 0.0;
+}
+
+void EstimateGapHold::stopped() {
+  armed_ = false;
+  holding_ = false;
+  gap_s_ = 0.0;
+}
+
+std::optional<model::Twist> EstimateGapHold::gap(double dt_s, double max_decel_mps2) {
+  param_checks::require_positive("dt", dt_s);
+  gap_s_ += dt_s;
+  // 1e-9 s: a hold of 1 s at 50 Hz holds exactly 50 steps whatever the rounding of the sum.
+  if (!armed_ || last_.v == 0.0 || gap_s_ > params_.hold_s + 1e-9) {
+    armed_ = false;
+    holding_ = false;
+    return std::nullopt;
+  }
+  holding_ = true;
+  const double curvature = last_.omega / last_.v;
+  speed_mps_ = rate_limited(speed_mps_, params_.speed_fraction * last_.v, max_decel_mps2 * dt_s);
+  return model::Twist{speed_mps_, curvature * speed_mps_};
+}
+
+}  // namespace robodds::circumnavigation_controller
