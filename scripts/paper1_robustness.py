@@ -127,6 +127,16 @@ def standstill_growth(series):
     return later[0], max(later) - later[0]
 
 
+def claimed_heading_variance(run_dir):
+    """Heading variance (rad^2) the odometry's own claims add from STANDSTILL_FROM_S on: the sum of
+    var_omega dt^2 over its samples (white turn-rate noise, a random walk of the heading)."""
+    total = 0.0
+    for row in read_rows(os.path.join(run_dir, "sensor_odometry.csv")):
+        if float(row["t_s"]) >= STANDSTILL_FROM_S:
+            total += float(row["var_omega"]) * float(row["dt_s"]) ** 2
+    return total
+
+
 def parse_sets(items):
     overrides = {}
     for item in items:
@@ -194,6 +204,9 @@ def main(argv):
             if case.startswith("standstill"):
                 row["heading_std_start_deg"], growth = (v / DEG for v in standstill_growth(series))
                 row["heading_std_growth_deg"] = growth
+                # What an honest spread reaches: the start spread and the odometry's claimed random walk.
+                row["heading_std_claimed_deg"] = math.sqrt((row["heading_std_start_deg"] * DEG) ** 2 + claimed_heading_variance(
+                    os.path.join(args.out, label))) / DEG
                 row["path_length_m"] = m["robots"]["1"]["path_length_m"]
                 row["valid_samples"], row["overconfident_heading_samples"], worst = \
                     overconfident_heading_samples(os.path.join(args.out, label))
@@ -235,14 +248,22 @@ def main(argv):
         elif case == "standstill_600s":
             growth = [r["heading_std_growth_deg"] for r in rows]
             bad = [r["overconfident_heading_samples"] for r in rows]
-            # Issue 27's bound (no valid sample with a heading error beyond 3 sigma) is reported, not
-            # required: it fails with the default filter (docs/results/paper1.md, "Degraded sensing").
-            recovery = "heading std growth %.2f / %.2f deg; valid with heading error > 3 sigma: %d / %d samples, on %d seeds" % (
-                min(growth), max(growth), min(bad), max(bad), sum(1 for b in bad if b))
-            required = "heading spread grows < 5 deg"
+            # The simulated odometry turns the heading at standstill (white wheel noise), so an honest
+            # spread grows like its claimed random walk (~0.76 deg/sqrt(s), ~19 deg in 600 s): issue
+            # 12's "grows < 5 deg" contradicts issue 27's honesty and is replaced by "grows no faster
+            # than the odometry claims" (25 % above for the cloud's sampling noise): regularisation
+            # must not widen it (issue 12 measured 2 -> 100 deg). Issue 27's bound (no valid sample
+            # with a heading error beyond 3 sigma) is reported, not required: it still fails on one
+            # seed in the first seconds of manoeuvring (docs/results/paper1.md, "Degraded sensing").
+            ratio = [(r["heading_std_start_deg"] + r["heading_std_growth_deg"]) / r["heading_std_claimed_deg"] for r in rows]
+            recovery = ("heading std growth %.2f / %.2f deg (largest std / the odometry's claim %.2f / %.2f); "
+                        "valid with heading error > 3 sigma: %d / %d samples, on %d seeds") % (
+                min(growth), max(growth), min(ratio), max(ratio), min(bad), max(bad), sum(1 for b in bad if b))
+            required = "heading spread <= 1.25 x the odometry's claimed random walk"
             reached = "-"
-            for s, g in zip(seeds, growth):
-                need(g < 5.0, "%s seed %d: heading std grew by %.2f deg (>= 5)" % (case, s, g))
+            for s, r, q in zip(seeds, rows, ratio):
+                need(q <= 1.25, "%s seed %d: heading std %.2f deg > 1.25 x the odometry's claimed %.2f deg" % (
+                    case, s, r["heading_std_start_deg"] + r["heading_std_growth_deg"], r["heading_std_claimed_deg"]))
         print("| %s: %s | %s | %.3f / %.3f / %.3f | %s | %s |" % (case, CASES[case][0], reached, min(rmse), sum(rmse) / len(rmse),
                                                               max(rmse), recovery or "-", required))
     json.dump(table, open(os.path.join(args.out, "results.json"), "w"), indent=1, sort_keys=True)

@@ -164,18 +164,18 @@ void ParticleFilter::predict(double v_mps, double omega_radps, double dt_s, doub
     return;
   }
   prior_check_.predict(v_mps, omega_radps, dt_s);
+  since_fix_distance_m_ += v_mps * dt_s;
+  since_fix_time_s_ += dt_s;
   const bool diffuse_theta = params_.process_theta_std_rad > 0.0;
   // Wheel-like odometry errs in proportion to the wheels' motion: almost no turn noise at
   // standstill, where nothing observes the heading.
   const double model_omega_std = params_.odom_omega_std_radps + params_.odom_omega_std_per_mps * std::abs(v_mps) +
                                  params_.odom_omega_std_fraction * std::abs(omega_radps);
-  // At standstill the fixes cannot correct the heading, so a sensor that says its turn rate is
-  // noisier there is believed: otherwise the heading drifts with that noise while the spread stays
-  // put (issue 27, finding 4: 7-9 deg off at a reported 2 deg). While the robot moves the fixes
-  // observe the heading and the wheel model stays (the claimed 0.094 rad/s of the simulated
-  // odometry kept a creeping robot with 3x noisier fixes from ever learning its heading).
-  const bool standing = std::abs(v_mps) < params_.standstill_speed_mps;
-  const double omega_std = params_.use_odometry_variance && standing && omega_var_radps2 > 0.0
+  // A sensor that says its turn rate is noisier than the wheel model is believed (issue 27, finding
+  // 4): otherwise the heading drifts with that noise while the spread stays put, at standstill,
+  // where the fixes cannot correct it (7-9 deg off at a reported 2 deg after the last way-point),
+  // and in the first seconds of motion, before the fixes see the heading.
+  const double omega_std = params_.use_odometry_variance && omega_var_radps2 > 0.0
                                ? std::max(model_omega_std, std::sqrt(omega_var_radps2))
                                : model_omega_std;
   const double slip_walk_std = params_.turn_slip_walk_std_radpm * std::sqrt(std::abs(v_mps) * dt_s);
@@ -205,6 +205,13 @@ void ParticleFilter::update(double z_x_m, double z_y_m) {
     last_update_resampled_ = false;
     return;
   }
+  // Standing since the last fix (issue 27, finding 4): the odometry's mean speed over the interval
+  // is below standstill_speed_mps. Without odometry in between nothing says so: the fix is used
+  // as before.
+  last_update_standing_ = params_.standstill_keeps_heading && since_fix_time_s_ > 0.0 &&
+                          std::abs(since_fix_distance_m_) < params_.standstill_speed_mps * since_fix_time_s_;
+  since_fix_distance_m_ = 0.0;
+  since_fix_time_s_ = 0.0;
   recent_x_[recent_count_ % kRecoveryFixes] = z_x_m;
   recent_y_[recent_count_ % kRecoveryFixes] = z_y_m;
   ++recent_count_;
@@ -238,18 +245,18 @@ void ParticleFilter::update(double z_x_m, double z_y_m) {
     last_update_resampled_ = false;
     return;
   }
-    add_position_log_likelihood(particles_, z_x_m, z_y_m, fix_std_m, log_weights_);
+  add_position_log_likelihood(particles_, z_x_m, z_y_m, fix_std_m, log_weights_);
   if (!normalize_log_weights(log_weights_, weights_)) {
     reset_weights_to_uniform();
   }
   last_update_ess_ = pf_estimator::effective_sample_size(weights_);
   last_update_resampled_ = last_update_ess_ < params_.resample_threshold;
   if (last_update_resampled_) {
-    resample();
+    resample(last_update_standing_);
   }
 }
 
-void ParticleFilter::resample() {
+void ParticleFilter::resample(bool keep_headings) {
   const bool regularize = params_.regularization_scale > 0.0;
   Eigen::Matrix3d jitter_sqrt = Eigen::Matrix3d::Zero();
   Eigen::Vector3d mean = Eigen::Vector3d::Zero();
@@ -276,14 +283,21 @@ void ParticleFilter::resample() {
     const auto ancestor = static_cast<Eigen::Index>(ancestor_indices_[static_cast<std::size_t>(j)]);
     resample_buffer_.x[j] = particles_.x[ancestor];
     resample_buffer_.y[j] = particles_.y[ancestor];
-    resample_buffer_.theta[j] = particles_.theta[ancestor];
-    turn_slip_buffer_[j] = turn_slip_[ancestor];
+    if (!keep_headings) {
+      resample_buffer_.theta[j] = particles_.theta[ancestor];
+      turn_slip_buffer_[j] = turn_slip_[ancestor];
+    }
   }
   // Swapping dynamic Eigen arrays exchanges their buffers: no copy, no allocation.
   particles_.x.swap(resample_buffer_.x);
   particles_.y.swap(resample_buffer_.y);
-  particles_.theta.swap(resample_buffer_.theta);
-  turn_slip_.swap(turn_slip_buffer_);
+  if (!keep_headings) {
+    // Standing, the fix said nothing about the heading and the turn slip: each particle keeps its
+    // own, so resampling does not thin their diversity (issue 27, finding 4). Only the position,
+    // which the fix did observe, is drawn from the weighted cloud.
+    particles_.theta.swap(resample_buffer_.theta);
+    turn_slip_.swap(turn_slip_buffer_);
+  }
   if (regularize) {
     // Shrink towards the mean, then jitter: the cloud keeps its covariance (regularization.hpp).
     for (Eigen::Index j = 0; j < num_particles_; ++j) {
@@ -292,9 +306,11 @@ void ParticleFilter::resample() {
       const Eigen::Vector3d jitter = jitter_sqrt * unit_noise;
       particles_.x[j] = mean.x() + shrink * (particles_.x[j] - mean.x()) + jitter.x();
       particles_.y[j] = mean.y() + shrink * (particles_.y[j] - mean.y()) + jitter.y();
-      particles_.theta[j] =
-          wrap_angle(mean.z() + shrink * wrap_angle(particles_.theta[j] - mean.z()) + jitter.z());
-      turn_slip_[j] = slip_mean + shrink * (turn_slip_[j] - slip_mean) + noise(slip_jitter_std);
+      if (!keep_headings) {
+        particles_.theta[j] =
+            wrap_angle(mean.z() + shrink * wrap_angle(particles_.theta[j] - mean.z()) + jitter.z());
+        turn_slip_[j] = slip_mean + shrink * (turn_slip_[j] - slip_mean) + noise(slip_jitter_std);
+      }
     }
   }
   reset_weights_to_uniform();

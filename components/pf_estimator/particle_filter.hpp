@@ -60,7 +60,7 @@ class ParticleFilter {
   /// ignored (odometry without a pose carries no position information).
   /// Throws std::invalid_argument (state untouched) on non-finite input or dt_s < 0.
   /// omega_var_radps2: the variance the odometry claims for this omega sample ((rad/s)^2, 0 = none):
-  /// with use_odometry_variance the turn noise at standstill is at least its std (issue 27, finding 4).
+  /// with use_odometry_variance the turn noise is at least its std (issue 27, finding 4).
   void predict(double v_mps, double omega_radps, double dt_s, double omega_var_radps2 = 0.0);
 
   /// Checks the fix against the cloud first (gate_probability): an inconsistent fix is rejected
@@ -68,7 +68,8 @@ class ParticleFilter {
   /// (PfParams::recovery_nis) the cloud is redrawn around the last fixes (recover()). Otherwise:
   /// weights the particles with the position fix (z_x_m, z_y_m) (eq. 5, log space), normalises,
   /// computes N_eff (eq. 6) and resamples when N_eff < resample_threshold (then jitters the
-  /// copies if regularization_scale > 0, see regularization.hpp). Degenerate weights are
+  /// copies if regularization_scale > 0, see regularization.hpp); a robot that stood since the
+  /// previous fix (last_update_standing()) resamples the position only. Degenerate weights are
   /// reset to uniform. In kFirstFix mode the first fix initialises the cloud around itself
   /// instead (it is not weighted a second time).
   /// Throws std::invalid_argument (state untouched) on non-finite input.
@@ -79,6 +80,10 @@ class ParticleFilter {
   /// N_eff computed by the last update() before any resampling: the value compared with N_s.
   double last_update_effective_sample_size() const { return last_update_ess_; }
   bool last_update_resampled() const { return last_update_resampled_; }
+  /// True if the robot stood since the fix before the last one (mean odometry speed over the interval
+  /// below standstill_speed_mps, PfParams::standstill_keeps_heading): that fix resampled the position
+  /// only, every particle kept its heading and turn slip (issue 27, finding 4).
+  bool last_update_standing() const { return last_update_standing_; }
   /// Number of resampling steps since construction.
   std::size_t resample_count() const { return resample_count_; }
   /// d^2 of the last fix against the cloud (consistency.hpp); 0 before the first weighted fix.
@@ -128,7 +133,9 @@ class ParticleFilter {
   void start_confirmation();
   double noise(double std_dev);
   void reset_weights_to_uniform();
-  void resample();
+  /// keep_headings: only x and y are drawn from the weighted cloud (and jittered); every particle
+  /// keeps its own heading and turn slip.
+  void resample(bool keep_headings);
 
   PfParams params_;
   RandomEngine engine_;
@@ -147,6 +154,9 @@ class ParticleFilter {
 
   double last_update_ess_;
   bool last_update_resampled_ = false;
+  bool last_update_standing_ = false;
+  double since_fix_distance_m_ = 0.0;  // m, odometry distance (signed) since the last fix
+  double since_fix_time_s_ = 0.0;      // s, odometry time since the last fix
   std::size_t resample_count_ = 0;
 
   double gate_nis_;  // +inf without a gate

@@ -77,9 +77,11 @@ const params::ParamTable<PfParams>& pf_param_table() {
           .add("odom_omega_std_fraction", &PfParams::odom_omega_std_fraction, "", non_negative(),
                "turn-rate noise per particle and prediction, x |omega|")
           .add("use_odometry_variance", &PfParams::use_odometry_variance, "", params::any<bool>(),
-               "true: at standstill the turn-rate noise is at least the std each odometry sample claims (var_omega)")
+               "true: the turn-rate noise is at least the std each odometry sample claims (var_omega)")
+          .add("standstill_keeps_heading", &PfParams::standstill_keeps_heading, "", params::any<bool>(),
+               "true: a fix after standing resamples the position only; every particle keeps its heading and turn slip")
           .add("standstill_speed_mps", &PfParams::standstill_speed_mps, "m/s", non_negative(),
-               "below this odometry speed the robot counts as standing (the fixes cannot see its heading)")
+               "below this mean odometry speed between two fixes the robot counts as standing (the fixes cannot see its heading)")
           .add("process_pos_std_m", &PfParams::process_pos_std_m, "m", non_negative(),
                "extra x and y diffusion per prediction")
           .add("process_theta_std_rad", &PfParams::process_theta_std_rad, "rad", non_negative(),

@@ -60,13 +60,17 @@ struct PfParams {
   double odom_omega_std_radps = 0.005;
   double odom_omega_std_per_mps = 0.02;
   double odom_omega_std_fraction = 0.02;
-  /// At standstill (|v| < standstill_speed_mps) the turn-rate noise is at least the std the
-  /// odometry claims for each sample (var_omega): nothing else can widen the unobserved heading.
-  /// Off by default: on paper1_waypoints it makes the nominal runs consistent (over-confident
-  /// <= 0.49 % on seeds 1-10, before 0-10.3 %) but with fixes 3x noisier than configured a robot
-  /// whose creep budget ran out before its heading was learned then stands with a growing spread
-  /// and never becomes valid (2 of 10 seeds; docs/results/paper1.md, "Degraded sensing").
-  bool use_odometry_variance = false;
+  /// The turn-rate noise is at least the std the odometry claims for each sample (var_omega): the
+  /// simulated odometry's white wheel noise turns the heading also at standstill, where nothing
+  /// else widens the unobserved heading (issue 27, finding 4). false = the wheel model only.
+  bool use_odometry_variance = true;
+  /// A fix after an interval in which the robot stood (the odometry's mean speed since the previous
+  /// fix below standstill_speed_mps) carries no heading information: when it resamples, only the
+  /// position is drawn from the weighted cloud and every particle keeps its own heading and turn
+  /// slip, so repeated resampling does not thin the unobserved heading below the error's random
+  /// walk (issue 27, finding 4). false = every resampling copies whole particles (before).
+  bool standstill_keeps_heading = true;
+  /// The robot counts as standing between two fixes when its odometry's mean speed there is below this.
   double standstill_speed_mps = 0.05;
   /// Additive. Keeps the cloud from collapsing onto a few resampled copies when odometry is very
   /// precise or the robot stands.

@@ -55,4 +55,14 @@ bool next_validity(const PoseEstimate& estimate, const ValidityLimits& limits, b
   return is_valid(estimate, limits.max_position_std_m, heading_limit);
 }
 
+bool ValidityTracker::next(const PoseEstimate& estimate, bool confirmed, std::size_t restarts) {
+  if (restarts != restarts_) {
+    established_ = false;
+    restarts_ = restarts;
+  }
+  const bool valid = confirmed && next_validity(estimate, limits_, established_);
+  established_ = established_ || valid;
+  return valid;
+}
+
 }  // namespace robodds::pf_estimator

@@ -1,6 +1,8 @@
 #pragma once
 // State output of paper 1, eq. (7): the weighted mean of the particles, extended to heading.
 
+#include <cstddef>
+
 #include <Eigen/Core>
 
 #include "components/pf_estimator/particle_set.hpp"
@@ -38,5 +40,23 @@ struct ValidityLimits {
   double keep_max_heading_std_rad = 0.0;   ///< rad, >= enter: to stay valid once valid
 };
 bool next_validity(const PoseEstimate& estimate, const ValidityLimits& limits, bool was_valid);
+
+/// `valid` of one filter's estimates over time (issue 27): valid only when the filter's measurements
+/// confirm it, and with the band of next_validity counted from the first valid estimate since the
+/// filter's last restart, not from the last estimate. A heading spread that passed the keep limit
+/// while manoeuvring, on a robot the controller then stopped (issue 24: no creeping after a valid
+/// estimate), cannot come back below the enter limit standing still, where it honestly grows; below
+/// the keep limit the estimate is valid again. A restart (the cloud redrawn) must enter again.
+class ValidityTracker {
+ public:
+  explicit ValidityTracker(const ValidityLimits& limits) : limits_(limits) {}
+  /// `confirmed`: ParticleFilter::confirmed(); `restarts`: its recovery count.
+  bool next(const PoseEstimate& estimate, bool confirmed, std::size_t restarts);
+
+ private:
+  ValidityLimits limits_;
+  bool established_ = false;  // valid at some estimate since the last restart
+  std::size_t restarts_ = 0;
+};
 
 }  // namespace robodds::pf_estimator

@@ -22,8 +22,8 @@ class PfEstimatorNode : public Component {
     const PfParams& params = node_params.filter;
     const double rate_hz = node_params.rate_hz;
     p.validate(node_params);
-    validity_ = {node_params.valid_max_position_std_m, node_params.valid_max_heading_std_rad,
-                 node_params.valid_keep_max_heading_std_rad};
+    const ValidityLimits limits{node_params.valid_max_position_std_m, node_params.valid_max_heading_std_rad,
+                                node_params.valid_keep_max_heading_std_rad};
     ctx.set_rate_hz(rate_hz, "rate_hz");
     input_timeout_s_ = node_params.input_timeout_s;
     ctx.require_longer_than_period("input_timeout_s", input_timeout_s_);
@@ -33,6 +33,7 @@ class PfEstimatorNode : public Component {
     realtime_ = ctx.mode() == TimeMode::kRealtime;
     for (const RobotSpec& robot : ctx.robots()) {
       filters_.emplace(robot.id, std::make_unique<ParticleFilter>(params, ctx.seed_for("robot" + std::to_string(robot.id))));
+      validity_.emplace(robot.id, ValidityTracker(limits));
     }
     const auto keys = ctx.robot_keys();
     odometry_ = &ctx.subscribe<idl::Odometry>("sensor/odometry", Subscription::instances(keys));
@@ -67,7 +68,7 @@ class PfEstimatorNode : public Component {
       // The estimate is published every step but the cloud only changes with new odometry or
       // fixes: reuse the last estimate otherwise (it costs a pass with sin/cos over M particles).
       if (!odometry.empty() || !fixes.empty() || published_.count(id) == 0) {
-        published_[id] = to_message(id, *filter, published_[id].valid());
+        published_[id] = to_message(id, *filter, validity_.at(id));
       }
       if (realtime_ && !inputs_fresh(id)) {
         // Safe behaviour: a filter without fresh sensors says so, and its consumers stop.
@@ -92,9 +93,9 @@ class PfEstimatorNode : public Component {
     }
   }
 
-  /// `was_valid`: the filter's own judgement at its last estimate (not the real-time staleness
-  /// override: stale inputs say nothing about what the cloud knows).
-  idl::PoseEstimate to_message(std::uint32_t id, const ParticleFilter& filter, bool was_valid) const {
+  /// `validity`: the filter's own judgement (not the real-time staleness override: stale inputs say
+  /// nothing about what the cloud knows).
+  static idl::PoseEstimate to_message(std::uint32_t id, const ParticleFilter& filter, ValidityTracker& validity) {
     idl::PoseEstimate m;
     m.robot_id(id);
     if (filter.initialized()) {
@@ -107,7 +108,7 @@ class PfEstimatorNode : public Component {
       }
       // The spread alone is no proof (a heading given as known has none): the measurements must
       // have confirmed the belief first (issue 27).
-      m.valid(filter.confirmed() && next_validity(e, validity_, was_valid));
+      m.valid(validity.next(e, filter.confirmed(), filter.recovery_count()));
       m.restarts(static_cast<std::uint32_t>(filter.recovery_count()));  // a consumer sees each redraw, even one it missed
     }
     return m;
@@ -115,7 +116,7 @@ class PfEstimatorNode : public Component {
 
   std::map<std::uint32_t, std::unique_ptr<ParticleFilter>> filters_;
   std::map<std::uint32_t, idl::PoseEstimate> published_;  // last estimate per robot
-  ValidityLimits validity_;
+  std::map<std::uint32_t, ValidityTracker> validity_;  // per robot
   double input_timeout_s_ = 0.5;
   bool realtime_ = false;
   Input<idl::Odometry>* odometry_ = nullptr;

@@ -527,11 +527,132 @@ double heading_std_after_standing(bool use_odometry_variance, double omega_var) 
   return std::sqrt(filter.estimate().covariance(2, 2));
 }
 
+// ... and while driving, before the fixes see the heading: the wheel model's 0.025 rad/s at 1 m/s
+// alone would let the estimate turn away from a known start heading at a spread of a quarter of
+// the claim's (the first seconds of standstill_600s: 2-6 deg off at 0.7-1.8 deg reported).
+TEST(ParticleFilter, HeadingSpreadFollowsTheTurnNoiseTheOdometryClaimsWhileDriving) {
+  PfParams params = first_fix_params();
+  params.init_theta_known = true;
+  params.turn_slip_std_radpm = 0.0;  // only the turn noise
+  params.turn_slip_walk_std_radpm = 0.0;
+  ParticleFilter filter(params, 12);
+  filter.update(0.0, 0.0);
+  for (int step = 0; step < 3000; ++step) {  // 60 s at 1 m/s, no fixes
+    filter.predict(1.0, 0.0, 0.02, 0.0089);
+  }
+  const double expected = std::sqrt(3000.0) * std::sqrt(0.0089) * 0.02;  // 0.103 rad
+  EXPECT_NEAR(std::sqrt(filter.estimate().covariance(2, 2)), expected, 0.1 * expected);
+}
+
 TEST(ParticleFilter, HeadingSpreadFollowsTheTurnNoiseTheOdometryClaimsAtStandstill) {
   const double expected = std::sqrt(3000.0) * std::sqrt(0.0089) * 0.02;  // random walk: 0.103 rad
   EXPECT_NEAR(heading_std_after_standing(true, 0.0089), expected, 0.1 * expected);
   EXPECT_LT(heading_std_after_standing(false, 0.0089), 0.1 * expected) << "the claim ignored";
   EXPECT_LT(heading_std_after_standing(true, 0.0), 0.1 * expected) << "no claim: the wheel model";
+}
+
+// Issue 27, finding 4: a fix after an interval in which the robot stood carries no heading
+// information. When it resamples, only the position is drawn from the weighted cloud: every
+// particle keeps its own heading and turn slip (before, whole particles were copied, thinning the
+// heading at every resampling). A moving robot's fix resamples whole particles as always.
+struct ResampledOnce {
+  bool standing = false;
+  bool resampled = false;
+  bool headings_kept = false;
+  bool positions_kept = false;
+};
+
+ResampledOnce resample_once(double v_mps, bool standstill_keeps_heading) {
+  PfParams params = first_fix_params();
+  params.resample_threshold = 1000.0;  // any uneven weights resample
+  params.standstill_keeps_heading = standstill_keeps_heading;
+  ParticleFilter filter(params, 44);
+  RandomEngine world(derive_seed(44, "cloud"));
+  ParticleSet start = particles_at(1000, 0.0, 0.0, 0.0);
+  for (Eigen::Index i = 0; i < 1000; ++i) {
+    start.x[i] = standard_normal(world);
+    start.y[i] = standard_normal(world);
+    start.theta[i] = 0.5 * standard_normal(world);
+  }
+  filter.set_particles(start, Eigen::ArrayXd::Ones(1000));
+  for (int k = 0; k < 5; ++k) {
+    filter.predict(v_mps, 0.0, 0.02);
+  }
+  const ParticleSet before = filter.particles();
+  filter.update(0.5, 0.0);
+  ResampledOnce out;
+  out.standing = filter.last_update_standing();
+  out.resampled = filter.last_update_resampled();
+  out.headings_kept = (filter.particles().theta == before.theta).all();
+  out.positions_kept = (filter.particles().x == before.x).all();
+  return out;
+}
+
+TEST(ParticleFilter, AFixAfterStandingResamplesThePositionOnlyAndKeepsEveryHeading) {
+  const ResampledOnce standing = resample_once(0.0, true);
+  EXPECT_TRUE(standing.standing);
+  ASSERT_TRUE(standing.resampled);
+  EXPECT_TRUE(standing.headings_kept) << "a standing robot's fix must not resample the heading";
+  EXPECT_FALSE(standing.positions_kept) << "the position is resampled";
+  // Below standstill_speed_mps (0.05 m/s) on average: still standing.
+  EXPECT_TRUE(resample_once(0.04, true).headings_kept);
+  // Moving: whole particles are copied, the heading with them (the fixes observe it).
+  const ResampledOnce moving = resample_once(0.3, true);
+  EXPECT_FALSE(moving.standing);
+  ASSERT_TRUE(moving.resampled);
+  EXPECT_FALSE(moving.headings_kept);
+  // Turned off: the behaviour before issue 27.
+  const ResampledOnce off = resample_once(0.0, false);
+  EXPECT_FALSE(off.standing);
+  ASSERT_TRUE(off.resampled);
+  EXPECT_FALSE(off.headings_kept);
+}
+
+// Issue 27, finding 4, the whole effect: a robot standing 600 s with fixes at 10 Hz and odometry
+// at 50 Hz that claims the simulated sensor's turn noise (var_omega 0.0089 (rad/s)^2, white, also
+// at standstill). The true heading error is a random walk of that noise, so an honest spread is
+// sqrt(std_0^2 + 0.0089 dt^2 n) after n predictions (the filter's own wheel-model part adds a
+// little). Copying whole particles at every resampling thinned it below that.
+double heading_std_after_standing_with_fixes(bool standstill_keeps_heading, double* expected_rad) {
+  PfParams params = first_fix_params();
+  params.standstill_keeps_heading = standstill_keeps_heading;
+  ParticleFilter filter(params, 45);
+  RandomEngine world(derive_seed(45, "standstill"));
+  ParticleSet start = particles_at(1000, 0.0, 0.0, 0.5);
+  for (Eigen::Index i = 0; i < 1000; ++i) {
+    start.x[i] = 0.3 * standard_normal(world);
+    start.y[i] = 0.3 * standard_normal(world);
+    start.theta[i] = 0.5 + 2.0 * kDeg * standard_normal(world);
+  }
+  filter.set_particles(start, Eigen::ArrayXd::Ones(1000));
+  const double var_start = filter.estimate().covariance(2, 2);
+  constexpr double kOmegaVar = 0.0089;
+  constexpr double kDt = 0.02;
+  constexpr int kFixes = 6000;
+  for (int fix = 0; fix < kFixes; ++fix) {
+    for (int k = 0; k < 5; ++k) {
+      filter.predict(0.0, 0.0, kDt, kOmegaVar);
+    }
+    filter.update(kFixStd * standard_normal(world), kFixStd * standard_normal(world));
+  }
+  *expected_rad = std::sqrt(var_start + kOmegaVar * kDt * kDt * 5.0 * kFixes);
+  EXPECT_GT(filter.resample_count(), 100u) << "the position was resampled";
+  ::testing::Test::RecordProperty(standstill_keeps_heading ? "resamples" : "resamples_whole_particles",
+                                  std::to_string(filter.resample_count()));
+  return std::sqrt(filter.estimate().covariance(2, 2));
+}
+
+TEST(ParticleFilter, AtStandstillTheHeadingSpreadGrowsWithTheOdometrysTurnNoiseDespiteResampling) {
+  double expected = 0.0;
+  const double kept = heading_std_after_standing_with_fixes(true, &expected);
+  RecordProperty("expected_heading_std_deg", std::to_string(expected / kDeg));
+  RecordProperty("heading_std_deg", std::to_string(kept / kDeg));
+  EXPECT_NEAR(kept, expected, 0.05 * expected);  // measured: 18.87 deg against 18.82
+  // Copying whole particles (before): 17.16 deg, 9 % low after ~300 resamplings (a random
+  // sub-sample of the headings each time); the same seed, so this is a fixed figure.
+  const double thinned = heading_std_after_standing_with_fixes(false, &expected);
+  RecordProperty("heading_std_whole_particles_deg", std::to_string(thinned / kDeg));
+  EXPECT_LT(thinned, 0.95 * expected) << "whole-particle resampling thins the unobserved heading";
 }
 
 TEST(ParticleFilter, NoTurnNoiseWithoutWheelMotion) {

@@ -90,5 +90,21 @@ TEST(NextValidity, NoBandWhenTheKeepLimitIsTheEnterLimitAndNoHeadingCheckAtZero)
   EXPECT_TRUE(next_validity(with_stds(1.0, 3.0), {3.0, 0.0, 0.35}, true));
 }
 
+// Issue 27: once valid since the filter's last restart, an estimate whose heading spread passed the
+// keep limit is valid again below the keep limit (a stopped robot cannot bring it below the enter
+// limit); unconfirmed never; after a restart it must enter again.
+TEST(ValidityTracker, ReentersBelowTheKeepLimitUntilTheFilterRestarts) {
+  ValidityTracker validity({3.0, 0.2, 0.35});
+  EXPECT_FALSE(validity.next(with_stds(1.0, 0.25), true, 0));   // in the band, never valid yet
+  EXPECT_FALSE(validity.next(with_stds(1.0, 0.1), false, 0));   // not confirmed by the fixes
+  EXPECT_TRUE(validity.next(with_stds(1.0, 0.19), true, 0));    // enters
+  EXPECT_FALSE(validity.next(with_stds(1.0, 0.36), true, 0));   // beyond the keep limit
+  EXPECT_TRUE(validity.next(with_stds(1.0, 0.3), true, 0)) << "established: the keep limit applies";
+  EXPECT_FALSE(validity.next(with_stds(3.5, 0.1), true, 0));    // position: no band
+  EXPECT_FALSE(validity.next(with_stds(1.0, 0.3), true, 1)) << "restarted: must enter again";
+  EXPECT_TRUE(validity.next(with_stds(1.0, 0.19), true, 1));
+  EXPECT_TRUE(validity.next(with_stds(1.0, 0.3), true, 1));
+}
+
 }  // namespace
 }  // namespace robodds::pf_estimator
