@@ -30,6 +30,12 @@ struct UncertaintyParams {
   double range_common_std_m = 0.30;
   /// Epochs whose residual std form the running median of the independent range std.
   int noise_window_epochs = 50;
+  /// Time constant of the common-mode range error (s): how long the particle filters' measurement
+  /// errors stay alike (FilterErrorCovariance). The UWB sensor's pair common mode: 10 s.
+  double range_common_time_s = 10.0;
+  /// Time constant of each link's independent range error (s), the white part counted as lasting
+  /// as long (conservative). The UWB sensor's link bias: 2 s.
+  double range_link_time_s = 2.0;
   /// Throws std::invalid_argument "key: requirement (got value)".
   void validate() const;
 };
@@ -55,6 +61,27 @@ double residual_rms_std_m(const model::UwbArray& own, const model::UwbArray& oth
 /// ranges. NaN entries when J^T J is singular (a degenerate geometry: nothing to report).
 Eigen::Matrix3d range_fix_covariance(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
                                      double independent_std_m, double common_std_m);
+
+/// How one epoch's range errors reach a least-squares pose fit at `pose`: e_pose = B u + a c for the
+/// K L independent range errors u (std independent_std_m each) and the common one c (std
+/// common_std_m); B = (J^T J)^-1 J^T (3 x K L), a = B 1. covariance() is range_fix_covariance's.
+struct RangeErrorMap {
+  Eigen::Matrix<double, 3, Eigen::Dynamic> independent_map;  // B
+  Eigen::Vector3d common_map = Eigen::Vector3d::Zero();      // a
+  double independent_std_m = 0.0;
+  double common_std_m = 0.0;
+  /// s_i^2 B B^T + s_c^2 a a^T.
+  Eigen::Matrix3d covariance() const;
+};
+
+/// The map at `pose`; false (and `out` untouched) when J^T J is singular (degenerate geometry).
+bool range_error_map(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
+                     double independent_std_m, double common_std_m, RangeErrorMap& out);
+
+/// Jacobian of x' = inverse(m_i) x m_j (the dead reckoning of a relative pose over one epoch) with
+/// respect to (x, m_i, m_j) stacked (3 x 9; central differences, heading differences wrapped).
+Eigen::Matrix<double, 3, 9> relative_motion_jacobian(const model::Pose2& x, const model::Pose2& own_increment,
+                                                     const model::Pose2& other_increment);
 
 /// Dead reckoning of a relative pose x (peer j in robot i's frame) over one epoch,
 /// x' = inverse(m_i) x m_j: the covariance P of x propagated to x', plus both increments' noise
