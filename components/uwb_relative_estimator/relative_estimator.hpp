@@ -142,11 +142,20 @@ class RelativeEstimator {
     RangeNoiseLevel range_noise;  // independent range std seen in this peer's eq. (1) residuals
     FilterErrorCovariance pf_error;        // what the pf stage reports
     FilterErrorCovariance baseline_error;  // what the pf_baseline stage reports
+    InnovationMonitor pf_check;        // the filters against the eq. (1) fixes
+    InnovationMonitor baseline_check;
     model::Pose2 pf_pose;        // the filters' estimates of the previous epoch (where their
     model::Pose2 baseline_pose;  // error covariances are propagated from)
     std::optional<model::Pose2> odometry_pose;
     Eigen::Matrix3d odometry_covariance = Eigen::Matrix3d::Zero();
     std::deque<bool> window_edges;  // per epoch in the window: an eq. (1) edge to this peer
+    /// Per epoch in the window: the per-range variances its eq. (1) edge reported (empty: none).
+    std::deque<Eigen::VectorXd> window_variances;
+    /// How the range errors reach the window's pose of this epoch (the pf's measurement);
+    /// window_mapped false when there is none.
+    RangeErrorMap window_error;
+    bool window_mapped = false;
+    Eigen::VectorXd fix_variances;  // this epoch's eq. (1) per-range variances (empty: no ok fix)
     std::optional<double> last_fix_s;     // last epoch with a valid eq. (1) pose (the window's edges)
     std::optional<double> last_frame_s;   // last epoch with an accepted frame (the baseline's input)
   };

@@ -42,7 +42,11 @@ const params::ParamTable<UncertaintyParams>& uncertainty_param_table() {
           .add("range_common_time_s", &P::range_common_time_s, "s", params::positive(),
                "pf, pf_baseline: time constant of the common-mode range error (how long their measurements' errors stay alike)")
           .add("range_link_time_s", &P::range_link_time_s, "s", params::positive(),
-               "pf, pf_baseline: time constant of each link's independent range error (white noise counted as lasting as long)");
+               "pf, pf_baseline: time constant of each link's independent range error (white noise counted as lasting as long)")
+          .add("innovation_window_epochs", &P::innovation_window_epochs, "epochs", params::at_least(1),
+               "pf, pf_baseline: epochs of eq. (1) fixes whose median innovation, beyond their covariance, widens the filter's")
+          .add("outlier_sigma", &P::outlier_sigma, "", params::positive(),
+               "a range whose leave-one-out residual exceeds this many range stds gets its own variance (that residual squared)");
   return table;
 }
 
@@ -143,7 +147,7 @@ Eigen::Matrix3d range_fix_covariance(const model::UwbArray& own, const model::Uw
 }
 
 Eigen::Matrix3d RangeErrorMap::covariance() const {
-  return independent_std_m * independent_std_m * independent_map * independent_map.transpose() +
+  return independent_map * independent_variance_m2.asDiagonal() * independent_map.transpose() +
          common_std_m * common_std_m * common_map * common_map.transpose();
 }
 
@@ -156,9 +160,50 @@ bool range_error_map(const model::UwbArray& own, const model::UwbArray& other, c
   }
   out.independent_map = inverse * jacobian.transpose();
   out.common_map = out.independent_map.rowwise().sum();
-  out.independent_std_m = independent_std_m;
+  out.independent_variance_m2 = Eigen::VectorXd::Constant(jacobian.rows(), independent_std_m * independent_std_m);
   out.common_std_m = common_std_m;
   return true;
+}
+
+Eigen::VectorXd range_error_variances(const model::UwbArray& own, const model::UwbArray& other,
+                                      const Eigen::MatrixXd& ranges_m, const model::Pose2& pose, double base_std_m,
+                                      double detect_std_m, double outlier_sigma) {
+  const Eigen::Index n = ranges_m.size();
+  Eigen::VectorXd variances = Eigen::VectorXd::Constant(n, base_std_m * base_std_m);
+  Eigen::MatrixXd jacobian;
+  Eigen::Matrix3d inverse;
+  if (!range_jacobian(own, other, pose, jacobian) || !information_inverse(jacobian, inverse)) {
+    return variances;
+  }
+  const double limit = outlier_sigma * detect_std_m;
+  Eigen::Index row = 0;
+  for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
+    for (Eigen::Index l = 0; l < ranges_m.cols(); ++l, ++row) {
+      const double residual = ranges_m(k, l) - predicted_range(pose, own.nodes_m[static_cast<std::size_t>(k)],
+                                                               other.nodes_m[static_cast<std::size_t>(l)]);
+      const double leverage = jacobian.row(row) * inverse * jacobian.row(row).transpose();
+      // h_k < 1 with more ranges than unknowns; a range the fit follows completely says nothing.
+      const double left_out = residual / std::max(1.0 - leverage, 1e-3);
+      if (std::abs(left_out) > limit) {
+        variances(row) = std::max(variances(row), left_out * left_out);
+      }
+    }
+  }
+  return variances;
+}
+
+Eigen::Matrix3d with_bearing_curvature(const Eigen::Matrix3d& covariance, const model::Pose2& pose) {
+  const Eigen::Vector2d p(pose.x, pose.y);
+  const double range = p.norm();
+  if (!(range > 0.0) || !covariance.allFinite()) {
+    return covariance;
+  }
+  const Eigen::Vector2d radial = p / range;
+  const Eigen::Vector2d tangential(-radial.y(), radial.x());
+  const double bearing_variance = std::min(1.0, tangential.dot(covariance.topLeftCorner<2, 2>() * tangential) / (range * range));
+  Eigen::Matrix3d out = covariance;
+  out.topLeftCorner<2, 2>() += 0.75 * range * range * bearing_variance * bearing_variance * radial * radial.transpose();
+  return out;
 }
 
 Eigen::Matrix<double, 3, 9> relative_motion_jacobian(const model::Pose2& x, const model::Pose2& own_increment,

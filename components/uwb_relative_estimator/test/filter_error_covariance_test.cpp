@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+
 #include <cmath>
 #include <stdexcept>
 #include <vector>
@@ -18,6 +20,10 @@ namespace {
 constexpr double kEpochS = 0.1;
 
 Eigen::Matrix3d diagonal(double a, double b, double c) { return Eigen::Vector3d(a, b, c).asDiagonal().toDenseMatrix(); }
+
+double position_d2_of(const Eigen::Vector3d& e, const Eigen::Matrix3d& covariance) {
+  return e.head<2>().dot(covariance.topLeftCorner<2, 2>().inverse() * e.head<2>());
+}
 
 UncertaintyParams times(double common_s, double link_s) {
   UncertaintyParams p;
@@ -174,6 +180,43 @@ TEST(FilterErrorCovariance, BadTimeConstantsNameTheKey) {
     EXPECT_NE(std::string(e.what()).find("range_link_time_s"), std::string::npos) << e.what();
   }
   EXPECT_THROW(FilterErrorCovariance(times(-1.0, 2.0)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace robodds::uwb_relative_estimator
+
+namespace robodds::uwb_relative_estimator {
+namespace {
+
+TEST(InnovationMonitor, AFilterThatFollowsItsFixesAddsLittleOneThatLostThemAddsTheDiscrepancy) {
+  UncertaintyParams params;  // 50 fixes
+  const Eigen::Matrix3d fix_covariance = diagonal(1.0, 0.25, 0.01);
+  RandomEngine random(5);
+  const auto fix_around = [&](const model::Pose2& p) {
+    return model::Pose2{p.x + standard_normal(random), p.y + 0.5 * standard_normal(random),
+                        p.theta + 0.1 * standard_normal(random)};
+  };
+  const model::Pose2 truth{5.0, 2.0, 0.3};
+  InnovationMonitor following(params);
+  InnovationMonitor lost(params);
+  const model::Pose2 off{truth.x - 4.0, truth.y + 3.0, truth.theta};  // 5 m off
+  double following_trace = 0.0;
+  for (int t = 0; t < 500; ++t) {
+    const model::Pose2 fix = fix_around(truth);
+    following.add(truth, fix, fix_covariance);
+    lost.add(off, fix, fix_covariance);
+    following_trace += following.excess().trace();
+  }
+  EXPECT_LT(following_trace / 500, 0.05 * fix_covariance.trace()) << "a consistent filter: about nothing";
+  const Eigen::Matrix3d excess = lost.excess();
+  const Eigen::Vector3d e(off.x - truth.x, off.y - truth.y, 0.0);
+  EXPECT_LT(position_d2_of(e, excess + fix_covariance), 2.0) << excess;  // the error is now within ~1.4 sigma
+  lost.reset();
+  EXPECT_TRUE(lost.excess().isZero()) << "no fixes since the restart";
+  for (int t = 0; t < 9; ++t) lost.add(off, fix_around(truth), fix_covariance);
+  EXPECT_TRUE(lost.excess().isZero()) << "fewer than a fifth of the window";
+  lost.add(off, fix_around(truth), fix_covariance);
+  EXPECT_FALSE(lost.excess().isZero());
 }
 
 }  // namespace
