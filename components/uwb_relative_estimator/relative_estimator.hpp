@@ -55,7 +55,9 @@ struct StageEstimate {
   bool valid = false;
   /// Covariance of [x, y, theta] (m^2, m rad, rad^2): the filters': the covariance of their error
   /// when their measurements' errors last as long as the range errors do (FilterErrorCovariance;
-  /// the particles' spread counts every epoch's measurement as new, and is not reported); uwb: the least-squares fit's (range_fix_covariance, with the range noise estimated from the
+  /// the particles' spread counts every epoch's measurement as new, and is not reported), plus the
+  /// eq. (1) fixes' unexplained median innovation (InnovationMonitor); every UWB stage: each range
+  /// an outlier's own variance when beyond outlier_sigma, plus the bearing's curvature; uwb: the least-squares fit's (range_fix_covariance, with the range noise estimated from the
   /// residuals); window: the same at the window's pose (the fixes' errors last longer than the
   /// window, so averaging them is given no credit); odometry: propagated from the start (zero
   /// when known, else the first fix's) with the window's odometry stds per epoch. Zero when not
