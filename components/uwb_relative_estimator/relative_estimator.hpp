@@ -36,6 +36,7 @@
 #include "common/model/pose2.hpp"
 #include "common/model/uwb_array.hpp"
 #include "common/random.hpp"
+#include "components/uwb_relative_estimator/filter_error_covariance.hpp"
 #include "components/uwb_relative_estimator/relative_estimator_params.hpp"
 #include "components/uwb_relative_estimator/relative_pf.hpp"
 #include "components/uwb_relative_estimator/relative_pose_covariance.hpp"
@@ -52,8 +53,11 @@ const char* stage_name(Stage stage);
 struct StageEstimate {
   model::Pose2 pose;  // peer in this robot's body frame: x forward, y left (m), theta CCW (rad)
   bool valid = false;
-  /// Covariance of [x, y, theta] (m^2, m rad, rad^2): the filters' particles' weighted covariance;
-  /// uwb: the least-squares fit's (range_fix_covariance, with the range noise estimated from the
+  /// Covariance of [x, y, theta] (m^2, m rad, rad^2): the filters': the covariance of their error
+  /// when their measurements' errors last as long as the range errors do (FilterErrorCovariance;
+  /// the particles' spread counts every epoch's measurement as new, and is not reported), plus the
+  /// eq. (1) fixes' unexplained median innovation (InnovationMonitor); every UWB stage: each range
+  /// an outlier's own variance when beyond outlier_sigma, plus the bearing's curvature; uwb: the least-squares fit's (range_fix_covariance, with the range noise estimated from the
   /// residuals); window: the same at the window's pose (the fixes' errors last longer than the
   /// window, so averaging them is given no credit); odometry: propagated from the start (zero
   /// when known, else the first fix's) with the window's odometry stds per epoch. Zero when not
@@ -138,9 +142,22 @@ class RelativeEstimator {
     RandomEngine pf_random;
     RandomEngine baseline_random;
     RangeNoiseLevel range_noise;  // independent range std seen in this peer's eq. (1) residuals
+    FilterErrorCovariance pf_error;        // what the pf stage reports
+    FilterErrorCovariance baseline_error;  // what the pf_baseline stage reports
+    InnovationMonitor pf_check;        // the filters against the eq. (1) fixes
+    InnovationMonitor baseline_check;
+    model::Pose2 pf_pose;        // the filters' estimates of the previous epoch (where their
+    model::Pose2 baseline_pose;  // error covariances are propagated from)
     std::optional<model::Pose2> odometry_pose;
     Eigen::Matrix3d odometry_covariance = Eigen::Matrix3d::Zero();
     std::deque<bool> window_edges;  // per epoch in the window: an eq. (1) edge to this peer
+    /// Per epoch in the window: the per-range variances its eq. (1) edge reported (empty: none).
+    std::deque<Eigen::VectorXd> window_variances;
+    /// How the range errors reach the window's pose of this epoch (the pf's measurement);
+    /// window_mapped false when there is none.
+    RangeErrorMap window_error;
+    bool window_mapped = false;
+    Eigen::VectorXd fix_variances;  // this epoch's eq. (1) per-range variances (empty: no ok fix)
     std::optional<double> last_fix_s;     // last epoch with a valid eq. (1) pose (the window's edges)
     std::optional<double> last_frame_s;   // last epoch with an accepted frame (the baseline's input)
   };
@@ -149,6 +166,10 @@ class RelativeEstimator {
                   const std::vector<PairMeasurement>& link_edges, EpochResult& result);
   /// Peer `k` has an eq. (1) edge in the window: its poses there rest on a measurement.
   bool placed(std::size_t k) const;
+  void run_pf(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment, const PeerEpoch& input,
+              PeerResult& result);
+  void run_baseline(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment, const PeerEpoch& input,
+                    PeerResult& result);
 
   model::UwbArray own_array_;
   std::vector<PeerSetup> setups_;

@@ -29,7 +29,7 @@ const params::ParamTable<RelativeEstimatorParams>& relative_estimator_param_tabl
           .include_as("tracker", &P::tracker, tracker_param_table(), "eq. (1) epoch after epoch: cold-start recovery")
           .include_as("pf", &P::pf, relative_pf_param_table(), "eq. (3)-(6) particle filter and the baseline [22]")
           .include_as("uncertainty", &P::uncertainty, uncertainty_param_table(),
-                      "reported covariances of the uwb, window and odometry stages (issue 27)");
+                      "reported covariances of every stage (issue 27)");
   return table;
 }
 

@@ -32,13 +32,21 @@ Eigen::Vector3d dead_reckon(const Eigen::Matrix<double, 9, 1>& v) {
 const params::ParamTable<UncertaintyParams>& uncertainty_param_table() {
   using P = UncertaintyParams;
   static const params::ParamTable<P> table =
-      params::ParamTable<P>("Reported covariances of the uwb, window and odometry stages (issue 27).")
+      params::ParamTable<P>("Reported covariances of every stage (issue 27).")
           .add("range_std_floor_m", &P::range_std_floor_m, "m", params::positive(),
                "floor of the independent per-range std estimated from the residuals (the configured range noise)")
           .add("range_common_std_m", &P::range_common_std_m, "m", params::non_negative(),
                "std of the range error common to all links of a robot pair (one epoch cannot see it)")
           .add("noise_window_epochs", &P::noise_window_epochs, "epochs", params::at_least(1),
-               "epochs whose residual std form the running median of the range noise");
+               "epochs whose residual std form the running median of the range noise")
+          .add("range_common_time_s", &P::range_common_time_s, "s", params::positive(),
+               "pf, pf_baseline: time constant of the common-mode range error (how long their measurements' errors stay alike)")
+          .add("range_link_time_s", &P::range_link_time_s, "s", params::positive(),
+               "pf, pf_baseline: time constant of each link's independent range error (white noise counted as lasting as long)")
+          .add("innovation_window_epochs", &P::innovation_window_epochs, "epochs", params::at_least(1),
+               "pf, pf_baseline: epochs of eq. (1) fixes whose median innovation, beyond their covariance, widens the filter's")
+          .add("outlier_sigma", &P::outlier_sigma, "", params::positive(),
+               "a range whose leave-one-out residual exceeds this many range stds gets its own variance (that residual squared)");
   return table;
 }
 
@@ -85,10 +93,13 @@ double residual_rms_std_m(const model::UwbArray& own, const model::UwbArray& oth
   return std::sqrt(sum / static_cast<double>(n - 3));
 }
 
-Eigen::Matrix3d range_fix_covariance(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
-                                     double independent_std_m, double common_std_m) {
+namespace {
+
+/// The K L x 3 Jacobian of the predicted ranges at `pose`; false at coincident nodes (no gradient).
+bool range_jacobian(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
+                    Eigen::MatrixXd& jacobian) {
   const Eigen::Index n = static_cast<Eigen::Index>(own.nodes_m.size() * other.nodes_m.size());
-  Eigen::MatrixXd jacobian(n, 3);
+  jacobian.resize(n, 3);
   const double c = std::cos(pose.theta);
   const double s = std::sin(pose.theta);
   Eigen::Index row = 0;
@@ -100,27 +111,103 @@ Eigen::Matrix3d range_fix_covariance(const model::UwbArray& own, const model::Uw
                               pose.y + s * node_j.x() + c * node_j.y() - node_i.y());
       const double d = p.norm();
       if (!(d > 0.0)) {
-        return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());  // coincident nodes: no gradient
+        return false;
       }
       jacobian.row(row++) << p.x() / d, p.y() / d, p.dot(rotated_derivative) / d;
     }
   }
+  return true;
+}
+
+/// (J^T J)^-1; false when singular or too ill-conditioned to mean anything in double precision.
+bool information_inverse(const Eigen::MatrixXd& jacobian, Eigen::Matrix3d& inverse) {
   const Eigen::Matrix3d information = jacobian.transpose() * jacobian;
   const Eigen::LDLT<Eigen::Matrix3d> ldlt(information);
   // A condition number beyond ~1e12 leaves (J^T J)^-1 meaningless in double precision.
   const Eigen::Vector3d d = ldlt.vectorD().cwiseAbs();
   if (ldlt.info() != Eigen::Success || !(d.minCoeff() > 1e-12 * d.maxCoeff())) {
+    return false;
+  }
+  inverse = ldlt.solve(Eigen::Matrix3d::Identity());
+  return true;
+}
+
+}  // namespace
+
+Eigen::Matrix3d range_fix_covariance(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
+                                     double independent_std_m, double common_std_m) {
+  Eigen::MatrixXd jacobian;
+  Eigen::Matrix3d inverse;
+  if (!range_jacobian(own, other, pose, jacobian) || !information_inverse(jacobian, inverse)) {
     return Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());
   }
-  const Eigen::Matrix3d inverse = ldlt.solve(Eigen::Matrix3d::Identity());
-  const Eigen::Vector3d common_shift = inverse * (jacobian.transpose() * Eigen::VectorXd::Ones(n));
+  const Eigen::Vector3d common_shift = inverse * (jacobian.transpose() * Eigen::VectorXd::Ones(jacobian.rows()));
   return independent_std_m * independent_std_m * inverse +
          common_std_m * common_std_m * common_shift * common_shift.transpose();
 }
 
-Eigen::Matrix3d propagate_relative_covariance(const Eigen::Matrix3d& covariance, const model::Pose2& x,
-                                              const model::Pose2& own_increment, const model::Pose2& other_increment,
-                                              double xy_std_m, double theta_std_rad) {
+Eigen::Matrix3d RangeErrorMap::covariance() const {
+  return independent_map * independent_variance_m2.asDiagonal() * independent_map.transpose() +
+         common_std_m * common_std_m * common_map * common_map.transpose();
+}
+
+bool range_error_map(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
+                     double independent_std_m, double common_std_m, RangeErrorMap& out) {
+  Eigen::MatrixXd jacobian;
+  Eigen::Matrix3d inverse;
+  if (!range_jacobian(own, other, pose, jacobian) || !information_inverse(jacobian, inverse)) {
+    return false;
+  }
+  out.independent_map = inverse * jacobian.transpose();
+  out.common_map = out.independent_map.rowwise().sum();
+  out.independent_variance_m2 = Eigen::VectorXd::Constant(jacobian.rows(), independent_std_m * independent_std_m);
+  out.common_std_m = common_std_m;
+  return true;
+}
+
+Eigen::VectorXd range_error_variances(const model::UwbArray& own, const model::UwbArray& other,
+                                      const Eigen::MatrixXd& ranges_m, const model::Pose2& pose, double base_std_m,
+                                      double detect_std_m, double outlier_sigma) {
+  const Eigen::Index n = ranges_m.size();
+  Eigen::VectorXd variances = Eigen::VectorXd::Constant(n, base_std_m * base_std_m);
+  Eigen::MatrixXd jacobian;
+  Eigen::Matrix3d inverse;
+  if (!range_jacobian(own, other, pose, jacobian) || !information_inverse(jacobian, inverse)) {
+    return variances;
+  }
+  const double limit = outlier_sigma * detect_std_m;
+  Eigen::Index row = 0;
+  for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
+    for (Eigen::Index l = 0; l < ranges_m.cols(); ++l, ++row) {
+      const double residual = ranges_m(k, l) - predicted_range(pose, own.nodes_m[static_cast<std::size_t>(k)],
+                                                               other.nodes_m[static_cast<std::size_t>(l)]);
+      const double leverage = jacobian.row(row) * inverse * jacobian.row(row).transpose();
+      // h_k < 1 with more ranges than unknowns; a range the fit follows completely says nothing.
+      const double left_out = residual / std::max(1.0 - leverage, 1e-3);
+      if (std::abs(left_out) > limit) {
+        variances(row) = std::max(variances(row), left_out * left_out);
+      }
+    }
+  }
+  return variances;
+}
+
+Eigen::Matrix3d with_bearing_curvature(const Eigen::Matrix3d& covariance, const model::Pose2& pose) {
+  const Eigen::Vector2d p(pose.x, pose.y);
+  const double range = p.norm();
+  if (!(range > 0.0) || !covariance.allFinite()) {
+    return covariance;
+  }
+  const Eigen::Vector2d radial = p / range;
+  const Eigen::Vector2d tangential(-radial.y(), radial.x());
+  const double bearing_variance = std::min(1.0, tangential.dot(covariance.topLeftCorner<2, 2>() * tangential) / (range * range));
+  Eigen::Matrix3d out = covariance;
+  out.topLeftCorner<2, 2>() += 0.75 * range * range * bearing_variance * bearing_variance * radial * radial.transpose();
+  return out;
+}
+
+Eigen::Matrix<double, 3, 9> relative_motion_jacobian(const model::Pose2& x, const model::Pose2& own_increment,
+                                                     const model::Pose2& other_increment) {
   Eigen::Matrix<double, 9, 1> v;
   v << x.x, x.y, x.theta, own_increment.x, own_increment.y, own_increment.theta, other_increment.x, other_increment.y,
       other_increment.theta;
@@ -137,6 +224,13 @@ Eigen::Matrix3d propagate_relative_covariance(const Eigen::Matrix3d& covariance,
     difference(2) = wrap_angle(difference(2));
     jacobian.col(c) = difference / (2.0 * h);
   }
+  return jacobian;
+}
+
+Eigen::Matrix3d propagate_relative_covariance(const Eigen::Matrix3d& covariance, const model::Pose2& x,
+                                              const model::Pose2& own_increment, const model::Pose2& other_increment,
+                                              double xy_std_m, double theta_std_rad) {
+  const Eigen::Matrix<double, 3, 9> jacobian = relative_motion_jacobian(x, own_increment, other_increment);
   Eigen::Matrix<double, 9, 9> input = Eigen::Matrix<double, 9, 9>::Zero();
   input.topLeftCorner<3, 3>() = covariance;
   const Eigen::Vector3d increment_variance(xy_std_m * xy_std_m, xy_std_m * xy_std_m, theta_std_rad * theta_std_rad);

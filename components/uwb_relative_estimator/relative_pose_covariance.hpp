@@ -30,6 +30,18 @@ struct UncertaintyParams {
   double range_common_std_m = 0.30;
   /// Epochs whose residual std form the running median of the independent range std.
   int noise_window_epochs = 50;
+  /// Time constant of the common-mode range error (s): how long the particle filters' measurement
+  /// errors stay alike (FilterErrorCovariance). The UWB sensor's pair common mode: 10 s.
+  double range_common_time_s = 10.0;
+  /// Time constant of each link's independent range error (s), the white part counted as lasting
+  /// as long (conservative). The UWB sensor's link bias: 2 s.
+  double range_link_time_s = 2.0;
+  /// A range whose leave-one-out residual exceeds this many estimated range stds is an outlier
+  /// (non-line-of-sight, a blocked link): it gets its own variance, that residual squared.
+  double outlier_sigma = 3.0;
+  /// pf, pf_baseline: the epochs of eq. (1) fixes their estimates are checked against
+  /// (InnovationMonitor: the fixes' median innovation beyond their own covariance is added).
+  int innovation_window_epochs = 50;
   /// Throws std::invalid_argument "key: requirement (got value)".
   void validate() const;
 };
@@ -55,6 +67,48 @@ double residual_rms_std_m(const model::UwbArray& own, const model::UwbArray& oth
 /// ranges. NaN entries when J^T J is singular (a degenerate geometry: nothing to report).
 Eigen::Matrix3d range_fix_covariance(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
                                      double independent_std_m, double common_std_m);
+
+/// How one epoch's range errors reach a least-squares pose fit at `pose`: e_pose = B u + a c for the
+/// K L independent range errors u (variance independent_variance_m2(k) each, row-major k = K index
+/// x L + L index) and the common one c (std common_std_m); B = (J^T J)^-1 J^T (3 x K L), a = B 1.
+/// With equal variances s_i^2, covariance() is range_fix_covariance's.
+struct RangeErrorMap {
+  Eigen::Matrix<double, 3, Eigen::Dynamic> independent_map;  // B
+  Eigen::Vector3d common_map = Eigen::Vector3d::Zero();      // a
+  Eigen::VectorXd independent_variance_m2;                    // per range
+  double common_std_m = 0.0;
+  /// B diag(independent_variance_m2) B^T + s_c^2 a a^T.
+  Eigen::Matrix3d covariance() const;
+};
+
+/// The map at `pose` with every range's independent std `independent_std_m`; false (and `out`
+/// untouched) when J^T J is singular (degenerate geometry).
+bool range_error_map(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
+                     double independent_std_m, double common_std_m, RangeErrorMap& out);
+
+/// Per-range variances of one epoch's independent range errors at the least-squares fit `pose`:
+/// base_std_m^2, except for a range whose leave-one-out (jackknife) residual r_k / (1 - h_k)
+/// (h_k its leverage, J_k (J^T J)^-1 J_k^T) exceeds outlier_sigma x detect_std_m: that residual
+/// squared. A range far off moves the fit by B_k times its error, and r_k / (1 - h_k) is that
+/// error when it is the only one. A vector of base_std_m^2 when J^T J is singular. `ranges_m` must
+/// match the arrays (require_valid_ranges).
+Eigen::VectorXd range_error_variances(const model::UwbArray& own, const model::UwbArray& other,
+                                      const Eigen::MatrixXd& ranges_m, const model::Pose2& pose, double base_std_m,
+                                      double detect_std_m, double outlier_sigma);
+
+/// `covariance` of a relative pose at `pose` plus the second-order term of its bearing: ranges fix
+/// the distance R and leave the bearing phi less certain, so the peer lies on an arc, not on the
+/// tangent the linearised covariance draws; a bearing error phi moves it towards this robot by
+/// R (1 - cos phi) ~ R phi^2 / 2. Adds E[(R phi^2 / 2)^2] = 3 R^2 sigma_phi^4 / 4 along the line of
+/// sight, sigma_phi^2 = (tangential variance) / R^2 capped at 1 rad^2. Negligible while the bearing
+/// is well known (0.5 m arrays at 5 m: ~1 cm next to a 0.3 m radial sigma); the 0.25 m arrays'
+/// bearing sigmas of 0.3-0.6 rad give 0.1-0.6 m. Unchanged at R = 0 or with a non-finite covariance.
+Eigen::Matrix3d with_bearing_curvature(const Eigen::Matrix3d& covariance, const model::Pose2& pose);
+
+/// Jacobian of x' = inverse(m_i) x m_j (the dead reckoning of a relative pose over one epoch) with
+/// respect to (x, m_i, m_j) stacked (3 x 9; central differences, heading differences wrapped).
+Eigen::Matrix<double, 3, 9> relative_motion_jacobian(const model::Pose2& x, const model::Pose2& own_increment,
+                                                     const model::Pose2& other_increment);
 
 /// Dead reckoning of a relative pose x (peer j in robot i's frame) over one epoch,
 /// x' = inverse(m_i) x m_j: the covariance P of x propagated to x', plus both increments' noise

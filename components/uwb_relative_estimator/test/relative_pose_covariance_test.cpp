@@ -186,3 +186,93 @@ TEST(PropagateRelativeCovariance, MatchesTheSpreadOfNoisyDeadReckoning) {
 
 }  // namespace
 }  // namespace robodds::uwb_relative_estimator
+
+namespace robodds::uwb_relative_estimator {
+namespace {
+
+using testing::true_ranges;
+
+/// x-y Mahalanobis distance squared of `e` against `covariance`.
+double position_d2(const Eigen::Vector3d& e, const Eigen::Matrix3d& covariance) {
+  return e.head<2>().dot(covariance.topLeftCorner<2, 2>().inverse() * e.head<2>());
+}
+
+TEST(RangeErrorVariances, AnOutlierGetsItsLeaveOneOutResidualAndTheFitItMovedIsCovered) {
+  const UwbArray array = square_array(0.5);
+  const model::Pose2 truth{4.0, 1.0, 0.4};
+  SolverOptions plain;
+  plain.loss = RobustLoss::kNone;
+  Eigen::MatrixXd ranges = true_ranges(array, array, truth);
+  ranges(1, 2) += 0.5;  // one non-line-of-sight range, the others exact
+  const SolverResult fit = solve_relative_pose(array, array, ranges, truth, plain);
+  ASSERT_TRUE(fit.converged);
+  const double noise = 0.05;
+  const Eigen::VectorXd variances = range_error_variances(array, array, ranges, fit.pose, noise, noise, 3.0);
+  ASSERT_EQ(variances.size(), 16);
+  // The outlier's own error, recovered by r / (1 - h); the ranges it pulled the fit away from get
+  // leave-one-out residuals beyond 3 sigma too (a fraction of it), never more than the outlier.
+  EXPECT_NEAR(std::sqrt(variances(1 * 4 + 2)), 0.5, 0.05);
+  for (Eigen::Index k = 0; k < 16; ++k) {
+    if (k != 1 * 4 + 2) {
+      EXPECT_LT(variances(k), 0.25 * variances(1 * 4 + 2)) << k;
+      EXPECT_GE(variances(k), noise * noise) << k;
+    }
+  }
+  RangeErrorMap error;
+  ASSERT_TRUE(range_error_map(array, array, fit.pose, noise, 0.0, error));
+  const Eigen::Vector3d e(fit.pose.x - truth.x, fit.pose.y - truth.y, wrap_angle(fit.pose.theta - truth.theta));
+  EXPECT_GT(position_d2(e, error.covariance()), 11.829) << "the noise level alone: far outside 3 sigma";
+  error.independent_variance_m2 = variances;
+  std::printf("outlier +0.5 m: fit error %.3f %.3f %.3f, d^2 %.2f; the outlier's column of B: %.3f %.3f %.3f\n", e.x(), e.y(), e.z(),
+              position_d2(e, error.covariance()), error.independent_map(0, 6), error.independent_map(1, 6), error.independent_map(2, 6));
+  // Inside 3 sigma (the fit is not quite linear in a 0.5 m outlier: ~2 sigma, not 1).
+  EXPECT_LT(position_d2(e, error.covariance()), 11.829) << "with the outlier's variance";
+  EXPECT_LT(e.z() * e.z(), 9.0 * error.covariance()(2, 2));
+  // Noise alone (every residual within 3 sigma) changes nothing.
+  const Eigen::VectorXd clean =
+      range_error_variances(array, array, true_ranges(array, array, truth), truth, noise, noise, 3.0);
+  EXPECT_TRUE(clean.isApprox(Eigen::VectorXd::Constant(16, noise * noise)));
+}
+
+TEST(WithBearingCurvature, SmallArraysPutThePeerOnAnArcThatTheLinearisedEllipseMisses) {
+  // Side 0.25 m at 5 m, range noise 0.15 m: the bearing sigma is ~0.3 rad and the fits lie on a
+  // banana bent towards this robot. Linearised: the radial 3 sigma (common mode 0) is a few cm.
+  const UwbArray array = square_array(0.25);
+  const model::Pose2 truth{5.0, 0.0, 0.0};
+  SolverOptions plain;
+  plain.loss = RobustLoss::kNone;
+  RandomEngine engine(3);
+  const double noise = 0.15;
+  const Eigen::Matrix3d linear = range_fix_covariance(array, array, truth, noise, 0.0);
+  const Eigen::Matrix3d curved = with_bearing_curvature(linear, truth);
+  int outside_linear = 0;
+  int outside_curved = 0;
+  int draws = 0;
+  for (int draw = 0; draw < 1000; ++draw) {
+    Eigen::MatrixXd ranges = true_ranges(array, array, truth);
+    for (Eigen::Index i = 0; i < ranges.size(); ++i) {
+      ranges(i) += noise * standard_normal(engine);
+    }
+    const SolverResult fit = solve_relative_pose(array, array, ranges, truth, plain);
+    if (!fit.converged) {
+      continue;
+    }
+    ++draws;
+    const Eigen::Vector3d e(fit.pose.x - truth.x, fit.pose.y - truth.y, 0.0);
+    outside_linear += position_d2(e, linear) > 11.829;
+    outside_curved += position_d2(e, curved) > 11.829;
+  }
+  ASSERT_GT(draws, 900);
+  std::printf("side 0.25 m at 5 m, noise 0.15 m: outside 3 sigma linearised %.1f %%, with the curvature %.1f %%\n",
+              100.0 * outside_linear / draws, 100.0 * outside_curved / draws);
+  EXPECT_GT(outside_linear, draws / 50) << "the linearised ellipse misses the arc";
+  EXPECT_LT(outside_curved, draws / 20) << "the rest: the heading-bearing coupling of so poor a fit";
+  EXPECT_LT(5 * outside_curved, outside_linear);
+  // The tangential and heading variances stay; a well-known bearing gains nothing measurable.
+  EXPECT_DOUBLE_EQ(curved(2, 2), linear(2, 2));
+  const Eigen::Matrix3d tight = range_fix_covariance(square_array(0.5), square_array(0.5), truth, 0.05, 0.3);
+  EXPECT_LT((with_bearing_curvature(tight, truth) - tight).norm(), 0.002 * tight.norm());
+}
+
+}  // namespace
+}  // namespace robodds::uwb_relative_estimator

@@ -1,0 +1,223 @@
+// FilterErrorCovariance: the covariance of a filter's error when its measurements' errors are
+// correlated in time (issue 27, the particle filters' reported covariance). Checked against a
+// Monte Carlo of the same linear filter with Gauss-Markov range errors.
+#include "components/uwb_relative_estimator/filter_error_covariance.hpp"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/LU>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "common/model/uwb_array.hpp"
+#include "common/random.hpp"
+
+namespace robodds::uwb_relative_estimator {
+namespace {
+
+constexpr double kEpochS = 0.1;
+
+Eigen::Matrix3d diagonal(double a, double b, double c) { return Eigen::Vector3d(a, b, c).asDiagonal().toDenseMatrix(); }
+
+double position_d2_of(const Eigen::Vector3d& e, const Eigen::Matrix3d& covariance) {
+  return e.head<2>().dot(covariance.topLeftCorner<2, 2>().inverse() * e.head<2>());
+}
+
+UncertaintyParams times(double common_s, double link_s) {
+  UncertaintyParams p;
+  p.range_common_time_s = common_s;
+  p.range_link_time_s = link_s;
+  return p;
+}
+
+struct Case {
+  UncertaintyParams params;
+  double independent_std_m = 0.12;
+  double common_std_m = 0.30;
+  double odometry_xy_std_m = 0.005;
+  double odometry_theta_std_rad = 0.005;
+  Eigen::Matrix3d gain;  // of every update, as a particle filter with a tight cloud applies it
+  int epochs = 300;
+};
+
+/// Runs the nominal relative-pose trajectory (robot i turning, j driving a curve) through
+/// FilterErrorCovariance and `runs` Monte Carlo draws of the linear filter
+/// eps <- (I - K)(F eps + w) + K (B u + a c), u and c first-order Gauss-Markov (exact
+/// discretisation, stationary start). Returns {reported Sigma, sample covariance of eps} at the end.
+std::pair<Eigen::Matrix3d, Eigen::Matrix3d> run(const Case& c, int runs, std::uint64_t seed) {
+  const model::UwbArray array = model::square_array(0.5);
+  const model::Pose2 own_increment{0.02, 0.0, 0.02};
+  const model::Pose2 other_increment{0.02, 0.0, -0.01};
+  std::vector<model::Pose2> poses{{4.0, 1.0, 0.3}};
+  std::vector<RangeErrorMap> maps(1);
+  EXPECT_TRUE(range_error_map(array, array, poses[0], c.independent_std_m, c.common_std_m, maps[0]));
+  for (int t = 1; t <= c.epochs; ++t) {
+    poses.push_back(model::compose(model::between(own_increment, poses.back()), other_increment));
+    maps.emplace_back();
+    EXPECT_TRUE(range_error_map(array, array, poses.back(), c.independent_std_m, c.common_std_m, maps.back()));
+  }
+  FilterErrorCovariance reported(c.params);
+  reported.start(maps[0]);
+  for (int t = 1; t <= c.epochs; ++t) {
+    reported.predict(poses[t - 1], own_increment, other_increment, kEpochS, c.odometry_xy_std_m, c.odometry_theta_std_rad);
+    reported.update(c.gain, maps[t]);
+  }
+
+  const double rho_u = std::exp(-kEpochS / c.params.range_link_time_s);
+  const double rho_c = std::exp(-kEpochS / c.params.range_common_time_s);
+  const Eigen::Index n = maps[0].independent_map.cols();
+  RandomEngine random(seed);
+  Eigen::Matrix3d sum = Eigen::Matrix3d::Zero();
+  for (int r = 0; r < runs; ++r) {
+    Eigen::VectorXd u(n);
+    for (Eigen::Index l = 0; l < n; ++l) u(l) = c.independent_std_m * standard_normal(random);
+    double common = c.common_std_m * standard_normal(random);
+    Eigen::Vector3d eps = maps[0].independent_map * u + maps[0].common_map * common;
+    for (int t = 1; t <= c.epochs; ++t) {
+      const Eigen::Matrix<double, 3, 9> j = relative_motion_jacobian(poses[t - 1], own_increment, other_increment);
+      Eigen::Matrix<double, 6, 1> noise;
+      for (int q = 0; q < 6; ++q) noise(q) = (q % 3 == 2 ? c.odometry_theta_std_rad : c.odometry_xy_std_m) * standard_normal(random);
+      eps = j.leftCols<3>() * eps + j.middleCols<3>(3) * noise.head<3>() + j.rightCols<3>() * noise.tail<3>();
+      for (Eigen::Index l = 0; l < n; ++l) {
+        u(l) = rho_u * u(l) + std::sqrt(1.0 - rho_u * rho_u) * c.independent_std_m * standard_normal(random);
+      }
+      common = rho_c * common + std::sqrt(1.0 - rho_c * rho_c) * c.common_std_m * standard_normal(random);
+      const Eigen::Vector3d e = maps[t].independent_map * u + maps[t].common_map * common;
+      eps = (Eigen::Matrix3d::Identity() - c.gain) * eps + c.gain * e;
+    }
+    sum += eps * eps.transpose();  // the mean error is zero
+  }
+  return {reported.covariance(), sum / runs};
+}
+
+void expect_matches(const Eigen::Matrix3d& reported, const Eigen::Matrix3d& empirical, double tolerance) {
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(empirical(i, i) / reported(i, i), 1.0, tolerance) << "variance " << i << ": reported\n"
+                                                                  << reported << "\nMonte Carlo\n" << empirical;
+  }
+  // The correlation of x and y (the error ellipse's orientation).
+  const double reported_rho = reported(0, 1) / std::sqrt(reported(0, 0) * reported(1, 1));
+  const double empirical_rho = empirical(0, 1) / std::sqrt(empirical(0, 0) * empirical(1, 1));
+  EXPECT_NEAR(empirical_rho, reported_rho, 0.1);
+}
+
+// 2000 runs: sample variances scatter by sqrt(2 / 2000) ~ 3 %.
+constexpr int kRuns = 2000;
+
+TEST(FilterErrorCovariance, MatchesAMonteCarloOfTheFilterWithGaussMarkovRangeErrors) {
+  Case c;
+  c.params = times(10.0, 2.0);  // the UWB sensor's common mode and link bias
+  c.gain = diagonal(0.03, 0.03, 0.05);
+  const auto [reported, empirical] = run(c, kRuns, 1);
+  expect_matches(reported, empirical, 0.12);
+}
+
+TEST(FilterErrorCovariance, MatchesTheMonteCarloWithAFullGainAndShortTimeConstants) {
+  Case c;
+  c.params = times(1.0, 0.3);
+  c.gain = update_gain(diagonal(0.004, 0.002, 0.0005), diagonal(0.09, 0.05, 0.01)) ;
+  c.gain(0, 1) = c.gain(1, 0) = 0.002;  // a cloud tilted against the axes
+  const auto [reported, empirical] = run(c, kRuns, 2);
+  expect_matches(reported, empirical, 0.12);
+}
+
+TEST(FilterErrorCovariance, ErrorsThatLastGainNothingFromAveraging) {
+  // The particle filters' case: each epoch's measurement weighed as new while its error is the
+  // same. With errors that never change and no odometry noise the filter's error is the
+  // measurement's whatever the gain; with white errors the same gain averages ~65 epochs.
+  const model::UwbArray array = model::square_array(0.5);
+  const model::Pose2 pose{5.0, 0.0, 1.0};
+  RangeErrorMap error;
+  ASSERT_TRUE(range_error_map(array, array, pose, 0.12, 0.3, error));
+  FilterErrorCovariance lasting(times(1e9, 1e9));
+  FilterErrorCovariance white(times(1e-9, 1e-9));
+  lasting.start(error);
+  white.start(error);
+  const Eigen::Matrix3d gain = diagonal(0.03, 0.03, 0.03);
+  for (int t = 0; t < 1000; ++t) {
+    for (FilterErrorCovariance* f : {&lasting, &white}) {
+      f->predict(pose, model::Pose2{}, model::Pose2{}, kEpochS, 0.0, 0.0);
+      f->update(gain, error);
+    }
+  }
+  const Eigen::Matrix3d measurement = error.covariance();
+  EXPECT_TRUE(lasting.covariance().isApprox(measurement, 1e-6)) << lasting.covariance() << "\nvs\n" << measurement;
+  // White: K / (2 - K) of the measurement's covariance.
+  EXPECT_TRUE(white.covariance().isApprox(0.03 / 1.97 * measurement, 1e-6)) << white.covariance();
+}
+
+TEST(FilterErrorCovariance, StartsAtTheMeasurementsCovarianceAndDoesNothingBefore) {
+  const model::UwbArray array = model::square_array(0.5);
+  RangeErrorMap error;
+  ASSERT_TRUE(range_error_map(array, array, model::Pose2{3.0, -2.0, 0.5}, 0.1, 0.3, error));
+  FilterErrorCovariance f(UncertaintyParams{});
+  f.predict(model::Pose2{3.0, -2.0, 0.5}, model::Pose2{0.1, 0.0, 0.1}, model::Pose2{}, kEpochS, 0.005, 0.005);
+  f.update(diagonal(0.1, 0.1, 0.1), error);
+  EXPECT_FALSE(f.started());
+  EXPECT_TRUE(f.covariance().isZero());
+  f.start(error);
+  EXPECT_TRUE(f.started());
+  EXPECT_TRUE(f.covariance().isApprox(range_fix_covariance(array, array, model::Pose2{3.0, -2.0, 0.5}, 0.1, 0.3), 1e-9));
+  f.start(diagonal(0.09, 0.09, 0.01));
+  EXPECT_TRUE(f.covariance().isApprox(diagonal(0.09, 0.09, 0.01)));
+  f.update(diagonal(0.5, 0.5, 0.5), error);  // no cross-covariance with the ranges after this start
+  EXPECT_TRUE(f.covariance().isApprox(0.25 * diagonal(0.09, 0.09, 0.01) + 0.25 * error.covariance(), 1e-9));
+}
+
+TEST(FilterErrorCovariance, UpdateGainIsPriorOverPriorPlusMeasurement) {
+  const Eigen::Matrix3d k = update_gain(diagonal(0.01, 0.04, 0.001), diagonal(0.09, 0.04, 0.009));
+  EXPECT_TRUE(k.isApprox(diagonal(0.1, 0.5, 0.1), 1e-12)) << k;
+  EXPECT_TRUE(update_gain(Eigen::Matrix3d::Zero(), Eigen::Matrix3d::Zero()).isZero()) << "not positive definite: no gain";
+}
+
+TEST(FilterErrorCovariance, BadTimeConstantsNameTheKey) {
+  try {
+    FilterErrorCovariance f(times(10.0, 0.0));
+    FAIL() << "no throw";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("range_link_time_s"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(FilterErrorCovariance(times(-1.0, 2.0)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace robodds::uwb_relative_estimator
+
+namespace robodds::uwb_relative_estimator {
+namespace {
+
+TEST(InnovationMonitor, AFilterThatFollowsItsFixesAddsLittleOneThatLostThemAddsTheDiscrepancy) {
+  UncertaintyParams params;  // 50 fixes
+  const Eigen::Matrix3d fix_covariance = diagonal(1.0, 0.25, 0.01);
+  RandomEngine random(5);
+  const auto fix_around = [&](const model::Pose2& p) {
+    return model::Pose2{p.x + standard_normal(random), p.y + 0.5 * standard_normal(random),
+                        p.theta + 0.1 * standard_normal(random)};
+  };
+  const model::Pose2 truth{5.0, 2.0, 0.3};
+  InnovationMonitor following(params);
+  InnovationMonitor lost(params);
+  const model::Pose2 off{truth.x - 4.0, truth.y + 3.0, truth.theta};  // 5 m off
+  double following_trace = 0.0;
+  for (int t = 0; t < 500; ++t) {
+    const model::Pose2 fix = fix_around(truth);
+    following.add(truth, fix, fix_covariance);
+    lost.add(off, fix, fix_covariance);
+    following_trace += following.excess().trace();
+  }
+  EXPECT_LT(following_trace / 500, 0.05 * fix_covariance.trace()) << "a consistent filter: about nothing";
+  const Eigen::Matrix3d excess = lost.excess();
+  const Eigen::Vector3d e(off.x - truth.x, off.y - truth.y, 0.0);
+  EXPECT_LT(position_d2_of(e, excess + fix_covariance), 2.0) << excess;  // the error is now within ~1.4 sigma
+  lost.reset();
+  EXPECT_TRUE(lost.excess().isZero()) << "no fixes since the restart";
+  for (int t = 0; t < 9; ++t) lost.add(off, fix_around(truth), fix_covariance);
+  EXPECT_TRUE(lost.excess().isZero()) << "fewer than a fifth of the window";
+  lost.add(off, fix_around(truth), fix_covariance);
+  EXPECT_FALSE(lost.excess().isZero());
+}
+
+}  // namespace
+}  // namespace robodds::uwb_relative_estimator
