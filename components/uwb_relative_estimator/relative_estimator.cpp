@@ -30,6 +30,23 @@ StageEstimate filter_estimate(const RelativePoseFilter& filter) {
   return out;
 }
 
+/// A filter stage's estimate as reported: the filter's mean with the covariance of its update
+/// errors (`error`) and the arc's bend, plus what its check against this epoch's eq. (1) fix
+/// (`uwb`, when valid) finds beyond that; `pose` keeps the mean (where `error` propagates from).
+StageEstimate reported_filter_estimate(const RelativePoseFilter& filter, const FilterErrorCovariance& error,
+                                       const StageEstimate& uwb, InnovationMonitor& check, model::Pose2& pose) {
+  StageEstimate out = filter_estimate(filter);
+  if (out.valid) {
+    out.covariance = with_bearing_curvature(error.covariance(), out.pose);
+    if (uwb.valid) {
+      check.add(out.pose, uwb.pose, uwb.covariance);
+    }
+    out.covariance += check.excess();
+    pose = out.pose;
+  }
+  return out;
+}
+
 }  // namespace
 
 const char* stage_name(Stage stage) {
@@ -251,17 +268,8 @@ void RelativeEstimator::run_pf(std::size_t k, double time_s, double dt_s, const 
   if (fix) {
     peer.last_fix_s = time_s;
   }
-  StageEstimate& out = result.stages[static_cast<std::size_t>(Stage::kPf)];
-  out = filter_estimate(peer.pf);
-  if (out.valid) {
-    out.covariance = with_bearing_curvature(peer.pf_error.covariance(), out.pose);
-    const StageEstimate& uwb = result.stages[static_cast<std::size_t>(Stage::kUwb)];
-    if (uwb.valid) {
-      peer.pf_check.add(out.pose, uwb.pose, uwb.covariance);
-    }
-    out.covariance += peer.pf_check.excess();
-    peer.pf_pose = out.pose;
-  }
+  result.stages[static_cast<std::size_t>(Stage::kPf)] =
+      reported_filter_estimate(peer.pf, peer.pf_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.pf_check, peer.pf_pose);
 }
 
 void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment,
@@ -316,17 +324,8 @@ void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, 
       }
     }
   }
-  StageEstimate& out = result.stages[static_cast<std::size_t>(Stage::kPfBaseline)];
-  out = filter_estimate(peer.baseline);
-  if (out.valid) {
-    out.covariance = with_bearing_curvature(peer.baseline_error.covariance(), out.pose);
-    const StageEstimate& uwb = result.stages[static_cast<std::size_t>(Stage::kUwb)];
-    if (uwb.valid) {
-      peer.baseline_check.add(out.pose, uwb.pose, uwb.covariance);
-    }
-    out.covariance += peer.baseline_check.excess();
-    peer.baseline_pose = out.pose;
-  }
+  result.stages[static_cast<std::size_t>(Stage::kPfBaseline)] = reported_filter_estimate(
+      peer.baseline, peer.baseline_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.baseline_check, peer.baseline_pose);
 }
 
 void RelativeEstimator::run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,

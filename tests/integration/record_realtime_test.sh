@@ -66,12 +66,30 @@ sleep 0.5  # the last samples in flight to the recorders
 
 grep -q '"status": "completed"' "$WORK/out/summary.json" || fail "the run did not complete beside a killed recorder: $(cat "$WORK/out/summary.json")"
 wait "$rec_b" 2>/dev/null || true
-kill -TERM "$rec_c"
-kill -INT "$rec_a"
+# Fast DDS 2.9.1 as Debian builds it may abort a participant when a remote participant's lease
+# expires (PDP.cpp:1140, docs/deployment.md "Known Fast DDS defects"): here B's, killed on purpose.
+# Only when a recorder hit that or the defect below is the test run once more, saying so; any other end of A or
+# C before its signal fails at once, with its log.
+# The same family: deleting a recorder's DDS readers may block in Fast DDS after a peer was killed
+# (bounded: "shutdown: deleting the raw DDS readers ... did not finish", exit 3; seen 1 in 5 here);
+# the recorder finishes its file before that teardown, so the file is whole either way.
+retry_or_fail() {
+  local known
+  known=$(grep -lE "PDP.cpp:1140|shutdown: deleting the raw DDS readers .* did not finish" "$WORK/a.log" "$WORK/c.log" 2>/dev/null | head -1)
+  [[ -n $known && -z ${RECORD_REALTIME_RETRY:-} ]] || fail "$1"
+  echo "recorder $(basename "$known" .log) hit a known Fast DDS 2.9.1 defect ($(grep -hoE "PDP.cpp:1140|deleting the raw DDS readers" "$known" | head -1)) after B was killed: running the test once more"
+  kill -KILL "$rec_a" "$rec_c" "$rec_d" 2>/dev/null || true
+  wait "$rec_a" "$rec_c" "$rec_d" 2>/dev/null || true
+  trap - EXIT
+  cleanup
+  RECORD_REALTIME_RETRY=1 exec bash "$0" "$ROBODDS" "$SRC" "$DOMAIN"
+}
+kill -TERM "$rec_c" 2>/dev/null || retry_or_fail "recorder C ended before its SIGTERM: $(tail -5 "$WORK/c.log")"
+kill -INT "$rec_a" 2>/dev/null || retry_or_fail "recorder A ended before its SIGINT: $(tail -5 "$WORK/a.log")"
 rc=0
 timeout -k 2 20 tail --pid="$rec_a" -f /dev/null || fail "recorder A did not finish within 20 s of SIGINT"
 wait "$rec_a" || rc=$?
-[[ $rc -eq 0 ]] || fail "recorder A exited $rc after SIGINT: $(cat "$WORK/a.log")"
+[[ $rc -eq 0 ]] || retry_or_fail "recorder A exited $rc after SIGINT: $(cat "$WORK/a.log")"
 cat "$WORK/a.log"
 
 info="$("$ROBODDS" info "$WORK/a.mcap" 2>&1)" || fail "robodds info on A failed: $info"
@@ -125,7 +143,7 @@ total_a="$(grep -vc '"topic":"foxglove/robot_poses"' "$WORK/a.jsonl")"  # the re
   fail "B (SIGKILL): $chunks_b chunks, $messages_b messages recovered; A has $total_a: $info_b"
 rc=0
 wait "$rec_c" || rc=$?
-[[ $rc -eq 0 ]] || fail "recorder C exited $rc after SIGTERM: $(cat "$WORK/c.log")"
+[[ $rc -eq 0 ]] || retry_or_fail "recorder C exited $rc after SIGTERM: $(cat "$WORK/c.log")"
 [[ ! -e $WORK/c.mcap && -e $WORK/c_0.mcap && -e $WORK/c_2.mcap ]] || fail "C not split into c_0.mcap, c_1.mcap, ...: $(ls "$WORK")"
 messages_c=0
 topics_c="$(sed -nE 's/^robodds record: ([0-9]+) topics.*/\1/p' "$WORK/c.log")"  # --all: every topic of the catalog

@@ -261,7 +261,9 @@ class RecordCommand : public Command {
       }
       queue.notifier().wait(seen, std::chrono::milliseconds(PendingQueue::kPollMs));
     }
-    bus->close_readers();  // no callback runs after this: the queue holds the last samples
+    // The file is finished before the DDS entities are torn down: Fast DDS 2.9.1 may block there
+    // (bounded by the shutdown watchdog: exit 3, docs/deployment.md "Known Fast DDS defects"), and
+    // what was recorded must not depend on it. Samples that arrive after the stop are not written.
     for (const Pending& p : queue.take()) {
       write(p);
     }
@@ -274,6 +276,8 @@ class RecordCommand : public Command {
     if (parts.messages() == 0) {
       std::printf("robodds record: no sample of these topics %s\n", on_domain_text(dds.domain_id).c_str());
     }
+    std::fflush(stdout);
+    bus->close_readers();
     return 0;
   }
 
