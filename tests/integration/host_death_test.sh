@@ -61,8 +61,8 @@ lockstep_run ls
 # Fast DDS 2.9.1 as Debian builds it (with assertions) may abort a host whose lease timer for a
 # remote participant fires while that participant's proxy is being removed (PDP.cpp:1140,
 # `GUID_t::unknown() != remote_participant->m_guid`; seen once in ~10 whole-suite runs, and once in
-# robodds-fuzz): a defect of the library, not of the host's handling (docs/deployment.md, "Known
-# Fast DDS defects"). Only then is the case run once more; any other failure fails at once.
+# robodds-fuzz): a defect of the library, not of the host's handling (docs/deployment.md,
+# "Troubleshooting"). Only then is the case run once more; any other failure fails at once.
 P=ls
 if aborted=$(grep -l "PDP.cpp:1140" "$WORK"/ls_*.log 2>/dev/null) && [[ -n "$aborted" ]]; then
   echo "lockstep: $(basename "$aborted" .log) aborted in Fast DDS (PDP.cpp:1140, a known 2.9.1 defect): running the case again"

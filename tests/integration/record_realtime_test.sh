@@ -67,7 +67,7 @@ sleep 0.5  # the last samples in flight to the recorders
 grep -q '"status": "completed"' "$WORK/out/summary.json" || fail "the run did not complete beside a killed recorder: $(cat "$WORK/out/summary.json")"
 wait "$rec_b" 2>/dev/null || true
 # Fast DDS 2.9.1 as Debian builds it may abort a participant when a remote participant's lease
-# expires (PDP.cpp:1140, docs/deployment.md "Known Fast DDS defects"): here B's, killed on purpose.
+# expires (PDP.cpp:1140, docs/deployment.md "Troubleshooting"): here B's, killed on purpose.
 # Only when a recorder hit that or the defect below is the test run once more, saying so; any other end of A or
 # C before its signal fails at once, with its log.
 # The same family: deleting a recorder's DDS readers may block in Fast DDS after a peer was killed

@@ -262,7 +262,7 @@ class RecordCommand : public Command {
       queue.notifier().wait(seen, std::chrono::milliseconds(PendingQueue::kPollMs));
     }
     // The file is finished before the DDS entities are torn down: Fast DDS 2.9.1 may block there
-    // (bounded by the shutdown watchdog: exit 3, docs/deployment.md "Known Fast DDS defects"), and
+    // (bounded by the shutdown watchdog: exit 3, docs/deployment.md "Troubleshooting"), and
     // what was recorded must not depend on it. Samples that arrive after the stop are not written.
     for (const Pending& p : queue.take()) {
       write(p);
