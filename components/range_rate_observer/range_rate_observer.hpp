@@ -33,7 +33,7 @@ class RangeRateObserver {
  public:
   /// Throws std::invalid_argument (from Params::validate) for bad gains or uncertainty parameters.
   explicit RangeRateObserver(Params params, RateUncertaintyParams uncertainty = {})
-      : params_(std::move(params)), uncertainty_params_(uncertainty), uncertainty_(uncertainty) {
+      : params_(std::move(params)), uncertainty_(uncertainty) {
     params_.validate();
   }
 
@@ -68,7 +68,7 @@ class RangeRateObserver {
                                   ", range_m " + shortest_text(range_m) + ")");
     }
     if (!started_) {
-      start_at(time_s, range_m, 0.0, uncertainty_params_.initial_rate_std_mps);
+      start_at(time_s, range_m, 0.0, uncertainty_.params().initial_rate_std_mps);
       restart_requested_ = false;
       return estimate_;
     }
@@ -182,7 +182,7 @@ class RangeRateObserver {
     last_range_m_ = range_m;
     double line_range_m = range_m;
     double slope_mps = estimate_.rate_mps;  // one sample: the rate held from before the restart
-    double slope_std_mps = uncertainty_params_.initial_rate_std_mps;
+    double slope_std_mps = uncertainty_.params().initial_rate_std_mps;
     if (w.count >= 2) {
       const double n = static_cast<double>(w.count);
       const double spread_s2 = w.sum_tt - w.sum_t * w.sum_t / n;  // sum (t - t_mean)^2
@@ -192,7 +192,7 @@ class RangeRateObserver {
       // lag: it is the rate at the window's centre, t - mean t before the newest sample.
       const double sigma_m = std::max(noise_sigma_m(), params_.noise_floor_m);
       const double lag_s = t - w.sum_t / n;
-      const double accel_term = uncertainty_params_.range_accel_mps2 * lag_s;
+      const double accel_term = uncertainty_.params().range_accel_mps2 * lag_s;
       slope_std_mps = std::sqrt(sigma_m * sigma_m / spread_s2 + accel_term * accel_term);
     }
     // 1e-9 s: a window of 0.5 s at 50 Hz must close at the 26th sample whatever the rounding.
@@ -225,7 +225,6 @@ class RangeRateObserver {
   static constexpr double kUntrainedWidening = 3.0;
 
   Params params_;
-  RateUncertaintyParams uncertainty_params_;
   RateUncertainty uncertainty_;
   RunningAbsMedian unexplained_steps_{kNoiseWindow};
   RangeRateEstimate estimate_;

@@ -56,6 +56,7 @@ class RateUncertainty {
   double std_mps() const;
   /// How many times d was measured since the last restart (0: std_mps() is the start's).
   std::size_t checks() const { return checks_; }
+  const RateUncertaintyParams& params() const { return params_; }
 
  private:
   struct Sample {
