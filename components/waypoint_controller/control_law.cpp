@@ -50,14 +50,18 @@ Command brakeable(const Command& command, const GainSet& gains, const model::Act
                  bound(command.omega, gains.ka, limits.max_angular_accel_radps2)};
 }
 
-Command waypoint_command(const PolarError& error, const ControllerParams& params) {
-  const GainSet& gains = select_gains(params, error.alpha_rad);
-  const Command raw = brakeable(control_law(error, gains), gains, params.body.actuator);
+Command within_limits(const Command& law_output, const GainSet& gains, const ControllerParams& params) {
+  const Command raw = brakeable(law_output, gains, params.body.actuator);
   const model::Twist limited = model::saturate(model::Twist{raw.v, raw.omega},
                                                model::TwistLimits{params.max_speed_mps, params.max_turn_rate_radps});
   const model::Twist within_wheels =
       model::scale_to_wheel_limit(limited, params.body.wheel_base_m, params.body.actuator.max_wheel_speed_mps);
   return Command{within_wheels.v, within_wheels.omega};
+}
+
+Command waypoint_command(const PolarError& error, const ControllerParams& params) {
+  const GainSet& gains = select_gains(params, error.alpha_rad);
+  return within_limits(control_law(error, gains), gains, params);
 }
 
 }  // namespace robodds::waypoint_controller

@@ -34,6 +34,11 @@ Command control_law(const PolarError& error, const GainSet& gains);
 /// on a robot with 5 rad/s^2 and, on a noisy estimate, circles the way-point.
 Command brakeable(const Command& command, const GainSet& gains, const model::ActuatorLimits& limits);
 
+/// A law's output made drivable: brakeable() with `gains`, then |v| and |omega| clamped
+/// independently to the params' optional limits (0 = unlimited), then v and omega scaled by one
+/// factor so that neither wheel exceeds max_wheel_speed_mps (the curvature is kept).
+Command within_limits(const Command& law_output, const GainSet& gains, const ControllerParams& params);
+
 /// The controller output: eq. (10) with the gain set chosen by |alpha|, then |v| and |omega|
 /// clamped independently to the params' optional limits (0 = unlimited), then v and omega scaled
 /// by one factor so that neither wheel exceeds max_wheel_speed_mps (the curvature is kept).

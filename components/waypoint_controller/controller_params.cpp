@@ -84,7 +84,10 @@ const params::ParamTable<ControllerParams>& controller_param_table() {
           .add("confidence_switch_sigmas", &C::confidence_switch_sigmas, "", params::non_negative("0 = off"),
                "kappa: also switch once the way-point is inside the kappa-sigma ellipse of the estimate")
           .add("stop_when_done", &C::stop_when_done, "", params::any<bool>(),
-               "command zero once the last way-point is reached (false = the paper: the law stays active)");
+               "command zero once the last way-point is reached (false = the paper: the law stays active)")
+          .add("path_lookahead_m", &C::path_lookahead_m, "m", params::non_negative("0 = the paper's law"),
+               "> 0: keep each leg straight (issue 28): steer to the point this far ahead on the segment from the "
+               "previous way-point");
   return table;
 }
 

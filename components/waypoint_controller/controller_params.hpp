@@ -44,6 +44,10 @@ struct ControllerParams {
   /// with an estimated pose the bearing alpha of a way-point a few cm away is pure estimate
   /// noise, and ka = 20 turns that noise into omega swings of tens of rad/s at standstill.
   bool stop_when_done = true;
+  /// Extension (issue 28, path_law.hpp): 0 = the paper's law, eq. (10). > 0: follow the straight
+  /// leg from the previous way-point (the first leg: from where the robot was at the mission's
+  /// first step) to the target, aiming this far ahead along it; the paper's switching rule stays.
+  double path_lookahead_m = 0.0;
 
   /// Throws std::invalid_argument "key: reason (got ...)" for the first bad field. Gain sets
   /// are checked against eq. (11) and eq. (16) as read in README.md (forward set with

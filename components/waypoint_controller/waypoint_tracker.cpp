@@ -9,6 +9,7 @@
 
 #include "common/model/actuator.hpp"
 #include "common/number_text.hpp"
+#include "components/waypoint_controller/path_law.hpp"
 #include "components/waypoint_controller/polar.hpp"
 
 namespace robodds::waypoint_controller {
@@ -50,6 +51,7 @@ void WaypointTracker::set_mission(std::vector<Eigen::Vector2d> waypoints_m) {
   mission_ = std::move(waypoints_m);
   target_index_ = 0;
   done_ = false;
+  has_segment_start_ = false;
   reach_distances_m_.clear();
   reach_distances_m_.reserve(mission_.size());  // keeps step() allocation-free
 }
@@ -98,6 +100,10 @@ TrackerOutput WaypointTracker::step_impl(double x_m, double y_m, double theta_ra
   const Eigen::Vector2d position(x_m, y_m);
   TrackerOutput output;
   TrackerStatus& status = output.status;
+  if (!has_segment_start_) {
+    segment_start_m_ = position;
+    has_segment_start_ = true;
+  }
 
   // Eq. (19): chi = k+1 when ||p - W_k|| <= epsilon, chi = n at the last way-point.
   const Eigen::Vector2d offset = mission_[target_index_] - position;
@@ -107,6 +113,7 @@ TrackerOutput WaypointTracker::step_impl(double x_m, double y_m, double theta_ra
     status.reached_this_step = true;
     status.reached_distance_m = distance_before_switch;
     if (target_index_ + 1 < mission_.size()) {
+      segment_start_m_ = mission_[target_index_];
       ++target_index_;
     } else {
       done_ = true;
@@ -114,7 +121,15 @@ TrackerOutput WaypointTracker::step_impl(double x_m, double y_m, double theta_ra
   }
 
   const PolarError error = polar_error(position, theta_rad, mission_[target_index_]);
-  output.command = ramp(done_ && params_.stop_when_done ? Command{} : waypoint_command(error, params_));
+  Command wanted;
+  if (!(done_ && params_.stop_when_done)) {
+    wanted = params_.path_lookahead_m > 0.0
+                 ? path_command(path_error(segment_start_m_, mission_[target_index_], position, theta_rad,
+                                           params_.path_lookahead_m),
+                                params_)
+                 : waypoint_command(error, params_);
+  }
+  output.command = ramp(wanted);
 
   status.target_index = target_index_;
   status.reached_count = reach_distances_m_.size();

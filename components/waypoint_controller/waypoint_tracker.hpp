@@ -99,6 +99,10 @@ class WaypointTracker {
   std::vector<Eigen::Vector2d> mission_;
   std::size_t target_index_ = 0;
   bool done_ = false;
+  /// The start of the current leg (path_lookahead_m > 0): the previous way-point, or for the first
+  /// leg the position of the first step after set_mission() (has_segment_start_ false until then).
+  Eigen::Vector2d segment_start_m_ = Eigen::Vector2d::Zero();
+  bool has_segment_start_ = false;
   std::vector<double> reach_distances_m_;
 };
 

@@ -14,6 +14,7 @@
 
 #include "common/angle.hpp"
 #include "robodds/idl/robodds.h"
+#include "sim/evaluator/metrics/waypoints/leg_deviation.hpp"
 #include "sim/evaluator/metrics/waypoints/waypoint_metrics.hpp"
 #include "sim/evaluator/module/metrics_module_registry.hpp"
 #include "sim/evaluator/module/per_robot.hpp"
@@ -35,6 +36,7 @@ struct RobotFigures {
   MatchedError position;  // estimate/pose against truth
   MatchedError heading;
   WaypointTracker waypoints;
+  LegDeviation legs;         // the true track against the mission's legs (issue 28)
   bool estimated = false;    // an estimate/pose sample came
   bool ever_valid = false;   // ... and one of them was valid
 };
@@ -54,6 +56,7 @@ class WaypointsModule : public MetricsModule {
       RobotFigures& r = robot(m.robot_id());
       r.truth.add(s);
       r.recent_truth.add(s);
+      r.legs.add_truth(s.step, s.x, s.y);
     });
     setup.on<idl::PositionMeasurement>("sensor/position", [this](const idl::PositionMeasurement& m) {
       robot(m.robot_id()).fixes.add({m.header().step(), m.x(), m.y(), 0.0});
@@ -67,15 +70,19 @@ class WaypointsModule : public MetricsModule {
       r.ever_valid = r.ever_valid || m.valid();
     });
     setup.on<idl::ControllerStatus>("control/status", [this](const idl::ControllerStatus& m) {
-      robot(m.robot_id()).waypoints.add_status({m.header().step(), m.waypoints_reached(), m.waypoints_total(), m.done(),
-                                                m.switched(), m.switch_distance(), m.epsilon()});
+      RobotFigures& r = robot(m.robot_id());
+      r.waypoints.add_status({m.header().step(), m.waypoints_reached(), m.waypoints_total(), m.done(), m.switched(),
+                              m.switch_distance(), m.epsilon()});
+      r.legs.add_status(m.header().step(), m.waypoint_index(), m.done());
     });
     setup.on<idl::WaypointMission>("mission/waypoints", [this](const idl::WaypointMission& m) {
       Mission mission;
       for (const idl::Waypoint& w : m.waypoints()) {
         mission.push_back({w.x(), w.y()});
       }
-      robot(m.robot_id()).waypoints.set_mission(std::move(mission));
+      RobotFigures& r = robot(m.robot_id());
+      r.legs.set_mission(mission);
+      r.waypoints.set_mission(std::move(mission));
     });
   }
 
@@ -200,6 +207,9 @@ class WaypointsModule : public MetricsModule {
     json.value("switch_distance_true_m", m.switch_distance_true_m);
     json.value("final_error_true_m", m.final_error_true_m);
     json.value("epsilon", m.epsilon_m);
+    if (const auto legs = r.legs.figures()) {
+      json.value("cross_track_rms_m", legs->cross_track_rms_m).value("cross_track_max_m", legs->cross_track_max_m);
+    }
   }
 
   std::vector<std::uint64_t> served_;
