@@ -8,6 +8,7 @@
 #include "runtime/base/error.hpp"
 #include "runtime/bus/qos_profiles.hpp"
 #include "runtime/base/log.hpp"
+#include "runtime/lockstep/history_checkpoints.hpp"
 
 namespace robodds {
 
@@ -21,37 +22,48 @@ using host_detail::sim_stamp_ns;
 
 namespace {
 
-/// Lockstep across processes: ConfigError, naming the component, topic and figures, when a
-/// component's gated input could need a sample its producer's writer history (the `lockstep` QoS
-/// profile's KEEP_LAST depth) no longer holds: window + period + delay - 1 > depth.
-void check_history_bound(const RunContext& run, const HostOptions& options, const LockstepHost::Slots& slots) {
+/// Lockstep across processes: per slot, every how many steps its host must wait for its gated
+/// inputs besides its due steps (0: the due steps suffice), so that no producer's `lockstep`
+/// writer history (KEEP_LAST depth) can drop a sample the component still needs
+/// (history_checkpoints.hpp). ConfigError, naming the component, topic and figures, when no wait
+/// can keep the bound (window + delay > depth). Empty when the bus has no such history (in memory).
+std::vector<std::uint64_t> history_checkpoints(const RunContext& run, const HostOptions& options,
+                                               const LockstepHost::Slots& slots) {
   const std::optional<std::size_t> depth = run.bus->writer_history_depth(kLockstepProfile);
   if (!depth) {
-    return;
+    return {};
   }
   const std::uint64_t window = std::max<std::uint64_t>(1, options.lockstep_window);
-  for (const auto& slot : slots) {
+  std::vector<std::uint64_t> every(slots.size(), 0);
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    const auto& slot = slots[i];
     for (const auto& input : slot->context->inputs()) {
       if (!input->gated()) {
         continue;
       }
-      // A consumer due every p steps reading d steps late needs, at its due step m, the samples up
-      // to m - d. Its host acknowledges the steps in between without them, and producers run up
-      // to `window` ticks past the last acknowledged step: W + p + d - 1 samples of an instance
-      // may be written before the consumer must have them. A writer keeping fewer may drop one a
-      // reader never got (e.g. a reader that matched late, at the start): a silently different run.
-      const std::uint64_t ahead = window + slot->state.period_steps + input->delay_steps() - 1;
-      if (ahead > *depth) {
+      const std::optional<std::uint64_t> steps =
+          history_checkpoint_steps(window, slot->state.period_steps, input->delay_steps(), *depth);
+      if (!steps) {
         throw ConfigError("lockstep: component '" + slot->spec->name + "' reads " + input->topic() + " " +
-                          std::to_string(input->delay_steps()) + " step(s) late every " +
-                          std::to_string(slot->state.period_steps) + " step(s): with --lockstep-window " +
-                          std::to_string(window) + " its producers may write " + std::to_string(ahead) +
-                          " samples of an instance before it reads them, more than the '" + kLockstepProfile +
-                          "' QoS profile's writer history keeps (KEEP_LAST " + std::to_string(*depth) +
-                          "): lower --lockstep-window or raise that depth in the QoS file");
+                          std::to_string(input->delay_steps()) + " step(s) late: with --lockstep-window " +
+                          std::to_string(window) + " its producers may write " +
+                          std::to_string(window + input->delay_steps()) +
+                          " samples of an instance before it reads them even if its host waits for them at every step, "
+                          "more than the '" + kLockstepProfile + "' QoS profile's writer history keeps (KEEP_LAST " +
+                          std::to_string(*depth) + "): lower --lockstep-window or raise that depth in the QoS file");
+      }
+      if (*steps > 0 && (every[i] == 0 || *steps < every[i])) {
+        every[i] = *steps;
       }
     }
+    if (every[i] > 0) {
+      log::info(options.member, "lockstep: component '" + slot->spec->name + "' runs every " +
+                                    std::to_string(slot->state.period_steps) + " steps; its host also waits for its inputs every " +
+                                    std::to_string(every[i]) + " steps (the producers' writer history keeps " +
+                                    std::to_string(*depth) + " samples)");
+    }
   }
+  return every;
 }
 
 /// Lockstep: ConfigError when a component's gated input waits for an instance no component of the
@@ -119,8 +131,9 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
   ack_output_ = std::make_unique<Output<idl::StepDone>>(ack_writer_, &state_);
   check_inputs_have_producers(run, slots);
   if (run.mode == TimeMode::kLockstep && !run.single_process) {
-    check_history_bound(run, options, slots);
+    checkpoint_steps_ = history_checkpoints(run, options, slots);
   }
+  checkpoint_pending_.assign(slots.size(), false);
 }
 
 void LockstepHost::begin(Clock::time_point start) {
@@ -174,10 +187,13 @@ bool LockstepHost::take_tick() {
     run_.figures.thirds_done_at_s.push_back(seconds_since(start_));  // the thirds count from the first tick
   }
   first_tick_ = false;
-  for (auto& slot : slots_) {
+  for (std::size_t i = 0; i < slots_.size(); ++i) {
+    auto& slot = slots_[i];
     slot->pending = tick_step_ % slot->state.period_steps == 0;
     slot->state.step = tick_step_;
     slot->state.stamp_ns = sim_stamp_ns(tick_step_, run_.scenario->step_s);
+    checkpoint_pending_[i] = !slot->pending && !checkpoint_steps_.empty() && checkpoint_steps_[i] > 0 &&
+                             tick_step_ % checkpoint_steps_[i] == 0;
   }
   waiting_since_ = Clock::now();
   return true;
@@ -187,8 +203,10 @@ bool LockstepHost::run_due_components() {
   const double step_s = run_.scenario->step_s;
   bool progressed = false;
   bool all_done = true;
-  for (auto& slot : slots_) {
-    if (!slot->pending) {
+  for (std::size_t i = 0; i < slots_.size(); ++i) {
+    auto& slot = slots_[i];
+    const bool checkpoint = checkpoint_pending_[i];
+    if (!slot->pending && !checkpoint) {
       continue;
     }
     const InputBase* blocking = nullptr;
@@ -206,9 +224,14 @@ bool LockstepHost::run_due_components() {
           continue;  // it arrived meanwhile
         }
         throw RunError("lockstep: component '" + slot->spec->name + "' waited " + fmt_s(options_.input_timeout_s) +
-                       " s at step " + std::to_string(tick_step_) + " for topic " + blocking->topic() + ", " + missing +
-                       dds_report(*run_.bus));
+                       " s at step " + std::to_string(tick_step_) + (checkpoint ? " (a history checkpoint)" : "") +
+                       " for topic " + blocking->topic() + ", " + missing + dds_report(*run_.bus));
       }
+      continue;
+    }
+    if (checkpoint) {
+      checkpoint_pending_[i] = false;  // its inputs are in: the step may be acknowledged without running it
+      progressed = true;
       continue;
     }
     const double time_s = static_cast<double>(tick_step_) * step_s;
