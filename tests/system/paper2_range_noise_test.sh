@@ -38,4 +38,34 @@ if bad:
 PY
 grep -qE "observer: robot 1: range noise estimated sigma (1\.[6-9]|2\.[0-4])[0-9]* m \(floor 0\.5 m\)" "$WORK/run.log" \
   || fail "no estimated range noise near 2 m logged for robot 1: $(grep 'range noise' "$WORK/run.log")"
-echo "ok: paper 2 at 2 m of range noise settles, restarts only at the target switch, estimates the noise"
+
+# Issue 27, finding 6 (two more runs, ~3 s each, noise-free). (1) A start formation never tuned on
+# (degraded/paper2_start_random_3.yaml): the observer converges in 2.86 s; the convergence read
+# 96.1 s before excursions where the truth |r''| broke the bound b were excused. (2) 10 % of the
+# ranges lost (seed 2): with each gap integrated as one Euler step the sliding mode's chattering
+# grew (steady RMSE 0.043 m/s, 0.95 % over-confident, convergence 367 s); integrated period by
+# period: 0.032 m/s, 0.007-0.02 %, 2.5 s. Both mission verdicts "complete".
+timeout -k 5 120 "$ROBODDS" run "$SRC/sim/scenarios/degraded/paper2_start_random_3.yaml" --seed 1 \
+  --domain "$DOMAIN" --out "$WORK/start" --no-plots >"$WORK/start.log" 2>&1 || fail "start formation run failed: $(tail -5 "$WORK/start.log")"
+timeout -k 5 120 "$ROBODDS" run "$SRC/sim/scenarios/paper2_circumnavigation.yaml" --seed 2 --set range_sensor.dropout_probability=0.1 \
+  --domain "$DOMAIN" --out "$WORK/dropouts" --no-plots >"$WORK/dropouts.log" 2>&1 || fail "dropout run failed: $(tail -5 "$WORK/dropouts.log")"
+python3 - "$WORK/start/summary.json" "$WORK/dropouts/summary.json" <<'PY' || fail "paper 2 convergence from an unseen start or with dropouts"
+import json, sys
+bad = []
+for path, name in zip(sys.argv[1:], ("random_3 start", "10 % dropouts")):
+    s = json.load(open(path))
+    o = s["metrics"]["observer"]["sta"]
+    if s.get("mission") != "complete":
+        bad.append(f"{name}: mission {s.get('mission')}")
+    if not 0 <= o["convergence_s"] <= 5:
+        bad.append(f"{name}: observer.sta.convergence_s {o['convergence_s']} (bound 5 s)")
+    if o["steady_rmse_mps"] > 0.036:
+        bad.append(f"{name}: observer.sta.steady_rmse_mps {o['steady_rmse_mps']} (bound 0.036; 0.043 with one Euler step per gap)")
+    if o["consistency"]["overconfident_fraction"] > 0.001:
+        bad.append(f"{name}: observer.sta over-confident {o['consistency']['overconfident_fraction']} (bound 0.001)")
+    if o["restarts"] != 2 + (name != "random_3 start"):
+        bad.append(f"{name}: observer.sta.restarts {o['restarts']} (the mission's target switches)")
+if bad:
+    sys.exit("FAIL: " + "; ".join(bad))
+PY
+echo "ok: paper 2 at 2 m of range noise settles, restarts only at the target switch, estimates the noise; converges from an unseen start and with 10 % dropouts"

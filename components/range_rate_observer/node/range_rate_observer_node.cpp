@@ -25,7 +25,8 @@ constexpr double kUnlimitedSpeedInitialRateStdMps = 5.0;
 
 /// One robot's pair of observers on its range stream.
 struct RobotObservers {
-  RobotObservers(const ObserverNodeParams& p, const RateUncertaintyParams& u) : sta(p.sta, u), linear(p.linear, u) {}
+  RobotObservers(const ObserverNodeParams& p, const RateUncertaintyParams& u, double period_s)
+      : sta(p.sta, u, period_s), linear(p.linear, u, period_s) {}
   SuperTwistingObserver sta;
   LinearRangeRateObserver linear;
   std::uint32_t target_id = 0;
@@ -69,7 +70,10 @@ class RangeRateObserverNode : public Component {
     }
     name_ = ctx.name();
     for (const RobotSpec& robot : ctx.robots()) {
-      robots_.emplace(robot.id, RobotObservers(params_, uncertainty_of(ctx, robot.id)));
+      // The sensor's period: a longer step between two ranges spans lost ones (dropouts), which
+      // the observers integrate across period by period (range_rate_observer.hpp, issue 27
+      // finding 6).
+      robots_.emplace(robot.id, RobotObservers(params_, uncertainty_of(ctx, robot.id), period_s));
     }
     ranges_ = &ctx.subscribe<idl::RangeMeasurement>("sensor/range", Subscription::robot_streams(ctx.robot_keys()));
     sta_out_ = &ctx.advertise<idl::RangeRateEstimate>("observer/range_rate");

@@ -5,11 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <utility>
 
+#include "components/range_rate_observer/range_rate_observer.hpp"
 #include "robodds/idl/robodds.h"
 #include "runtime/base/error.hpp"
 #include "runtime/io/io.hpp"
@@ -114,6 +116,50 @@ TEST(RangeRateObserverNode, RefusedRangesLeaveTheObserversAlone) {
     EXPECT_DOUBLE_EQ(one[60].range_rate(), one[59].range_rate()) << "step 60 republishes the estimate of step 59";
     EXPECT_NEAR(one[kSwitchStep - 1].range_rate(), 5.0, 0.3);
   }
+}
+
+// Issue 27, finding 6: lost ranges (every third step here, announced by next_step) are gaps the
+// observers bridge with their sample period, the sensor's (rate_hz 50: 0.02 s): the node's
+// estimates are those of the library observer told that period, not of one integrating each gap
+// as one Euler step (sample_period_s 0, which widened the sliding mode's chattering).
+TEST(RangeRateObserverNode, LostRangesAreBridgedWithTheSensorsSamplePeriod) {
+  Harness h(scenario());
+  const auto range = [](double t) { return 100.0 + 5.0 * t + 4.0 * std::sin(0.7 * t); };
+  const auto lost = [](std::uint64_t step) { return step % 3 == 2; };
+  h.feed([&h, &range, &lost](std::uint64_t step) {
+    if (step == 0) {
+      idl::RangeMeasurement two;  // robot 2: one final sample
+      two.robot_id(2);
+      two.target_id(1);
+      two.range(50.0);
+      h.publish("sensor/range", two, step, kNeverAgain);
+    }
+    if (lost(step)) {
+      return;
+    }
+    idl::RangeMeasurement m;
+    m.robot_id(1);
+    m.target_id(1);
+    m.range(range(static_cast<double>(step) * 0.02));
+    h.publish("sensor/range", m, step, lost(step + 1) ? step + 2 : step + 1);
+  });
+  const auto& sta = h.record<idl::RangeRateEstimate>("observer/range_rate");
+  h.run({"observer"});
+  const auto one = of_robot(sta, 1);
+  ASSERT_EQ(one.size(), 201u) << "a lost step republishes the last estimate";
+  SuperTwistingObserver bridged(SuperTwistingParams{}, {}, 0.02);
+  SuperTwistingObserver euler(SuperTwistingParams{}, {}, 0.0);
+  double differs = 0.0;
+  for (std::uint64_t step = 0; step <= 200; ++step) {
+    if (lost(step)) {
+      continue;
+    }
+    const double t = static_cast<double>(step) * 0.02;
+    const double expected = bridged.update(t, range(t)).rate_mps;
+    differs = std::max(differs, std::abs(euler.update(t, range(t)).rate_mps - expected));
+    EXPECT_NEAR(one[step].range_rate(), expected, 1e-9) << "step " << step;
+  }
+  EXPECT_GT(differs, 0.01) << "the two ways of integrating a gap must differ for this test to mean anything";
 }
 
 TEST(RangeRateObserverNode, GainsOutsideThePapersConditionsAreConfigErrorsNamingTheKey) {

@@ -209,7 +209,8 @@ void CircumnavigationMetrics::close_step(std::uint64_t step) {
     const RangeDerivatives d = range_derivatives(s.x, s.y, s.theta, s.v, s.omega, v_dot, a->target_x, a->target_y);
     if (had_previous) {
       ++accel_samples_;
-      accel_over_b_ += std::abs(d.rddot) > b_ ? 1 : 0;
+      entry->over_b = std::abs(d.rddot) > b_;
+      accel_over_b_ += entry->over_b ? 1 : 0;
     }
     radius_errors.push_back(d.r - a->desired_radius);
     teams[a->target_id].push_back(std::atan2(s.y - a->target_y, s.x - a->target_x));
@@ -311,17 +312,27 @@ void CircumnavigationMetrics::handle(ObserverKind kind, Stream& stream, const Ra
     }
   }
   if (!stream.converged) {
-    if (std::abs(err) > kConvergenceTolMps) {
-      stream.run_open = false;
-    } else {
+    if (truth->over_b) {
+      stream.any_over_b = true;
+      stream.excused_until = e.step + steps(kBoundRecoveryS);
+    }
+    if (std::abs(err) <= kConvergenceTolMps) {
       if (!stream.run_open) {
         stream.run_open = true;
         stream.run_from = e.step;
       }
-      if (e.step - stream.run_from >= steps(kConvergenceHoldS)) {
-        stream.converged = true;
-        stream.convergence_s = static_cast<double>(stream.run_from - stream.first_step) * step_s_;
-      }
+    } else if (stream.run_open && stream.any_over_b && e.step <= stream.excused_until &&
+               e.step - stream.run_from >= steps(kConvergenceConfirmS)) {
+      // Paper 2's convergence holds while |r''| <= b: an excursion where the truth broke the
+      // bound (or shortly after) is excused once the error had held within the tolerance, so the
+      // observer had converged; its transient from the start is never excused.
+      ++stream.excused;
+    } else {
+      stream.run_open = false;
+    }
+    if (stream.run_open && e.step - stream.run_from >= steps(kConvergenceHoldS)) {
+      stream.converged = true;
+      stream.convergence_s = static_cast<double>(stream.run_from - stream.first_step) * step_s_;
     }
   }
 }
@@ -437,6 +448,7 @@ CircumnavigationSummary CircumnavigationMetrics::summary() const {
       any = true;
       all_converged = all_converged && s.converged;
       worst = std::max(worst, s.convergence_s);
+      o.convergence_excused += s.excused;
     }
     o.convergence_s = any && all_converged ? worst : -1.0;
   }

@@ -123,9 +123,10 @@ class CircumnavigationModule : public MetricsModule {
       json.begin_object(observer_kind_name(kind));
       optional("transient_rmse_mps", o.transient_rmse_mps);
       optional("steady_rmse_mps", o.steady_rmse_mps);
-      if (kind == ObserverKind::kSta) {
-        json.value("convergence_s", o.convergence_s);
-      }
+      json.value("convergence_s", o.convergence_s);
+      // Issue 27, finding 6: samples outside the convergence tolerance while the truth broke the
+      // observer's bound b (excused from convergence_s).
+      json.value("convergence_excused_samples", static_cast<std::int64_t>(o.convergence_excused));
       optional("max_error_after_restart_mps", o.max_error_after_restart_mps);
       json.value("restarts", static_cast<std::int64_t>(o.restarts));
       json.value("matched_samples", static_cast<std::int64_t>(o.matched));

@@ -103,13 +103,13 @@ TEST(EvaluatorNode, RecordsTargetKeyedTopicsPerRobotAndWritesThePaper2Metrics) {
                                                     R"("radius_rmse_m": 1\s*\})")))
       << "alone on each target: no gaps; " << summary;
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("observer": \{\s*"sta": \{\s*"steady_rmse_mps": 0.5,\s*)"
-                                                    R"("convergence_s": -1,\s*"max_error_after_restart_mps": 0.5,\s*)"
+                                                    R"("convergence_s": -1,\s*"convergence_excused_samples": 0,\s*"max_error_after_restart_mps": 0.5,\s*)"
                                                     R"("restarts": 1,\s*"matched_samples": 22,\s*)"
                                                     R"("range_noise_std_m": 0.15,\s*"range_noise_std_max_m": 0.2,\s*)"
                                                     R"("consistency": \{\s*"samples": 22,\s*"valid_samples": 22,\s*)"
                                                     R"("overconfident_samples": 22,\s*"overconfident_fraction": 1,\s*)"
                                                     R"("worst_error_valid_mps": 0.5,\s*"longest_overconfident_s": 0.11\s*\}\s*\},\s*)"
-                                                    R"("linear": \{\s*"steady_rmse_mps": 0.25,\s*"restarts": 0,)")))
+                                                    R"("linear": \{\s*"steady_rmse_mps": 0.25,\s*"convergence_s": -1,\s*"convergence_excused_samples": 0,\s*"restarts": 0,)")))
       << "no transient window in 0.1 s; " << summary;
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("linear": \{[^}]*"consistency": \{\s*"samples": 22,\s*"valid_samples": 22,\s*)"
                                                     R"("overconfident_samples": 0,)")))
