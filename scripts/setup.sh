@@ -12,6 +12,7 @@ PACKAGES=(
   iproute2 tcpdump procps bc docker-compose python3-matplotlib python3-yaml file time
   stress-ng  # CPU hogs beside real-time runs (docs/deployment.md, Real-time priority)
   cyclonedds-dev cyclonedds-tools libcycloneddsidl0
+  slurmctld slurmd slurm-client munge  # integration.slurm_sweep: a one-node cluster runs an emitted sweep (docs/scale.md)
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -145,7 +145,7 @@ class SweepCommand : public Command {
         return emit(read_planned_spec(), offset);
       }
       const SweepSpec spec = read_planned_spec();
-      return aggregate_ ? write_tables(spec, collect_existing(spec)) : run_one(spec, *run_index_);
+      return aggregate_ ? aggregate_existing(spec) : run_one(spec, *run_index_);
     }
     const SweepSpec spec = checked_spec();
     if (!resume_dir_.empty()) {
@@ -345,6 +345,30 @@ class SweepCommand : public Command {
       outcomes.push_back(recorded_outcome(r, run_dir(out_dir_, r.index)));
     }
     return outcomes;
+  }
+
+  /// --aggregate: the tables of the runs recorded in --out, and on stderr each planned run without
+  /// a result by index and seed with how to run it again (a batch array task that never ran or was
+  /// lost: its index is the one to resubmit). Such runs are not failures (exit 0, as a partial
+  /// sweep's tables are still useful); failed runs exit 1 (write_tables).
+  int aggregate_existing(const SweepSpec& spec) const {
+    const std::vector<RunOutcome> outcomes = collect_existing(spec);
+    const int code = write_tables(spec, outcomes);
+    std::string indices;
+    for (const RunOutcome& o : outcomes) {
+      if (!o.not_run) {
+        continue;
+      }
+      std::fprintf(stderr, "sweep: run %zu (seed %llu) has no result in %s: run it with robodds sweep --run-index %zu --out %s\n",
+                   o.run.index, static_cast<unsigned long long>(o.run.seed), run_dir(out_dir_, o.run.index).c_str(), o.run.index,
+                   out_dir_.c_str());
+      indices += (indices.empty() ? "" : ",") + std::to_string(o.run.index);
+    }
+    if (!indices.empty()) {
+      std::fprintf(stderr, "sweep: a batch array job reruns them with its array indices %s (e.g. sbatch --array=%s %s/slurm.sbatch)\n",
+                   indices.c_str(), indices.c_str(), out_dir_.c_str());
+    }
+    return code;
   }
 
   int write_tables(const SweepSpec& spec, const std::vector<RunOutcome>& outcomes) const {
