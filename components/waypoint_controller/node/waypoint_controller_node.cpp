@@ -50,7 +50,6 @@ class WaypointControllerNode : public Component {
     for (const RobotSpec& robot : ctx.robots()) {
       ControllerParams robot_params = params_;
       robot_params.body = system::robot_body(ctx.scenario(), robot.id);  // the robot it drives
-      max_decel_mps2_ = robot_params.body.actuator.max_accel_mps2;  // the same fact for every robot
       robots_.emplace(robot.id, Robot{WaypointTracker(robot_params, period_s_), CreepBudget(creep_limits), TrackerStatus{},
                                       CreepVerdict::kAllowed, control::LateEstimateWatch{}, 0,
                                       model::EstimateGapHold(node_params.gap_hold)});
@@ -112,7 +111,9 @@ class WaypointControllerNode : public Component {
         // Not an estimate whose producer says its own inputs went stale (real time: the sensors may
         // be dead): that stops the robot as a stale estimate does (issue 24).
         const bool may_hold = !tracker.done() && !estimate->inputs_stale();
-        const std::optional<model::Twist> held = may_hold ? robot.hold.gap(period_s_, max_decel_mps2_) : std::nullopt;
+        // A held robot slows within its body's max_accel_mps2 (0 = no limit: the reduced speed at once).
+        const double max_decel_mps2 = tracker.params().body.actuator.max_accel_mps2;
+        const std::optional<model::Twist> held = may_hold ? robot.hold.gap(period_s_, max_decel_mps2) : std::nullopt;
         if (!may_hold) {
           robot.hold.stopped();
         }
@@ -262,7 +263,6 @@ class WaypointControllerNode : public Component {
   bool require_valid_ = true;
   double invalid_estimate_speed_mps_ = 0.0;
   double estimate_timeout_s_ = 0.5;
-  double max_decel_mps2_ = 0.0;  // m/s^2: how fast a held robot slows (robot_body's max_accel_mps2; 0 = at once)
   double period_s_ = 0.01;  // s, the control period (1 / rate_hz)
   double step_s_ = 0.01;    // s, the scenario's step (header steps -> seconds)
   bool realtime_ = false;
