@@ -62,7 +62,7 @@ class GuidanceLaw {
   /// Back to speed 0: the robot was stopped (zero commands) and starts from rest again.
   void reset();
   /// The robot moves at speed_mps without the law (held through a gap of the estimate,
-  /// estimate_gap_hold.hpp): the next step rate-limits from it.
+  /// common/model/estimate_gap_hold.hpp): the next step rate-limits from it.
   void continue_from(double speed_mps) { speed_mps_ = speed_mps; }
 
   double speed_mps() const { return speed_mps_; }

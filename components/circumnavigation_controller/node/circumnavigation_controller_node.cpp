@@ -9,7 +9,7 @@
 
 #include "common/estimate_age.hpp"
 #include "common/number_text.hpp"
-#include "components/circumnavigation_controller/estimate_gap_hold.hpp"
+#include "common/model/estimate_gap_hold.hpp"
 #include "components/circumnavigation_controller/guidance_law.hpp"
 #include "components/circumnavigation_controller/node/circumnavigation_controller_params.hpp"
 #include "robodds/idl/robodds.h"
@@ -72,7 +72,7 @@ class CircumnavigationControllerNode : public Component {
     name_ = ctx.name();
     for (const RobotSpec& robot : ctx.robots()) {
       robots_.emplace(robot.id, Robot{GuidanceLaw(params.guidance), "(not started)", model::Twist{}, control::LateEstimateWatch{},
-                                      EstimateGapHold(params.gap_hold)});
+                                      model::EstimateGapHold(params.gap_hold)});
     }
     std::vector<std::uint64_t> all_robots;
     for (const RobotSpec& robot : ctx.scenario().robots) {
@@ -133,7 +133,7 @@ class CircumnavigationControllerNode : public Component {
     std::string last_reason = "(not started)";  // what the last command was ("" = steering), for the log
     model::Twist last_command;                   // m/s, rad/s: what was last commanded
     control::LateEstimateWatch late;             // of its observer estimates
-    EstimateGapHold hold;                        // through a brief gap of the estimate (issue 27)
+    model::EstimateGapHold hold;                        // through a brief gap of the estimate (issue 27)
   };
 
   /// Why a robot's law may not run: "" it may; `gap` when the estimate is only briefly unusable

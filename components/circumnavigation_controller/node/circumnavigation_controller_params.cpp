@@ -35,7 +35,7 @@ const params::ParamTable<CircumnavigationControllerParams>& circumnavigation_con
                "real time only: an observer estimate received longer ago than this stops the robot; > the control period")
           .add("peer_timeout_s", &P::peer_timeout_s, "s", params::positive(),
                "real time only: a team mate whose pose was received longer ago than this drops out of the spacing")
-          .include_as("gap_hold", &P::gap_hold, hold_param_table(),
+          .include_as("gap_hold", &P::gap_hold, model::hold_param_table(),
                       "a steering robot whose estimate is briefly unusable (restart window, target switch) keeps its "
                       "last curvature at a reduced speed for at most hold_s, then stops (issue 27)");
   return table;

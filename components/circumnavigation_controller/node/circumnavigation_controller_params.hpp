@@ -6,7 +6,7 @@
 #include <string_view>
 
 #include "common/param_table.hpp"
-#include "components/circumnavigation_controller/estimate_gap_hold.hpp"
+#include "common/model/estimate_gap_hold.hpp"
 #include "components/circumnavigation_controller/guidance_params.hpp"
 
 namespace robodds::circumnavigation_controller {
@@ -29,7 +29,7 @@ struct CircumnavigationControllerParams {
   ObserverTopic observer_topic = ObserverTopic::kSuperTwisting;
   double estimate_timeout_s = 0.5;
   double peer_timeout_s = 1.0;
-  HoldParams gap_hold;
+  model::HoldParams gap_hold;
 };
 
 const params::ParamTable<CircumnavigationControllerParams>& circumnavigation_controller_param_table();

@@ -74,6 +74,7 @@ class PfEstimatorNode : public Component {
         // Safe behaviour: a filter without fresh sensors says so, and its consumers stop.
         idl::PoseEstimate stale = published_[id];
         stale.valid(false);
+        stale.inputs_stale(true);  // not the filter's doubt: no gap for a controller to ride through (issue 27)
         out_->publish(stale);
       } else {
         out_->publish(published_[id]);

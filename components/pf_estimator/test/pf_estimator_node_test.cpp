@@ -143,7 +143,8 @@ TEST(PfEstimatorNode, AKeepLimitBelowTheEnterLimitIsAConfigErrorNamingTheKey) {
 }
 
 // Real time: once its sensors stop (by this process's receive time) for longer than
-// input_timeout_s the estimator keeps publishing, but valid = false, so a controller stops.
+// input_timeout_s the estimator keeps publishing, but valid = false and inputs_stale = true, so a
+// controller stops (and does not ride through it as through a brief doubt of the filter, issue 27).
 TEST(PfEstimatorNode, RealTimeEstimateTurnsInvalidWhenTheSensorsGoStale) {
   Harness h(ScenarioText("pf_estimator_stale", 0.01, 0.8)
                 .seed(5)
@@ -167,11 +168,13 @@ TEST(PfEstimatorNode, RealTimeEstimateTurnsInvalidWhenTheSensorsGoStale) {
     const std::uint64_t step = e.header().step();
     if (step >= 10 && step <= kLastFed) {
       valid_while_fed += e.valid() ? 1 : 0;
+      EXPECT_FALSE(e.inputs_stale()) << "step " << step << ": fed";
     }
     // 0.2 s limit + 0.15 s margin for a loaded machine.
     if (step >= kLastFed + 35) {
       ++after_limit;
       EXPECT_FALSE(e.valid()) << "step " << step << ": sensors silent for " << (step - kLastFed) * 0.01 << " s";
+      EXPECT_TRUE(e.inputs_stale()) << "step " << step;
       EXPECT_NEAR(e.x(), fix_x(1), 1.0) << "the last estimate is still published, only marked invalid";
     }
   }

@@ -2,10 +2,14 @@
 #include "components/waypoint_controller/node/waypoint_controller_node.hpp"
 
 #include <map>
+#include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "components/waypoint_controller/creep_budget.hpp"
 #include "common/estimate_age.hpp"
+#include "common/model/estimate_gap_hold.hpp"
+#include "common/number_text.hpp"
 #include "components/waypoint_controller/waypoint_tracker.hpp"
 #include "robodds/idl/robodds.h"
 #include "components/waypoint_controller/node/waypoint_controller_params.hpp"
@@ -30,6 +34,13 @@ class WaypointControllerNode : public Component {
                                    node_params.invalid_estimate_creep_restarts};
     estimate_timeout_s_ = node_params.estimate_timeout_s;
     p.validate(params_);  // the body is checked where it is declared (system::check_facts)
+    p.check([&] {
+      try {
+        node_params.gap_hold.validate();
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument("gap_hold." + std::string(e.what()));  // its keys in this component's table
+      }
+    });
     ctx.set_rate_hz(rate_hz, "rate_hz");
     ctx.require_longer_than_period("estimate_timeout_s", estimate_timeout_s_);
     ctx.limits_age_of("estimate/pose", "estimate_timeout_s", estimate_timeout_s_, /*realtime_only=*/true);
@@ -40,7 +51,8 @@ class WaypointControllerNode : public Component {
       ControllerParams robot_params = params_;
       robot_params.body = system::robot_body(ctx.scenario(), robot.id);  // the robot it drives
       robots_.emplace(robot.id, Robot{WaypointTracker(robot_params, period_s_), CreepBudget(creep_limits), TrackerStatus{},
-                                      CreepVerdict::kAllowed, control::LateEstimateWatch{}, 0});
+                                      CreepVerdict::kAllowed, control::LateEstimateWatch{}, 0,
+                                      model::EstimateGapHold(node_params.gap_hold)});
     }
     const auto keys = ctx.robot_keys();
     estimates_ = &ctx.subscribe<idl::PoseEstimate>("estimate/pose", Subscription::instances(keys));
@@ -78,6 +90,7 @@ class WaypointControllerNode : public Component {
         cmd.v(held.v);
         cmd.omega(held.omega);
         set_tracking(status, robot.last_tracked, false);
+        steered(robot, held);
       } else if (status.state() == idl::TRACKING) {
         Eigen::Matrix2d position_covariance;  // row-major 3x3 [x, y, theta] -> its xy block
         position_covariance << estimate->cov()[0], estimate->cov()[1], estimate->cov()[3], estimate->cov()[4];
@@ -86,19 +99,41 @@ class WaypointControllerNode : public Component {
         cmd.omega(out.command.omega);
         robot.last_tracked = out.status;
         set_tracking(status, out.status, out.status.reached_this_step);
+        steered(robot, out.command);
       } else if (status.state() == idl::ESTIMATE_INVALID) {
-        // Creep ahead until the first valid estimate (within its budget), else stop: v = omega = 0,
-        // reached within the robot's acceleration limits like the stop at the mission's end (the
-        // plant would brake no faster on an instant zero, and a one-step flicker of `valid` does not
-        // restart the ramp from rest while the robot is still at speed).
-        const bool creeping = invalid_estimate_speed_mps_ > 0.0 && may_creep(id, robot, info.time_s);
-        const Command out = tracker.hold(creeping ? Command{invalid_estimate_speed_mps_, 0.0} : Command{});
-        if (creeping) {
-          robot.creep.crept(out.v, period_s_);
+        // Issue 27: a robot that was tracking and is moving rides through a brief invalid estimate
+        // on the arc of its last command, slowing, for at most gap_hold.hold_s (never once the
+        // mission is done). Else, or once the hold ran out: creep ahead until the first valid
+        // estimate (within its budget), else stop: v = omega = 0, reached within the robot's
+        // acceleration limits like the stop at the mission's end (the plant would brake no faster
+        // on an instant zero, and a one-step flicker of `valid` does not restart the ramp from
+        // rest while the robot is still at speed).
+        // Not an estimate whose producer says its own inputs went stale (real time: the sensors may
+        // be dead): that stops the robot as a stale estimate does (issue 24).
+        const bool may_hold = !tracker.done() && !estimate->inputs_stale();
+        // A held robot slows within its body's max_accel_mps2 (0 = no limit: the reduced speed at once).
+        const double max_decel_mps2 = tracker.params().body.actuator.max_accel_mps2;
+        const std::optional<model::Twist> held = may_hold ? robot.hold.gap(period_s_, max_decel_mps2) : std::nullopt;
+        if (!may_hold) {
+          robot.hold.stopped();
         }
-        cmd.v(out.v);
-        cmd.omega(out.omega);
+        report_hold(id, robot, held.has_value(), info.time_s);
+        if (held) {
+          const Command out = tracker.hold(Command{held->v, held->omega});  // within the wheel and acceleration limits
+          cmd.v(out.v);
+          cmd.omega(out.omega);
+        } else {
+          const bool creeping = invalid_estimate_speed_mps_ > 0.0 && may_creep(id, robot, info.time_s);
+          const Command out = tracker.hold(creeping ? Command{invalid_estimate_speed_mps_, 0.0} : Command{});
+          if (creeping) {
+            robot.creep.crept(out.v, period_s_);
+          }
+          cmd.v(out.v);
+          cmd.omega(out.omega);
+        }
       } else {
+        // No mission, no estimate, or (real time) a stale one: its producer may be dead. Never held.
+        robot.hold.stopped();
         tracker.command_stopped();  // the zero command below: the plant brakes within its own limits
       }
       set_progress(status, tracker);  // the mission's progress in every state (issue 24, finding 8)
@@ -115,7 +150,37 @@ class WaypointControllerNode : public Component {
     CreepVerdict told = CreepVerdict::kAllowed;  // the last refusal logged
     control::LateEstimateWatch late;             // of its pose estimates
     std::uint32_t restarts_seen = 0;             // the estimator's restart count last seen
+    model::EstimateGapHold hold;                 // through a brief invalid estimate (issue 27)
+    bool said_hold = false;                      // a hold was logged (once per run)
+    bool said_expiry = false;                    // a hold that ran out was logged (once per run)
   };
+
+  /// The robot was driven by the tracker's `command` at this step: a following invalid estimate
+  /// may be held on its arc, unless the mission is done (the robot stops there for good).
+  static void steered(Robot& robot, const Command& command) {
+    if (robot.tracker.done()) {
+      robot.hold.stopped();
+    } else {
+      robot.hold.steered(model::Twist{command.v, command.omega});
+    }
+  }
+
+  /// Says the first time a robot is held, and the first time a hold runs out (not again: `valid`
+  /// may flicker all run long).
+  static void report_hold(std::uint32_t id, Robot& robot, bool holding, double time_s) {
+    const std::string robot_text = "robot " + std::to_string(id) + ": ";
+    if (holding && !robot.said_hold) {
+      log::info("waypoint_controller", robot_text + "the estimate is not valid at " + std::to_string(time_s) +
+                                           " s: holding the arc of the last command at reduced speed for at most "
+                                           "gap_hold.hold_s " + shortest_text(robot.hold.params().hold_s) +
+                                           " s (said once)");
+      robot.said_hold = true;
+    } else if (!holding && robot.hold.gap_s() > robot.hold.params().hold_s && robot.said_hold && !robot.said_expiry) {
+      log::info("waypoint_controller", robot_text + "still not valid after gap_hold.hold_s at " + std::to_string(time_s) +
+                                           " s: the hold ended (said once)");
+      robot.said_expiry = true;
+    }
+  }
 
   /// The estimator restarted (its count rose since the last estimate seen): a new creep budget
   /// while the run's allowance lasts (creep_budget.hpp). Says which, once per restart.

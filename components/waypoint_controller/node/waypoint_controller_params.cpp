@@ -33,7 +33,13 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
                "redrawn from the fixes, its heading unknown) may each grant a new creep budget in a run; 0 = none")
           .add("estimate_timeout_s", &WaypointControllerNodeParams::estimate_timeout_s, "s", params::positive(),
                "real time only: an estimate received longer ago than this stops the robot (state ESTIMATE_STALE); > the control period. "
-               "One older than two of its producer's periods (next_step - step) already holds the last command");
+               "One older than two of its producer's periods (next_step - step) already holds the last command")
+          .include_as("gap_hold", &WaypointControllerNodeParams::gap_hold, model::hold_param_table(),
+                      "with require_valid_estimate: a robot that was tracking and is moving, whose estimate arrives but "
+                      "says it is not valid, keeps the curvature of its last command at a reduced speed (braked within "
+                      "max_accel_mps2) for at most hold_s, then the rules above (stop, or creep after an estimator "
+                      "restart); never before the first valid estimate, never once the mission is done, never on a missing or "
+                      "stale estimate nor on one marked inputs_stale (issue 27)");
   return table;
 }
 

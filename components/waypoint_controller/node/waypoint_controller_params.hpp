@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "common/model/estimate_gap_hold.hpp"
 #include "common/param_table.hpp"
 #include "components/waypoint_controller/controller_params.hpp"
 
@@ -23,6 +24,7 @@ struct WaypointControllerNodeParams {
   double invalid_estimate_creep_limit_s = 40.0;
   int invalid_estimate_creep_restarts = 3;
   double estimate_timeout_s = 0.5;
+  model::HoldParams gap_hold;  // issue 27: through a brief invalid estimate while driving
 };
 
 const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_param_table();

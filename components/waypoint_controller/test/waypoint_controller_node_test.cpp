@@ -187,11 +187,13 @@ TEST(WaypointControllerNode, CreepingStopsAtItsDistanceWithoutAValidEstimate) {
 }
 
 // Issue 24, finding 3: once the estimate was valid, an invalid one means v = omega = 0 (the
-// sensors died at speed): the robot never creeps on blind. Before: it crept at 0.3 m/s.
+// sensors died at speed): the robot never creeps on blind. Before: it crept at 0.3 m/s. (The
+// hold of issue 27 off: its own tests are below.)
 TEST(WaypointControllerNode, NoCreepingOnceTheEstimateWasValid) {
   Harness h(ScenarioText("waypoint_controller_no_blind", 0.01, 0.3)
                 .robots({1})
-                .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3}}"));
+                .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3, "
+                           "gap_hold: {hold_s: 0}}}"));
   h.feed([&h](std::uint64_t step) {
     if (step == 0) {
       h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
@@ -213,12 +215,13 @@ TEST(WaypointControllerNode, NoCreepingOnceTheEstimateWasValid) {
 }
 
 // A lost filter redrawn (PoseEstimate.restarts rises) knows no heading, as at the start: one new
-// bounded creep, until its next valid estimate; a plain invalid estimate grants none.
+// bounded creep, until its next valid estimate; a plain invalid estimate grants none (the hold of
+// issue 27 off).
 TEST(WaypointControllerNode, AnEstimatorRestartGrantsOneNewCreepUntilTheNextValidEstimate) {
   Harness h(ScenarioText("waypoint_controller_restart", 0.01, 0.3)
                 .robots({1})
                 .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3, "
-                           "invalid_estimate_creep_restarts: 1}}"));
+                           "invalid_estimate_creep_restarts: 1, gap_hold: {hold_s: 0}}}"));
   h.feed([&h](std::uint64_t step) {
     if (step == 0) {
       h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
@@ -281,6 +284,121 @@ TEST(WaypointControllerNode, AFinishedMissionStaysFinishedWhileTheEstimateFlicke
   EXPECT_GT(invalid, 0) << "the flicker was seen";
 }
 
+// Issue 27: a robot that was tracking rides through a brief invalid estimate on the arc of its
+// last command, slowing at the robot's max_accel (1 m/s^2: 0.01 m/s per 0.01 s step) to half its
+// speed and staying there, and tracks on from there when the estimate is valid again. Before:
+// v = omega = 0, braked at 1 m/s^2 (the same first 10 steps: 0.2 -> 0.1 m/s), 0 from step 39 on,
+// and the ramp back from there.
+TEST(WaypointControllerNode, HoldsTheLastArcAtReducedSpeedThroughABriefInvalidEstimate) {
+  Harness h(ScenarioText("waypoint_controller_hold", 0.01, 0.5)
+                .fact("robot_body: {max_accel_mps2: 1.0}")
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller}"));  // gap_hold: 1 s at half speed
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{10.0, 5.0}}), 0, kNeverAgain);  // ahead, to the left
+    }
+    h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, step < 20 || step >= 45), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 51u);
+  const double v_last = commands[19].v();
+  const double curvature = commands[19].omega() / v_last;
+  ASSERT_NEAR(v_last, 0.2, 1e-9) << "ramped up from rest at 1 m/s^2 for 20 steps";
+  ASSERT_GT(std::abs(curvature), 0.01) << "turning towards the way-point";
+  for (std::size_t i = 20; i < 45; ++i) {
+    EXPECT_EQ(status[i].state(), idl::ESTIMATE_INVALID) << "step " << i;
+    const double expected_v = std::max(v_last - 0.01 * static_cast<double>(i - 19), 0.5 * v_last);
+    EXPECT_NEAR(commands[i].v(), expected_v, 1e-9) << "step " << i << ": slowing at max_accel to half the speed";
+    EXPECT_NEAR(commands[i].omega(), curvature * commands[i].v(), 1e-9) << "step " << i << ": on the same arc";
+  }
+  EXPECT_EQ(status[45].state(), idl::TRACKING);
+  EXPECT_NEAR(commands[45].v(), 0.5 * v_last + 0.01, 1e-9) << "tracking on from the held speed, within the ramp";
+}
+
+// Issue 27: the hold lasts at most gap_hold.hold_s (here 0.05 s: 5 steps at 100 Hz), then the
+// rules of issue 24 (no creeping once valid: zero). Without acceleration limits the reduced
+// speed (gap_hold.speed_fraction 0.25) is taken at once.
+TEST(WaypointControllerNode, TheHoldEndsAfterHoldSWithAStop) {
+  Harness h(ScenarioText("waypoint_controller_hold_expiry", 0.01, 0.3)
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3, "
+                           "gap_hold: {hold_s: 0.05, speed_fraction: 0.25}}}"));
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{10.0, 5.0}}), 0, kNeverAgain);
+    }
+    h.publish("estimate/pose", estimate(0.0, 0.0, 0.0, step < 10), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 31u);
+  const double v_last = commands[9].v();
+  ASSERT_GT(v_last, 1.0);
+  for (std::size_t i = 10; i < 15; ++i) {
+    EXPECT_DOUBLE_EQ(commands[i].v(), 0.25 * v_last) << "step " << i;
+    EXPECT_DOUBLE_EQ(commands[i].omega(), 0.25 * commands[9].omega()) << "step " << i;
+  }
+  for (std::size_t i = 15; i < commands.size(); ++i) {
+    EXPECT_DOUBLE_EQ(commands[i].v(), 0.0) << "step " << i << ": the hold ran out; no creeping once valid";
+    EXPECT_DOUBLE_EQ(commands[i].omega(), 0.0) << "step " << i;
+  }
+}
+
+// Issue 27 within issue 24: an estimate that is invalid because the estimator's own inputs went
+// stale (real time: PoseEstimate.inputs_stale, the sensor host may be dead) is no gap to ride
+// through: the robot stops as before (here at once: no acceleration limit), though it was tracking.
+TEST(WaypointControllerNode, NoHoldWhenTheEstimatorsInputsAreStale) {
+  Harness h(ScenarioText("waypoint_controller_hold_inputs_stale", 0.01, 0.2)
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller}"));
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{10.0, 5.0}}), 0, kNeverAgain);
+    }
+    idl::PoseEstimate e = estimate(0.0, 0.0, 0.0, step < 10);
+    e.inputs_stale(step >= 10);
+    h.publish("estimate/pose", e, step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 21u);
+  ASSERT_GT(commands[9].v(), 1.0) << "tracking at speed";
+  for (std::size_t i = 10; i < commands.size(); ++i) {
+    EXPECT_EQ(status[i].state(), idl::ESTIMATE_INVALID) << "step " << i;
+    EXPECT_DOUBLE_EQ(commands[i].v(), 0.0) << "step " << i << ": stale inputs: not held";
+    EXPECT_DOUBLE_EQ(commands[i].omega(), 0.0) << "step " << i;
+  }
+}
+
+// Issue 27: no hold once the mission is done, even where the law is still active after the last
+// way-point (stop_when_done false: v = kd d = 0.05 m/s at 0.05 m from it): an invalid estimate
+// there is a stop, as before.
+TEST(WaypointControllerNode, NoHoldOnceTheMissionIsDone) {
+  Harness h(ScenarioText("waypoint_controller_hold_done", 0.01, 0.1)
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, params: {stop_when_done: false}}"));
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{1.0, 0.0}}), 0, kNeverAgain);
+    }
+    h.publish("estimate/pose", estimate(step < 3 ? 0.0 : 0.95, 0.0, 0.0, step < 6), step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  const auto& status = h.record<idl::ControllerStatus>("control/status");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 11u);
+  EXPECT_EQ(status[5].state(), idl::DONE);
+  EXPECT_NEAR(commands[5].v(), 0.05, 1e-9) << "the law still active at the last way-point";
+  for (std::size_t i = 6; i < commands.size(); ++i) {
+    EXPECT_DOUBLE_EQ(commands[i].v(), 0.0) << "step " << i << ": done: not held";
+    EXPECT_DOUBLE_EQ(commands[i].omega(), 0.0) << "step " << i;
+  }
+}
+
 TEST(WaypointControllerNode, DrivesToTheWaypointAndSwitchesWithinEpsilon) {
   Harness h(kScenario);
   // The robot faces +x; the first way-point is 1 m ahead until step 3, when the estimate is
@@ -312,7 +430,8 @@ TEST(WaypointControllerNode, DrivesToTheWaypointAndSwitchesWithinEpsilon) {
 
 // Real time (finding 1 of issue 9): when the estimates stop arriving, the controller commands
 // zero within estimate_timeout_s of the last receipt and says why (ESTIMATE_STALE), instead of
-// steering on the frozen estimate.
+// steering on the frozen estimate. Issue 27: a stale estimate is no gap to ride through (its
+// producer may be dead): not held, although the robot was tracking (gap_hold.hold_s 1 s by default).
 TEST(WaypointControllerNode, RealTimeStaleEstimateStopsTheRobotAndSaysWhy) {
   Harness h(ScenarioText("waypoint_controller_stale", 0.01, 0.8)
                 .robots({1})

@@ -1,21 +1,23 @@
-#include "components/circumnavigation_controller/estimate_gap_hold.hpp"
+#include "common/model/estimate_gap_hold.hpp"
 
-#include <cmath>
+#include <algorithm>
+#include <limits>
 
 #include "common/param_checks.hpp"
-#include "components/circumnavigation_controller/guidance_law.hpp"
 
-namespace robodds::circumnavigation_controller {
+namespace robodds::model {
 
 const params::ParamTable<HoldParams>& hold_param_table() {
   using P = HoldParams;
   static const params::ParamTable<P> table =
       params::ParamTable<P>("Hold through a brief gap of the estimate (issue 27): keep the last curvature, slow down, then stop.")
           .add("hold_s", &P::hold_s, "s", params::non_negative("0 = stop at once"),
-               "longest gap of the range-rate estimate (restart window, target switch; not a stale one) a steering robot "
-               "rides through on its last curvature; longer: it stops")
+               "longest gap of a usable estimate (it arrives but says it is not valid: a restart window, a target "
+               "switch, a filter unsure of its pose; never a stale one) a moving robot rides through on its last "
+               "curvature; longer: it stops")
           .add("speed_fraction", &P::speed_fraction, "", params::shown_as(params::positive(), "(0, 1]"),
-               "while held, the speed tends to this fraction of the last command's at most max_accel_mps2");
+               "while held, the speed tends to this fraction of the last command's, within the controller's "
+               "acceleration limit");
   return table;
 }
 
@@ -28,7 +30,7 @@ void HoldParams::validate() const {
 
 EstimateGapHold::EstimateGapHold(const HoldParams& params) : params_(params) { params_.validate(); }
 
-void EstimateGapHold::steered(const model::Twist& command) {
+void EstimateGapHold::steered(const Twist& command) {
   armed_ = true;
   holding_ = false;
   last_ = command;
@@ -42,7 +44,7 @@ void EstimateGapHold::stopped() {
   gap_s_ = 0.0;
 }
 
-std::optional<model::Twist> EstimateGapHold::gap(double dt_s, double max_decel_mps2) {
+std::optional<Twist> EstimateGapHold::gap(double dt_s, double max_decel_mps2) {
   param_checks::require_positive("dt", dt_s);
   gap_s_ += dt_s;
   // 1e-9 s: a hold of 1 s at 50 Hz holds exactly 50 steps whatever the rounding of the sum.
@@ -53,8 +55,10 @@ std::optional<model::Twist> EstimateGapHold::gap(double dt_s, double max_decel_m
   }
   holding_ = true;
   const double curvature = last_.omega / last_.v;
-  speed_mps_ = rate_limited(speed_mps_, params_.speed_fraction * last_.v, max_decel_mps2 * dt_s);
-  return model::Twist{speed_mps_, curvature * speed_mps_};
+  const double max_change = max_decel_mps2 > 0.0 ? max_decel_mps2 * dt_s : std::numeric_limits<double>::infinity();
+  const double target = params_.speed_fraction * last_.v;
+  speed_mps_ += std::clamp(target - speed_mps_, -max_change, max_change);
+  return Twist{speed_mps_, curvature * speed_mps_};
 }
 
-}  // namespace robodds::circumnavigation_controller
+}  // namespace robodds::model

@@ -1,18 +1,18 @@
 // Issue 27: a steering robot rides through a brief gap of its estimate on its last curvature at
-// a reduced speed, for at most hold_s, then stops.
-#include "components/circumnavigation_controller/estimate_gap_hold.hpp"
+// a reduced speed, for at most hold_s, then stops (both controllers use it).
+#include "common/model/estimate_gap_hold.hpp"
 
 #include <gtest/gtest.h>
 
 #include <optional>
 #include <stdexcept>
 
-namespace robodds::circumnavigation_controller {
+namespace robodds::model {
 namespace {
 
 constexpr double kDt = 0.02;       // s: 50 Hz, paper 2's control rate
 constexpr double kDecel = 0.5;     // m/s^2: the law's max_accel_mps2
-const model::Twist kOrbit{13.0, 13.0 / 200.0};  // on a 200 m circle at 13 m/s
+const Twist kOrbit{13.0, 13.0 / 200.0};  // on a 200 m circle at 13 m/s
 
 TEST(EstimateGapHold, KeepsTheCurvatureAndSlowsAtMostMaxDecelForAtMostHoldS) {
   EstimateGapHold hold(HoldParams{1.0, 0.5});
@@ -20,7 +20,7 @@ TEST(EstimateGapHold, KeepsTheCurvatureAndSlowsAtMostMaxDecelForAtMostHoldS) {
   int held = 0;
   double previous_v = kOrbit.v;
   for (int k = 1; k <= 60; ++k) {
-    const std::optional<model::Twist> c = hold.gap(kDt, kDecel);
+    const std::optional<Twist> c = hold.gap(kDt, kDecel);
     if (!c) {
       break;
     }
@@ -41,7 +41,7 @@ TEST(EstimateGapHold, KeepsTheCurvatureAndSlowsAtMostMaxDecelForAtMostHoldS) {
 TEST(EstimateGapHold, TheSpeedSettlesAtItsFraction) {
   EstimateGapHold hold(HoldParams{10.0, 0.5});
   hold.steered(kOrbit);
-  std::optional<model::Twist> c;
+  std::optional<Twist> c;
   for (int k = 0; k < 500; ++k) {  // 10 s: 13 -> 6.5 m/s takes 13 s at 0.5 m/s^2; at 5 m/s^2 1.3 s
     c = hold.gap(kDt, 5.0);
   }
@@ -56,8 +56,19 @@ TEST(EstimateGapHold, ARobotThatWasNotSteeringOrNotMovingIsNotHeld) {
   hold.steered(kOrbit);
   hold.stopped();
   EXPECT_FALSE(hold.gap(kDt, kDecel).has_value()) << "stopped for another reason before the gap";
-  hold.steered(model::Twist{0.0, 0.1});
+  hold.steered(Twist{0.0, 0.1});
   EXPECT_FALSE(hold.gap(kDt, kDecel).has_value()) << "standing: nothing is underway";
+}
+
+// Paper 1's robot may have no acceleration limit (0 = none): the reduced speed at once; and the
+// way-point law backs up towards a way-point behind (v < 0): held backing up, slower, on the same arc.
+TEST(EstimateGapHold, WithoutADecelerationLimitTheReducedSpeedAtOnceAndBackingUpStaysBackingUp) {
+  EstimateGapHold hold(HoldParams{1.0, 0.5});
+  hold.steered(Twist{-1.2, 3.0});
+  const std::optional<Twist> c = hold.gap(0.01, 0.0);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_DOUBLE_EQ(c->v, -0.6);
+  EXPECT_DOUBLE_EQ(c->omega, 1.5) << "the curvature omega / v = -2.5 1/m kept";
 }
 
 TEST(EstimateGapHold, ZeroHoldStopsAtOnceAsBefore) {
@@ -91,4 +102,4 @@ TEST(EstimateGapHold, BadParamsNameTheKey) {
 }
 
 }  // namespace
-}  // namespace robodds::circumnavigation_controller
+}  // namespace robodds::model
