@@ -37,6 +37,29 @@ const params::ParamTable<LinearObserverParams>& linear_observer_param_table() {
   return table;
 }
 
+const params::ParamTable<KalmanObserverParams>& kalman_observer_param_table() {
+  using P = KalmanObserverParams;
+  static const params::ParamTable<P> table =
+      params::ParamTable<P>("Kalman filter on range, range rate and range acceleration (issue 28, beyond the paper).")
+          .add("jerk_psd_m2ps5", &P::jerk_psd_m2ps5, "m^2/s^5", params::positive(),
+               "q: spectral density of the white jerk driving the range acceleration (smaller: lower noise floor, "
+               "slower to follow a change of acceleration)")
+          .add("initial_accel_std_mps2", &P::initial_accel_std_mps2, "m/s^2", params::non_negative(),
+               "std of the range acceleration at a (re)start")
+          .add("min_range_sigma_m", &P::min_range_sigma_m, "m", params::positive(),
+               "the smallest range noise sigma a range is weighed by (the filter uses the online estimate)")
+          .add("restart_sigmas", &P::restart_sigmas, "", params::non_negative("0 = never restart"),
+               "a range step the rate misses by more than this many times its estimated spread restarts the observer")
+          .add("noise_floor_m", &P::noise_floor_m, "m", params::positive(),
+               "the range sensor's configured noise sigma: floor of the online noise estimate (restarts; the filter's "
+               "weights until the estimate is trained)")
+          .add("restart_window_s", &P::restart_window_s, "s", params::positive(),
+               "after a restart: least-squares window that sets range and rate; not valid until full");
+  return table;
+}
+
+void KalmanObserverParams::validate() const { kalman_observer_param_table().check_ranges(*this); }
+
 void SuperTwistingParams::validate() const { super_twisting_param_table().check_ranges(*this); }
 
 void LinearObserverParams::validate() const { linear_observer_param_table().check_ranges(*this); }

@@ -57,7 +57,29 @@ struct LinearObserverParams {
   void validate() const;
 };
 
+/// Issue 28, beyond the paper: a Kalman filter on range, range rate and range acceleration
+/// (kalman_law.hpp), the range modelled as driven by white jerk of spectral density q.
+/// Units, ranges and one-line descriptions: kalman_observer_param_table() in observer_params.cpp.
+struct KalmanObserverParams {
+  /// q (m^2/s^5). Small: the steady noise floor of a slowly changing range rate (at 0.5 m of
+  /// range noise and 50 Hz, 0.001 gives the linear observer's floor); the acceleration state
+  /// carries the manoeuvres without the lag of a two-state observer (README.md, "Kalman filter").
+  double jerk_psd_m2ps5 = 0.001;
+  /// The range acceleration's std at a (re)start (m/s^2): the acceleration the mission allows.
+  double initial_accel_std_mps2 = 2.2;
+  /// The smallest range noise (sigma, m) the filter weighs a range by: it weighs by the online
+  /// estimate (the configured noise_floor_m until that is trained), which may be ~0 for a
+  /// noise-free sensor.
+  double min_range_sigma_m = 0.01;
+  double restart_sigmas = 7.0;    // as SuperTwistingParams::restart_sigmas
+  double noise_floor_m = 0.5;     // as SuperTwistingParams::noise_floor_m
+  double restart_window_s = 0.5;  // as SuperTwistingParams::restart_window_s
+
+  void validate() const;
+};
+
 const params::ParamTable<SuperTwistingParams>& super_twisting_param_table();
 const params::ParamTable<LinearObserverParams>& linear_observer_param_table();
+const params::ParamTable<KalmanObserverParams>& kalman_observer_param_table();
 
 }  // namespace robodds::range_rate_observer

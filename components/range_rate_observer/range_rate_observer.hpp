@@ -1,7 +1,12 @@
 #pragma once
-// A range-rate observer fed by sampled ranges: the estimator state (s_hat, v_hat) integrated with
-// explicit Euler between samples, the correction computed from the error at the previous sample.
-// One class for both of paper 2's observers; `Law` picks the right-hand side (observer_laws.hpp).
+// A range-rate observer fed by sampled ranges: one class for paper 2's two observers and the
+// Kalman filter of issue 28. What they share is here (restarts on range jumps and target changes,
+// the restart window, the online noise estimate, lost samples, the reported rate std); how the
+// state moves from one sample to the next is the `Law`:
+//   EulerLaw (below): the state (s_hat, v_hat) integrated with explicit Euler between samples, the
+//     correction computed from the error at the previous sample; the right-hand side is paper 2's
+//     super-twisting or linear observer (observer_laws.hpp);
+//   KalmanLaw (kalman_law.hpp): range, rate and range acceleration, predicted and corrected.
 
 #include <algorithm>
 #include <cmath>
@@ -10,11 +15,53 @@
 #include <utility>
 
 #include "common/number_text.hpp"
+#include "components/range_rate_observer/kalman_law.hpp"
 #include "components/range_rate_observer/observer_laws.hpp"
 #include "components/range_rate_observer/rate_uncertainty.hpp"
 #include "components/range_rate_observer/running_abs_median.hpp"
 
 namespace robodds::range_rate_observer {
+
+/// How an observer's state moves from one range sample to the next (see the file comment): a
+/// class with `using Params` (validate(), restart_sigmas, noise_floor_m, restart_window_s),
+/// `static constexpr bool kBridgesGaps` (whether lost samples are integrated period by period
+/// against the line between the ranges on either side), and
+///   explicit Law(const Params&);
+///   void start(double range_m, double rate_mps, double rate_std_mps, double range_error_m);
+///   void advance(double dt_s, double measured_range_m, double range_sigma_m);
+///     (range_sigma_m: the online noise estimate, or the configured floor until it is trained)
+///   double range_m() const;  double rate_mps() const;
+/// Paper 2's observers: eq. (1) and eq. (9) integrated with explicit Euler.
+template <class P, ObserverDerivative (*Derivative)(const P&, double, double)>
+class EulerLaw {
+ public:
+  using Params = P;
+  static constexpr bool kBridgesGaps = true;
+
+  explicit EulerLaw(const Params& params) : params_(params) {}
+  /// The state (s_hat, v_hat) and the range error e the next step corrects with.
+  void start(double range_m, double rate_mps, double /*rate_std_mps*/, double range_error_m) {
+    range_m_ = range_m;
+    rate_mps_ = rate_mps;
+    error_m_ = range_error_m;
+  }
+  /// One Euler step of dt_s with the error at the previous sample, then the error against
+  /// measured_range_m for the next step.
+  void advance(double dt_s, double measured_range_m, double /*range_sigma_m*/) {
+    const ObserverDerivative derivative = Derivative(params_, rate_mps_, error_m_);
+    range_m_ += dt_s * derivative.range_mps;
+    rate_mps_ += dt_s * derivative.rate_mps2;
+    error_m_ = measured_range_m - range_m_;
+  }
+  double range_m() const { return range_m_; }
+  double rate_mps() const { return rate_mps_; }
+
+ private:
+  Params params_;
+  double range_m_ = 0.0;  // s_hat
+  double rate_mps_ = 0.0;  // v_hat
+  double error_m_ = 0.0;   // s - s_hat at the last sample, m
+};
 
 struct RangeRateEstimate {
   double time_s = 0.0;
@@ -28,9 +75,11 @@ struct RangeRateEstimate {
   double rate_std_mps = 0.0;
 };
 
-template <class Params, ObserverDerivative (*Derivative)(const Params&, double, double)>
+template <class Law>
 class RangeRateObserver {
  public:
+  using Params = typename Law::Params;
+
   /// Throws std::invalid_argument (from Params::validate) for bad gains or uncertainty
   /// parameters, or a negative or non-finite sample_period_s.
   ///
@@ -43,7 +92,7 @@ class RangeRateObserver {
   /// 10-30 % losses); correcting over one period and predicting the rest would leave it b (1 -
   /// losses) of rate correction per second, below the range accelerations it must follow.
   explicit RangeRateObserver(Params params, RateUncertaintyParams uncertainty = {}, double sample_period_s = 0.0)
-      : params_(std::move(params)), uncertainty_(uncertainty), sample_period_s_(sample_period_s) {
+      : params_(std::move(params)), law_(params_), uncertainty_(uncertainty), sample_period_s_(sample_period_s) {
     params_.validate();
     if (!(std::isfinite(sample_period_s) && sample_period_s >= 0.0)) {
       throw std::invalid_argument("range-rate observer: sample_period_s must be finite and >= 0 (got " +
@@ -113,18 +162,21 @@ class RangeRateObserver {
       return estimate_;
     }
     // Lost samples: a step longer than kGapRatio sample periods spans them (see the constructor).
-    const int substeps = sample_period_s_ > 0.0 && dt > kGapRatio * sample_period_s_
+    const int substeps = Law::kBridgesGaps && sample_period_s_ > 0.0 && dt > kGapRatio * sample_period_s_
                              ? static_cast<int>(std::min(std::round(dt / sample_period_s_), static_cast<double>(kMaxGapSteps)))
                              : 1;
     const double h = dt / substeps;
+    // The range noise a law may weigh samples by (the Kalman filter): the online estimate once it
+    // rests on enough steps, before that never below the configured floor.
+    const double range_sigma_m =
+        noise_samples() < kMinNoiseSamples ? std::max(noise_sigma_m(), params_.noise_floor_m) : noise_sigma_m();
     for (int i = 1; i <= substeps; ++i) {
-      const ObserverDerivative derivative = Derivative(params_, estimate_.rate_mps, error_m_);
-      estimate_.range_m += h * derivative.range_mps;
-      estimate_.rate_mps += h * derivative.rate_mps2;
       // The lost ranges: the line between the last range and this one.
       const double measured_m = i == substeps ? range_m : last_range_m_ + (range_m - last_range_m_) * i / substeps;
-      error_m_ = measured_m - estimate_.range_m;
+      law_.advance(h, measured_m, range_sigma_m);
     }
+    estimate_.range_m = law_.range_m();
+    estimate_.rate_mps = law_.rate_mps();
     estimate_.time_s = time_s;
     last_range_m_ = range_m;
     uncertainty_.add(time_s, range_m, estimate_.rate_mps);
@@ -163,12 +215,13 @@ class RangeRateObserver {
   const Params& params() const { return params_; }
 
  private:
-  /// Starts (valid) from rate_mps, whose error has std rate_std_mps.
-  void start_at(double time_s, double range_m, double rate_mps, double rate_std_mps) {
+  /// Starts (valid) from rate_mps, whose error has std rate_std_mps; range_error_m: the measured
+  /// range minus range_m.
+  void start_at(double time_s, double range_m, double rate_mps, double rate_std_mps, double range_error_m = 0.0) {
     uncertainty_.restart(rate_std_mps);
     uncertainty_.add(time_s, range_m, rate_mps);
     estimate_ = {time_s, range_m, rate_mps, true, uncertainty_.std_mps()};
-    error_m_ = 0.0;
+    law_.start(range_m, rate_mps, rate_std_mps, range_error_m);
     last_range_m_ = range_m;
     window_open_ = false;
     started_ = true;
@@ -220,8 +273,7 @@ class RangeRateObserver {
     }
     // 1e-9 s: a window of 0.5 s at 50 Hz must close at the 26th sample whatever the rounding.
     if (w.count >= 2 && t >= params_.restart_window_s - 1e-9) {
-      start_at(time_s, line_range_m, slope_mps, slope_std_mps);
-      error_m_ = range_m - line_range_m;
+      start_at(time_s, line_range_m, slope_mps, slope_std_mps, range_m - line_range_m);
       last_range_m_ = range_m;
       return;
     }
@@ -252,10 +304,10 @@ class RangeRateObserver {
   static constexpr int kMaxGapSteps = 64;
 
   Params params_;
+  Law law_;  // the state between samples (after params_: built from it)
   RateUncertainty uncertainty_;
   RunningAbsMedian unexplained_steps_{kNoiseWindow};
   RangeRateEstimate estimate_;
-  double error_m_ = 0.0;       // s - s_hat at the last sample, m
   double last_range_m_ = 0.0;  // the last measured range, m
   double sample_period_s_ = 0.0;  // s, 0: no gap handling
   Window window_;
@@ -265,7 +317,8 @@ class RangeRateObserver {
   std::size_t restarts_ = 0;
 };
 
-using SuperTwistingObserver = RangeRateObserver<SuperTwistingParams, &super_twisting_derivative>;
-using LinearRangeRateObserver = RangeRateObserver<LinearObserverParams, &linear_derivative>;
+using SuperTwistingObserver = RangeRateObserver<EulerLaw<SuperTwistingParams, &super_twisting_derivative>>;
+using LinearRangeRateObserver = RangeRateObserver<EulerLaw<LinearObserverParams, &linear_derivative>>;
+using KalmanRangeRateObserver = RangeRateObserver<KalmanLaw>;
 
 }  // namespace robodds::range_rate_observer

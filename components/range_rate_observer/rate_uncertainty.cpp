@@ -23,7 +23,9 @@ const params::ParamTable<RateUncertaintyParams>& rate_uncertainty_param_table() 
           .add("fast_tau_s", &P::fast_tau_s, "s", params::positive(), "time constant of the quickly following mean of the squared differences")
           .add("slow_tau_s", &P::slow_tau_s, "s", params::positive(), "time constant of the slowly forgetting mean of the squared differences")
           .add("initial_rate_std_mps", &P::initial_rate_std_mps, "m/s", params::non_negative("0 = the robot's max_speed_mps / 3; 5 without one"),
-               "std of the true range rate at the first sample (the observer starts at 0 m/s)");
+               "std of the true range rate at the first sample (the observer starts at 0 m/s)")
+          .add("min_std_mps", &P::min_std_mps, "m/s", params::non_negative(),
+               "the smallest std reported (the evaluation's own resolution of a noise-free rate)");
   return table;
 }
 
@@ -87,7 +89,9 @@ void RateUncertainty::add(double time_s, double range_m, double v_hat_mps) {
   ++checks_;
 }
 
-double RateUncertainty::std_mps() const { return std::sqrt(std::max(fast_var_, slow_var_)); }
+double RateUncertainty::std_mps() const {
+  return std::max(std::sqrt(std::max(fast_var_, slow_var_)), params_.min_std_mps);
+}
 
 double RateUncertainty::estimate_at(double t) const {
   const auto after = std::lower_bound(window_.begin(), window_.end(), t, [](const Sample& s, double time) { return s.t < time; });

@@ -11,12 +11,24 @@ ObserverTopic observer_topic_from_string(std::string_view text) {
   if (text == "observer/range_rate_linear") {
     return ObserverTopic::kLinear;
   }
-  throw std::invalid_argument("observer_topic: must be \"observer/range_rate\" or \"observer/range_rate_linear\" (got \"" +
-                              std::string(text) + "\")");
+  if (text == "observer/range_rate_kf") {
+    return ObserverTopic::kKalman;
+  }
+  throw std::invalid_argument(
+      "observer_topic: must be \"observer/range_rate\", \"observer/range_rate_linear\" or \"observer/range_rate_kf\" (got \"" +
+      std::string(text) + "\")");
 }
 
 std::string to_string(ObserverTopic topic) {
-  return topic == ObserverTopic::kLinear ? "observer/range_rate_linear" : "observer/range_rate";
+  switch (topic) {
+    case ObserverTopic::kLinear:
+      return "observer/range_rate_linear";
+    case ObserverTopic::kKalman:
+      return "observer/range_rate_kf";
+    case ObserverTopic::kSuperTwisting:
+      break;
+  }
+  return "observer/range_rate";
 }
 
 const params::ParamTable<CircumnavigationControllerParams>& circumnavigation_controller_param_table() {
@@ -29,8 +41,8 @@ const params::ParamTable<CircumnavigationControllerParams>& circumnavigation_con
           .add("rate_hz", &P::rate_hz, "Hz", params::positive(), "control rate; must divide the simulation rate")
           .include(&P::guidance, guidance_param_table())
           .add_enum("observer_topic", &P::observer_topic, observer_topic_from_string, to_string,
-                    {"observer/range_rate", "observer/range_rate_linear"},
-                    "range-rate estimate used: super-twisting (the paper's) or the linear baseline")
+                    {"observer/range_rate", "observer/range_rate_linear", "observer/range_rate_kf"},
+                    "range-rate estimate used: super-twisting (the paper's), the linear baseline or the Kalman filter (issue 28)")
           .add("estimate_timeout_s", &P::estimate_timeout_s, "s", params::positive(),
                "real time only: an observer estimate received longer ago than this stops the robot; > the control period")
           .add("peer_timeout_s", &P::peer_timeout_s, "s", params::positive(),

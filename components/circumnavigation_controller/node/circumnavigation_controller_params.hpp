@@ -11,11 +11,11 @@
 
 namespace robodds::circumnavigation_controller {
 
-/// Which range-rate estimate the law uses: the super-twisting observer's (the paper's) or the
-/// linear baseline's.
-enum class ObserverTopic { kSuperTwisting, kLinear };
+/// Which range-rate estimate the law uses: the super-twisting observer's (the paper's), the
+/// linear baseline's or the Kalman filter's (issue 28).
+enum class ObserverTopic { kSuperTwisting, kLinear, kKalman };
 
-/// "observer/range_rate" / "observer/range_rate_linear"; throws std::invalid_argument
+/// "observer/range_rate" / "observer/range_rate_linear" / "observer/range_rate_kf"; throws std::invalid_argument
 /// ("observer_topic: ...") otherwise.
 ObserverTopic observer_topic_from_string(std::string_view text);
 std::string to_string(ObserverTopic topic);

@@ -23,12 +23,13 @@ namespace {
 /// 0): nothing bounds the rate then; 5 m/s covers 15 m/s at 3 stds, beyond the papers' robots.
 constexpr double kUnlimitedSpeedInitialRateStdMps = 5.0;
 
-/// One robot's pair of observers on its range stream.
+/// One robot's observers on its range stream: paper 2's two and the Kalman filter (issue 28).
 struct RobotObservers {
   RobotObservers(const ObserverNodeParams& p, const RateUncertaintyParams& u, double period_s)
-      : sta(p.sta, u, period_s), linear(p.linear, u, period_s) {}
+      : sta(p.sta, u, period_s), linear(p.linear, u, period_s), kalman(p.kalman, u, period_s) {}
   SuperTwistingObserver sta;
   LinearRangeRateObserver linear;
+  KalmanRangeRateObserver kalman;
   std::uint32_t target_id = 0;
   bool ended = false;  // its range stream ended (the robot left): final estimates are out
 };
@@ -60,7 +61,8 @@ class RangeRateObserverNode : public Component {
     // ranges (the old rule: up to 90 m/s off at 0.5 m of noise, README.md "Restart window").
     const double period_s = static_cast<double>(ctx.period_steps()) * ctx.step_s();
     for (const auto& [key, window_s] : {std::pair<std::string, double>{"sta.restart_window_s", params_.sta.restart_window_s},
-                                        {"linear.restart_window_s", params_.linear.restart_window_s}}) {
+                                        {"linear.restart_window_s", params_.linear.restart_window_s},
+                                        {"kalman.restart_window_s", params_.kalman.restart_window_s}}) {
       if (window_s < 2.0 * period_s - 1e-9) {
         p.fail(key + ": " + shortest_text(window_s) + " s spans fewer than two periods of the range samples (" +
                shortest_text(period_s) + " s at rate_hz " + shortest_text(params_.rate_hz) +
@@ -78,6 +80,7 @@ class RangeRateObserverNode : public Component {
     ranges_ = &ctx.subscribe<idl::RangeMeasurement>("sensor/range", Subscription::robot_streams(ctx.robot_keys()));
     sta_out_ = &ctx.advertise<idl::RangeRateEstimate>("observer/range_rate");
     linear_out_ = &ctx.advertise<idl::RangeRateEstimate>("observer/range_rate_linear");
+    kalman_out_ = &ctx.advertise<idl::RangeRateEstimate>("observer/range_rate_kf");
   }
 
   void on_step(const StepInfo&) override {
@@ -87,11 +90,13 @@ class RangeRateObserverNode : public Component {
       }
       const std::size_t sta_restarts = robot.sta.restarts();
       const std::size_t linear_restarts = robot.linear.restarts();
+      const std::size_t kalman_restarts = robot.kalman.restarts();
       bool final_sample = false;
       for (const idl::RangeMeasurement& m : ranges_->take_new_of_robot(id)) {
         if (robot.sta.started() && m.target_id() != robot.target_id) {
           robot.sta.restart();  // a new target: its range has nothing to do with the old one's
           robot.linear.restart();
+          robot.kalman.restart();
         }
         robot.target_id = m.target_id();
         feed(id, robot, static_cast<double>(m.header().stamp_ns()) * 1e-9, m.range());
@@ -104,17 +109,19 @@ class RangeRateObserverNode : public Component {
       // step carries one, as its next_step promised.
       publish(*sta_out_, id, robot, robot.sta, robot.sta.restarts() != sta_restarts, final_sample);
       publish(*linear_out_, id, robot, robot.linear, robot.linear.restarts() != linear_restarts, final_sample);
+      publish(*kalman_out_, id, robot, robot.kalman, robot.kalman.restarts() != kalman_restarts, final_sample);
       robot.ended = final_sample;
     }
   }
 
  private:
-  /// Both observers take the sample, or neither: the library refuses a time that does not
+  /// Every observer takes the sample, or none: the library refuses a time that does not
   /// advance (e.g. a duplicated sample) and leaves its state unchanged; the sample is dropped.
   void feed(std::uint32_t id, RobotObservers& robot, double time_s, double range_m) {
     try {
       robot.sta.update(time_s, range_m);
       robot.linear.update(time_s, range_m);
+      robot.kalman.update(time_s, range_m);
     } catch (const std::invalid_argument& e) {
       if (!warned_) {
         log::warn(name_, "robot " + std::to_string(id) + ": range sample dropped: " + e.what() + " (logged once)");
@@ -176,6 +183,7 @@ class RangeRateObserverNode : public Component {
   Input<idl::RangeMeasurement>* ranges_ = nullptr;
   Output<idl::RangeRateEstimate>* sta_out_ = nullptr;
   Output<idl::RangeRateEstimate>* linear_out_ = nullptr;
+  Output<idl::RangeRateEstimate>* kalman_out_ = nullptr;
 };
 
 }  // namespace
@@ -185,6 +193,6 @@ std::unique_ptr<Component> make_range_rate_observer_node() { return std::make_un
 }  // namespace robodds::range_rate_observer
 
 ROBODDS_REGISTER_COMPONENT(range_rate_observer,
-                           "range-rate observers (super-twisting and linear): sensor/range -> observer/range_rate(_linear)",
+                           "range-rate observers (super-twisting, linear, Kalman): sensor/range -> observer/range_rate(_linear, _kf)",
                            robodds::range_rate_observer::make_range_rate_observer_node,
                            robodds::range_rate_observer::observer_node_param_table);

@@ -22,7 +22,8 @@ struct ObserverNodeParams {
   double rate_hz = 50.0;
   SuperTwistingParams sta;       // keys sta.*
   LinearObserverParams linear;   // keys linear.*
-  RateUncertaintyParams uncertainty = node_uncertainty_defaults();  // keys uncertainty.* (both observers' reported rate std)
+  KalmanObserverParams kalman;   // keys kalman.* (issue 28)
+  RateUncertaintyParams uncertainty = node_uncertainty_defaults();  // keys uncertainty.* (every observer's reported rate std)
 
   /// Throws std::invalid_argument "key: reason (got value)" for the first bad field.
   void validate() const;

@@ -26,7 +26,17 @@ bool same_assignment(const TargetAssignmentInfo& a, const TargetAssignmentInfo& 
 
 }  // namespace
 
-const char* observer_kind_name(ObserverKind kind) { return kind == ObserverKind::kSta ? "sta" : "linear"; }
+const char* observer_kind_name(ObserverKind kind) {
+  switch (kind) {
+    case ObserverKind::kSta:
+      return "sta";
+    case ObserverKind::kLinear:
+      return "linear";
+    case ObserverKind::kKalman:
+      break;
+  }
+  return "kalman";
+}
 
 RangeDerivatives range_derivatives(double x, double y, double theta, double v, double omega, double v_dot,
                                    double target_x, double target_y) {

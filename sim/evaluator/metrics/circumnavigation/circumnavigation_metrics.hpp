@@ -69,8 +69,8 @@ struct RateEstimateSample {
   double range_rate_std = 0.0;  // m/s, the std the observer reports for range_rate (issue 27)
 };
 
-enum class ObserverKind { kSta = 0, kLinear = 1 };
-inline constexpr std::size_t kObserverKinds = 2;
+enum class ObserverKind { kSta = 0, kLinear = 1, kKalman = 2 };
+inline constexpr std::size_t kObserverKinds = 3;
 /// "sta", "linear": the summary.json key of the kind.
 const char* observer_kind_name(ObserverKind kind);
 
@@ -240,7 +240,7 @@ class CircumnavigationMetrics {
 
   double step_s_;
   double b_;
-  bool expected_[kObserverKinds] = {false, false};
+  bool expected_[kObserverKinds] = {false, false, false};
   std::map<std::uint32_t, Robot> robots_;
   std::map<std::uint32_t, std::pair<double, double>> targets_;  // id -> (x, y), from the assignments
   std::vector<std::uint64_t> boundaries_;  // phase start steps, ascending

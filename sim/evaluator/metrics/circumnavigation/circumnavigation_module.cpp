@@ -45,6 +45,9 @@ class CircumnavigationModule : public MetricsModule {
     if (setup.recorded("observer/range_rate_linear")) {
       metrics_->expect_observer(ObserverKind::kLinear);
     }
+    if (setup.recorded("observer/range_rate_kf")) {
+      metrics_->expect_observer(ObserverKind::kKalman);
+    }
     CircumnavigationMetrics& m = *metrics_;
     setup.on<idl::RobotState>("plant/state", [&m](const idl::RobotState& s) {
       m.add_truth(s.robot_id(), {s.header().step(), s.x(), s.y(), s.theta(), s.v(), s.omega()});
@@ -53,7 +56,8 @@ class CircumnavigationModule : public MetricsModule {
       m.add_assignment(a.robot_id(), a.header().step(), {a.active(), a.target_id(), a.target_x(), a.target_y(), a.desired_radius()});
     });
     for (const auto& [topic, kind] : {std::pair{"observer/range_rate", ObserverKind::kSta},
-                                      std::pair{"observer/range_rate_linear", ObserverKind::kLinear}}) {
+                                      std::pair{"observer/range_rate_linear", ObserverKind::kLinear},
+                                      std::pair{"observer/range_rate_kf", ObserverKind::kKalman}}) {
       setup.on<idl::RangeRateEstimate>(topic, [this, &m, kind = kind](const idl::RangeRateEstimate& e) {
         m.add_estimate(kind, e.robot_id(),
                        {e.header().step(), e.target_id(), e.range_rate(), e.valid(), e.restarted(), e.range_rate_std_mps()});
