@@ -90,24 +90,30 @@ InnovationMonitor::InnovationMonitor(const UncertaintyParams& params) : params_(
 void InnovationMonitor::reset() {
   innovations_.clear();
   covariances_.clear();
+  own_covariances_.clear();
   recent_d2_.clear();
   recent_d2_sum_ = 0.0;
 }
 
-void InnovationMonitor::add(const model::Pose2& estimate, const model::Pose2& fix, const Eigen::Matrix3d& fix_covariance) {
+void InnovationMonitor::add(const model::Pose2& estimate, const model::Pose2& fix, const Eigen::Matrix3d& fix_covariance,
+                            const std::optional<Eigen::Matrix3d>& own_error_covariance) {
   const Eigen::Vector3d delta(fix.x - estimate.x, fix.y - estimate.y, wrap_angle(fix.theta - estimate.theta));
-  if (!delta.allFinite() || !fix_covariance.allFinite()) {
+  const Eigen::Matrix3d& own = own_error_covariance ? *own_error_covariance : fix_covariance;
+  if (!delta.allFinite() || !fix_covariance.allFinite() || !own.allFinite()) {
     return;
   }
   innovations_.push_back(delta);
   covariances_.push_back(fix_covariance);
+  own_covariances_.push_back(own);
   while (innovations_.size() > static_cast<std::size_t>(params_.innovation_window_epochs)) {
     innovations_.pop_front();
     covariances_.pop_front();
+    own_covariances_.pop_front();
   }
 }
 
-bool InnovationMonitor::typical(Eigen::Vector3d& median_innovation, Eigen::Matrix3d& typical_covariance) const {
+bool InnovationMonitor::typical(Eigen::Vector3d& median_innovation, Eigen::Matrix3d& typical_covariance,
+                                const std::deque<Eigen::Matrix3d>& covariances) const {
   const std::size_t needed = std::max<std::size_t>(3, static_cast<std::size_t>(params_.innovation_window_epochs) / 5);
   if (innovations_.size() < needed) {
     return false;
@@ -124,12 +130,12 @@ bool InnovationMonitor::typical(Eigen::Vector3d& median_innovation, Eigen::Matri
   // variance (a non-line-of-sight range's leave-one-out residual squared) must not hide the
   // discrepancy, as the median innovation ignores the outlier fix itself.
   std::vector<std::pair<double, std::size_t>> traces;
-  traces.reserve(covariances_.size());
-  for (std::size_t i = 0; i < covariances_.size(); ++i) {
-    traces.emplace_back(covariances_[i].trace(), i);
+  traces.reserve(covariances.size());
+  for (std::size_t i = 0; i < covariances.size(); ++i) {
+    traces.emplace_back(covariances[i].trace(), i);
   }
   std::nth_element(traces.begin(), traces.begin() + static_cast<std::ptrdiff_t>(traces.size() / 2), traces.end());
-  typical_covariance = covariances_[traces[traces.size() / 2].second];
+  typical_covariance = covariances[traces[traces.size() / 2].second];
   return true;
 }
 
@@ -137,7 +143,7 @@ bool InnovationMonitor::lost(const Eigen::Matrix3d& filter_covariance, Eigen::Ve
                              Eigen::Matrix3d& fix_covariance) {
   Eigen::Vector3d typical_innovation;
   Eigen::Matrix3d mean_s;
-  if (!typical(typical_innovation, mean_s)) {
+  if (!typical(typical_innovation, mean_s, own_covariances_)) {
     return false;
   }
   const Eigen::Matrix3d spread = mean_s + filter_covariance;
@@ -168,7 +174,7 @@ bool InnovationMonitor::lost(const Eigen::Matrix3d& filter_covariance, Eigen::Ve
 Eigen::Matrix3d InnovationMonitor::excess() const {
   Eigen::Vector3d typical_innovation;
   Eigen::Matrix3d mean_s;
-  if (!typical(typical_innovation, mean_s)) {
+  if (!typical(typical_innovation, mean_s, covariances_)) {
     return Eigen::Matrix3d::Zero();
   }
   const Eigen::Matrix3d unexplained = typical_innovation * typical_innovation.transpose() - mean_s;

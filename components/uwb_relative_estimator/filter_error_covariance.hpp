@@ -24,6 +24,7 @@
 // Pure: Eigen + std; m, rad, s.
 #include <cstddef>
 #include <deque>
+#include <optional>
 
 #include <Eigen/Core>
 
@@ -94,14 +95,18 @@ class InnovationMonitor {
   explicit InnovationMonitor(const UncertaintyParams& params);
   /// Forgets every fix (the filter restarted).
   void reset();
-  /// One fix against the filter's estimate; non-finite input is ignored.
-  void add(const model::Pose2& estimate, const model::Pose2& fix, const Eigen::Matrix3d& fix_covariance);
+  /// One fix against the filter's estimate; non-finite input is ignored. `own_error_covariance`:
+  /// the part of the fix's covariance that the filter does not share (the independent range
+  /// errors': the common mode and the node biases reach the filter through the same ranges and
+  /// cancel in fix - estimate); lost() tests against it. Without it, the whole fix covariance.
+  void add(const model::Pose2& estimate, const model::Pose2& fix, const Eigen::Matrix3d& fix_covariance,
+           const std::optional<Eigen::Matrix3d>& own_error_covariance = std::nullopt);
   /// The unexplained discrepancy (above), positive semi-definite; zero with fewer fixes than a
   /// fifth of the window (and 3).
   Eigen::Matrix3d excess() const;
   /// The lost-filter test, once per epoch: with enough fixes (as excess()), the median innovation
-  /// m and the typical fix's covariance S (the fix of median trace: an outlier's own variance must
-  /// not hide the discrepancy) give d^2 = m^T (S + filter_covariance)^-1 m; true when d^2 exceeds
+  /// m and the typical fix's own-error covariance S (add(); the fix of median trace: an outlier's
+  /// own variance must not hide the discrepancy) give d^2 = m^T (S + filter_covariance)^-1 m; true when d^2 exceeds
   /// lost_filter_d2, or its mean over the last lost_window_epochs tests (at least half of them)
   /// exceeds lost_mean_d2 (the fixes place the peer where the filter says it cannot be, at once
   /// or for long). Then `correction` is m (add it to the estimate, heading wrapped) and
@@ -111,11 +116,13 @@ class InnovationMonitor {
  private:
   /// The component-wise median innovation and the typical fix's covariance (the fix of median
   /// trace); false with too few fixes.
-  bool typical(Eigen::Vector3d& median_innovation, Eigen::Matrix3d& typical_covariance) const;
+  bool typical(Eigen::Vector3d& median_innovation, Eigen::Matrix3d& typical_covariance,
+               const std::deque<Eigen::Matrix3d>& covariances) const;
 
   UncertaintyParams params_;
   std::deque<Eigen::Vector3d> innovations_;
   std::deque<Eigen::Matrix3d> covariances_;
+  std::deque<Eigen::Matrix3d> own_covariances_;  // add()'s own_error_covariance
   std::deque<double> recent_d2_;  // lost()'s d^2 of the last lost_window_epochs tests
   double recent_d2_sum_ = 0.0;
 };

@@ -39,13 +39,13 @@ StageEstimate filter_estimate(const RelativePoseFilter& filter) {
 /// the fixes' and the filter's covariance) is restarted at its mean plus that innovation, with the
 /// fixes' mean covariance, and reported from there; `restarts` counts it.
 StageEstimate reported_filter_estimate(RelativePoseFilter& filter, FilterErrorCovariance& error, const StageEstimate& uwb,
-                                       InnovationMonitor& check, RandomEngine& random, model::Pose2& pose,
-                                       std::uint64_t& restarts) {
+                                       const Eigen::Matrix3d& uwb_own_covariance, InnovationMonitor& check,
+                                       RandomEngine& random, model::Pose2& pose, std::uint64_t& restarts) {
   StageEstimate out = filter_estimate(filter);
   if (out.valid) {
     Eigen::Matrix3d covariance = with_bearing_curvature(error.covariance(), out.pose);
     if (uwb.valid) {
-      check.add(out.pose, uwb.pose, uwb.covariance);
+      check.add(out.pose, uwb.pose, uwb.covariance, uwb_own_covariance);
     }
     Eigen::Vector3d correction;
     Eigen::Matrix3d fix_covariance;
@@ -189,6 +189,7 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
                                   noise_std_m, params_.uncertainty.outlier_sigma);
         uwb.covariance = with_bearing_curvature(error.covariance(), uwb.pose);
         peer.fix_variances = error.independent_variance_m2;
+        peer.fix_own_covariance = error.independent_map * error.independent_variance_m2.asDiagonal() * error.independent_map.transpose();
       } else {
         uwb.covariance = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());  // degenerate geometry
       }
@@ -287,8 +288,8 @@ void RelativeEstimator::run_pf(std::size_t k, double time_s, double dt_s, const 
     peer.last_fix_s = time_s;
   }
   result.stages[static_cast<std::size_t>(Stage::kPf)] =
-      reported_filter_estimate(peer.pf, peer.pf_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.pf_check,
-                               peer.pf_random, peer.pf_pose, counts_.filter_restarts);
+      reported_filter_estimate(peer.pf, peer.pf_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.fix_own_covariance,
+                               peer.pf_check, peer.pf_random, peer.pf_pose, counts_.filter_restarts);
 }
 
 void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment,
@@ -345,8 +346,8 @@ void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, 
     }
   }
   result.stages[static_cast<std::size_t>(Stage::kPfBaseline)] = reported_filter_estimate(
-      peer.baseline, peer.baseline_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.baseline_check,
-      peer.baseline_random, peer.baseline_pose, counts_.baseline_restarts);
+      peer.baseline, peer.baseline_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.fix_own_covariance,
+      peer.baseline_check, peer.baseline_random, peer.baseline_pose, counts_.baseline_restarts);
 }
 
 void RelativeEstimator::run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,

@@ -165,6 +165,9 @@ class RelativeEstimator {
     Eigen::VectorXd fix_variances;  // this epoch's eq. (1) per-range variances (empty: no ok fix)
     std::optional<double> last_fix_s;     // last epoch with a valid eq. (1) pose (the window's edges)
     std::optional<double> last_frame_s;   // last epoch with an accepted frame (the baseline's input)
+    /// This epoch's eq. (1) covariance from its independent range errors alone (what the filters
+    /// do not share with the fix: their lost-filter test).
+    Eigen::Matrix3d fix_own_covariance = Eigen::Matrix3d::Zero();
   };
 
   void run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,

@@ -255,6 +255,22 @@ TEST(InnovationMonitor, LostIsCalledAtOnceWhenFarOffAfterAWhileWhenModeratelyOff
   EXPECT_NEAR(far_off.x + correction.x(), truth.x, 0.8);
   EXPECT_NEAR(far_off.y + correction.y(), truth.y, 0.8);
   EXPECT_TRUE(typical.isApprox(fix_covariance)) << typical;
+  // Fixes whose covariance is mostly errors the filter shares (a common mode, node biases: the
+  // same ranges reach both, they cancel in fix - estimate): tested against the fixes' own part.
+  InnovationMonitor shared(params);
+  InnovationMonitor whole(params);
+  const Eigen::Matrix3d lasting = 25.0 * fix_covariance;  // 5 m sigmas the filter shares
+  bool shared_lost = false;
+  bool whole_lost = false;
+  for (int t = 0; t < 10; ++t) {
+    const model::Pose2 fix = fix_around(truth);
+    shared.add(far_off, fix, lasting, fix_covariance);
+    whole.add(far_off, fix, lasting);
+    shared_lost = shared.lost(filter_covariance, correction, typical);
+    whole_lost = whole.lost(filter_covariance, correction, typical);
+  }
+  EXPECT_TRUE(shared_lost) << "6 m off against 1 m own fix errors";
+  EXPECT_FALSE(whole_lost) << "6 m off against 5 m whole fix errors: within them";
   // 2.7 m off (d^2 ~ 5.8 < 16.27 at each test, 3 sigma over all): lost only after it persists.
   InnovationMonitor moderate(params);
   const model::Pose2 moderately_off{truth.x + 2.7, truth.y, truth.theta};
