@@ -24,6 +24,7 @@
 // Pure: Eigen + std; m, rad, s.
 #include <cstddef>
 #include <deque>
+#include <optional>
 
 #include <Eigen/Core>
 
@@ -70,6 +71,7 @@ class FilterErrorCovariance {
   Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Zero();
   Eigen::Vector3d common_cross_ = Eigen::Vector3d::Zero();          // Cov(eps, c)
   Eigen::Matrix<double, 3, Eigen::Dynamic> independent_cross_;      // Cov(eps, u)
+  Eigen::Matrix<double, 3, Eigen::Dynamic> node_cross_;             // Cov(eps, b), the node biases
 };
 
 /// The filters' own consistency check against the eq. (1) fixes (issue 27: valid and uncertain
@@ -79,28 +81,50 @@ class FilterErrorCovariance {
 /// [22] with 0.25 m arrays and non-line-of-sight ranges: 8-10 m off for a minute while the fixes
 /// were within 1-2 m) is told so by the fixes. Per fix: the innovation delta = fix - estimate
 /// (heading wrapped) and the fix's covariance. Over the last innovation_window_epochs fixes: the
-/// component-wise median of delta (robust to a wrong fix) and the fixes' mean covariance S;
+/// component-wise median of delta (robust to a wrong fix) and the typical fix's covariance S (the
+/// fix of median trace: an outlier fix's own huge variance must not explain the discrepancy away);
 /// excess() is the part of median_delta median_delta^T that S does not explain (its positive
 /// eigen-directions: covariance matching), i.e. how far the fixes alone place the peer from the
 /// estimate beyond their own uncertainty. The filter's own covariance does not excuse it: it
 /// assumes the filter follows the fixes. A filter that follows them adds nothing or little (the
-/// median over 5 s of fix errors that last 2-10 s is not smaller than one fix's).
+/// median over 5 s of fix errors that last 2-10 s is not smaller than one fix's). lost() says
+/// when the filter should rather be restarted (the estimator does: relative_estimator.cpp).
 class InnovationMonitor {
  public:
-  /// `params`: innovation_window_epochs (validated).
+  /// `params`: innovation_window_epochs, lost_filter_d2, lost_mean_d2, lost_window_epochs (validated).
   explicit InnovationMonitor(const UncertaintyParams& params);
   /// Forgets every fix (the filter restarted).
   void reset();
-  /// One fix against the filter's estimate; non-finite input is ignored.
-  void add(const model::Pose2& estimate, const model::Pose2& fix, const Eigen::Matrix3d& fix_covariance);
+  /// One fix against the filter's estimate; non-finite input is ignored. `own_error_covariance`:
+  /// the part of the fix's covariance that the filter does not share (the independent range
+  /// errors': the common mode and the node biases reach the filter through the same ranges and
+  /// cancel in fix - estimate); lost() tests against it. Without it, the whole fix covariance.
+  void add(const model::Pose2& estimate, const model::Pose2& fix, const Eigen::Matrix3d& fix_covariance,
+           const std::optional<Eigen::Matrix3d>& own_error_covariance = std::nullopt);
   /// The unexplained discrepancy (above), positive semi-definite; zero with fewer fixes than a
   /// fifth of the window (and 3).
   Eigen::Matrix3d excess() const;
+  /// The lost-filter test, once per epoch: with enough fixes (as excess()), the median innovation
+  /// m and the typical fix's own-error covariance S (add(); the fix of median trace: an outlier's
+  /// own variance must not hide the discrepancy) give d^2 = m^T (S + filter_covariance)^-1 m; true when d^2 exceeds
+  /// lost_filter_d2, or its mean over the last lost_window_epochs tests (at least half of them)
+  /// exceeds lost_mean_d2 (the fixes place the peer where the filter says it cannot be, at once
+  /// or for long). Then `correction` is m (add it to the estimate, heading wrapped) and
+  /// `fix_covariance` S; the caller restarts the filter and reset()s this.
+  bool lost(const Eigen::Matrix3d& filter_covariance, Eigen::Vector3d& correction, Eigen::Matrix3d& fix_covariance);
 
  private:
+  /// The component-wise median innovation and the typical fix's covariance (the fix of median
+  /// trace); false with too few fixes.
+  bool typical(Eigen::Vector3d& median_innovation, Eigen::Matrix3d& typical_covariance,
+               const std::deque<Eigen::Matrix3d>& covariances) const;
+
   UncertaintyParams params_;
   std::deque<Eigen::Vector3d> innovations_;
   std::deque<Eigen::Matrix3d> covariances_;
+  std::deque<Eigen::Matrix3d> own_covariances_;  // add()'s own_error_covariance
+  std::deque<double> recent_d2_;  // lost()'s d^2 of the last lost_window_epochs tests
+  double recent_d2_sum_ = 0.0;
 };
 
 }  // namespace robodds::uwb_relative_estimator

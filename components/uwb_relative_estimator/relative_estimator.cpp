@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "common/angle.hpp"
+
 namespace robodds::uwb_relative_estimator {
 namespace {
 
@@ -33,15 +35,31 @@ StageEstimate filter_estimate(const RelativePoseFilter& filter) {
 /// A filter stage's estimate as reported: the filter's mean with the covariance of its update
 /// errors (`error`) and the arc's bend, plus what its check against this epoch's eq. (1) fix
 /// (`uwb`, when valid) finds beyond that; `pose` keeps the mean (where `error` propagates from).
-StageEstimate reported_filter_estimate(const RelativePoseFilter& filter, const FilterErrorCovariance& error,
-                                       const StageEstimate& uwb, InnovationMonitor& check, model::Pose2& pose) {
+/// A filter the check finds lost (InnovationMonitor::lost: the fixes' median innovation beyond
+/// the fixes' and the filter's covariance) is restarted at its mean plus that innovation, with the
+/// fixes' mean covariance, and reported from there; `restarts` counts it.
+StageEstimate reported_filter_estimate(RelativePoseFilter& filter, FilterErrorCovariance& error, const StageEstimate& uwb,
+                                       const Eigen::Matrix3d& uwb_own_covariance, InnovationMonitor& check,
+                                       RandomEngine& random, model::Pose2& pose, std::uint64_t& restarts) {
   StageEstimate out = filter_estimate(filter);
   if (out.valid) {
-    out.covariance = with_bearing_curvature(error.covariance(), out.pose);
+    Eigen::Matrix3d covariance = with_bearing_curvature(error.covariance(), out.pose);
     if (uwb.valid) {
-      check.add(out.pose, uwb.pose, uwb.covariance);
+      check.add(out.pose, uwb.pose, uwb.covariance, uwb_own_covariance);
     }
-    out.covariance += check.excess();
+    Eigen::Vector3d correction;
+    Eigen::Matrix3d fix_covariance;
+    if (check.lost(covariance, correction, fix_covariance)) {
+      const model::Pose2 restart{out.pose.x + correction.x(), out.pose.y + correction.y(),
+                                 wrap_angle(out.pose.theta + correction.z())};
+      filter.initialize(restart, random);
+      error.start(fix_covariance);
+      check.reset();
+      ++restarts;
+      out = filter_estimate(filter);
+      covariance = with_bearing_curvature(error.covariance(), out.pose);
+    }
+    out.covariance = covariance + check.excess();
     pose = out.pose;
   }
   return out;
@@ -165,12 +183,13 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
       // blocked link) gets its own variance: the fit moved by what it pulled.
       RangeErrorMap error;
       if (range_error_map(own_array_, setups_[k].array, uwb.pose, std::max(noise_std_m, epoch_std_m),
-                          params_.uncertainty.range_common_std_m, error)) {
+                          params_.uncertainty.range_common_std_m, error, params_.uncertainty.node_bias_std_m)) {
         error.independent_variance_m2 =
             range_error_variances(own_array_, setups_[k].array, ranges, uwb.pose, std::max(noise_std_m, epoch_std_m),
                                   noise_std_m, params_.uncertainty.outlier_sigma);
         uwb.covariance = with_bearing_curvature(error.covariance(), uwb.pose);
         peer.fix_variances = error.independent_variance_m2;
+        peer.fix_own_covariance = error.independent_map * error.independent_variance_m2.asDiagonal() * error.independent_map.transpose();
       } else {
         uwb.covariance = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());  // degenerate geometry
       }
@@ -269,7 +288,8 @@ void RelativeEstimator::run_pf(std::size_t k, double time_s, double dt_s, const 
     peer.last_fix_s = time_s;
   }
   result.stages[static_cast<std::size_t>(Stage::kPf)] =
-      reported_filter_estimate(peer.pf, peer.pf_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.pf_check, peer.pf_pose);
+      reported_filter_estimate(peer.pf, peer.pf_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.fix_own_covariance,
+                               peer.pf_check, peer.pf_random, peer.pf_pose, counts_.filter_restarts);
 }
 
 void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment,
@@ -290,6 +310,7 @@ void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, 
     const double range_std_m =
         solved ? std::max(noise_std_m, residual_rms_std_m(own_array_, setups_[k].array, ranges, fix.pose)) : noise_std_m;
     const double common_std_m = params_.uncertainty.range_common_std_m;
+    const double node_bias_std_m = params_.uncertainty.node_bias_std_m;
     // Each range's variance, an outlier's its own (as the uwb stage's), from the solve's residuals.
     const auto set_variances = [&](RangeErrorMap& error) {
       if (solved) {
@@ -303,7 +324,7 @@ void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, 
       peer.baseline.update_with_ranges(own_array_, setups_[k].array, ranges, peer.baseline_random);
       peer.last_frame_s = time_s;
       RangeErrorMap error;
-      if (range_error_map(own_array_, setups_[k].array, at, range_std_m, common_std_m, error)) {
+      if (range_error_map(own_array_, setups_[k].array, at, range_std_m, common_std_m, error, node_bias_std_m)) {
         set_variances(error);
         // The weights' N(r - d(x); range_std_m) on K L ranges: a pose measurement of covariance
         // range_std_m^2 (J^T J)^-1 to first order.
@@ -316,7 +337,7 @@ void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, 
       peer.last_frame_s = time_s;
       peer.baseline_check.reset();
       RangeErrorMap error;
-      if (range_error_map(own_array_, setups_[k].array, fix.pose, range_std_m, common_std_m, error)) {
+      if (range_error_map(own_array_, setups_[k].array, fix.pose, range_std_m, common_std_m, error, node_bias_std_m)) {
         set_variances(error);
         peer.baseline_error.start(error);
       } else {
@@ -325,7 +346,8 @@ void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, 
     }
   }
   result.stages[static_cast<std::size_t>(Stage::kPfBaseline)] = reported_filter_estimate(
-      peer.baseline, peer.baseline_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.baseline_check, peer.baseline_pose);
+      peer.baseline, peer.baseline_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.fix_own_covariance,
+      peer.baseline_check, peer.baseline_random, peer.baseline_pose, counts_.baseline_restarts);
 }
 
 void RelativeEstimator::run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
@@ -391,7 +413,7 @@ void RelativeEstimator::run_window(const model::Pose2& own_increment, const std:
       // Each range's variance is its mean over the window's fixes (an outlier's share of it).
       const double noise_std_m = peer.range_noise.std_m();
       if (range_error_map(own_array_, setups_[k].array, window.pose, noise_std_m, params_.uncertainty.range_common_std_m,
-                          peer.window_error)) {
+                          peer.window_error, params_.uncertainty.node_bias_std_m)) {
         Eigen::VectorXd sum = Eigen::VectorXd::Zero(peer.window_error.independent_variance_m2.size());
         int count = 0;
         for (const Eigen::VectorXd& v : peer.window_variances) {

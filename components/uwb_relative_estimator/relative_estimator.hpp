@@ -15,6 +15,8 @@
 //                restart_after_gap_s without one (the window too drifted on odometry meanwhile);
 //   pf_baseline  the paper's [22]: the same filter weighted directly by the K x L ranges,
 //                (re)started from a kOk solve at the first one and after such a gap;
+//                both filters also restarted when their check against the eq. (1) fixes finds
+//                them lost (InnovationMonitor::lost; counts().filter_restarts / baseline_restarts);
 //   odometry     dead reckoning of the relative pose from both odometries (the paper's first row),
 //                from a known start or, without one, from the first kOk solve.
 // Pure: Eigen + std + Ceres, time in plain seconds; wall-clock compute time per stage is measured
@@ -57,7 +59,8 @@ struct StageEstimate {
   /// when their measurements' errors last as long as the range errors do (FilterErrorCovariance;
   /// the particles' spread counts every epoch's measurement as new, and is not reported), plus the
   /// eq. (1) fixes' unexplained median innovation (InnovationMonitor); every UWB stage: each range
-  /// an outlier's own variance when beyond outlier_sigma, plus the bearing's curvature; uwb: the least-squares fit's (range_fix_covariance, with the range noise estimated from the
+  /// an outlier's own variance when beyond outlier_sigma, a bias per UWB node (node_bias_std_m,
+  /// configured: the fit absorbs it), plus the bearing's curvature; uwb: the least-squares fit's (range_fix_covariance, with the range noise estimated from the
   /// residuals); window: the same at the window's pose (the fixes' errors last longer than the
   /// window, so averaging them is given no credit); odometry: propagated from the start (zero
   /// when known, else the first fix's) with the window's odometry stds per epoch. Zero when not
@@ -97,6 +100,8 @@ struct EstimatorCounts {
   std::uint64_t epochs = 0;
   std::uint64_t frames_missing = 0;      // peer epochs without a frame
   std::uint64_t window_not_converged = 0;  // optimisations Ceres did not report converged
+  std::uint64_t filter_restarts = 0;     // pf filters restarted by their lost-filter check
+  std::uint64_t baseline_restarts = 0;   // pf_baseline filters restarted by theirs
 };
 
 /// Two peers (indices into the constructor's peers, first < second) whose ranges also enter the
@@ -160,6 +165,9 @@ class RelativeEstimator {
     Eigen::VectorXd fix_variances;  // this epoch's eq. (1) per-range variances (empty: no ok fix)
     std::optional<double> last_fix_s;     // last epoch with a valid eq. (1) pose (the window's edges)
     std::optional<double> last_frame_s;   // last epoch with an accepted frame (the baseline's input)
+    /// This epoch's eq. (1) covariance from its independent range errors alone (what the filters
+    /// do not share with the fix: their lost-filter test).
+    Eigen::Matrix3d fix_own_covariance = Eigen::Matrix3d::Zero();
   };
 
   void run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,

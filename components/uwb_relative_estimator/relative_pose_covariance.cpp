@@ -45,6 +45,14 @@ const params::ParamTable<UncertaintyParams>& uncertainty_param_table() {
                "pf, pf_baseline: time constant of each link's independent range error (white noise counted as lasting as long)")
           .add("innovation_window_epochs", &P::innovation_window_epochs, "epochs", params::at_least(1),
                "pf, pf_baseline: epochs of eq. (1) fixes whose median innovation, beyond their covariance, widens the filter's")
+          .add("node_bias_std_m", &P::node_bias_std_m, "m", params::non_negative(),
+               "std of a range bias shared by every link of one UWB node (antenna delay, a shadowed node); the fit absorbs it, so it is configured")
+          .add("lost_filter_d2", &P::lost_filter_d2, "", params::positive(),
+               "pf, pf_baseline: restart when the fixes' median innovation is this far (squared Mahalanobis, fixes' + filter's covariance)")
+          .add("lost_mean_d2", &P::lost_mean_d2, "", params::positive(),
+               "pf, pf_baseline: restart also when that squared distance's mean over lost_window_epochs exceeds this")
+          .add("lost_window_epochs", &P::lost_window_epochs, "epochs", params::at_least(2),
+               "pf, pf_baseline: epochs of the lost-filter test's mean")
           .add("outlier_sigma", &P::outlier_sigma, "", params::positive(),
                "a range whose leave-one-out residual exceeds this many range stds gets its own variance (that residual squared)");
   return table;
@@ -147,12 +155,16 @@ Eigen::Matrix3d range_fix_covariance(const model::UwbArray& own, const model::Uw
 }
 
 Eigen::Matrix3d RangeErrorMap::covariance() const {
-  return independent_map * independent_variance_m2.asDiagonal() * independent_map.transpose() +
-         common_std_m * common_std_m * common_map * common_map.transpose();
+  Eigen::Matrix3d out = independent_map * independent_variance_m2.asDiagonal() * independent_map.transpose() +
+                        common_std_m * common_std_m * common_map * common_map.transpose();
+  if (node_map.cols() > 0) {
+    out += node_bias_std_m * node_bias_std_m * node_map * node_map.transpose();
+  }
+  return out;
 }
 
 bool range_error_map(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
-                     double independent_std_m, double common_std_m, RangeErrorMap& out) {
+                     double independent_std_m, double common_std_m, RangeErrorMap& out, double node_bias_std_m) {
   Eigen::MatrixXd jacobian;
   Eigen::Matrix3d inverse;
   if (!range_jacobian(own, other, pose, jacobian) || !information_inverse(jacobian, inverse)) {
@@ -160,6 +172,20 @@ bool range_error_map(const model::UwbArray& own, const model::UwbArray& other, c
   }
   out.independent_map = inverse * jacobian.transpose();
   out.common_map = out.independent_map.rowwise().sum();
+  // Node patterns, centred per array: link (k, l) is row k L + l.
+  const Eigen::Index nk = static_cast<Eigen::Index>(own.nodes_m.size());
+  const Eigen::Index nl = static_cast<Eigen::Index>(other.nodes_m.size());
+  Eigen::MatrixXd patterns = Eigen::MatrixXd::Zero(nk * nl, nk + nl);
+  for (Eigen::Index k = 0; k < nk; ++k) {
+    for (Eigen::Index l = 0; l < nl; ++l) {
+      patterns.row(k * nl + l).head(nk).setConstant(-1.0 / static_cast<double>(nk));
+      patterns.row(k * nl + l).tail(nl).setConstant(-1.0 / static_cast<double>(nl));
+      patterns(k * nl + l, k) += 1.0;
+      patterns(k * nl + l, nk + l) += 1.0;
+    }
+  }
+  out.node_map = out.independent_map * patterns;
+  out.node_bias_std_m = node_bias_std_m;
   out.independent_variance_m2 = Eigen::VectorXd::Constant(jacobian.rows(), independent_std_m * independent_std_m);
   out.common_std_m = common_std_m;
   return true;

@@ -39,9 +39,21 @@ struct UncertaintyParams {
   /// A range whose leave-one-out residual exceeds this many estimated range stds is an outlier
   /// (non-line-of-sight, a blocked link): it gets its own variance, that residual squared.
   double outlier_sigma = 3.0;
+  /// Std of a range bias per UWB node (every link through a node shares it: an antenna's delay
+  /// error, a node shadowed by a body or a board). Its pattern lies largely along the pose's own
+  /// degrees of freedom (a node biased is a node moved), so the fit absorbs it into the heading
+  /// and bearing and the residuals do not show it: configured, a "consider" parameter.
+  double node_bias_std_m = 0.06;
   /// pf, pf_baseline: the epochs of eq. (1) fixes their estimates are checked against
   /// (InnovationMonitor: the fixes' median innovation beyond their own covariance is added).
   int innovation_window_epochs = 50;
+  /// pf, pf_baseline: a filter is lost, and restarted at its estimate plus the fixes' median
+  /// innovation, when that innovation's squared Mahalanobis distance, against the fixes' mean
+  /// covariance plus the filter's own error covariance, exceeds this (InnovationMonitor::lost).
+  double lost_filter_d2 = 16.27;
+  /// pf, pf_baseline: ... or when its mean over the last lost_window_epochs epochs exceeds this.
+  double lost_mean_d2 = 4.0;
+  int lost_window_epochs = 200;
   /// Throws std::invalid_argument "key: requirement (got value)".
   void validate() const;
 };
@@ -68,23 +80,28 @@ double residual_rms_std_m(const model::UwbArray& own, const model::UwbArray& oth
 Eigen::Matrix3d range_fix_covariance(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
                                      double independent_std_m, double common_std_m);
 
-/// How one epoch's range errors reach a least-squares pose fit at `pose`: e_pose = B u + a c for the
-/// K L independent range errors u (variance independent_variance_m2(k) each, row-major k = K index
-/// x L + L index) and the common one c (std common_std_m); B = (J^T J)^-1 J^T (3 x K L), a = B 1.
-/// With equal variances s_i^2, covariance() is range_fix_covariance's.
+/// How one epoch's range errors reach a least-squares pose fit at `pose`: e_pose = B u + a c + N b
+/// for the K L independent range errors u (variance independent_variance_m2(k) each, row-major
+/// k = K index x L + L index), the common one c (std common_std_m) and the K + L per-node biases b
+/// (std node_bias_std_m each: own nodes first, then the peer's); B = (J^T J)^-1 J^T (3 x K L),
+/// a = B 1, N = B V with V's columns the node patterns centred per array (link kl gets b_k - mean
+/// of the own nodes' b, plus b_l - mean of the peer's: the means are the common mode's).
+/// With equal variances s_i^2 and no node bias, covariance() is range_fix_covariance's.
 struct RangeErrorMap {
   Eigen::Matrix<double, 3, Eigen::Dynamic> independent_map;  // B
   Eigen::Vector3d common_map = Eigen::Vector3d::Zero();      // a
+  Eigen::Matrix<double, 3, Eigen::Dynamic> node_map;         // N (3 x (K + L))
   Eigen::VectorXd independent_variance_m2;                    // per range
   double common_std_m = 0.0;
-  /// B diag(independent_variance_m2) B^T + s_c^2 a a^T.
+  double node_bias_std_m = 0.06;
+  /// B diag(independent_variance_m2) B^T + s_c^2 a a^T + s_n^2 N N^T.
   Eigen::Matrix3d covariance() const;
 };
 
 /// The map at `pose` with every range's independent std `independent_std_m`; false (and `out`
 /// untouched) when J^T J is singular (degenerate geometry).
 bool range_error_map(const model::UwbArray& own, const model::UwbArray& other, const model::Pose2& pose,
-                     double independent_std_m, double common_std_m, RangeErrorMap& out);
+                     double independent_std_m, double common_std_m, RangeErrorMap& out, double node_bias_std_m = 0.0);
 
 /// Per-range variances of one epoch's independent range errors at the least-squares fit `pose`:
 /// base_std_m^2, except for a range whose leave-one-out (jackknife) residual r_k / (1 - h_k)

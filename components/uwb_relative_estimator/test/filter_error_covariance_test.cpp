@@ -130,7 +130,8 @@ TEST(FilterErrorCovariance, ErrorsThatLastGainNothingFromAveraging) {
   const model::UwbArray array = model::square_array(0.5);
   const model::Pose2 pose{5.0, 0.0, 1.0};
   RangeErrorMap error;
-  ASSERT_TRUE(range_error_map(array, array, pose, 0.12, 0.3, error));
+  // With per-node biases too (they last as the common mode does).
+  ASSERT_TRUE(range_error_map(array, array, pose, 0.12, 0.3, error, 0.08));
   FilterErrorCovariance lasting(times(1e9, 1e9));
   FilterErrorCovariance white(times(1e-9, 1e-9));
   lasting.start(error);
@@ -217,6 +218,74 @@ TEST(InnovationMonitor, AFilterThatFollowsItsFixesAddsLittleOneThatLostThemAddsT
   EXPECT_TRUE(lost.excess().isZero()) << "fewer than a fifth of the window";
   lost.add(off, fix_around(truth), fix_covariance);
   EXPECT_FALSE(lost.excess().isZero());
+}
+
+TEST(InnovationMonitor, LostIsCalledAtOnceWhenFarOffAfterAWhileWhenModeratelyOffNeverWhenFollowing) {
+  UncertaintyParams params;  // 50 fixes; d^2 > 16.27 at once, mean d^2 > 4 over 200 tests
+  const Eigen::Matrix3d fix_covariance = diagonal(1.0, 1.0, 0.01);
+  RandomEngine random(9);
+  const model::Pose2 truth{5.0, 2.0, 0.3};
+  const auto fix_around = [&](const model::Pose2& p) {
+    return model::Pose2{p.x + standard_normal(random), p.y + standard_normal(random), p.theta + 0.1 * standard_normal(random)};
+  };
+  const Eigen::Matrix3d filter_covariance = diagonal(0.25, 0.25, 0.0025);
+  Eigen::Vector3d correction;
+  Eigen::Matrix3d typical;
+  // Following its fixes: never lost in 5000 epochs.
+  InnovationMonitor following(params);
+  int false_alarms = 0;
+  for (int t = 0; t < 5000; ++t) {
+    following.add(truth, fix_around(truth), fix_covariance);
+    false_alarms += following.lost(filter_covariance, correction, typical) ? 1 : 0;
+  }
+  EXPECT_EQ(false_alarms, 0);
+  // 6 m off: lost as soon as there are enough fixes; the correction brings it back to the truth.
+  InnovationMonitor far(params);
+  const model::Pose2 far_off{truth.x + 6.0, truth.y, truth.theta};
+  int epochs = 0;
+  bool lost = false;
+  while (!lost && epochs < 100) {
+    ++epochs;
+    // Every fifth fix with an outlier's huge covariance: the typical fix's covariance is used.
+    far.add(far_off, fix_around(truth), epochs % 5 == 0 ? Eigen::Matrix3d(100.0 * fix_covariance) : fix_covariance);
+    lost = far.lost(filter_covariance, correction, typical);
+  }
+  EXPECT_TRUE(lost);
+  EXPECT_EQ(epochs, 10) << "the first test with a fifth of the window";
+  EXPECT_NEAR(far_off.x + correction.x(), truth.x, 0.8);
+  EXPECT_NEAR(far_off.y + correction.y(), truth.y, 0.8);
+  EXPECT_TRUE(typical.isApprox(fix_covariance)) << typical;
+  // Fixes whose covariance is mostly errors the filter shares (a common mode, node biases: the
+  // same ranges reach both, they cancel in fix - estimate): tested against the fixes' own part.
+  InnovationMonitor shared(params);
+  InnovationMonitor whole(params);
+  const Eigen::Matrix3d lasting = 25.0 * fix_covariance;  // 5 m sigmas the filter shares
+  bool shared_lost = false;
+  bool whole_lost = false;
+  for (int t = 0; t < 10; ++t) {
+    const model::Pose2 fix = fix_around(truth);
+    shared.add(far_off, fix, lasting, fix_covariance);
+    whole.add(far_off, fix, lasting);
+    shared_lost = shared.lost(filter_covariance, correction, typical);
+    whole_lost = whole.lost(filter_covariance, correction, typical);
+  }
+  EXPECT_TRUE(shared_lost) << "6 m off against 1 m own fix errors";
+  EXPECT_FALSE(whole_lost) << "6 m off against 5 m whole fix errors: within them";
+  // 2.7 m off (d^2 ~ 5.8 < 16.27 at each test, 3 sigma over all): lost only after it persists.
+  InnovationMonitor moderate(params);
+  const model::Pose2 moderately_off{truth.x + 2.7, truth.y, truth.theta};
+  epochs = 0;
+  lost = false;
+  while (!lost && epochs < 1000) {
+    ++epochs;
+    moderate.add(moderately_off, fix_around(truth), fix_covariance);
+    lost = moderate.lost(filter_covariance, correction, typical);
+  }
+  EXPECT_TRUE(lost);
+  EXPECT_GE(epochs, 10 + 100 - 1) << "not before half the mean's window of tests";
+  EXPECT_LE(epochs, 10 + 200);
+  moderate.reset();
+  EXPECT_FALSE(moderate.lost(filter_covariance, correction, typical)) << "no fixes since the restart";
 }
 
 }  // namespace

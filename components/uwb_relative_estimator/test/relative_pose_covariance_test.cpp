@@ -96,6 +96,51 @@ TEST(RangeFixCovariance, MatchesTheSpreadOfLeastSquaresFitsOverManyNoiseDraws) {
   }
 }
 
+TEST(RangeErrorMap, PerNodeBiasesThatTheFitAbsorbsAreCoveredByTheNodeTerm) {
+  // Issue 27, experiment 1-b: a board in view biases every link of the nodes behind it. A node's
+  // bias looks like the node moved, so the fit turns it into heading and bearing and leaves little
+  // in the residuals. Ranges with a bias per node (std 0.08 m, own and peer nodes) and 0.02 m
+  // white noise: the map with node_bias_std_m covers the fits' errors; without it the heading is
+  // far outside what it reports.
+  const UwbArray array = square_array(0.5);
+  const model::Pose2 truth{4.0, 2.0, 0.7};
+  SolverOptions plain;
+  plain.loss = RobustLoss::kNone;
+  constexpr double kWhite = 0.02;
+  constexpr double kNode = 0.08;
+  RandomEngine engine(11);
+  std::vector<Eigen::Vector3d> errors;
+  for (int draw = 0; draw < kDraws; ++draw) {
+    Eigen::MatrixXd ranges = true_ranges(array, array, truth);
+    Eigen::VectorXd own(4);
+    Eigen::VectorXd peer(4);
+    for (int n = 0; n < 4; ++n) {
+      own(n) = kNode * standard_normal(engine);
+      peer(n) = kNode * standard_normal(engine);
+    }
+    for (Eigen::Index k = 0; k < 4; ++k) {
+      for (Eigen::Index l = 0; l < 4; ++l) {
+        ranges(k, l) += own(k) + peer(l) + kWhite * standard_normal(engine);
+      }
+    }
+    const SolverResult fit = solve_relative_pose(array, array, ranges, truth, plain);
+    ASSERT_TRUE(fit.converged);
+    errors.emplace_back(fit.pose.x - truth.x, fit.pose.y - truth.y, wrap_angle(fit.pose.theta - truth.theta));
+  }
+  // The node biases' means over each array are a common mode of std kNode sqrt(2 / 4).
+  const double common = kNode * std::sqrt(0.5);
+  RangeErrorMap with_nodes;
+  ASSERT_TRUE(range_error_map(array, array, truth, kWhite, common, with_nodes, kNode));
+  EXPECT_EQ(with_nodes.node_map.cols(), 8);
+  expect_matches(sample_covariance(errors), with_nodes.covariance());
+  // The bearing's spread bends the fits towards this robot (the mean radial offset R phi^2 / 2):
+  // the reported covariance carries that term too (with_bearing_curvature).
+  expect_consistent(errors, with_bearing_curvature(with_nodes.covariance(), truth));
+  RangeErrorMap without;
+  ASSERT_TRUE(range_error_map(array, array, truth, kWhite, common, without));
+  EXPECT_GT(mean_nees(errors, without.covariance()).y(), 5.0) << "without the node term the heading is over-confident";
+}
+
 TEST(RangeFixCovariance, IsNotFiniteWhenTheGeometryDeterminesNoPose) {
   UwbArray single;
   single.nodes_m = {Eigen::Vector2d::Zero()};
