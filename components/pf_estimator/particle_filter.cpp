@@ -33,6 +33,14 @@ double median_of(std::array<double, N> values, std::size_t n) {
 
 }  // namespace
 
+NoiseScales process_noise_scales(double interval_s, double dt_s) {
+  if (!(interval_s > 0.0) || !(dt_s > 0.0) || dt_s == interval_s) {
+    return {};
+  }
+  const double ratio = dt_s / interval_s;
+  return {1.0 / std::sqrt(ratio), std::sqrt(ratio)};
+}
+
 ParticleFilter::ParticleFilter(const PfParams& params, std::uint64_t seed)
     : params_(params),
       engine_(seed),
@@ -167,28 +175,37 @@ void ParticleFilter::predict(double v_mps, double omega_radps, double dt_s, doub
   since_fix_distance_m_ += v_mps * dt_s;
   since_fix_time_s_ += dt_s;
   const bool diffuse_theta = params_.process_theta_std_rad > 0.0;
+  // The process noises are densities stated for a sample of process_noise_interval_s (issue 27):
+  // a rate noise of std s over dt moves the pose by s dt, variance s^2 dt^2 per sample, so
+  // s^2 interval / dt per sample keeps s^2 interval per second; an additive diffusion of std d per
+  // sample keeps d^2 / interval per second with d^2 dt / interval. At dt = interval both are 1.0.
+  const NoiseScales scales = process_noise_scales(params_.process_noise_interval_s, dt_s);
   // Wheel-like odometry errs in proportion to the wheels' motion: almost no turn noise at
   // standstill, where nothing observes the heading.
-  const double model_omega_std = params_.odom_omega_std_radps + params_.odom_omega_std_per_mps * std::abs(v_mps) +
-                                 params_.odom_omega_std_fraction * std::abs(omega_radps);
+  const double model_omega_std = scales.rate * (params_.odom_omega_std_radps + params_.odom_omega_std_per_mps * std::abs(v_mps) +
+                                                params_.odom_omega_std_fraction * std::abs(omega_radps));
+  const double v_std = scales.rate * params_.odom_v_std_mps;
+  const double pos_std = scales.diffusion * params_.process_pos_std_m;
+  const double theta_std = scales.diffusion * params_.process_theta_std_rad;
   // A sensor that says its turn rate is noisier than the wheel model is believed (issue 27, finding
   // 4): otherwise the heading drifts with that noise while the spread stays put, at standstill,
   // where the fixes cannot correct it (7-9 deg off at a reported 2 deg after the last way-point),
-  // and in the first seconds of motion, before the fixes see the heading.
+  // and in the first seconds of motion, before the fixes see the heading. The claim is the std of
+  // this sample's turn rate: used as it comes, not scaled by dt.
   const double omega_std = params_.use_odometry_variance && omega_var_radps2 > 0.0
                                ? std::max(model_omega_std, std::sqrt(omega_var_radps2))
                                : model_omega_std;
   const double slip_walk_std = params_.turn_slip_walk_std_radpm * std::sqrt(std::abs(v_mps) * dt_s);
   for (Eigen::Index i = 0; i < num_particles_; ++i) {
-    const model::Twist noisy_odometry{v_mps + noise(params_.odom_v_std_mps),
+    const model::Twist noisy_odometry{v_mps + noise(v_std),
                                       omega_radps - turn_slip_[i] * v_mps + noise(omega_std)};
     const model::Pose2 moved = model::integrate_exact(
         {particles_.x[i], particles_.y[i], particles_.theta[i]}, noisy_odometry, dt_s);
-    particles_.x[i] = moved.x + noise(params_.process_pos_std_m);
-    particles_.y[i] = moved.y + noise(params_.process_pos_std_m);
+    particles_.x[i] = moved.x + noise(pos_std);
+    particles_.y[i] = moved.y + noise(pos_std);
     // integrate_exact already wraps; only re-wrap when diffusion can leave (-pi, pi].
     particles_.theta[i] = diffuse_theta
-                              ? wrap_angle(moved.theta + noise(params_.process_theta_std_rad))
+                              ? wrap_angle(moved.theta + noise(theta_std))
                               : moved.theta;
     turn_slip_[i] += noise(slip_walk_std);
   }

@@ -32,6 +32,17 @@
 
 namespace robodds::pf_estimator {
 
+/// Factors on the process noises for an odometry sample covering dt_s when they are stated for
+/// samples interval_s apart (PfParams::process_noise_interval_s): `rate` = sqrt(interval / dt) on a
+/// rate noise (m/s, rad/s), `diffusion` = sqrt(dt / interval) on an additive per-sample diffusion
+/// (m, rad); each then adds the same variance per second at any dt. Exactly 1.0 when dt_s ==
+/// interval_s or interval_s is 0 (per sample) or either is not positive.
+struct NoiseScales {
+  double rate = 1.0;
+  double diffusion = 1.0;
+};
+NoiseScales process_noise_scales(double interval_s, double dt_s);
+
 class ParticleFilter {
  public:
   using PoseEstimate = pf_estimator::PoseEstimate;
@@ -54,7 +65,8 @@ class ParticleFilter {
 
   /// Propagates every particle over dt_s with the measured odometry (v_mps forward, omega_radps
   /// counter-clockwise): each particle draws its own v + N(0, odom_v_std_mps^2) and
-  /// omega - k_i v + N(0, sigma_omega^2) (sigma_omega: see PfParams), moves on the exact
+  /// omega - k_i v + N(0, sigma_omega^2) (sigma_omega: see PfParams; both scaled to dt_s by
+  /// process_noise_scales(), as is the additive diffusion), moves on the exact
   /// constant-(v, omega) arc, then gets the additive process diffusion; k_i walks with the
   /// distance travelled. dt_s == 0 changes nothing; before initialisation the call is
   /// ignored (odometry without a pose carries no position information).

@@ -68,8 +68,11 @@ const params::ParamTable<PfParams>& pf_param_table() {
                "s_x = s_y in eq. (5); 1.51 ~ sqrt(2.28) matches the sensor; the floor of the estimated fix noise")
           .add("noise_window_fixes", &PfParams::noise_window_fixes, "fixes", shown_as(params::at_least(0), ">= 0; 0 = assume measurement_std_m"),
                "the fix noise is the running median of the innovations over this many fixes (likelihood, gate, monitor)")
+          .add("process_noise_interval_s", &PfParams::process_noise_interval_s, "s",
+               shown_as(non_negative(), ">= 0; 0 = per sample"),
+               "the process noises are stated for odometry samples this far apart; scaled by each sample's dt (same variance per second at any odometry rate)")
           .add("odom_v_std_mps", &PfParams::odom_v_std_mps, "m/s", non_negative(),
-               "noise added to the odometry speed per particle and prediction")
+               "noise added to the odometry speed per particle and prediction (for a sample of process_noise_interval_s)")
           .add("odom_omega_std_radps", &PfParams::odom_omega_std_radps, "rad/s", non_negative(),
                "turn-rate noise per particle and prediction, constant part")
           .add("odom_omega_std_per_mps", &PfParams::odom_omega_std_per_mps, "rad/m", non_negative(),
