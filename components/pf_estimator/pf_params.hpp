@@ -136,6 +136,18 @@ struct PfParams {
   /// confirmed() also needs this many accepted fixes since the last (re)initialisation: a cloud
   /// placed around one fix, or redrawn, has not been tested against the fixes yet.
   int confirm_fixes = 10;
+  /// A heading the cloud learned (not given as known) is checked against the track of the fixes
+  /// before confirmed() (heading_track_check.hpp): the rotation between the dead-reckoned track and
+  /// the last track_check_window_fixes accepted fixes, with its std from the fit's residuals, must
+  /// know the heading to track_check_heading_std_rad and agree with the cloud's within
+  /// track_check_sigmas combined sigmas and at most prior_heading_tolerance_rad (when > 0); the check passes (once per (re)initialisation) when it
+  /// agrees and the cloud's heading std is below track_check_cloud_std_rad. A cloud that
+  /// disagrees gets its headings redrawn around the track's (std track_check_cloud_std_rad; a
+  /// restart). 0 = off (before).
+  int track_check_window_fixes = 300;
+  double track_check_sigmas = 3.0;
+  double track_check_heading_std_rad = 0.2;
+  double track_check_cloud_std_rad = 0.2;
   double init_fix_std_m = 1.51;
 
   /// Throws std::invalid_argument naming the first offending key: the table's ranges, then
