@@ -26,11 +26,23 @@
 #include "components/pf_estimator/consistency.hpp"
 #include "components/pf_estimator/fix_noise_estimator.hpp"
 #include "components/pf_estimator/heading_prior_check.hpp"
+#include "components/pf_estimator/heading_track_check.hpp"
 #include "components/pf_estimator/particle_set.hpp"
 #include "components/pf_estimator/pf_params.hpp"
 #include "components/pf_estimator/pose_estimate.hpp"
 
 namespace robodds::pf_estimator {
+
+/// Factors on the process noises for an odometry sample covering dt_s when they are stated for
+/// samples interval_s apart (PfParams::process_noise_interval_s): `rate` = sqrt(interval / dt) on a
+/// rate noise (m/s, rad/s), `diffusion` = sqrt(dt / interval) on an additive per-sample diffusion
+/// (m, rad); each then adds the same variance per second at any dt. Exactly 1.0 when dt_s ==
+/// interval_s or interval_s is 0 (per sample) or either is not positive.
+struct NoiseScales {
+  double rate = 1.0;
+  double diffusion = 1.0;
+};
+NoiseScales process_noise_scales(double interval_s, double dt_s);
 
 class ParticleFilter {
  public:
@@ -54,7 +66,8 @@ class ParticleFilter {
 
   /// Propagates every particle over dt_s with the measured odometry (v_mps forward, omega_radps
   /// counter-clockwise): each particle draws its own v + N(0, odom_v_std_mps^2) and
-  /// omega - k_i v + N(0, sigma_omega^2) (sigma_omega: see PfParams), moves on the exact
+  /// omega - k_i v + N(0, sigma_omega^2) (sigma_omega: see PfParams; both scaled to dt_s by
+  /// process_noise_scales(), as is the additive diffusion), moves on the exact
   /// constant-(v, omega) arc, then gets the additive process diffusion; k_i walks with the
   /// distance travelled. dt_s == 0 changes nothing; before initialisation the call is
   /// ignored (odometry without a pose carries no position information).
@@ -99,6 +112,13 @@ class ParticleFilter {
   /// (HeadingPriorCheck). The node publishes valid only when this holds.
   bool confirmed() const;
   const HeadingPriorCheck& heading_prior_check() const { return prior_check_; }
+  /// A heading the cloud learned must agree with the fixes' track (HeadingTrackCheck,
+  /// PfParams::track_check_*) once per (re)initialisation; true when it did, or when the heading
+  /// was given as known (HeadingPriorCheck's business) or the check is off.
+  bool track_confirmed() const { return track_confirmed_; }
+  const HeadingTrackCheck& heading_track_check() const { return track_check_; }
+  /// Times the track check contradicted the cloud and redrew its headings (each also a restart).
+  std::size_t track_redraw_count() const { return track_redraw_count_; }
   /// The fix std per axis (m) the filter uses: estimated from the innovations
   /// (PfParams::noise_window_fixes), never below measurement_std_m.
   double measurement_std_estimate_m() const { return noise_.std_m(); }
@@ -131,6 +151,8 @@ class ParticleFilter {
  private:
   double draw_heading();
   void start_confirmation();
+  /// Feeds an accepted fix to the track check until it passes; redraws the headings on a contradiction.
+  void check_heading_against_track(double z_x_m, double z_y_m);
   double noise(double std_dev);
   void reset_weights_to_uniform();
   /// keep_headings: only x and y are drawn from the weighted cloud (and jittered); every particle
@@ -163,6 +185,9 @@ class ParticleFilter {
   InconsistencyMonitor monitor_;
   FixNoiseEstimator noise_;  // kept across recoveries: the sensor did not change
   HeadingPriorCheck prior_check_;
+  HeadingTrackCheck track_check_;
+  bool track_confirmed_ = true;
+  std::size_t track_redraw_count_ = 0;
   std::size_t accepted_since_init_ = 0;  // fixes used since the last (re)initialisation
   double last_update_nis_ = 0.0;
   bool last_update_rejected_ = false;

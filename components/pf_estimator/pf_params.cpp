@@ -68,8 +68,11 @@ const params::ParamTable<PfParams>& pf_param_table() {
                "s_x = s_y in eq. (5); 1.51 ~ sqrt(2.28) matches the sensor; the floor of the estimated fix noise")
           .add("noise_window_fixes", &PfParams::noise_window_fixes, "fixes", shown_as(params::at_least(0), ">= 0; 0 = assume measurement_std_m"),
                "the fix noise is the running median of the innovations over this many fixes (likelihood, gate, monitor)")
+          .add("process_noise_interval_s", &PfParams::process_noise_interval_s, "s",
+               shown_as(non_negative(), ">= 0; 0 = per sample"),
+               "the process noises are stated for odometry samples this far apart; scaled by each sample's dt (same variance per second at any odometry rate)")
           .add("odom_v_std_mps", &PfParams::odom_v_std_mps, "m/s", non_negative(),
-               "noise added to the odometry speed per particle and prediction")
+               "noise added to the odometry speed per particle and prediction (for a sample of process_noise_interval_s)")
           .add("odom_omega_std_radps", &PfParams::odom_omega_std_radps, "rad/s", non_negative(),
                "turn-rate noise per particle and prediction, constant part")
           .add("odom_omega_std_per_mps", &PfParams::odom_omega_std_per_mps, "rad/m", non_negative(),
@@ -117,9 +120,18 @@ const params::ParamTable<PfParams>& pf_param_table() {
           .add("init_theta_rad", &PfParams::init_theta_rad, "rad", finite(), "initial heading if known, world frame")
           .add("prior_heading_tolerance_rad", &PfParams::prior_heading_tolerance_rad, "rad",
                shown_as(non_negative("0 = the prior is trusted"), "[0, pi/2)"),
-               "a known initial heading counts once the fixes moved within this of it; beyond: redraw the cloud")
+               "a known initial heading counts once the fixes moved within this of it; beyond: redraw the cloud. Also the most a learned heading may differ from the fixes' track (track_check_*)")
           .add("confirm_fixes", &PfParams::confirm_fixes, "fixes", params::at_least(0),
                "accepted fixes after a (re)initialisation before the estimate can be valid")
+          .add("track_check_window_fixes", &PfParams::track_check_window_fixes, "fixes",
+               shown_as(params::at_least(0), "0 or >= 20; 0 = off"),
+               "a learned heading is checked against the rotation of the dead-reckoned track onto the last this many fixes before confirmed()")
+          .add("track_check_sigmas", &PfParams::track_check_sigmas, "", positive(),
+               "the cloud's heading agrees with the track's within this many combined sigmas, or its headings are redrawn around the track's")
+          .add("track_check_heading_std_rad", &PfParams::track_check_heading_std_rad, "rad", positive(),
+               "the track must know the heading this well (std from its fit) before it judges the cloud")
+          .add("track_check_cloud_std_rad", &PfParams::track_check_cloud_std_rad, "rad", positive(),
+               "the check passes when the cloud agrees and its heading std is below this (the node's valid_max_heading_std_rad); the heading std of a redraw")
           .add("init_fix_std_m", &PfParams::init_fix_std_m, "m", positive(), "spread around the first fix (first_fix mode)");
   return table;
 }
@@ -143,6 +155,9 @@ void PfParams::validate() const {
   }
   if (!(prior_heading_tolerance_rad < 0.5 * kPi)) {
     reject("prior_heading_tolerance_rad", "must be in [0, pi/2)", prior_heading_tolerance_rad);
+  }
+  if (track_check_window_fixes != 0 && track_check_window_fixes < 20) {
+    reject("track_check_window_fixes", "must be 0 (off) or >= 20", track_check_window_fixes);
   }
   if (!(recovery_uniform_heading_fraction <= 1.0)) {
     reject("recovery_uniform_heading_fraction", "must be in [0, 1]", recovery_uniform_heading_fraction);

@@ -4,9 +4,10 @@
 // config/pf_estimator.params.yaml. validate() starts each error message with the key it
 // rejects, e.g. "num_particles: must be >= 1 (got 0)".
 //
-// Noise values are standard deviations, not variances. "Per prediction" values are applied once
-// per predict() call, so they should be tuned for the odometry rate that drives the filter
-// (50 Hz in the reference scenario).
+// Noise values are standard deviations, not variances. The process noises (odom_v_std_mps,
+// odom_omega_std_*, process_pos_std_m, process_theta_std_rad) are stated for an odometry sample
+// covering process_noise_interval_s and scaled by each sample's actual dt, so that they add the
+// same variance per second at any odometry rate (issue 27).
 
 #include <string>
 #include <string_view>
@@ -52,6 +53,14 @@ struct PfParams {
   /// large innovations (recovered within ~1-5 s) do not pass for noise.
   int noise_window_fixes = 300;
 
+  /// The interval (s) the process noises below are stated for: a sample covering dt gets the rate
+  /// noises (odom_v_std_mps, odom_omega_std_*) x sqrt(process_noise_interval_s / dt) and the
+  /// additive diffusion (process_pos_std_m, process_theta_std_rad) x sqrt(dt /
+  /// process_noise_interval_s): both add the same variance per second at any odometry rate (a
+  /// density; at dt = process_noise_interval_s nothing changes). The odometry's claimed var_omega is
+  /// a statement about its own sample and is used as it comes. 0 = per sample, whatever its dt
+  /// (before issue 27: tuned for 50 Hz odometry only).
+  double process_noise_interval_s = 0.02;
   double odom_v_std_mps = 0.05;
   /// Turn-rate noise per particle and prediction: odom_omega_std_radps + odom_omega_std_per_mps
   /// |v| + odom_omega_std_fraction |omega|. Wheel odometry errs in proportion to how far the
@@ -127,6 +136,18 @@ struct PfParams {
   /// confirmed() also needs this many accepted fixes since the last (re)initialisation: a cloud
   /// placed around one fix, or redrawn, has not been tested against the fixes yet.
   int confirm_fixes = 10;
+  /// A heading the cloud learned (not given as known) is checked against the track of the fixes
+  /// before confirmed() (heading_track_check.hpp): the rotation between the dead-reckoned track and
+  /// the last track_check_window_fixes accepted fixes, with its std from the fit's residuals, must
+  /// know the heading to track_check_heading_std_rad and agree with the cloud's within
+  /// track_check_sigmas combined sigmas and at most prior_heading_tolerance_rad (when > 0); the check passes (once per (re)initialisation) when it
+  /// agrees and the cloud's heading std is below track_check_cloud_std_rad. A cloud that
+  /// disagrees gets its headings redrawn around the track's (std track_check_cloud_std_rad; a
+  /// restart). 0 = off (before).
+  int track_check_window_fixes = 300;
+  double track_check_sigmas = 3.0;
+  double track_check_heading_std_rad = 0.2;
+  double track_check_cloud_std_rad = 0.2;
   double init_fix_std_m = 1.51;
 
   /// Throws std::invalid_argument naming the first offending key: the table's ranges, then

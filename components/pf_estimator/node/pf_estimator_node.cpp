@@ -19,7 +19,11 @@ class PfEstimatorNode : public Component {
   void configure(ComponentContext& ctx) override {
     auto& p = ctx.params();
     const PfEstimatorNodeParams node_params = read_params(p, pf_estimator_param_table());
-    const PfParams& params = node_params.filter;
+    PfParams params = node_params.filter;
+    if (node_params.valid_max_heading_std_rad == 0.0) {
+      // Validity by the position alone: the heading is not judged, also not against the fixes' track.
+      params.track_check_window_fixes = 0;
+    }
     const double rate_hz = node_params.rate_hz;
     p.validate(node_params);
     const ValidityLimits limits{node_params.valid_max_position_std_m, node_params.valid_max_heading_std_rad,

@@ -17,7 +17,7 @@ const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table() {
           .add("valid_max_position_std_m", &PfEstimatorNodeParams::valid_max_position_std_m, "m", params::positive(),
                "the estimate is valid once sqrt(trace of its xy covariance) is below this ...")
           .add("valid_max_heading_std_rad", &PfEstimatorNodeParams::valid_max_heading_std_rad, "rad",
-               params::non_negative("0 = heading not checked"), "... and the heading's standard deviation too")
+               params::non_negative("0 = heading not checked, nor against the fixes' track"), "... and the heading's standard deviation too")
           .add("valid_keep_max_heading_std_rad", &PfEstimatorNodeParams::valid_keep_max_heading_std_rad, "rad",
                params::shown_as(params::non_negative(), ">= valid_max_heading_std_rad"),
                "once valid, the estimate stays valid while the heading's std is below this (a band against flicker)")

@@ -1,0 +1,96 @@
+#include "components/pf_estimator/heading_track_check.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "common/angle.hpp"
+#include "common/model/diff_drive_kinematics.hpp"
+#include "common/random.hpp"
+
+namespace robodds::pf_estimator {
+namespace {
+
+using Verdict = HeadingTrackCheck::Verdict;
+
+// A robot from (10, 20) with true heading true_theta creeping at v on a gentle arc for `seconds`;
+// 50 Hz odometry (white noise 0.02 m/s, 0.05 rad/s), 10 Hz fixes of std fix_std (2.62 m: variance
+// 3x paper 1's 2.28 m^2). Returns the check after the last fix; `truth_theta` gets the true heading then.
+HeadingTrackCheck drive(double true_theta, double fix_std, double v, double seconds, std::uint64_t seed,
+                        double* truth_theta, std::size_t window = 300) {
+  HeadingTrackCheck check(window, 3.0, 0.2);
+  RandomEngine world(seed);
+  model::Pose2 truth{10.0, 20.0, true_theta};
+  const model::Twist twist{v, 0.01};
+  const int steps = static_cast<int>(std::lround(seconds / 0.02));
+  for (int step = 1; step <= steps; ++step) {
+    truth = model::integrate_exact(truth, twist, 0.02);
+    check.predict(twist.v + 0.02 * standard_normal(world), twist.omega + 0.05 * standard_normal(world), 0.02);
+    if (step % 5 == 0) {
+      check.add_fix(truth.x + fix_std * standard_normal(world), truth.y + fix_std * standard_normal(world));
+    }
+  }
+  *truth_theta = truth.theta;
+  return check;
+}
+
+TEST(HeadingTrackCheck, TheTrackOfNoisyFixesGivesTheHeadingWithAnHonestStd) {
+  double theta = 0.0;
+  HeadingTrackCheck check = drive(1.0, 2.62, 0.3, 20.0, 3, &theta);
+  EXPECT_EQ(check.check(theta, 0.01), Verdict::kConsistent);
+  // 200 fixes along 6 m: sum |d - mean|^2 ~ 200 x 6^2 / 12 = 600 m^2, std 2.62 / sqrt(600) = 0.107 rad,
+  // from the fit's residuals (nothing told it the fix noise).
+  EXPECT_NEAR(check.track_theta_std_rad(), 0.107, 0.025);
+  EXPECT_LT(std::abs(wrap_angle(check.track_theta_rad() - theta)), 3.0 * check.track_theta_std_rad());
+}
+
+TEST(HeadingTrackCheck, ACloudOnAWrongHeadingIsContradicted) {
+  for (const double error : {2.0, -1.0, 0.7}) {  // 115, 57, 40 deg
+    double theta = 0.0;
+    HeadingTrackCheck check = drive(1.0, 2.62, 0.3, 20.0, 5, &theta);
+    EXPECT_EQ(check.check(theta + error, 0.15 * 0.15), Verdict::kContradicted) << error;
+    EXPECT_NEAR(check.difference_rad(), error, 0.35) << error;
+  }
+}
+
+TEST(HeadingTrackCheck, ACloudThatIsUnsureIsNotContradictedByIt) {
+  double theta = 0.0;
+  HeadingTrackCheck check = drive(1.0, 2.62, 0.3, 20.0, 5, &theta);
+  EXPECT_EQ(check.check(theta + 0.7, 0.5 * 0.5), Verdict::kConsistent);  // 3 x 0.51 rad > 0.7
+}
+
+TEST(HeadingTrackCheck, WaitsUntilTheTrackKnowsTheHeading) {
+  double theta = 0.0;
+  // standing: no track
+  EXPECT_EQ(drive(1.0, 1.51, 0.0, 20.0, 7, &theta).check(theta + 2.0, 0.0), Verdict::kPending);
+  // 3 s at 0.3 m/s with 2.62 m fixes: 0.9 m, far too short
+  EXPECT_EQ(drive(1.0, 2.62, 0.3, 3.0, 7, &theta).check(theta + 2.0, 0.0), Verdict::kPending);
+  // fewer than kMinFixes
+  EXPECT_EQ(drive(1.0, 0.01, 1.0, 1.5, 7, &theta).check(theta + 2.0, 0.0), Verdict::kPending);
+}
+
+TEST(HeadingTrackCheck, KeepsTheLastWindowFixesOnly) {
+  double theta = 0.0;
+  // 60 s, window 100 fixes (10 s, 3 m): the std is that of the window, not of the 18 m
+  HeadingTrackCheck check = drive(1.0, 0.5, 0.3, 60.0, 9, &theta, 100);
+  EXPECT_EQ(check.check(theta, 0.0), Verdict::kConsistent);
+  EXPECT_NEAR(check.track_theta_std_rad(), 0.5 / std::sqrt(100.0 * 9.0 / 12.0), 0.015);
+}
+
+TEST(HeadingTrackCheck, OffSaysConsistent) {
+  HeadingTrackCheck check(0, 3.0, 0.2);
+  EXPECT_FALSE(check.enabled());
+  check.add_fix(1.0, 2.0);
+  EXPECT_EQ(check.check(3.0, 0.0), Verdict::kConsistent);
+}
+
+TEST(HeadingTrackCheck, ResetForgetsTheTrack) {
+  double theta = 0.0;
+  HeadingTrackCheck check = drive(1.0, 0.5, 0.3, 20.0, 11, &theta);
+  check.reset();
+  EXPECT_EQ(check.fixes(), 0u);
+  EXPECT_EQ(check.check(theta + 2.0, 0.0), Verdict::kPending);
+}
+
+}  // namespace
+}  // namespace robodds::pf_estimator
