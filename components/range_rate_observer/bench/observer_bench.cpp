@@ -1,4 +1,4 @@
-// Cost of one observer update (issue 10: "the observer step under 1 us"): a range sample in, the
+// Cost of one observer update (issues 10 and 28: "the observer step under 1 us"): a range sample in, the
 // estimate out, on a noisy range at 50 Hz so that every branch of the law is exercised.
 
 #include <benchmark/benchmark.h>
@@ -11,6 +11,8 @@
 
 namespace {
 
+using robodds::range_rate_observer::KalmanObserverParams;
+using robodds::range_rate_observer::KalmanRangeRateObserver;
 using robodds::range_rate_observer::LinearObserverParams;
 using robodds::range_rate_observer::LinearRangeRateObserver;
 using robodds::range_rate_observer::SuperTwistingObserver;
@@ -44,8 +46,10 @@ void run(benchmark::State& state) {
 
 void BM_SuperTwistingUpdate(benchmark::State& state) { run<SuperTwistingObserver, SuperTwistingParams>(state); }
 void BM_LinearUpdate(benchmark::State& state) { run<LinearRangeRateObserver, LinearObserverParams>(state); }
+void BM_KalmanUpdate(benchmark::State& state) { run<KalmanRangeRateObserver, KalmanObserverParams>(state); }  // issue 28
 BENCHMARK(BM_SuperTwistingUpdate);
 BENCHMARK(BM_LinearUpdate);
+BENCHMARK(BM_KalmanUpdate);
 
 }  // namespace
 
