@@ -46,7 +46,8 @@ same_csvs w7 w1
 same_csvs w8 w1
 rc=0; run w17 --deploy processes --lockstep-window 17 --qos "$WORK/depth16.xml" || rc=$?
 [[ $rc -ne 0 ]] || fail "window 17 with depth 16 ran; expected the history bound to refuse it"
-grep -q "component 'position_sensor' reads plant/state 0 step(s) late: with --lockstep-window 17 its producers may write 17 samples of an instance before it reads them even if its host waits for them at every step, more than the 'lockstep' QoS profile's writer history keeps (KEEP_LAST 16)" "$WORK/w17.log" ||
+# Every host refuses; which one ends the run first varies (the sensors' or the evaluator's).
+grep -qE "component '[a-z_]+' reads [a-z_/]+ [0-9]+ step\(s\) late: with --lockstep-window 17 its producers may write 1[7-9] samples of an instance before it reads them even if its host waits for them at every step, more than the 'lockstep' QoS profile's writer history keeps \(KEEP_LAST 16\)" "$WORK/w17.log" ||
   fail "no clear history-bound error: $(tail -5 "$WORK/w17.log")"
 echo "ok: depth 16: windows 7 and 8 (waits every 9 steps) give window 1's CSVs, window 17 refused"
 run slow_colocated --set position_sensor.rate_hz=1 || fail "1 Hz position sensor co-located: $(tail -5 "$WORK/slow_colocated.log")"
