@@ -30,7 +30,7 @@ command -v node >/dev/null || fail "node not found (scripts/setup.sh installs no
 # Paper 2 with its events early enough for a 20 s run.
 sed 's/time_s: 1000\.0/time_s: 10.0/' "$SRC/sim/scenarios/paper2_circumnavigation.yaml" >"$WORK/paper2.yaml"
 grep -q "time_s: 10.0, robots: \[4\], leave: true" "$WORK/paper2.yaml" || fail "paper2_circumnavigation.yaml's events changed: update this test"
-PAPER2_TOPICS="[plant/state, plant/cmd, estimate/pose, mission/target, sensor/range, observer/range_rate, observer/range_rate_linear]"
+PAPER2_TOPICS="[plant/state, plant/cmd, estimate/pose, mission/target, sensor/range, observer/range_rate, observer/range_rate_linear, observer/range_rate_kf]"
 PAPER3_TOPICS="[plant/state, plant/cmd, estimate/pose, sensor/odometry, estimate/relative_pose, estimate/relative_pose_uwb, estimate/relative_pose_window, estimate/relative_pose_pf_baseline, estimate/relative_pose_odometry]"
 
 record() {  # record NAME SCENARIO DEPLOY TOPICS

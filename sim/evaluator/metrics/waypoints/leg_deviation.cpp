@@ -38,6 +38,9 @@ void LegDeviation::add_truth(std::uint64_t step, double x_m, double y_m) {
     return;
   }
   pending_.push_back(Truth{step, x_m, y_m});
+  if (pending_.size() > kMaxPending) {
+    pending_.pop_front();
+  }
   drain();
 }
 

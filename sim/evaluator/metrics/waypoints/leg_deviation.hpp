@@ -26,7 +26,9 @@ struct LegDeviationFigures {
 
 /// One robot's cross-track error, accumulated as truth and controller status arrive (in any
 /// order between the two topics, each in step order). Keeps the truth samples newer than the
-/// newest status (the controller runs slower than the plant) and one entry per way-point.
+/// newest status (the controller runs slower than the plant), at most kMaxPending of them (a
+/// status that stops coming must not make it grow with the run: the oldest are dropped
+/// uncounted), and one entry per way-point.
 class LegDeviation {
  public:
   /// The mission in force (way-points [x, y] in order); the latest one is measured against.
@@ -34,6 +36,7 @@ class LegDeviation {
   /// The controller at `step` aims at way-point `target_index` (control/status waypoints_reached
   /// until done); `done`: the mission is over, nothing counts from this step on.
   void add_status(std::uint64_t step, std::size_t target_index, bool done);
+  static constexpr std::size_t kMaxPending = 4096;
   /// A true position (m, world frame).
   void add_truth(std::uint64_t step, double x_m, double y_m);
   /// nullopt until a sample counted.

@@ -56,7 +56,9 @@ class WaypointsModule : public MetricsModule {
       RobotFigures& r = robot(m.robot_id());
       r.truth.add(s);
       r.recent_truth.add(s);
-      r.legs.add_truth(s.step, s.x, s.y);
+      if (status_recorded_) {  // without the controller's status no truth sample finds its leg
+        r.legs.add_truth(s.step, s.x, s.y);
+      }
     });
     setup.on<idl::PositionMeasurement>("sensor/position", [this](const idl::PositionMeasurement& m) {
       robot(m.robot_id()).fixes.add({m.header().step(), m.x(), m.y(), 0.0});

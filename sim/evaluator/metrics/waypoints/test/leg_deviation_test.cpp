@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 
 namespace robodds::evaluator {
 namespace {
@@ -52,6 +53,20 @@ TEST(LegDeviation, NothingCountsOnceDoneNorBeyondTheWaypoint) {
   legs.add_truth(2, 50.0, 30.0);  // after done
   legs.add_truth(3, 50.0, 30.0);
   EXPECT_FALSE(legs.figures().has_value());
+}
+
+TEST(LegDeviation, TruthWaitingForAStatusIsBounded) {
+  // A controller whose status stops: the truth that waits for it must not grow with the run.
+  LegDeviation legs;
+  legs.set_mission({{{1000.0, 0.0}}});
+  legs.add_truth(0, 0.0, 0.0);
+  legs.add_status(0, 0, false);
+  for (std::uint64_t k = 1; k <= 3 * LegDeviation::kMaxPending; ++k) {
+    legs.add_truth(k, 0.01 * static_cast<double>(k), 1.0);
+  }
+  legs.add_status(3 * LegDeviation::kMaxPending, 0, false);  // counts what was kept
+  ASSERT_TRUE(legs.figures().has_value());
+  EXPECT_EQ(legs.figures()->samples, LegDeviation::kMaxPending);  // the newest kept (all beyond 10 m along); 11,288 without the bound
 }
 
 TEST(LegDeviation, NoStatusNoFigure) {
