@@ -26,15 +26,15 @@ namespace {
 /// inputs besides its due steps (0: the due steps suffice), so that no producer's `lockstep`
 /// writer history (KEEP_LAST depth) can drop a sample the component still needs
 /// (history_checkpoints.hpp). ConfigError, naming the component, topic and figures, when no wait
-/// can keep the bound (window + delay > depth). Empty when the bus has no such history (in memory).
+/// can keep the bound (window + delay > depth). All 0 when the bus has no such history (in memory).
 std::vector<std::uint64_t> history_checkpoints(const RunContext& run, const HostOptions& options,
                                                const LockstepHost::Slots& slots) {
+  std::vector<std::uint64_t> every(slots.size(), 0);
   const std::optional<std::size_t> depth = run.bus->writer_history_depth(kLockstepProfile);
   if (!depth) {
-    return {};
+    return every;
   }
   const std::uint64_t window = std::max<std::uint64_t>(1, options.lockstep_window);
-  std::vector<std::uint64_t> every(slots.size(), 0);
   for (std::size_t i = 0; i < slots.size(); ++i) {
     const auto& slot = slots[i];
     for (const auto& input : slot->context->inputs()) {
@@ -130,9 +130,8 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
   ack_writer_ = protocol_bus.writer(done.name, done.type_name, profile);
   ack_output_ = std::make_unique<Output<idl::StepDone>>(ack_writer_, &state_);
   check_inputs_have_producers(run, slots);
-  if (run.mode == TimeMode::kLockstep && !run.single_process) {
-    checkpoint_steps_ = history_checkpoints(run, options, slots);
-  }
+  checkpoint_steps_ = run.mode == TimeMode::kLockstep && !run.single_process ? history_checkpoints(run, options, slots)
+                                                                              : std::vector<std::uint64_t>(slots.size(), 0);
   checkpoint_pending_.assign(slots.size(), false);
 }
 
@@ -192,8 +191,7 @@ bool LockstepHost::take_tick() {
     slot->pending = tick_step_ % slot->state.period_steps == 0;
     slot->state.step = tick_step_;
     slot->state.stamp_ns = sim_stamp_ns(tick_step_, run_.scenario->step_s);
-    checkpoint_pending_[i] = !slot->pending && !checkpoint_steps_.empty() && checkpoint_steps_[i] > 0 &&
-                             tick_step_ % checkpoint_steps_[i] == 0;
+    checkpoint_pending_[i] = !slot->pending && checkpoint_steps_[i] > 0 && tick_step_ % checkpoint_steps_[i] == 0;
   }
   waiting_since_ = Clock::now();
   return true;

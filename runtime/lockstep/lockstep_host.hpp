@@ -74,7 +74,7 @@ class LockstepHost {
   std::uint64_t steps_done_ = 0;
   bool done_ = false;
   /// Per slot (history_checkpoints() in the .cpp): every how many steps the host also waits for
-  /// the slot's inputs without running it (0: never; empty: no writer history to protect), and
+  /// the slot's inputs without running it (0: never), and
   /// whether that wait is still open at the current tick.
   std::vector<std::uint64_t> checkpoint_steps_;
   std::vector<bool> checkpoint_pending_;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
 #include <thread>
 
 #include "runtime/bus/memory_bus.hpp"
@@ -207,6 +208,73 @@ TEST_F(HostFixture, MissingInputTimesOutNamingComponentStepAndTopic) {
     EXPECT_EQ(std::string(e.what()).rfind("lockstep: component 'recorder' waited 0.1 s at step 0 for topic plant/state, ", 0), 0u)
         << e.what();
   }
+}
+
+/// A bus in front of another that claims the writer history of a DDS bus whose `lockstep`
+/// writers keep `depth` samples (history_checkpoints.hpp).
+class ShallowHistoryBus : public Bus {
+ public:
+  ShallowHistoryBus(Bus& inner, std::size_t depth) : inner_(inner), depth_(depth) {}
+  std::shared_ptr<WriterHandle> writer(const std::string& topic, const std::string& type_name,
+                                       const std::string& profile) override {
+    return inner_.writer(topic, type_name, profile);
+  }
+  std::shared_ptr<ReaderHandle> reader(const std::string& topic, const std::string& type_name, const std::string& profile,
+                                       SampleCallback on_sample, ReaderEventCallback on_event) override {
+    return inner_.reader(topic, type_name, profile, std::move(on_sample), std::move(on_event));
+  }
+  void flush(std::chrono::milliseconds timeout) override { inner_.flush(timeout); }
+  std::optional<std::size_t> writer_history_depth(const std::string& profile) const override {
+    return profile == "lockstep" ? std::optional<std::size_t>(depth_) : std::nullopt;
+  }
+
+ private:
+  Bus& inner_;
+  std::size_t depth_;
+};
+
+/// A component due every 10 steps reading plant/state of robot 1, behind a host whose producers'
+/// writers keep `depth` samples (0: no writer history, as in memory): the steps the host
+/// acknowledged when plant/state arrived up to step 2 only, after ticks 0-3.
+std::vector<std::uint64_t> acked_without_step_3(HostFixture& f, std::size_t depth) {
+  ShallowHistoryBus shallow(f.bus, depth);
+  if (depth > 0) {
+    f.run.bus = &shallow;
+  }
+  host_detail::ComponentSlot& slot = f.add_slot(10);
+  slot.context->subscribe<idl::RobotState>("plant/state", Subscription::instances({1}));
+  LockstepHost host(f.run, f.options, f.slots, f.bus);
+  host.begin(std::chrono::steady_clock::now());
+  StepState producer;
+  Output<idl::RobotState> states(f.bus.writer("plant/state", topic_info("plant/state").type_name, profile_of("plant/state")),
+                                 &producer);
+  for (std::uint64_t step = 0; step <= 3; ++step) {
+    if (step <= 2) {
+      producer.step = step;
+      idl::RobotState s;
+      s.robot_id(1);
+      states.publish(s);
+    }
+    f.tick(step);
+    host.step();
+    host.step();
+  }
+  std::vector<std::uint64_t> acked;
+  for (const idl::StepDone& a : f.acks) {
+    acked.push_back(a.header().step());
+  }
+  f.run.bus = &f.bus;
+  return acked;
+}
+
+TEST_F(HostFixture, WithAShortWriterHistoryASlowComponentsHostWaitsForItsInputsBetweenDueSteps) {
+  // depth 3, window 1, delay 0: waits every 3 steps (1 + 3 + 0 - 1 = 3), so step 3 waits for
+  // plant/state of step 3; without a writer history only the due steps (every 10) wait.
+  EXPECT_EQ(acked_without_step_3(*this, 3), (std::vector<std::uint64_t>{0, 1, 2}));
+}
+
+TEST_F(HostFixture, WithoutAWriterHistoryOnlyTheDueStepsWait) {
+  EXPECT_EQ(acked_without_step_3(*this, 0), (std::vector<std::uint64_t>{0, 1, 2, 3}));
 }
 
 TEST_F(HostFixture, FailureIsAcknowledgedWithItsReason) {
