@@ -61,10 +61,6 @@ class KalmanLaw {
 
   double range_m() const { return x_(0); }
   double rate_mps() const { return x_(1); }
-  /// m/s^2, the range acceleration estimate.
-  double accel_mps2() const { return x_(2); }
-  /// The filter's own covariance of (range, rate, acceleration).
-  const Eigen::Matrix3d& covariance() const { return P_; }
 
  private:
   Params params_;
