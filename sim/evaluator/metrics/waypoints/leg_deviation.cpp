@@ -13,9 +13,8 @@ void LegDeviation::add_status(std::uint64_t step, std::size_t target_index, bool
     return;
   }
   // Truth up to the step before this status belongs to the previous one's leg.
-  while (has_status_ && !pending_.empty() && pending_.front().step < step) {
-    count(pending_.front(), target_index_);
-    pending_.pop_front();
+  if (has_status_ && step > 0) {
+    count_pending_through(step - 1);
   }
   has_status_ = true;
   status_step_ = step;
@@ -26,7 +25,7 @@ void LegDeviation::add_status(std::uint64_t step, std::size_t target_index, bool
     pending_.clear();
     return;
   }
-  drain();
+  count_pending_through(status_step_);
 }
 
 void LegDeviation::add_truth(std::uint64_t step, double x_m, double y_m) {
@@ -41,11 +40,13 @@ void LegDeviation::add_truth(std::uint64_t step, double x_m, double y_m) {
   if (pending_.size() > kMaxPending) {
     pending_.pop_front();
   }
-  drain();
+  if (has_status_) {
+    count_pending_through(status_step_);
+  }
 }
 
-void LegDeviation::drain() {
-  while (has_status_ && !pending_.empty() && pending_.front().step <= status_step_) {
+void LegDeviation::count_pending_through(std::uint64_t last_step) {
+  while (!pending_.empty() && pending_.front().step <= last_step) {
     count(pending_.front(), target_index_);
     pending_.pop_front();
   }

@@ -49,7 +49,8 @@ class LegDeviation {
     double y = 0.0;
   };
   void count(const Truth& truth, std::size_t target_index);
-  void drain();
+  /// Counts the waiting truth of steps <= last_step against the current target.
+  void count_pending_through(std::uint64_t last_step);
 
   std::vector<std::array<double, 2>> mission_;
   bool has_start_ = false;
