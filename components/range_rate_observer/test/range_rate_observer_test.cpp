@@ -518,7 +518,10 @@ TEST(RangeRateObserver, LostSamplesDoNotLowerItsBoundOnTheRangeAcceleration) {
   // per second (1.54 m/s^2 at 30 % losses). Range 50 + 2 t + 8 sin(t / 2), |s''| up to 2 m/s^2, max
   // error over 20-120 s: no losses 0.144 m/s; now 0.144-0.157 (10 %), 0.171-0.208 (30 %); correcting
   // over one period and predicting 0.22-0.29 (10 %), 1.04-1.32 (30 %); one Euler step per gap
-  // 0.31-0.49 (30 %).
+  // 0.31-0.49 (30 %). Lost ranges on the straight line between the received ones (the chord lies
+  // r'' tau (dt - tau) / 2 inside the range, a few mm, above the sliding mode's range error):
+  // 0.171-0.208, RMS 0.051-0.054 (30 %); on the curve bent by the law's s'' estimate: 0.120-0.141
+  // (30 %), 0.138-0.144 (10 %), RMS 0.036-0.038 (no losses 0.036).
   const auto range = [](double t) { return 50.0 + 2.0 * t + 8.0 * std::sin(0.5 * t); };
   const auto rate = [](double t) { return 2.0 + 4.0 * std::cos(0.5 * t); };
   const Track clean = track_with_losses(SuperTwistingObserver(SuperTwistingParams{}, {}, 0.02), 0.0, 1, range, rate).first;
@@ -528,7 +531,8 @@ TEST(RangeRateObserver, LostSamplesDoNotLowerItsBoundOnTheRangeAcceleration) {
       std::printf("|s''| 2 m/s^2, loss %.0f %% seed %d: max %.4f RMS %.4f m/s (no loss: max %.4f RMS %.4f)\n", 100.0 * loss,
                   static_cast<int>(seed), lossy.max_abs_after_mps, lossy.rms_after_mps, clean.max_abs_after_mps,
                   clean.rms_after_mps);
-      EXPECT_LT(lossy.max_abs_after_mps, 0.22) << "loss " << loss << " seed " << seed;
+      EXPECT_LT(lossy.max_abs_after_mps, 1.1 * clean.max_abs_after_mps) << "loss " << loss << " seed " << seed;
+      EXPECT_LT(lossy.rms_after_mps, 1.1 * clean.rms_after_mps) << "loss " << loss << " seed " << seed;
     }
   }
 }
