@@ -107,8 +107,9 @@ class RangeRateObserver {
   /// one Euler step however long. A step longer than kGapRatio periods spans lost samples: it is
   /// integrated in steps of about one period (at most kMaxGapSteps), each correcting with the
   /// error against the curve between the last range and this one that bends with the law's range
-  /// acceleration estimate (update()), as if the lost ranges had lain on it. One Euler step over the gap applied the last error's b sgn(e) for k periods and widened
-  /// the sliding mode's chattering k-fold (issue 27, finding 6: 0.20-0.44 m/s instead of 0.10 at
+  /// acceleration estimate (update()), as if the lost ranges had lain on it. One Euler step over
+  /// the gap applied the last error's b sgn(e) for k periods and widened the sliding mode's
+  /// chattering k-fold (issue 27, finding 6: 0.20-0.44 m/s instead of 0.10 at
   /// 10-30 % losses); correcting over one period and predicting the rest would leave it b (1 -
   /// losses) of rate correction per second, below the range accelerations it must follow.
   explicit RangeRateObserver(Params params, RateUncertaintyParams uncertainty = {}, double sample_period_s = 0.0)
