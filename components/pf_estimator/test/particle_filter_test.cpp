@@ -628,14 +628,17 @@ TEST(ParticleFilter, TheTurnNoiseTheOdometryClaimsIsPerSampleAndNotScaled) {
 struct WrongHeadingRun {
   int confirmed_while_wrong = 0;
   std::size_t redraws = 0;
+  double position_var_after_redraw_m2 = 0.0;  // the cloud's x and y variance (mean) right after the first redraw
+  double fix_var_m2 = 0.0;                    // the fix noise estimated then (per axis)
   bool confirmed_at_end = false;
   double final_heading_error_rad = 0.0;
 };
 
-WrongHeadingRun creep_from_a_wrong_heading(int track_check_window_fixes) {
+WrongHeadingRun creep_from_a_wrong_heading(int track_check_window_fixes, bool widen_positions = true) {
   PfParams params = first_fix_params();
   params.init_theta_known = false;
   params.track_check_window_fixes = track_check_window_fixes;
+  params.track_redraw_widens_position = widen_positions;
   params.recovery_nis = 0.0;  // the lost-filter monitor would redraw too: this is about the check
   ParticleFilter filter(params, 21);
   RandomEngine world(derive_seed(21, "world"));
@@ -657,7 +660,13 @@ WrongHeadingRun creep_from_a_wrong_heading(int track_check_window_fixes) {
     if (step % 5 != 0) {
       continue;
     }
+    const std::size_t redraws_before = filter.track_redraw_count();
     filter.update(truth.x + 4.53 * standard_normal(world), truth.y + 4.53 * standard_normal(world));
+    if (redraws_before == 0 && filter.track_redraw_count() == 1) {
+      const PoseEstimate cloud = filter.estimate();
+      run.position_var_after_redraw_m2 = 0.5 * (cloud.covariance(0, 0) + cloud.covariance(1, 1));
+      run.fix_var_m2 = filter.measurement_std_estimate_m() * filter.measurement_std_estimate_m();
+    }
     run.final_heading_error_rad = std::abs(wrap_angle(filter.estimate().mean.z() - truth.theta));
     if (filter.confirmed() && run.final_heading_error_rad > 30.0 * kDeg) {
       ++run.confirmed_while_wrong;
@@ -677,6 +686,18 @@ TEST(ParticleFilter, ALearnedHeadingIsConfirmedOnlyWhenTheFixesTrackAgrees) {
   const WrongHeadingRun unchecked = creep_from_a_wrong_heading(0);  // the check off: before
   EXPECT_GT(unchecked.confirmed_while_wrong, 100);
   EXPECT_EQ(unchecked.redraws, 0u);
+}
+
+// The positions had followed the wrong heading: a redraw widens them to at least the fix noise the
+// filter estimates (track_redraw_widens_position); kept, they stayed narrow (fixes 3x noisier,
+// seed 3: 3.8 m off at d^2 54 for 8.6 s after the redraw).
+TEST(ParticleFilter, ARedrawByTheTrackCheckWidensThePositionsToTheFixNoise) {
+  const WrongHeadingRun widened = creep_from_a_wrong_heading(300);
+  ASSERT_GE(widened.redraws, 1u);
+  EXPECT_GE(widened.position_var_after_redraw_m2, 0.99 * widened.fix_var_m2);
+  const WrongHeadingRun kept = creep_from_a_wrong_heading(300, false);
+  ASSERT_GE(kept.redraws, 1u);
+  EXPECT_LT(kept.position_var_after_redraw_m2, 0.5 * kept.fix_var_m2);
 }
 
 // Issue 27, fixes 2-5x noisier than configured: after the track check passed once, the cloud could
