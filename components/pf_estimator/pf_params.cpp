@@ -133,7 +133,7 @@ const params::ParamTable<PfParams>& pf_param_table() {
           .add("track_check_cloud_std_rad", &PfParams::track_check_cloud_std_rad, "rad", positive(),
                "the check passes when the cloud agrees and its heading std is below this (the node's valid_max_heading_std_rad); the heading std of a redraw")
           .add("track_check_while_driving", &PfParams::track_check_while_driving, "", params::any<bool>(),
-               "after it passed, a learned heading stays checked against the track of the last fixes (dead reckoning with the cloud's turn slip, the slip error fitted, its drift counted); a contradiction redraws the headings (a restart)")
+               "after it passed, a learned heading stays checked against the track of the last fixes (the odometry's turn slip fitted too, its drift counted); a contradiction redraws the headings (a restart)")
           .add("track_redraw_widens_position", &PfParams::track_redraw_widens_position, "", params::any<bool>(),
                "a redraw of the headings by the track check also widens the positions about their mean to at least the estimated fix noise per axis")
           .add("track_check_inflate_sigmas", &PfParams::track_check_inflate_sigmas, "", non_negative("0 = off"),

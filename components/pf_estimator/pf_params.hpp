@@ -150,10 +150,10 @@ struct PfParams {
   double track_check_cloud_std_rad = 0.2;
   /// After it passed, the check keeps running while the robot drives (issue 27: with fixes 2-5x
   /// noisier than configured, 1,000 particles narrow the heading faster than the fixes justify and
-  /// were 16-38 deg off at a reported 4-10 deg for 20-80 s after `valid`). The dead reckoning then
-  /// removes the cloud's mean turn slip from omega and the track's heading now carries its drift
-  /// since the window's fixes (the turn-rate noise and the slip's variance over the distance, see
-  /// heading_track_check.hpp); a contradiction (track_check_sigmas combined sigmas, at most
+  /// were 11-38 deg off at a reported 2-10 deg for 20-80 s after `valid`). The window's track is
+  /// dead-reckoned again with the odometry's turn slip fitted too, independently of the cloud
+  /// (HeadingTrackCheck::check_drifting()); a cloud beyond track_check_inflate_sigmas is widened
+  /// (below), a contradiction (track_check_sigmas combined sigmas, at most
   /// prior_heading_tolerance_rad) redraws the headings around the track's as before `valid` (a
   /// restart: the estimate must be confirmed again). false = the check stops once passed (before).
   bool track_check_while_driving = true;
