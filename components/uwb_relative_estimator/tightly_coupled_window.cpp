@@ -476,6 +476,7 @@ bool TightlyCoupledWindow::solve() {
   }
   ceres::Solver::Options options;
   options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;  // a chain of epochs: banded
+  options.sparse_linear_algebra_library_type = ceres::EIGEN_SPARSE;
   options.max_num_iterations = params_.max_iterations;
   options.num_threads = 1;
   options.logging_type = ceres::SILENT;

@@ -45,7 +45,7 @@ struct TightWindowParams {
   /// One Gauss-Markov bias per link as states (false: their variance added to the white noise).
   bool link_bias_states = true;
   double odometry_xy_std_m = 0.002;
-  double odometry_theta_std_rad = 0.002;
+  double odometry_theta_std_rad = 0.004;
   /// Prior of the first pose around the fix it starts from.
   double start_xy_std_m = 1.0;
   double start_theta_std_rad = 0.5;
