@@ -172,13 +172,14 @@ class RelativeEstimator {
     /// This epoch's eq. (1) covariance from its independent range errors alone (what the filters
     /// do not share with the fix: their lost-filter test).
     Eigen::Matrix3d fix_own_covariance = Eigen::Matrix3d::Zero();
-    std::optional<TightlyCoupledWindow> tc;  // the tc stage (issue 28)
   };
 
   void run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
                   const std::vector<PairMeasurement>& link_edges, EpochResult& result);
   /// Peer `k` has an eq. (1) edge in the window: its poses there rest on a measurement.
   bool placed(std::size_t k) const;
+  /// The tc stage of every peer (issue 28).
+  void run_tc(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers, EpochResult& result);
   void run_pf(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment, const PeerEpoch& input,
               PeerResult& result);
   void run_baseline(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment, const PeerEpoch& input,
@@ -195,6 +196,7 @@ class RelativeEstimator {
   std::optional<SlidingWindowGraph> window_;
   std::optional<double> last_time_s_;
   EstimatorCounts counts_;
+  std::vector<TightlyCoupledWindow> tc_;  // the tc stage of each peer (constructor order; issue 28)
 };
 
 }  // namespace robodds::uwb_relative_estimator
