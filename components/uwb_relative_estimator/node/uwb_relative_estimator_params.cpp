@@ -24,7 +24,7 @@ const params::ParamTable<RelativeEstimatorNodeParams>& relative_estimator_node_p
           .add("peer_links", &P::peer_links, "", params::any<bool>(),
                "the window also uses the ranges between each two peers (sensor/uwb of the lower id to the higher)")
           .add("uwb_timeout_s", &P::uwb_timeout_s, "s", params::positive(),
-               "window, pf, pf_baseline: not valid while the peer's last accepted UWB frame is older than this; > the period")
+               "window, pf, pf_baseline, tc: not valid while the peer's last accepted UWB frame is older than this; > the period")
           .add("odometry_timeout_s", &P::odometry_timeout_s, "s", params::positive(),
                "real time only: not valid while the robot's or the peer's odometry is older than this; > the period")
           .include(&P::estimator, relative_estimator_param_table());
