@@ -21,6 +21,7 @@
 #include "components/uwb_relative_estimator/relative_pose_solver.hpp"
 #include "components/uwb_relative_estimator/test/true_ranges.hpp"
 #include "components/uwb_relative_estimator/tightly_coupled_window.hpp"
+#include "components/uwb_sensor/uwb_error_model.hpp"
 
 namespace robodds::uwb_relative_estimator {
 namespace {
@@ -54,50 +55,6 @@ model::Pose2 rectangle_pose(double t) {
   return {};
 }
 
-/// Range errors of the UWB sensor's model without outliers: white w, a Gauss-Markov bias per link
-/// b_kl(t) and a common-mode Gauss-Markov error c(t) of the robot pair, all in m. Exact discretisation, stationary start.
-class RangeErrors {
- public:
-  struct Model {
-    double white_m;
-    double link_sigma_m;
-    double link_tau_s;
-    double common_sigma_m;
-    double common_tau_s;
-  };
-
-  RangeErrors(Model model, RandomEngine& engine) : model_(model), links_(4, 4) {
-    for (Eigen::Index i = 0; i < links_.size(); ++i) {
-      links_(i) = model_.link_sigma_m * standard_normal(engine);
-    }
-    common_ = model_.common_sigma_m * standard_normal(engine);
-  }
-
-  double common() const { return common_; }
-
-  /// Advances by dt_s and returns the 4 x 4 errors of this epoch.
-  Eigen::MatrixXd next(double dt_s, RandomEngine& engine) {
-    const double a_link = std::exp(-dt_s / model_.link_tau_s);
-    const double a_common = std::exp(-dt_s / model_.common_tau_s);
-    Eigen::MatrixXd errors(4, 4);
-    for (Eigen::Index i = 0; i < links_.size(); ++i) {
-      const double n = standard_normal(engine);
-      links_(i) = a_link * links_(i) + model_.link_sigma_m * std::sqrt(1.0 - a_link * a_link) * n;
-    }
-    const double n = standard_normal(engine);
-    common_ = a_common * common_ + model_.common_sigma_m * std::sqrt(1.0 - a_common * a_common) * n;
-    for (Eigen::Index i = 0; i < errors.size(); ++i) {
-      errors(i) = model_.white_m * standard_normal(engine) + links_(i) + common_;
-    }
-    return errors;
-  }
-
- private:
-  Model model_;
-  Eigen::MatrixXd links_;
-  double common_ = 0.0;
-};
-
 struct TcRun {
   double tc_m = 0.0;
   double tc_deg = 0.0;
@@ -117,14 +74,17 @@ struct TcRun {
 /// Experiment 1-a's geometry (robot 0 static at the origin facing +y, robot 1 on the rectangle),
 /// side 0.5 m, 10 Hz epochs, odometry with 1 mm / 1 mrad white noise per epoch on robot 1; errors
 /// from t >= 20 s; eq. (1) plain least squares, warm-started from its previous solve, is the fix.
-TcRun run(const RangeErrors::Model& model, const TightWindowParams& params, double duration_s, std::uint64_t seed) {
+TcRun run(const uwb_sensor::UwbErrorParams& model, const TightWindowParams& params, double duration_s, std::uint64_t seed) {
   const UwbArray array = square_array(0.5);
   SolverOptions solver;
   solver.loss = RobustLoss::kNone;
   TightlyCoupledWindow tc(array, array, params);
   RandomEngine engine(derive_seed(seed, "tightly_coupled_window_test"));
   RandomEngine odometry_engine(derive_seed(seed, "tightly_coupled_window_test/odometry"));
-  RangeErrors errors(model, engine);
+  RandomEngine nlos_engine(derive_seed(seed, "tightly_coupled_window_test/nlos"));
+  // The UWB sensor's own error model (white + Gauss-Markov link biases + pair common mode).
+  uwb_sensor::PairErrors errors(4, 4, 0.0, model, RandomEngine(derive_seed(seed, "tightly_coupled_window_test/bias")),
+                                RandomEngine(derive_seed(seed, "tightly_coupled_window_test/common")));
   const model::Pose2 robot0{0.0, 0.0, kPi / 2.0};
   TcRun out;
   double d2_sum = 0.0;
@@ -137,9 +97,10 @@ TcRun run(const RangeErrors::Model& model, const TightWindowParams& params, doub
   for (int e = 0; e < epochs; ++e) {
     const double t = kEpochS * e;
     const model::Pose2 truth = model::between(robot0, rectangle_pose(t));
-    const Eigen::MatrixXd error = errors.next(kEpochS, engine);
-    const Eigen::MatrixXd ranges = (testing::true_ranges(array, array, truth) + error).cwiseMax(0.0);
-    const double common_true = errors.common();
+    errors.advance_to(t);
+    const Eigen::MatrixXd ranges = uwb_sensor::measure_ranges(testing::true_ranges(array, array, truth), errors.link_bias_m(true),
+                                                              errors.common_m(), model, engine, nlos_engine);
+    const double common_true = errors.common_m();
     const model::Pose2 uwb = solve_relative_pose(array, array, ranges, e == 0 ? truth : previous_uwb, solver).pose;
     previous_uwb = uwb;
     model::Pose2 odometry;
@@ -189,11 +150,12 @@ void print(const char* what, const TcRun& r) {
               r.true_common_rms_m, r.bias_rms_m, r.common_std_m, r.restarts, r.step_ms);
 }
 
-constexpr RangeErrors::Model kSensor{0.04, 0.07, 2.0, 0.30, 10.0};  // the UWB sensor's defaults
+const uwb_sensor::UwbErrorParams kSensor;  // the UWB sensor's defaults (white 0.04 m, link 0.07 m / 2 s, common 0.30 m / 10 s)
 constexpr double kDurationS = 150.0;
 
 TEST(TightlyCoupledWindow, NoiseFreeRangesGiveTheTruth) {
-  const RangeErrors::Model none{0.0, 0.0, 2.0, 0.0, 10.0};
+  uwb_sensor::UwbErrorParams none;
+  none.sigma_scale = 0.0;
   TightWindowParams params;
   const TcRun r = run(none, params, 40.0, 1);
   print("noise-free", r);
