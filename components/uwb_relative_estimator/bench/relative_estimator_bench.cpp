@@ -6,6 +6,9 @@
 // Issue 29: the same with 3 and 7 peers (4 and 8 robots tracked by one estimator; every pair of
 // peers is a link, as in RelativeEstimator: 6 and 28 eq. (1) solves per epoch), peers k >= 2 on
 // circles of 3-9 m at their own speeds.
+// BM_WindowEpoch: the sliding window alone (SlidingWindowGraph::add_epoch + optimize, the window
+// stage's work) for 3, 4 and 8 robots, every pair an edge each epoch, so that its CPU time is
+// measured apart from the other stages (issue 29).
 // Counters: the median and p99 (nearest rank) of the per-epoch wall times, in ms, and the share
 // of each stage.
 
@@ -15,10 +18,12 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <random>
 #include <vector>
 
 #include "common/model/diff_drive_kinematics.hpp"
 #include "components/uwb_relative_estimator/relative_estimator.hpp"
+#include "components/uwb_relative_estimator/sliding_window.hpp"
 #include "components/uwb_sensor/uwb_error_model.hpp"
 
 namespace {
@@ -149,6 +154,72 @@ BENCHMARK(BM_Exp2Cycle)
     ->Args({30, 7})
     ->Iterations(3000)
     ->Unit(benchmark::kMillisecond);
+
+struct WindowEpoch {
+  std::vector<model::Pose2> odometry;
+  std::vector<PairMeasurement> uwb;
+};
+
+/// kEpochs epochs of `num_robots` robots on circles of 3-9 m: odometry increments and every pair's
+/// relative pose (eq. 1's output), each with Gaussian noise of the window's default stds.
+std::vector<WindowEpoch> make_window_epochs(std::size_t num_robots) {
+  RandomEngine random(derive_seed(1, "bench/window"));
+  std::normal_distribution<double> unit(0.0, 1.0);
+  std::vector<model::Pose2> pose;
+  std::vector<model::Twist> twist;
+  for (std::size_t i = 0; i < num_robots; ++i) {
+    const double radius = 3.0 + static_cast<double>(i);
+    const double bearing = 2.0 * M_PI * static_cast<double>(i) / static_cast<double>(num_robots);
+    pose.push_back({radius * std::cos(bearing), radius * std::sin(bearing), bearing + M_PI / 2});
+    twist.push_back({0.2, 0.2 / radius});
+  }
+  const WindowWeights w;
+  std::vector<WindowEpoch> out;
+  for (int e = 0; e < kEpochs; ++e) {
+    WindowEpoch epoch;
+    for (std::size_t i = 0; i < num_robots; ++i) {
+      const model::Pose2 next = model::integrate_exact(pose[i], twist[i], kEpochS);
+      const model::Pose2 step = model::between(pose[i], next);
+      epoch.odometry.push_back({step.x + w.odometry_xy_std_m * unit(random), step.y + w.odometry_xy_std_m * unit(random),
+                                step.theta + w.odometry_theta_std_rad * unit(random)});
+      pose[i] = next;
+    }
+    for (std::size_t a = 0; a < num_robots; ++a) {
+      for (std::size_t b = a + 1; b < num_robots; ++b) {
+        const model::Pose2 rel = model::between(pose[a], pose[b]);
+        epoch.uwb.push_back(PairMeasurement{a, b,
+                                            {rel.x + w.uwb_xy_std_m * unit(random), rel.y + w.uwb_xy_std_m * unit(random),
+                                             rel.theta + w.uwb_theta_std_rad * unit(random)}});
+      }
+    }
+    out.push_back(std::move(epoch));
+  }
+  return out;
+}
+
+/// One iteration = one epoch of the window (add_epoch + optimize) through the 600 s sequence,
+/// started over at its end. Arguments: the window (epochs) and the number of robots.
+void BM_WindowEpoch(benchmark::State& state) {
+  const auto window = static_cast<std::size_t>(state.range(0));
+  const auto num_robots = static_cast<std::size_t>(state.range(1));
+  const std::vector<WindowEpoch> sequence = make_window_epochs(num_robots);
+  std::optional<SlidingWindowGraph> graph;
+  std::size_t e = sequence.size();
+  std::size_t not_converged = 0;
+  for (auto _ : state) {
+    if (e == sequence.size()) {
+      state.PauseTiming();
+      graph.emplace(num_robots, window, WindowWeights{});
+      e = 0;
+      state.ResumeTiming();
+    }
+    graph->add_epoch(sequence[e].odometry, sequence[e].uwb);
+    not_converged += graph->optimize() ? 0 : 1;
+    ++e;
+  }
+  state.counters["not_converged"] = static_cast<double>(not_converged);
+}
+BENCHMARK(BM_WindowEpoch)->Args({30, 3})->Args({30, 4})->Args({30, 8})->Iterations(3000)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 BENCHMARK_MAIN();
