@@ -64,6 +64,11 @@ void FixTrackCheck::add(double time_s, const model::Pose2& fix, const RangeError
       test(time_s, fix, error, covariance, kept_.front());
     }
   }
+  // Fixes are kept every twentieth of the lag (each is dead-reckoned every epoch: 20 of them
+  // cost what 20 compositions do, whatever the lag), so the reference is 1 to 1.05 lags old.
+  if (!kept_.empty() && time_s - kept_.back().time_s < lag / 20.0 - 1e-9) {
+    return;
+  }
   Kept kept;
   kept.time_s = time_s;
   kept.pose = fix;

@@ -8,7 +8,8 @@
 // fix to now with a small, known error, and the difference between this fix and that dead-reckoned
 // one contains the change of the fixes' error over the lag.
 //
-// Per valid fix at time t: the fix kept from about fix_check_lag_s before, dead-reckoned by both
+// Per valid fix at time t: the fix kept from about fix_check_lag_s before (fixes are kept every
+// twentieth of the lag; the reference is 1-1.05 lags old), dead-reckoned by both
 // robots' odometry to t (x' = inverse(m_i) x m_j each epoch, Jacobian F and odometry covariance Q
 // accumulated), gives the innovation nu = fix_t - x'_old (heading wrapped). Under the error model
 // the stages report with (RangeErrorMap: independent range errors u, common c, node biases b, each

@@ -57,7 +57,9 @@ struct UncertaintyParams {
   /// uwb: the fix-track check (FixTrackCheck): each fix against the fix of this long ago
   /// dead-reckoned by odometry; the fixes' error that changes over the lag, beyond what the error
   /// model says, scales the stage's covariance. 0: off.
-  double fix_check_lag_s = 5.0;
+  /// 20 s: the common mode (10 s) and the node term are mostly forgotten, so their changes show;
+  /// the configured odometry noise over 20 s stays below the fixes' own spread.
+  double fix_check_lag_s = 20.0;
   /// uwb: the tests (one per fix) whose mean statistics give the scales.
   int fix_check_window_epochs = 100;
   /// Throws std::invalid_argument "key: requirement (got value)".
