@@ -113,7 +113,8 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
                                InnovationMonitor(params_.uncertainty), InnovationMonitor(params_.uncertainty),
                                model::Pose2{}, model::Pose2{}, peer.known_start, Eigen::Matrix3d::Zero(), {}, {}, RangeErrorMap{}, false,
                                Eigen::VectorXd(), std::nullopt, std::nullopt, Eigen::Matrix3d::Zero(),
-                               FixTrackCheck(params_.uncertainty), Eigen::Matrix3d::Zero()});
+                               FixTrackCheck(params_.uncertainty), InnovationMonitor(params_.uncertainty),
+                               Eigen::Matrix3d::Zero()});
   }
   for (std::size_t a = 0; a < setups_.size(); ++a) {
     for (std::size_t b = a + 1; b < setups_.size(); ++b) {
@@ -232,7 +233,12 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
     odometry.valid = peer.odometry_pose.has_value();
     if (odometry.valid) {
       odometry.pose = *peer.odometry_pose;
-      odometry.covariance = peer.odometry_covariance;
+      // Its own check: the fixes (independent of the odometry) against the dead reckoning; what
+      // neither covariance explains (a slip's drift) is added.
+      if (uwb.valid) {
+        peer.odometry_check.add(odometry.pose, uwb.pose, peer.fix_model_covariance);
+      }
+      odometry.covariance = peer.odometry_covariance + peer.odometry_check.excess(peer.odometry_covariance);
     }
   }
   result.stage_ms[static_cast<std::size_t>(Stage::kOdometry)] = ms_since(start);

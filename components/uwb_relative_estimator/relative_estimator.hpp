@@ -172,6 +172,9 @@ class RelativeEstimator {
     Eigen::Matrix3d fix_own_covariance = Eigen::Matrix3d::Zero();
     /// The uwb stage's check of its fixes over time (FixTrackCheck): scales what it reports.
     FixTrackCheck fix_check;
+    /// The odometry stage's check against the eq. (1) fixes: a dead reckoning that drifted beyond
+    /// its covariance (wheel slips grow as t, the propagated white noise as sqrt(t)) says so.
+    InnovationMonitor odometry_check;
     /// This epoch's eq. (1) covariance as the error model gives it, before fix_check's scaling
     /// (what the filters' InnovationMonitor compares their estimates with).
     Eigen::Matrix3d fix_model_covariance = Eigen::Matrix3d::Zero();
