@@ -6,9 +6,10 @@ usage: paper2_observer_study_plot.py STUDY_CSV OUT_DIR
 Reads the CSV of robodds-observer-study, writes OUT_DIR/lag_vs_noise.png (noise-free lag on x,
 noise floor on y: one curve per sample rate x noise level through the linear gains, a star for
 super-twisting, 95 % CI error bars) and OUT_DIR/total_vs_gain.png (RMS error on the noisy signal
-against the linear gain w, super-twisting as a dashed line). Hollow stars in lag_vs_noise.png:
-super-twisting's lag on the noisy signal, sqrt(TOTAL^2 - NOISE^2)., and prints the tables of
-docs/results/paper2_observer_study.md on stdout.
+against the linear gain w, super-twisting as a dashed line, the Kalman filter at its default q as a
+dotted one). Hollow stars in lag_vs_noise.png: super-twisting's lag on the noisy signal,
+sqrt(TOTAL^2 - NOISE^2); black-edged diamonds: the Kalman filter (issue 28) through its jerk
+densities q. Prints the tables of docs/results/paper2_observer_study.md on stdout.
 """
 import csv
 import math
@@ -20,7 +21,7 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-NUMERIC = ("rate_hz", "sigma_m", "w_radps", "k1", "k2", "seeds", "lag_rms_mps", "lag_ci95_mps", "noise_rms_mps",
+NUMERIC = ("rate_hz", "sigma_m", "w_radps", "k1", "k2", "q_m2ps5", "seeds", "lag_rms_mps", "lag_ci95_mps", "noise_rms_mps",
            "noise_ci95_mps", "total_rms_mps", "total_ci95_mps", "total_bias_mps", "restarts_per_run")
 SIGNAL_TITLE = {"orbit": "orbit: s = 300 + 60 sin(0.15 t + phase) m", "accel": "accel: s = 300 - 8 t + t^2/2 m"}
 RATE_COLOR = {10.0: "tab:red", 50.0: "tab:blue", 100.0: "tab:green"}
@@ -50,6 +51,17 @@ def linear_sorted(rows):
     return sorted((r for r in rows if r["observer"] == "linear"), key=lambda r: r["w_radps"])
 
 
+def kalman_sorted(rows):
+    return sorted((r for r in rows if r["observer"] == "kf"), key=lambda r: r["q_m2ps5"])
+
+
+KALMAN_DEFAULT_Q = 0.001
+
+
+def kalman_default(rows):
+    return next((r for r in rows if r["observer"] == "kf" and r["q_m2ps5"] == KALMAN_DEFAULT_Q), None)
+
+
 def sta(rows):
     found = [r for r in rows if r["observer"] == "sta"]
     return found[0] if found else None
@@ -69,6 +81,12 @@ def draw_lag_vs_noise(rows, path):
                             xerr=[r["lag_ci95_mps"] for r in lin], yerr=[r["noise_ci95_mps"] for r in lin],
                             color=color, marker=marker, markersize=4, linewidth=1,
                             label=f"linear {rate:g} Hz, sigma {sigma:g} m")
+                kf = kalman_sorted(group)
+                if kf:
+                    ax.errorbar([r["lag_rms_mps"] for r in kf], [r["noise_rms_mps"] for r in kf],
+                                xerr=[r["lag_ci95_mps"] for r in kf], yerr=[r["noise_ci95_mps"] for r in kf],
+                                color=color, marker="D", markersize=5, markeredgecolor="k", linestyle="--",
+                                linewidth=1)
                 s = sta(group)
                 if s is not None:
                     ax.errorbar([s["lag_rms_mps"]], [s["noise_rms_mps"]], xerr=[s["lag_ci95_mps"]],
@@ -87,7 +105,8 @@ def draw_lag_vs_noise(rows, path):
         ax.set_xlabel("lag: RMS rate error, signal without noise (m/s)")
         ax.set_ylabel("noise floor: RMS rate error, constant range with noise (m/s)")
         ax.set_title(SIGNAL_TITLE.get(signal, signal)
-                     + "\nlinear k1 = 2w, k2 = w^2 (w grows leftwards); star: super-twisting"
+                     + "\nlinear k1 = 2w, k2 = w^2 (w grows leftwards); star: super-twisting;"
+                     " diamonds (dashed): Kalman, q grows leftwards"
                      "\nhollow star: super-twisting's lag under noise, sqrt(total^2 - noise^2)", fontsize=9)
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=6, ncol=2)
@@ -114,6 +133,10 @@ def draw_total_vs_gain(rows, path):
                 if s is not None:
                     ax.axhline(s["total_rms_mps"], color=color, linestyle="--", linewidth=1,
                                label=f"super-twisting, sigma {sigma:g} m")
+                kf = kalman_default(group)
+                if kf is not None:
+                    ax.axhline(kf["total_rms_mps"], color=color, linestyle=":", linewidth=1.5,
+                               label=f"Kalman q {KALMAN_DEFAULT_Q:g}, sigma {sigma:g} m")
             ax.set_xscale("log")
             ax.set_yscale("log")
             ax.set_xlabel("linear gain w (rad/s): k1 = 2w, k2 = w^2")
@@ -153,14 +176,24 @@ def table_by_observer(rows, signal, columns, key, ci_key=None, title=""):
     print("|---|" + "---:|" * len(columns))
     first_sigma = columns[0][1] if columns[0][1] is not None else 0.0
     first = pick(rows, signal=signal, rate_hz=columns[0][0], sigma_m=first_sigma)
-    observers = [("sta", None)] + [("linear", r["w_radps"]) for r in linear_sorted(first)]
-    for name, w in observers:
-        label = ("super-twisting (a 2.12, b 2.2, c 1, d 1)" if name == "sta"
-                 else f"linear w {w:g} (k1 {2 * w:g}, k2 {w * w:g})")
+    observers = ([("sta", None)] + [("linear", r["w_radps"]) for r in linear_sorted(first)]
+                 + [("kf", r["q_m2ps5"]) for r in kalman_sorted(first)])
+    for name, gain in observers:
+        if name == "sta":
+            label = "super-twisting (a 2.12, b 2.2, c 1, d 1)"
+        elif name == "linear":
+            label = f"linear w {gain:g} (k1 {2 * gain:g}, k2 {gain * gain:g})"
+        else:
+            label = f"Kalman q {gain:g}" + (" (default)" if gain == KALMAN_DEFAULT_Q else "")
         cells = []
         for rate, sigma in columns:
             group = pick(rows, signal=signal, rate_hz=rate, sigma_m=sigma if sigma is not None else 0.0)
-            row = sta(group) if name == "sta" else next((r for r in group if r["w_radps"] == w), None)
+            if name == "sta":
+                row = sta(group)
+            elif name == "linear":
+                row = next((r for r in group if r["observer"] == "linear" and r["w_radps"] == gain), None)
+            else:
+                row = next((r for r in group if r["observer"] == "kf" and r["q_m2ps5"] == gain), None)
             cells.append("-" if row is None else fmt(row[key], row[ci_key] if ci_key else None))
         print(f"| {label} | " + " | ".join(cells) + " |")
     print()
@@ -171,8 +204,8 @@ def equal_noise_table(rows, signal):
           "the gains of the grid), and the best linear gain of the grid on the noisy signal:")
     print()
     print("| rate | sigma (m) | STA noise floor | w* (rad/s) | linear lag at w* | STA lag | STA total | "
-          "best linear w | its total |")
-    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+          "best linear w | its total | Kalman total (q 0.001) | best Kalman q | its total |")
+    print("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for rate in values(pick(rows, signal=signal), "rate_hz"):
         for sigma in [s for s in values(pick(rows, signal=signal), "sigma_m") if s > 0]:
             group = pick(rows, signal=signal, rate_hz=rate, sigma_m=sigma)
@@ -181,11 +214,16 @@ def equal_noise_table(rows, signal):
             w_star = loglog_interp(s["noise_rms_mps"], [r["noise_rms_mps"] for r in lin], ws)
             lag_star = loglog_interp(w_star, ws, [r["lag_rms_mps"] for r in lin]) if w_star else None
             best = min(lin, key=lambda r: r["total_rms_mps"])
+            kf, kf_default = kalman_sorted(group), kalman_default(group)
+            kf_best = min(kf, key=lambda r: r["total_rms_mps"]) if kf else None
+            kf_cells = ("- | - | -" if kf_best is None else
+                        (fmt(kf_default["total_rms_mps"], kf_default["total_ci95_mps"]) if kf_default else "-")
+                        + f" | {kf_best['q_m2ps5']:g} | {fmt(kf_best['total_rms_mps'], kf_best['total_ci95_mps'])}")
             w_text = f"{w_star:.2g}" if w_star else f"outside {ws[0]:g}-{ws[-1]:g}"
             lag_text = fmt(lag_star) if lag_star else "-"
             print(f"| {rate:g} Hz | {sigma:g} | {fmt(s['noise_rms_mps'])} | {w_text} | {lag_text} | "
                   f"{fmt(s['lag_rms_mps'])} | {fmt(s['total_rms_mps'], s['total_ci95_mps'])} | {best['w_radps']:g} | "
-                  f"{fmt(best['total_rms_mps'], best['total_ci95_mps'])} |")
+                  f"{fmt(best['total_rms_mps'], best['total_ci95_mps'])} | {kf_cells} |")
     print()
 
 

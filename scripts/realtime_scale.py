@@ -6,9 +6,10 @@ over the run's wall time). Prints a Markdown table; the largest N with no missed
 that "holds 100 Hz" on this machine.
 
   scripts/realtime_scale.py [--robots 100,200,400] [--deploy colocated,processes] [--duration S]
-                            [--robodds PATH] [--domain D] [--max-missed K]
+                            [--robodds PATH] [--domain D] [--max-missed K] [--rt-priority P]
 
---duration is wall seconds (real time). A run whose hosts skip more than --max-missed steps is failed
+--duration is wall seconds (real time). --rt-priority P runs the hosts' loops at SCHED_FIFO P
+(`robodds run --rt-priority`, docs/deployment.md). A run whose hosts skip more than --max-missed steps is failed
 by robodds itself (--max-missed-steps); the table then says so. Run it on an otherwise idle machine."""
 import argparse
 import json
@@ -59,6 +60,8 @@ def run_realtime(args, scenario_file, deploy, out_dir):
     cmd = [args.robodds, "--log", "warn", "run", scenario_file, "--realtime", "--deploy", deploy, "--duration",
            str(args.duration), "--domain", str(args.domain), "--out", out_dir, "--no-plots", "--max-missed-steps",
            str(args.max_missed)]
+    if args.rt_priority is not None:
+        cmd += ["--rt-priority", str(args.rt_priority)]
     err = tempfile.TemporaryFile(mode="w+")
     started = time.monotonic()
     proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=err)
@@ -99,6 +102,7 @@ def main():
     p.add_argument("--robodds", default=os.path.join(ROOT, "build", "tools", "robodds", "robodds"))
     p.add_argument("--domain", type=int, default=127)
     p.add_argument("--max-missed", type=int, default=1000000, help="passed as --max-missed-steps (default: never fail)")
+    p.add_argument("--rt-priority", type=int, default=None, help="passed as --rt-priority (SCHED_FIFO priority)")
     args = p.parse_args()
     try:
         robots = [int(x) for x in args.robots.split(",")]

@@ -26,6 +26,8 @@ std::vector<TopicInfo> robot_topics() {
                                             "uwb_relative_estimator (range-weighted filter, the paper's [22])", "evaluator"),
       make_topic<idl::RelativePoseEstimate>("estimate/relative_pose_odometry", QosClass::kState,
                                             "uwb_relative_estimator (odometry dead reckoning)", "evaluator"),
+      make_topic<idl::RelativePoseEstimate>("estimate/relative_pose_tc", QosClass::kState,
+                                            "uwb_relative_estimator (tightly coupled fixed-lag estimator, issue 28)", "evaluator"),
       make_topic<idl::RangeRateEstimate>("observer/range_rate", QosClass::kState, "range_rate_observer (super-twisting, eq. 1)",
                                          "circumnavigation_controller, evaluator"),
       make_topic<idl::RangeRateEstimate>("observer/range_rate_linear", QosClass::kState, "range_rate_observer (linear baseline, eq. 9)",

@@ -18,6 +18,17 @@
 //   kContradicted: beyond.
 // Assumes the odometry is right up to small errors over the window (a wheel scale error bends the
 // dead reckoning by slip / track per metre: 2 % on 0.3 m, 0.067 rad per m of creep).
+//
+// While driving (check_drifting(), after the cloud passed once): the track over the last
+// window_fixes fixes is dead-reckoned again from the odometry increments stored with each fix, and
+// the fit finds the turn slip k of that odometry as well (theta' = omega - k v), independently of the
+// cloud: a cloud that learned a wrong turn slip bends its heading (issue 27, fixes 2x noisier: 11-16
+// deg off at a reported 2-3 deg for 50 s), and a dead reckoning bent with the cloud's slip (or with
+// none, on a robot whose wheel reads fast) bends alike. Rotation phi by Procrustes for each k, k by
+// Gauss-Newton steps; the covariance of (phi, k) from the residuals. The track's heading now is
+// phi + the dead-reckoned heading change since the window's first fix with k removed; its variance
+// from that covariance plus the odometry's turn-rate noise accumulated since the window's fixes
+// (on average; predict()'s omega_var).
 
 #include <cstddef>
 #include <vector>
@@ -36,12 +47,20 @@ class HeadingTrackCheck {
   bool enabled() const { return capacity_ > 0; }
   /// Forgets every fix and restarts the dead reckoning (a (re)initialisation).
   void reset();
-  /// The measured odometry (m/s, rad/s, s) moves the dead-reckoned pose.
-  void predict(double v_mps, double omega_radps, double dt_s);
+  /// The measured odometry (m/s, rad/s, s) moves the dead-reckoned pose. omega_var_radps2: the
+  /// variance of this omega sample ((rad/s)^2), accumulated as the dead-reckoned heading's drift.
+  void predict(double v_mps, double omega_radps, double dt_s, double omega_var_radps2 = 0.0);
   /// An accepted fix (m, world frame).
   void add_fix(double x_m, double y_m);
   /// The verdict on the cloud's heading now (rad, world) and its variance (rad^2).
   Verdict check(double cloud_theta_rad, double cloud_theta_var_rad2);
+  /// As check(), with the odometry's turn slip fitted too and the drift since the window's fixes
+  /// counted (see above).
+  Verdict check_drifting(double cloud_theta_rad, double cloud_theta_var_rad2);
+  /// From the last check_drifting() that judged: the odometry's turn slip the track fitted (rad/m)
+  /// and its std (rad/m).
+  double slip_radpm() const { return slip_radpm_; }
+  double slip_std_radpm() const { return slip_std_radpm_; }
 
   /// From the last check() with enough fixes: the track's heading now (rad, world: the fitted phi
   /// plus the dead-reckoned heading), its std (rad) and the cloud's difference to it (rad, wrapped).
@@ -53,7 +72,11 @@ class HeadingTrackCheck {
  private:
   struct Sample {
     double fix_x, fix_y, dr_x, dr_y;
+    // The odometry since the previous fix: signed distance (m), heading change (rad), its variance (rad^2).
+    double ds, dtheta, dvar;
   };
+  /// The verdict on a track heading (rad) with its variance (rad^2).
+  Verdict verdict(double track_theta_rad, double track_var, double cloud_theta_rad, double cloud_theta_var_rad2);
   std::size_t capacity_;
   double sigmas_;
   double max_std_rad_;
@@ -61,6 +84,9 @@ class HeadingTrackCheck {
   std::vector<Sample> samples_;  // ring buffer of the last capacity_ accepted fixes
   std::size_t count_ = 0;        // fixes added since reset()
   double dr_x_ = 0.0, dr_y_ = 0.0, dr_theta_ = 0.0;
+  double pending_ds_ = 0.0, pending_dtheta_ = 0.0, pending_dvar_ = 0.0;  // since the last fix
+  double slip_radpm_ = 0.0;
+  double slip_std_radpm_ = 0.0;
   double track_theta_rad_ = 0.0;
   double track_theta_std_rad_ = 0.0;
   double difference_rad_ = 0.0;

@@ -119,6 +119,10 @@ class ParticleFilter {
   const HeadingTrackCheck& heading_track_check() const { return track_check_; }
   /// Times the track check contradicted the cloud and redrew its headings (each also a restart).
   std::size_t track_redraw_count() const { return track_redraw_count_; }
+  /// Of those, the redraws after the check had passed (track_check_while_driving).
+  std::size_t track_redraw_while_driving_count() const { return track_redraw_driving_count_; }
+  /// Fixes after which the heading spread was widened to the track's difference (track_check_inflate_sigmas).
+  std::size_t track_inflation_count() const { return track_inflation_count_; }
   /// The fix std per axis (m) the filter uses: estimated from the innovations
   /// (PfParams::noise_window_fixes), never below measurement_std_m.
   double measurement_std_estimate_m() const { return noise_.std_m(); }
@@ -150,8 +154,16 @@ class ParticleFilter {
 
  private:
   double draw_heading();
+  /// The track check runs after it passed (track_check_while_driving, a learned heading).
+  bool track_watching() const;
+  /// While driving: widens the cloud's heading (and turn slip) spread about its mean where its
+  /// difference to the track's exceeds track_check_inflate_sigmas combined sigmas.
+  void inflate_towards_track(double cloud_theta_rad, double cloud_theta_var);
+  /// Weighted variance of the particles' turn slips ((rad/m)^2).
+  double turn_slip_variance() const;
   void start_confirmation();
-  /// Feeds an accepted fix to the track check until it passes; redraws the headings on a contradiction.
+  /// Feeds an accepted fix to the track check until it passes (and after, with
+  /// track_check_while_driving); redraws the headings on a contradiction.
   void check_heading_against_track(double z_x_m, double z_y_m);
   double noise(double std_dev);
   void reset_weights_to_uniform();
@@ -187,7 +199,10 @@ class ParticleFilter {
   HeadingPriorCheck prior_check_;
   HeadingTrackCheck track_check_;
   bool track_confirmed_ = true;
+  bool track_learned_ = false;  // the cloud's heading was learned (not given as known): the track check applies
   std::size_t track_redraw_count_ = 0;
+  std::size_t track_redraw_driving_count_ = 0;
+  std::size_t track_inflation_count_ = 0;
   std::size_t accepted_since_init_ = 0;  // fixes used since the last (re)initialisation
   double last_update_nis_ = 0.0;
   bool last_update_rejected_ = false;

@@ -132,6 +132,12 @@ const params::ParamTable<PfParams>& pf_param_table() {
                "the track must know the heading this well (std from its fit) before it judges the cloud")
           .add("track_check_cloud_std_rad", &PfParams::track_check_cloud_std_rad, "rad", positive(),
                "the check passes when the cloud agrees and its heading std is below this (the node's valid_max_heading_std_rad); the heading std of a redraw")
+          .add("track_check_while_driving", &PfParams::track_check_while_driving, "", params::any<bool>(),
+               "after it passed, a learned heading stays checked against the track of the last fixes (the odometry's turn slip fitted too, its drift counted); a contradiction redraws the headings (a restart)")
+          .add("track_redraw_widens_position", &PfParams::track_redraw_widens_position, "", params::any<bool>(),
+               "a redraw of the headings by the track check also widens the positions about their mean to at least the estimated fix noise per axis")
+          .add("track_check_inflate_sigmas", &PfParams::track_check_inflate_sigmas, "", non_negative("0 = off"),
+               "while driving, the heading (and turn slip) spread is widened until the cloud is within this many combined sigmas of the track's; 0 = off")
           .add("init_fix_std_m", &PfParams::init_fix_std_m, "m", positive(), "spread around the first fix (first_fix mode)");
   return table;
 }

@@ -17,6 +17,7 @@
 
 #include <Eigen/Core>
 
+#include "components/range_rate_observer/observer_laws.hpp"
 #include "components/range_rate_observer/observer_params.hpp"
 
 namespace robodds::range_rate_observer {
@@ -61,6 +62,12 @@ class KalmanLaw {
 
   double range_m() const { return x_(0); }
   double rate_mps() const { return x_(1); }
+  /// The range acceleration state (m/s^2).
+  double accel_mps2() const { return x_(2); }
+  /// The constant-acceleration model dt_s ahead (F x), no correction: a lost sample.
+  LawPrediction predict(double dt_s) const {
+    return {x_(0) + dt_s * x_(1) + 0.5 * dt_s * dt_s * x_(2), x_(1) + dt_s * x_(2)};
+  }
 
  private:
   Params params_;

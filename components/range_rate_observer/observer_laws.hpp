@@ -6,6 +6,12 @@
 
 namespace robodds::range_rate_observer {
 
+/// A law's state carried dt ahead on its own model, without a range (a lost sample).
+struct LawPrediction {
+  double range_m = 0.0;  // m
+  double rate_mps = 0.0;  // m/s
+};
+
 struct ObserverDerivative {
   double range_mps = 0.0;   // d s_hat / dt
   double rate_mps2 = 0.0;   // d v_hat / dt

@@ -79,6 +79,8 @@ const char* stage_name(Stage stage) {
       return "pf_baseline";
     case Stage::kOdometry:
       return "odometry";
+    case Stage::kTc:
+      return "tc";
   }
   return "?";
 }
@@ -115,6 +117,7 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
                                Eigen::VectorXd(), std::nullopt, std::nullopt, Eigen::Matrix3d::Zero(),
                                FixTrackCheck(params_.uncertainty), InnovationMonitor(params_.uncertainty),
                                Eigen::Matrix3d::Zero()});
+    tc_.emplace_back(own_array_, peer.array, params_.tc);
   }
   for (std::size_t a = 0; a < setups_.size(); ++a) {
     for (std::size_t b = a + 1; b < setups_.size(); ++b) {
@@ -242,6 +245,10 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
     }
   }
   result.stage_ms[static_cast<std::size_t>(Stage::kOdometry)] = ms_since(start);
+
+  start = std::chrono::steady_clock::now();
+  run_tc(time_s, own_increment, peers, result);
+  result.stage_ms[static_cast<std::size_t>(Stage::kTc)] = ms_since(start);
 
   start = std::chrono::steady_clock::now();
   run_window(own_increment, peers, link_edges, result);
@@ -455,6 +462,24 @@ StageEstimate RelativeEstimator::model_fix(const PeerState& peer, const PeerResu
     fix.covariance = peer.fix_model_covariance;
   }
   return fix;
+}
+
+void RelativeEstimator::run_tc(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
+                               EpochResult& result) {
+  for (std::size_t k = 0; k < peers.size(); ++k) {
+    // Beyond the paper (issue 28): the raw ranges of an accepted frame, started from an ok fix.
+    PeerResult& out = result.peers[k];
+    const StageEstimate& uwb = out.stages[static_cast<std::size_t>(Stage::kUwb)];
+    const bool accepted = out.had_ranges && out.uwb_status != TrackStatus::kRejected;
+    StageEstimate& estimate = out.stages[static_cast<std::size_t>(Stage::kTc)];
+    estimate.valid = tc_[k].step(time_s, own_increment, peers[k].odometry_increment,
+                                 accepted ? peers[k].ranges_m : std::optional<Eigen::MatrixXd>(),
+                                 uwb.valid ? std::optional<model::Pose2>(uwb.pose) : std::nullopt);
+    if (estimate.valid) {
+      estimate.pose = tc_[k].pose();
+      estimate.covariance = tc_[k].covariance();
+    }
+  }
 }
 
 bool RelativeEstimator::placed(std::size_t k) const {

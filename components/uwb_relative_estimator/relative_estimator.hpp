@@ -18,7 +18,10 @@
 //                both filters also restarted when their check against the eq. (1) fixes finds
 //                them lost (InnovationMonitor::lost; counts().filter_restarts / baseline_restarts);
 //   odometry     dead reckoning of the relative pose from both odometries (the paper's first row),
-//                from a known start or, without one, from the first kOk solve.
+//                from a known start or, without one, from the first kOk solve;
+//   tc           beyond the paper (issue 28): TightlyCoupledWindow, one per peer, on this epoch's raw
+//                ranges and both odometries with the range biases as states, started (and
+//                restarted) from a kOk solve.
 // Pure: Eigen + std + Ceres, time in plain seconds; wall-clock compute time per stage is measured
 // here (std::chrono::steady_clock) and returned, for the node to report.
 //
@@ -45,12 +48,13 @@
 #include "components/uwb_relative_estimator/relative_pose_covariance.hpp"
 #include "components/uwb_relative_estimator/relative_pose_tracker.hpp"
 #include "components/uwb_relative_estimator/sliding_window.hpp"
+#include "components/uwb_relative_estimator/tightly_coupled_window.hpp"
 
 namespace robodds::uwb_relative_estimator {
 
-enum class Stage { kUwb = 0, kWindow, kPf, kPfBaseline, kOdometry };
-inline constexpr std::size_t kStageCount = 5;
-/// "uwb", "window", "pf", "pf_baseline", "odometry" (topic suffixes and metric names).
+enum class Stage { kUwb = 0, kWindow, kPf, kPfBaseline, kOdometry, kTc };
+inline constexpr std::size_t kStageCount = 6;
+/// "uwb", "window", "pf", "pf_baseline", "odometry", "tc" (topic suffixes and metric names).
 const char* stage_name(Stage stage);
 
 struct StageEstimate {
@@ -187,6 +191,8 @@ class RelativeEstimator {
   static StageEstimate model_fix(const PeerState& peer, const PeerResult& result);
   /// Peer `k` has an eq. (1) edge in the window: its poses there rest on a measurement.
   bool placed(std::size_t k) const;
+  /// The tc stage of every peer (issue 28).
+  void run_tc(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers, EpochResult& result);
   void run_pf(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment, const PeerEpoch& input,
               PeerResult& result);
   void run_baseline(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment, const PeerEpoch& input,
@@ -203,6 +209,7 @@ class RelativeEstimator {
   std::optional<SlidingWindowGraph> window_;
   std::optional<double> last_time_s_;
   EstimatorCounts counts_;
+  std::vector<TightlyCoupledWindow> tc_;  // the tc stage of each peer (constructor order; issue 28)
 };
 
 }  // namespace robodds::uwb_relative_estimator

@@ -29,7 +29,9 @@ const params::ParamTable<RelativeEstimatorParams>& relative_estimator_param_tabl
           .include_as("tracker", &P::tracker, tracker_param_table(), "eq. (1) epoch after epoch: cold-start recovery")
           .include_as("pf", &P::pf, relative_pf_param_table(), "eq. (3)-(6) particle filter and the baseline [22]")
           .include_as("uncertainty", &P::uncertainty, uncertainty_param_table(),
-                      "reported covariances of every stage (issue 27)");
+                      "reported covariances of every stage (issue 27)")
+          .include_as("tc", &P::tc, tight_window_param_table(),
+                      "beyond the paper (issue 28): tightly coupled fixed-lag estimator on the raw ranges");
   return table;
 }
 
@@ -40,6 +42,7 @@ void RelativeEstimatorParams::validate() const {
   tracker.validate();
   pf.validate();
   uncertainty.validate();
+  tc.validate();
 }
 
 }  // namespace robodds::uwb_relative_estimator

@@ -10,6 +10,7 @@
 #include "components/uwb_relative_estimator/relative_pose_solver.hpp"
 #include "components/uwb_relative_estimator/relative_pose_tracker.hpp"
 #include "components/uwb_relative_estimator/sliding_window.hpp"
+#include "components/uwb_relative_estimator/tightly_coupled_window.hpp"
 
 namespace robodds::uwb_relative_estimator {
 
@@ -30,6 +31,7 @@ struct RelativeEstimatorParams {
   TrackerParams tracker;                          // keys tracker.* (cold-start recovery)
   RelativePfParams pf;                            // keys pf.* (eq. 3-6 and the baseline [22])
   UncertaintyParams uncertainty;                  // keys uncertainty.* (reported covariances, issue 27)
+  TightWindowParams tc;                           // keys tc.* (the tc stage, issue 28)
 
   /// Throws std::invalid_argument "key: reason (got value)" for the first bad field (the included
   /// structs' keys carry their prefix).

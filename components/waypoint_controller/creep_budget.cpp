@@ -11,14 +11,33 @@ CreepVerdict CreepBudget::check(double time_s, bool mission_done) {
   if (mission_done) {
     return CreepVerdict::kMissionDone;
   }
-  if (distance_m_ >= limits_.max_distance_m) {
-    return CreepVerdict::kDistanceSpent;
-  }
   if (!started_) {
     started_ = true;
     started_s_ = time_s;
+    budget_start_std_rad_ = heading_std_rad_;
   }
-  return time_s - started_s_ <= limits_.max_time_s ? CreepVerdict::kAllowed : CreepVerdict::kTimeSpent;
+  CreepVerdict verdict = CreepVerdict::kAllowed;
+  if (distance_m_ >= limits_.max_distance_m) {
+    verdict = CreepVerdict::kDistanceSpent;
+  } else if (time_s - started_s_ > limits_.max_time_s) {
+    verdict = CreepVerdict::kTimeSpent;
+  }
+  if (verdict != CreepVerdict::kAllowed && extensions_ < limits_.max_extensions && budget_start_std_rad_ > 0.0 &&
+      heading_std_rad_ >= 0.0 && heading_std_rad_ <= (1.0 - limits_.min_progress) * budget_start_std_rad_) {
+    // The estimator is still learning the heading from the creep: one more budget from here.
+    ++extensions_;
+    started_s_ = time_s;
+    distance_m_ = 0.0;
+    budget_start_std_rad_ = heading_std_rad_;
+    verdict = CreepVerdict::kAllowed;
+  }
+  return verdict;
+}
+
+void CreepBudget::observe_heading_std(double std_rad) {
+  if (std::isfinite(std_rad) && std_rad >= 0.0) {
+    heading_std_rad_ = std_rad;
+  }
 }
 
 bool CreepBudget::estimator_restarted() {
@@ -29,6 +48,7 @@ bool CreepBudget::estimator_restarted() {
   had_valid_ = false;
   started_ = false;
   distance_m_ = 0.0;
+  extensions_ = 0;
   return true;
 }
 

@@ -11,6 +11,13 @@ struct CreepLimits {
   double max_distance_m = 0.0;  // m: commanded distance (|v| integrated over the steps)
   double max_time_s = 0.0;      // s: from the first creeping step
   int max_restarts = 0;         // estimator restarts that may each grant a new budget in a run
+  /// Issue 27: with fixes noisier than configured the estimator learns the heading more slowly and
+  /// may need more creeping than one budget; the controller does not know the fix noise, but it
+  /// sees the estimate's heading std falling. When a limit is reached and the heading std fell by
+  /// at least min_progress (a fraction) since the start of this budget, one more budget (distance
+  /// and time from zero) is granted, at most max_extensions times per budget. 0 = none.
+  int max_extensions = 0;
+  double min_progress = 0.0;
 };
 
 /// Why a creep step is refused (kAllowed: it is not).
@@ -37,8 +44,15 @@ class CreepBudget {
   bool estimator_restarted();
 
   /// Whether the robot may creep at `time_s` (s, the step's time); `mission_done`: its last
-  /// way-point was reached. The first allowed call starts the time limit.
+  /// way-point was reached. The first allowed call starts the time limit. At a limit, an extension
+  /// is granted when the heading std last observed fell enough since the budget started
+  /// (CreepLimits::max_extensions).
   CreepVerdict check(double time_s, bool mission_done);
+
+  /// The (invalid) estimate's heading std now (rad): what an extension judges progress by.
+  void observe_heading_std(double std_rad);
+  /// Extensions granted since the last budget started.
+  int extensions() const { return extensions_; }
 
   /// The creep command of `v_mps` (m/s) went out and is held for `period_s` (s).
   void crept(double v_mps, double period_s);
@@ -52,6 +66,9 @@ class CreepBudget {
   bool started_ = false;
   double started_s_ = 0.0;   // s, time of the first creeping step
   double distance_m_ = 0.0;  // m, commanded so far
+  int extensions_ = 0;
+  double heading_std_rad_ = -1.0;         // rad, last observed (< 0: none yet)
+  double budget_start_std_rad_ = -1.0;    // rad, observed when this budget (or extension) started
 };
 
 /// A short reason for logs ("" for kAllowed).

@@ -32,7 +32,12 @@ class TeeWriter : public WriterHandle {
 
 }  // namespace
 
-ColocatedBus::ColocatedBus(Bus& network) : network_(network) {}
+ColocatedBus::ColocatedBus(Bus& network, ColocatedWorld world, std::set<std::string> produced_here)
+    : network_(network), world_(world), produced_here_(std::move(produced_here)) {}
+
+bool ColocatedBus::reads_network(const std::string& topic) const {
+  return world_ == ColocatedWorld::kOpen && produced_here_.count(topic) == 0;
+}
 
 std::shared_ptr<WriterHandle> ColocatedBus::writer(const std::string& topic, const std::string& type_name,
                                                    const std::string& profile) {
@@ -50,11 +55,32 @@ std::shared_ptr<WriterHandle> ColocatedBus::writer(const std::string& topic, con
 std::shared_ptr<ReaderHandle> ColocatedBus::reader(const std::string& topic, const std::string& type_name,
                                                    const std::string& profile, SampleCallback on_sample,
                                                    ReaderEventCallback on_event) {
+  if (reads_network(topic)) {
+    return network_.reader(topic, type_name, profile, std::move(on_sample), std::move(on_event));
+  }
+  return local_.reader(topic, type_name, profile, std::move(on_sample), std::move(on_event));
+}
+
+std::shared_ptr<ReaderHandle> ColocatedBus::filtered_reader(const std::string& topic, const std::string& type_name,
+                                                            const std::string& profile, SampleCallback on_sample,
+                                                            ReaderEventCallback on_event, KeyFilter filter) {
+  if (reads_network(topic)) {
+    return network_.filtered_reader(topic, type_name, profile, std::move(on_sample), std::move(on_event),
+                                    std::move(filter));
+  }
   return local_.reader(topic, type_name, profile, std::move(on_sample), std::move(on_event));
 }
 
 void ColocatedBus::flush(std::chrono::milliseconds timeout) { network_.flush(timeout); }
 
-std::string ColocatedBus::writer_name(std::uint64_t writer_id) const { return local_.writer_name(writer_id); }
+std::string ColocatedBus::writer_name(std::uint64_t writer_id) const {
+  return local_.has_writer(writer_id) ? local_.writer_name(writer_id) : network_.writer_name(writer_id);
+}
+
+bool ColocatedBus::writer_runs_any(std::uint64_t writer_id, const std::vector<std::string>& components) const {
+  return local_.has_writer(writer_id) || network_.writer_runs_any(writer_id, components);
+}
+
+std::map<std::string, std::uint64_t> ColocatedBus::undecodable_samples() const { return network_.undecodable_samples(); }
 
 }  // namespace robodds

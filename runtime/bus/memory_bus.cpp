@@ -284,4 +284,9 @@ std::string MemoryBus::writer_name(std::uint64_t writer_id) const {
                                            : "in-memory writer " + std::to_string(writer_id) + " (" + it->second + ")";
 }
 
+bool MemoryBus::has_writer(std::uint64_t writer_id) const {
+  std::lock_guard<std::mutex> lock(state_->mutex);
+  return state_->writer_topics.count(writer_id) != 0;
+}
+
 }  // namespace robodds

@@ -40,6 +40,8 @@ class MemoryBus : public Bus {
   void flush(std::chrono::milliseconds timeout) override;
   /// "in-memory writer 3 (sim/clock|<profile>)": every writer handle is one writer id.
   std::string writer_name(std::uint64_t writer_id) const override;
+  /// Whether `writer_id` is one of this bus's writers (SampleMeta::writer_id).
+  bool has_writer(std::uint64_t writer_id) const;
 
   struct State;  // shared with the handles, which may outlive the bus
 

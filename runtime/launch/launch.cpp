@@ -10,6 +10,7 @@
 #include <ctime>
 #include <filesystem>
 #include <optional>
+#include <set>
 #include <system_error>
 #include <thread>
 #include <unistd.h>
@@ -315,10 +316,29 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   }
   auto bus = make_dds_bus(announced);
   bus->expect_robots(scenario.robots_served_by(options.components));  // this process's writers' instances
-  // A co-located lockstep run: its components' samples stay in memory, DDS serves observers.
+  const bool has_standby = std::any_of(scenario.components.begin(), scenario.components.end(),
+                                       [](const ComponentSpec& c) { return !c.standby_for.empty(); });
+  // A co-located run: its components' samples stay in memory, DDS serves observers (and, in real
+  // time, brings the topics no component here produces). Hot standby keeps DDS: its ownership
+  // and deadlines work between processes.
+  const bool in_memory = options.single_process && (in_process.mode == TimeMode::kLockstep || !has_standby);
+  // Only inputs judge producers: a process without components (a coordinator) needs none.
+  const bool assign = in_process.assign_producers && !options.components.empty();
+  std::optional<ScenarioProducers> found;  // when the caller's start-up check did not find them
+  const ScenarioProducers* producers = in_process.producers;
+  if ((assign || has_standby || in_memory) && producers == nullptr) {
+    found = scenario_producers(registry, scenario, in_process.mode);
+    producers = &*found;
+  }
   std::unique_ptr<ColocatedBus> colocated;
-  if (options.single_process && in_process.mode == TimeMode::kLockstep) {
+  if (in_memory && in_process.mode == TimeMode::kLockstep) {
     colocated = std::make_unique<ColocatedBus>(*bus);
+  } else if (in_memory) {
+    std::set<std::string> produced_here;  // every component of the scenario runs here
+    for (const auto& [component, topics] : *producers) {
+      produced_here.insert(topics.begin(), topics.end());
+    }
+    colocated = std::make_unique<ColocatedBus>(*bus, ColocatedWorld::kOpen, std::move(produced_here));
   }
   Notifier notifier;
   RunContext run;
@@ -330,16 +350,6 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   run.single_process = options.single_process;
   run.deploy_label = in_process.deploy_label;
   run.lockstep_window = std::max<std::size_t>(1, options.lockstep_window);
-  const bool has_standby = std::any_of(scenario.components.begin(), scenario.components.end(),
-                                       [](const ComponentSpec& c) { return !c.standby_for.empty(); });
-  // Only inputs judge producers: a process without components (a coordinator) needs none.
-  const bool assign = in_process.assign_producers && !options.components.empty();
-  std::optional<ScenarioProducers> found;  // when the caller's start-up check did not find them
-  const ScenarioProducers* producers = in_process.producers;
-  if ((assign || has_standby) && producers == nullptr) {
-    found = scenario_producers(registry, scenario, run.mode);
-    producers = &*found;
-  }
   if (assign) {
     run.assigned_producers = std::make_shared<const AssignedProducers>(assigned_producers(scenario, *producers));
     // The same in every host (found from the scenario): a recorder of the run waits for these.

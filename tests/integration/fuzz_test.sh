@@ -2,15 +2,17 @@
 # Fuzz: runtime/dds/fuzz (robodds-fuzz) publishes thousands of random payloads under the topic and
 # type names of every input topic of paper1_waypoints (random lengths and bytes, valid headers with
 # random bodies) into a real-time run of it (plant, sensors, particle filter, controller, mission,
-# evaluator; co-located), then a second pass with --key 1 (valid-length random bodies that decode
+# evaluator; one process per group, so that every input is a DDS reader: a co-located real-time run
+# reads the topics its own components produce in memory, and no writer outside it reaches them,
+# docs/architecture.md), then a second pass with --key 1 (valid-length random bodies that decode
 # as samples of robot 1). Checks: the run exits 0 (no process crashed on an undecodable payload);
 # every CSV value is finite; robot 1's true and estimated positions stay within a generous box and
 # its states keep coming until the end (the loop kept running under fuzz). Also shows where an
-# undecodable payload is counted: the run logs it once per topic (runtime/dds/type_support.cpp),
+# undecodable payload is counted: the run logs it once per topic and host (runtime/dds/type_support.cpp),
 # while Fast DDS's own sample_lost/sample_rejected statuses of a reader stay 0 (robodds-fuzz
 # --self-check reads every topic in its own process with the runtime's type support). The input
-# counters of summary.json add up: every consumer input of a topic counts the same (one process,
-# one stream), no more than the run's producer (one sample of robot 1 per step) plus the pass-2
+# counters of summary.json add up: every consumer input of a topic in one host counts the same (one
+# process, one stream), no more than the run's producer (one sample of robot 1 per step) plus the pass-2
 # payloads that carry robot 1, which are refused as unknown_producer (robodds-fuzz is no producer
 # the scenario assigns: issue 24), and pass 1's decodable payloads (random keys) as unknown_key;
 # summary.json "hosts".<member>."undecodable" counts the dropped payloads per topic.
@@ -23,7 +25,7 @@ COUNT=3000   # payloads per topic: 1000 of each kind (random, body, header)
 COUNT_KEYED=1500  # pass 2 (--key 1): 500 of each kind
 TOPICS=plant/cmd,plant/state,sensor/position,sensor/odometry,estimate/pose,mission/waypoints,control/status
 
-timeout -k 5 90 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --realtime $(rt_priority_flag) --duration "$DURATION_S" \
+timeout -k 5 90 "$ROBODDS" run "$SRC/sim/scenarios/paper1_waypoints.yaml" --realtime $(rt_priority_flag) --deploy processes --duration "$DURATION_S" \
   --domain "$DOMAIN" --out "$WORK/out" --no-plots >"$WORK/run.log" 2>&1 &
 run_pid=$!
 cleanup_pids+=("$run_pid")
@@ -108,9 +110,10 @@ for name in ("plant_state.csv", "estimate_pose.csv"):
     print(f"ok: {name}: robot 1 within +-{BOX} m ({len(rows)} rows, {len(during)} while fuzzing, {len(after)} after)")
 PY
 
-python3 - "$WORK/out/summary.json" "$WORK/fuzz.txt" "$WORK/fuzz2.txt" "$TOPICS" <<'PY' || fail "the input counters do not add up"
-import json, sys
+python3 - "$WORK/out/summary.json" "$WORK/fuzz.txt" "$WORK/fuzz2.txt" "$TOPICS" "$SRC/sim/scenarios/paper1_waypoints.yaml" <<'PY' || fail "the input counters do not add up"
+import json, sys, yaml
 summary = json.load(open(sys.argv[1]))
+group_of = {c: g for g, members in yaml.safe_load(open(sys.argv[5]))["groups"].items() for c in members}
 topics = sys.argv[4].split(",")
 def check(ok, what):
     if not ok:
@@ -125,9 +128,9 @@ def written(path):  # topic -> {kind: payloads written}
     return out
 pass1, pass2 = written(sys.argv[2]), written(sys.argv[3])
 check(set(pass1) == set(topics) and set(pass2) == set(topics), f"robodds-fuzz reported {sorted(pass1)} and {sorted(pass2)}, expected {topics}")
-ticks = [h["ticks"] for h in summary["hosts"].values() if "ticks" in h]
-check(len(ticks) == 1, f"expected one host (co-located run), summary.json hosts: {summary['hosts']}")
-steps = ticks[0]
+ticks = {name: h["ticks"] for name, h in summary["hosts"].items() if "ticks" in h}
+check(set(ticks) == set(group_of.values()), f"expected a host per group {sorted(set(group_of.values()))}, summary.json hosts: {sorted(ticks)}")
+steps = max(ticks.values())
 by_topic = {}
 for component, inputs in summary["inputs"].items():
     for topic, c in inputs.items():
@@ -159,27 +162,30 @@ for topic in topics:
               f"{component} {topic}: rejected {c['rejected']} in all > {fuzz_robot1} payloads of robot 1 robodds-fuzz wrote")
         check(c["accepted"] + rejected <= steps + 1 + fuzz_robot1,
               f"{component} {topic}: accepted + rejected {c['accepted'] + rejected} > {steps + 1} + {fuzz_robot1}")
-    # Exact: the consumers of a topic share one process and one stream of samples (same writer,
-    # same reader QoS), so each counts the same, accepted and rejected per reason.
+    # Exact: the consumers of a topic in one host share one process and one stream of samples
+    # (same writer, same reader QoS), so each counts the same, accepted and rejected per reason.
     first_component, first = consumers[0]
     for component, c in consumers[1:]:
-        check((c["accepted"], c["rejected"]) == (first["accepted"], first["rejected"]),
-              f"{topic}: {component} counted accepted {c['accepted']} rejected {c['rejected']}, "
-              f"{first_component} accepted {first['accepted']} rejected {first['rejected']}")
+        same_host = [(k, o) for k, o in consumers if group_of[k] == group_of[component] and k != component]
+        for other_component, other in same_host:
+            check((c["accepted"], c["rejected"]) == (other["accepted"], other["rejected"]),
+                  f"{topic}: {component} counted accepted {c['accepted']} rejected {c['rejected']}, "
+                  f"{other_component} (same host) accepted {other['accepted']} rejected {other['rejected']}")
     # Types of fixed size and numbers only decode every `body` payload (a boolean byte other
     # than 0/1 or a random sequence length does not decode): robot 1's producer is alive, so
     # they must be refused (second producer, or a plausibility check).
     if topic in ("plant/cmd", "plant/state", "sensor/position", "sensor/odometry"):
         check(first["rejected"].get("unknown_producer", 0) >= 1,
               f"{topic}: no consumer refused any of the {fuzz_robot1} payloads of robot 1 as unknown_producer")
-    # The run's process dropped undecodable payloads and summary.json says so per topic: at least
-    # the 500 that robodds-fuzz --self-check requires of its own reader, at most twice what was
-    # written (a payload without a key hash is decoded twice: docs/interop.md).
-    undecodable = list(summary["hosts"].values())[0]["undecodable"].get(topic, 0)
+    # Each host reading the topic dropped undecodable payloads and summary.json says so per topic:
+    # at least the 500 that robodds-fuzz --self-check requires of its own reader, at most twice
+    # what was written (a payload without a key hash is decoded twice: docs/interop.md).
     total_written = sum(pass1[topic][k] + pass2[topic][k] for k in ("random", "body", "header"))
-    check(500 <= undecodable <= 2 * total_written,
-          f"{topic}: summary.json hosts undecodable {undecodable}, expected 500..{2 * total_written} (2 x payloads written)")
-    print(f"ok: {topic}: {undecodable} undecodable payloads dropped and counted (of {total_written} written)")
+    for host in sorted({group_of[k] for k, _ in consumers}):
+        undecodable = summary["hosts"][host]["undecodable"].get(topic, 0)
+        check(500 <= undecodable <= 2 * total_written,
+              f"{topic}: summary.json hosts.{host} undecodable {undecodable}, expected 500..{2 * total_written} (2 x payloads written)")
+        print(f"ok: {topic}: host {host} dropped and counted {undecodable} undecodable payloads (of {total_written} written)")
     print(f"ok: {topic}: {len(consumers)} consumers ({', '.join(k for k, _ in consumers)}) each accepted {first['accepted']} "
           f"(<= {steps + 1}), rejected {first['rejected']} (<= {fuzz_robot1} payloads of robot 1)")
 PY

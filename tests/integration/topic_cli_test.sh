@@ -46,3 +46,23 @@ out="$(timeout -k 2 20 "$ROBODDS" record sensor/uwb --duration 1 --out "$WORK/em
 grep -qF "no sample of these topics on DDS domain $DOMAIN (\`robodds topics --domain $DOMAIN\` lists the topics seen there)" <<<"$out" ||
   fail "an empty recording does not name the domain: $out"
 echo "ok: an empty recording names the domain"
+
+# Issue 29: a co-located real-time run reads the topics its components produce in memory (no DDS
+# reader of them; DDS writers serve observers such as this one) and reads from DDS only what none
+# of them produces: plant_smoke without its commander reads plant/cmd from DDS (an outside
+# commander's topic) and has no reader of plant/state or sensor/position.
+kill "${cleanup_pids[0]}" 2>/dev/null || true
+wait "${cleanup_pids[0]}" 2>/dev/null || true
+sed '/{name: commander, type: open_loop_commander}/d; /^  control: \[commander\]$/d' \
+  "$SRC/sim/scenarios/plant_smoke.yaml" >"$WORK/no_commander.yaml"
+grep -q "open_loop_commander" "$WORK/no_commander.yaml" && fail "could not remove the commander from plant_smoke.yaml: $(cat "$WORK/no_commander.yaml")"
+timeout -k 5 60 "$ROBODDS" run "$WORK/no_commander.yaml" --realtime --duration 6 --domain "$DOMAIN" --out "$WORK/colocated" \
+  --no-plots >"$WORK/colocated.log" 2>&1 &
+cleanup_pids+=("$!")
+sleep 2
+topics="$(timeout -k 2 20 "$ROBODDS" topics --duration 2 --domain "$DOMAIN")" || fail "robodds topics failed: $topics"
+echo "$topics"
+grep -qE "^plant/state +robodds::idl::RobotState +1 +0 " <<<"$topics" || fail "co-located real time: plant/state should have a writer and no reader"
+grep -qE "^sensor/position +robodds::idl::PositionMeasurement +1 +0 " <<<"$topics" || fail "co-located real time: sensor/position should have a writer and no reader"
+grep -qE "^plant/cmd +robodds::idl::VelocityCommand +0 +1 " <<<"$topics" || fail "co-located real time: plant/cmd (no producer in the run) should have a DDS reader"
+echo "ok: a co-located real-time run reads its own topics in memory and an outside producer's from DDS"

@@ -22,4 +22,16 @@ print(f"{len(rows)} particle-filter estimates of {len(pairs)} pairs, {valid} val
 if len(pairs) != 6 or valid < 0.8 * len(rows):
     sys.exit("FAIL: expected 6 (robot, peer) pairs, mostly valid")
 PY
+# Issue 28's tc stage on every robot too: estimates of all 6 pairs, mostly valid, and better than eq. (1)'s.
+python3 - "$WORK/colocated/estimate_relative_pose_tc.csv" "$WORK/colocated/summary.json" <<'PY' || fail "the tc stage's estimates are not right"
+import csv, json, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+pairs = {(r["robot_id"], r["peer_id"]) for r in rows}
+valid = sum(r["valid"] in ("1", "true") for r in rows)
+stages = json.load(open(sys.argv[2]))["metrics"]["stages"]
+tc, uwb = stages["tc"]["position_error_m_mean"], stages["uwb"]["position_error_m_mean"]
+print(f"{len(rows)} tc estimates of {len(pairs)} pairs, {valid} valid; position error tc {tc:.3f} m, eq. (1) {uwb:.3f} m")
+if len(pairs) != 6 or valid < 0.8 * len(rows) or not tc < uwb:
+    sys.exit("FAIL: expected 6 (robot, peer) pairs, mostly valid, tc better than eq. (1)")
+PY
 echo "ok: paper 3 with one process per robot (3 estimators, 20 % frame loss): $N_CSV CSV files and the metrics identical to co-located"

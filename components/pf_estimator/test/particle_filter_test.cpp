@@ -628,14 +628,17 @@ TEST(ParticleFilter, TheTurnNoiseTheOdometryClaimsIsPerSampleAndNotScaled) {
 struct WrongHeadingRun {
   int confirmed_while_wrong = 0;
   std::size_t redraws = 0;
+  double position_var_after_redraw_m2 = 0.0;  // the cloud's x and y variance (mean) right after the first redraw
+  double fix_var_m2 = 0.0;                    // the fix noise estimated then (per axis)
   bool confirmed_at_end = false;
   double final_heading_error_rad = 0.0;
 };
 
-WrongHeadingRun creep_from_a_wrong_heading(int track_check_window_fixes) {
+WrongHeadingRun creep_from_a_wrong_heading(int track_check_window_fixes, bool widen_positions = true) {
   PfParams params = first_fix_params();
   params.init_theta_known = false;
   params.track_check_window_fixes = track_check_window_fixes;
+  params.track_redraw_widens_position = widen_positions;
   params.recovery_nis = 0.0;  // the lost-filter monitor would redraw too: this is about the check
   ParticleFilter filter(params, 21);
   RandomEngine world(derive_seed(21, "world"));
@@ -657,7 +660,13 @@ WrongHeadingRun creep_from_a_wrong_heading(int track_check_window_fixes) {
     if (step % 5 != 0) {
       continue;
     }
+    const std::size_t redraws_before = filter.track_redraw_count();
     filter.update(truth.x + 4.53 * standard_normal(world), truth.y + 4.53 * standard_normal(world));
+    if (redraws_before == 0 && filter.track_redraw_count() == 1) {
+      const PoseEstimate cloud = filter.estimate();
+      run.position_var_after_redraw_m2 = 0.5 * (cloud.covariance(0, 0) + cloud.covariance(1, 1));
+      run.fix_var_m2 = filter.measurement_std_estimate_m() * filter.measurement_std_estimate_m();
+    }
     run.final_heading_error_rad = std::abs(wrap_angle(filter.estimate().mean.z() - truth.theta));
     if (filter.confirmed() && run.final_heading_error_rad > 30.0 * kDeg) {
       ++run.confirmed_while_wrong;
@@ -677,6 +686,90 @@ TEST(ParticleFilter, ALearnedHeadingIsConfirmedOnlyWhenTheFixesTrackAgrees) {
   const WrongHeadingRun unchecked = creep_from_a_wrong_heading(0);  // the check off: before
   EXPECT_GT(unchecked.confirmed_while_wrong, 100);
   EXPECT_EQ(unchecked.redraws, 0u);
+}
+
+// The positions had followed the wrong heading: a redraw widens them to at least the fix noise the
+// filter estimates (track_redraw_widens_position); kept, they stayed narrow (fixes 3x noisier,
+// seed 3: 3.8 m off at d^2 54 for 8.6 s after the redraw).
+TEST(ParticleFilter, ARedrawByTheTrackCheckWidensThePositionsToTheFixNoise) {
+  const WrongHeadingRun widened = creep_from_a_wrong_heading(300);
+  ASSERT_GE(widened.redraws, 1u);
+  EXPECT_GE(widened.position_var_after_redraw_m2, 0.99 * widened.fix_var_m2);
+  const WrongHeadingRun kept = creep_from_a_wrong_heading(300, false);
+  ASSERT_GE(kept.redraws, 1u);
+  EXPECT_LT(kept.position_var_after_redraw_m2, 0.5 * kept.fix_var_m2);
+}
+
+// Issue 27, fixes 2-5x noisier than configured: after the track check passed once, the cloud could
+// narrow onto a wrong heading while driving (1,000 particles, 11-16 deg off at a reported 2-3 deg
+// for 50 s: the cloud had learned a wrong turn slip and bent its heading). The check keeps running
+// while driving (track_check_while_driving): a cloud that differs from the track beyond
+// track_check_inflate_sigmas combined sigmas gets its heading and slip spread widened; beyond
+// track_check_sigmas (and at most prior_heading_tolerance_rad) its headings are redrawn.
+// A robot weaving at 1.5 m/s for 90 s, fixes of std 2.14 m (variance 2x the configured 2.28 m^2),
+// 50 Hz odometry whose turn rate reads k v too much (a wheel reading fast; k = 0.02 rad/m) while the
+// cloud starts sure that k is about 0 (turn_slip_std_radpm 0.002). Counts the fixes after which
+// the filter is confirmed() with a heading error beyond 3 of its reported sigmas.
+struct DrivenRun {
+  int confirmed = 0;
+  int overconfident = 0;
+  std::size_t inflations = 0;
+  std::size_t driving_redraws = 0;
+};
+
+DrivenRun drive_on_a_wrong_slip(bool while_driving, double inflate_sigmas, std::uint64_t seed) {
+  PfParams params = first_fix_params();
+  params.init_theta_known = false;
+  params.turn_slip_std_radpm = 0.002;
+  params.recovery_nis = 0.0;  // the lost-filter monitor would redraw too: this is about the check
+  params.track_check_while_driving = while_driving;
+  params.track_check_inflate_sigmas = inflate_sigmas;
+  ParticleFilter filter(params, seed);
+  RandomEngine world(derive_seed(seed, "world"));
+  model::Pose2 truth{10.0, 20.0, 0.5};
+  filter.initialize_around(truth.x, truth.y);
+  DrivenRun run;
+  for (int step = 1; step <= 4500; ++step) {  // 90 s
+    const model::Twist twist{1.5, 0.15 * std::sin(0.2 * 0.02 * step)};
+    truth = model::integrate_exact(truth, twist, 0.02);
+    filter.predict(twist.v + 0.014 * standard_normal(world),
+                   twist.omega + 0.02 * twist.v + 0.094 * standard_normal(world), 0.02, 0.0089);
+    if (step % 5 != 0) {
+      continue;
+    }
+    filter.update(truth.x + 2.14 * standard_normal(world), truth.y + 2.14 * standard_normal(world));
+    if (filter.confirmed()) {
+      const PoseEstimate estimate = filter.estimate();
+      ++run.confirmed;
+      run.overconfident += std::abs(wrap_angle(estimate.mean.z() - truth.theta)) > 3.0 * std::sqrt(estimate.covariance(2, 2));
+    }
+  }
+  run.inflations = filter.track_inflation_count();
+  run.driving_redraws = filter.track_redraw_while_driving_count();
+  return run;
+}
+
+TEST(ParticleFilter, WhileDrivingTheHeadingStaysCheckedAgainstTheFixesTrack) {
+  DrivenRun off, on;
+  for (const std::uint64_t seed : {1u, 3u}) {
+    const DrivenRun a = drive_on_a_wrong_slip(false, 0.0, seed);  // the check stops once passed: before
+    const DrivenRun b = drive_on_a_wrong_slip(true, 2.0, seed);   // the defaults
+    EXPECT_EQ(a.inflations + a.driving_redraws, 0u);
+    EXPECT_GE(b.inflations, 3u) << seed;
+    off.confirmed += a.confirmed;
+    off.overconfident += a.overconfident;
+    on.confirmed += b.confirmed;
+    on.overconfident += b.overconfident;
+  }
+  // Before: most confirmed fixes over-confident (the cloud's heading bent by its wrong slip).
+  EXPECT_GT(off.overconfident, off.confirmed / 2);
+  EXPECT_LT(on.overconfident, on.confirmed / 10);
+  EXPECT_GT(on.confirmed, off.confirmed * 9 / 10);  // and it is as often confirmed
+  // The redraws alone (no widening) help, less.
+  const DrivenRun redraw_only = drive_on_a_wrong_slip(true, 0.0, 1);
+  EXPECT_EQ(redraw_only.inflations, 0u);
+  EXPECT_GE(redraw_only.driving_redraws, 1u);
+  EXPECT_LT(redraw_only.overconfident, off.overconfident / 4);
 }
 
 // Issue 27, finding 4: a fix after an interval in which the robot stood carries no heading

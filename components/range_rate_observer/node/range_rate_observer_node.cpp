@@ -83,7 +83,7 @@ class RangeRateObserverNode : public Component {
     kalman_out_ = &ctx.advertise<idl::RangeRateEstimate>("observer/range_rate_kf");
   }
 
-  void on_step(const StepInfo&) override {
+  void on_step(const StepInfo& info) override {
     for (auto& [id, robot] : robots_) {
       if (robot.ended) {
         continue;
@@ -92,6 +92,7 @@ class RangeRateObserverNode : public Component {
       const std::size_t linear_restarts = robot.linear.restarts();
       const std::size_t kalman_restarts = robot.kalman.restarts();
       bool final_sample = false;
+      bool fresh = false;  // a range came this step
       for (const idl::RangeMeasurement& m : ranges_->take_new_of_robot(id)) {
         if (robot.sta.started() && m.target_id() != robot.target_id) {
           robot.sta.restart();  // a new target: its range has nothing to do with the old one's
@@ -101,15 +102,20 @@ class RangeRateObserverNode : public Component {
         robot.target_id = m.target_id();
         feed(id, robot, static_cast<double>(m.header().stamp_ns()) * 1e-9, m.range());
         final_sample |= m.header().next_step() == kNeverAgain;
+        fresh = true;
       }
       if (!robot.sta.started()) {
         continue;  // real time before the first range
       }
-      // Without a new sample (a lost one) the last estimates are published again: every due
-      // step carries one, as its next_step promised.
-      publish(*sta_out_, id, robot, robot.sta, robot.sta.restarts() != sta_restarts, final_sample);
-      publish(*linear_out_, id, robot, robot.linear, robot.linear.restarts() != linear_restarts, final_sample);
-      publish(*kalman_out_, id, robot, robot.kalman, robot.kalman.restarts() != kalman_restarts, final_sample);
+      // Without a new sample (a lost one) every due step still carries an estimate, as its
+      // next_step promised: each observer's own prediction to this step, its std widened for the
+      // hold (RangeRateObserver::predict; issue 27, finding 6), not the last one again.
+      const double now_s = static_cast<double>(info.stamp_ns) * 1e-9;
+      publish(*sta_out_, id, robot, robot.sta, fresh, now_s, robot.sta.restarts() != sta_restarts, final_sample);
+      publish(*linear_out_, id, robot, robot.linear, fresh, now_s, robot.linear.restarts() != linear_restarts,
+              final_sample);
+      publish(*kalman_out_, id, robot, robot.kalman, fresh, now_s, robot.kalman.restarts() != kalman_restarts,
+              final_sample);
       robot.ended = final_sample;
     }
   }
@@ -130,18 +136,20 @@ class RangeRateObserverNode : public Component {
     }
   }
 
+  /// fresh: a range came this step (the observer's estimate at it); else its prediction to now_s.
   template <class Observer>
   void publish(Output<idl::RangeRateEstimate>& out, std::uint32_t id, const RobotObservers& robot, const Observer& observer,
-               bool restarted, bool final_sample) {
+               bool fresh, double now_s, bool restarted, bool final_sample) {
+    const RangeRateEstimate estimate = fresh ? observer.estimate() : observer.predict(now_s);
     idl::RangeRateEstimate e;
     e.robot_id(id);
     e.target_id(robot.target_id);
-    e.range(observer.estimate().range_m);
-    e.range_rate(observer.estimate().rate_mps);
-    e.valid(observer.valid());
+    e.range(estimate.range_m);
+    e.range_rate(estimate.rate_mps);
+    e.valid(estimate.valid);
     e.restarted(restarted);
     e.range_noise_std_m(observer.noise_sigma_m());
-    e.range_rate_std_mps(observer.estimate().rate_std_mps);
+    e.range_rate_std_mps(estimate.rate_std_mps);
     if (final_sample) {
       out.publish_final(e);
     } else {

@@ -36,8 +36,8 @@ double duration_from_text(const std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Lag against noise floor of paper 2's range-rate observers over seeds, noise levels, sample rates "
-               "and linear gains; prints a CSV."};
+  CLI::App app{"Lag against noise floor of paper 2's range-rate observers and the Kalman filter over seeds, noise "
+               "levels, sample rates, linear gains and Kalman q; prints a CSV."};
   std::size_t seeds = 20;
   std::string duration = "full";
   std::string out_path;

@@ -53,6 +53,18 @@ std::string number(double value) {
 
 }  // namespace
 
+const char* observer_name(ObserverKind kind) {
+  switch (kind) {
+    case ObserverKind::kSuperTwisting:
+      return "sta";
+    case ObserverKind::kLinear:
+      return "linear";
+    case ObserverKind::kKalman:
+      return "kf";
+  }
+  return "?";
+}
+
 const char* signal_name(SignalKind kind) {
   switch (kind) {
     case SignalKind::kOrbit:
@@ -91,14 +103,14 @@ double RangeSignal::rate_mps(double t_s) const {
 
 ObserverConfig super_twisting_config() {
   ObserverConfig config;
-  config.super_twisting = true;
+  config.kind = ObserverKind::kSuperTwisting;
   config.sta.restart_sigmas = 0.0;
   return config;
 }
 
 ObserverConfig linear_config(double w_radps) {
   ObserverConfig config;
-  config.super_twisting = false;
+  config.kind = ObserverKind::kLinear;
   config.w_radps = w_radps;
   config.linear.k1 = 2.0 * w_radps;
   config.linear.k2 = w_radps * w_radps;
@@ -106,15 +118,33 @@ ObserverConfig linear_config(double w_radps) {
   return config;
 }
 
+ObserverConfig kalman_config(double q_m2ps5) {
+  ObserverConfig config;
+  config.kind = ObserverKind::kKalman;
+  config.kalman.jerk_psd_m2ps5 = q_m2ps5;
+  config.kalman.restart_sigmas = 0.0;
+  return config;
+}
+
 RunResult run_observer(const ObserverConfig& observer, const RangeSignal& signal, const RunSpec& spec) {
-  if (observer.super_twisting) {
-    SuperTwistingParams with_jump = observer.sta;
-    with_jump.restart_sigmas = SuperTwistingParams{}.restart_sigmas;
-    return run(SuperTwistingObserver(observer.sta), SuperTwistingObserver(with_jump), signal, spec);
+  switch (observer.kind) {
+    case ObserverKind::kSuperTwisting: {
+      SuperTwistingParams with_jump = observer.sta;
+      with_jump.restart_sigmas = SuperTwistingParams{}.restart_sigmas;
+      return run(SuperTwistingObserver(observer.sta), SuperTwistingObserver(with_jump), signal, spec);
+    }
+    case ObserverKind::kLinear: {
+      LinearObserverParams with_jump = observer.linear;
+      with_jump.restart_sigmas = LinearObserverParams{}.restart_sigmas;
+      return run(LinearRangeRateObserver(observer.linear), LinearRangeRateObserver(with_jump), signal, spec);
+    }
+    case ObserverKind::kKalman: {
+      KalmanObserverParams with_jump = observer.kalman;
+      with_jump.restart_sigmas = KalmanObserverParams{}.restart_sigmas;
+      return run(KalmanRangeRateObserver(observer.kalman), KalmanRangeRateObserver(with_jump), signal, spec);
+    }
   }
-  LinearObserverParams with_jump = observer.linear;
-  with_jump.restart_sigmas = LinearObserverParams{}.restart_sigmas;
-  return run(LinearRangeRateObserver(observer.linear), LinearRangeRateObserver(with_jump), signal, spec);
+  throw std::invalid_argument("observer study: unknown observer kind");
 }
 
 std::vector<StudyRow> run_study(const StudyOptions& options) {
@@ -128,6 +158,9 @@ std::vector<StudyRow> run_study(const StudyOptions& options) {
   std::vector<ObserverConfig> observers = {super_twisting_config()};
   for (double w : options.linear_w_radps) {
     observers.push_back(linear_config(w));
+  }
+  for (double q : options.kalman_q_m2ps5) {
+    observers.push_back(kalman_config(q));
   }
   std::vector<StudyRow> rows;
   for (SignalKind kind : options.signals) {
@@ -176,16 +209,20 @@ std::vector<StudyRow> run_study(const StudyOptions& options) {
 }
 
 void write_csv(std::ostream& out, const std::vector<StudyRow>& rows) {
-  out << "signal,rate_hz,sigma_m,observer,w_radps,k1,k2,seeds,lag_rms_mps,lag_ci95_mps,noise_rms_mps,"
+  out << "signal,rate_hz,sigma_m,observer,w_radps,k1,k2,q_m2ps5,seeds,lag_rms_mps,lag_ci95_mps,noise_rms_mps,"
          "noise_ci95_mps,total_rms_mps,total_ci95_mps,total_bias_mps,restarts_per_run\n";
   for (const StudyRow& row : rows) {
     const ObserverConfig& o = row.observer;
     out << signal_name(row.signal) << ',' << number(row.rate_hz) << ',' << number(row.sigma_m) << ','
-        << (o.super_twisting ? "sta" : "linear") << ',';
-    if (o.super_twisting) {
-      out << ",,";
-    } else {
+        << observer_name(o.kind) << ',';
+    if (o.kind == ObserverKind::kLinear) {
       out << number(o.w_radps) << ',' << number(o.linear.k1) << ',' << number(o.linear.k2);
+    } else {
+      out << ",,";
+    }
+    out << ',';
+    if (o.kind == ObserverKind::kKalman) {
+      out << number(o.kalman.jerk_psd_m2ps5);
     }
     out << ',' << row.seeds << ',' << number(row.lag_mps.mean) << ',' << number(row.lag_mps.ci95) << ','
         << number(row.noise_mps.mean) << ',' << number(row.noise_mps.ci95) << ',' << number(row.total_mps.mean)

@@ -1,7 +1,8 @@
 #pragma once
 // The observer study of issue 10 ("Beyond the paper"): lag against noise floor of the
-// super-twisting observer (eq. 1) and of the linear baseline (eq. 9) over a range of linear gains,
-// at several sample rates and range-noise levels, over seeds. Pure, std only; main.cpp prints the
+// super-twisting observer (eq. 1), of the linear baseline (eq. 9) over a range of linear gains and
+// of issue 28's Kalman filter (kalman_law.hpp) over a range of jerk densities q, at several sample
+// rates and range-noise levels, over seeds. Pure, std only; main.cpp prints the
 // CSV and scripts/paper2_observer_study.sh draws it.
 //
 // For each (signal, sample rate, noise sigma, observer) and each seed, three RMS rate errors over
@@ -47,19 +48,33 @@ struct RangeSignal {
   double rate_mps(double t_s) const;
 };
 
+enum class ObserverKind {
+  kSuperTwisting,  // eq. (1), SuperTwistingObserver
+  kLinear,         // eq. (9), LinearRangeRateObserver
+  kKalman,         // issue 28, KalmanRangeRateObserver
+};
+
+/// "sta", "linear", "kf" (the CSV's observer column).
+const char* observer_name(ObserverKind kind);
+
 /// One observer of the study, restarts disabled (restart_sigmas = 0: noise must not restart it).
+/// Only the params of `kind` are used.
 struct ObserverConfig {
-  bool super_twisting = true;
+  ObserverKind kind = ObserverKind::kSuperTwisting;
   /// Linear only: k1 = 2 w, k2 = w^2 (critically damped, both poles at -w).
   double w_radps = 0.0;
   SuperTwistingParams sta;
   LinearObserverParams linear;
+  /// Kalman only: its gain is the jerk density kalman.jerk_psd_m2ps5 (q); the rest the defaults.
+  KalmanObserverParams kalman;
 };
 
 /// The super-twisting defaults (a 2.12, b 2.2, c 1, d 1).
 ObserverConfig super_twisting_config();
 /// The linear observer with k1 = 2 w, k2 = w^2.
 ObserverConfig linear_config(double w_radps);
+/// The Kalman filter with jerk density q (m^2/s^5), its other parameters the defaults.
+ObserverConfig kalman_config(double q_m2ps5);
 
 struct RunSpec {
   double rate_hz = 50.0;
@@ -89,6 +104,8 @@ struct StudyOptions {
   std::vector<double> rates_hz = {10.0, 50.0, 100.0};
   std::vector<double> sigmas_m = {0.0, 0.1, 0.5, 1.0};
   std::vector<double> linear_w_radps = {0.5, 1.0, 1.5, 2.6, 4.0, 6.0, 9.0};
+  /// The Kalman filter's jerk densities q (m^2/s^5); 0.001 is the library default.
+  std::vector<double> kalman_q_m2ps5 = {1e-4, 1e-3, 1e-2, 1e-1};
 };
 
 /// One row of the table: mean and 95 % CI over seeds.
@@ -107,14 +124,15 @@ struct StudyRow {
   double restarts_per_run = 0.0;  // of the TOTAL runs, at the default restart rule
 };
 
-/// Rows ordered signal, rate, sigma, observer (super-twisting first, then the linear gains).
+/// Rows ordered signal, rate, sigma, observer (super-twisting first, then the linear gains, then
+/// the Kalman filter's q).
 /// Seed i (1..seeds) draws the orbit phase and the noise from derive_seed(i, name): every
 /// observer sees the same samples (common random numbers). Throws std::invalid_argument for
 /// seeds < 1 or steady_from_s >= duration_s.
 std::vector<StudyRow> run_study(const StudyOptions& options);
 
-/// Header + one line per row; numbers with 5 significant digits, w/k1/k2 empty for
-/// super-twisting.
+/// Header + one line per row; numbers with 5 significant digits, w/k1/k2 empty but for the
+/// linear observer, q_m2ps5 empty but for the Kalman filter.
 void write_csv(std::ostream& out, const std::vector<StudyRow>& rows);
 
 }  // namespace robodds::range_rate_observer::study

@@ -116,7 +116,18 @@ TEST(RangeRateObserverNode, RefusedRangesLeaveTheObserversAlone) {
       EXPECT_TRUE(std::isfinite(e.range_rate()) && std::isfinite(e.range()));
       EXPECT_EQ(e.restarted(), e.header().step() == kSwitchStep) << "a refused sample is no range jump";
     }
-    EXPECT_DOUBLE_EQ(one[60].range_rate(), one[59].range_rate()) << "step 60 republishes the estimate of step 59";
+    // Step 60 has no range: it carries the estimate of step 59 predicted to step 60 (issue 27,
+    // finding 6), as the library observer fed steps 0-59 predicts it, its std wider.
+    SuperTwistingObserver library(SuperTwistingParams{}, {}, 0.02);
+    for (std::uint64_t step = 0; step < 60; ++step) {
+      const double t = static_cast<double>(step) * 0.02;
+      library.update(t, 100.0 + 5.0 * t);
+    }
+    const RangeRateEstimate predicted = library.predict(1.2);
+    EXPECT_NEAR(one[60].range_rate(), predicted.rate_mps, 1e-9);
+    EXPECT_NEAR(one[60].range(), predicted.range_m, 1e-9);
+    EXPECT_NEAR(one[60].range(), one[59].range() + 0.02 * one[59].range_rate(), 0.01) << "the range moves on";
+    EXPECT_GT(one[60].range_rate_std_mps(), one[59].range_rate_std_mps());
     EXPECT_NEAR(one[kSwitchStep - 1].range_rate(), 5.0, 0.3);
   }
 }
@@ -124,7 +135,9 @@ TEST(RangeRateObserverNode, RefusedRangesLeaveTheObserversAlone) {
 // Issue 27, finding 6: lost ranges (every third step here, announced by next_step) are gaps the
 // observers bridge with their sample period, the sensor's (rate_hz 50: 0.02 s): the node's
 // estimates are those of the library observer told that period, not of one integrating each gap
-// as one Euler step (sample_period_s 0, which widened the sliding mode's chattering).
+// as one Euler step (sample_period_s 0, which widened the sliding mode's chattering). A lost
+// step carries the library observer's prediction to it (RangeRateObserver::predict), not the last
+// estimate again.
 TEST(RangeRateObserverNode, LostRangesAreBridgedWithTheSensorsSamplePeriod) {
   Harness h(scenario());
   const auto range = [](double t) { return 100.0 + 5.0 * t + 4.0 * std::sin(0.7 * t); };
@@ -149,12 +162,19 @@ TEST(RangeRateObserverNode, LostRangesAreBridgedWithTheSensorsSamplePeriod) {
   const auto& sta = h.record<idl::RangeRateEstimate>("observer/range_rate");
   h.run({"observer"});
   const auto one = of_robot(sta, 1);
-  ASSERT_EQ(one.size(), 201u) << "a lost step republishes the last estimate";
+  ASSERT_EQ(one.size(), 201u) << "a lost step still carries an estimate";
   SuperTwistingObserver bridged(SuperTwistingParams{}, {}, 0.02);
   SuperTwistingObserver euler(SuperTwistingParams{}, {}, 0.0);
   double differs = 0.0;
+  double moved = 0.0;  // how far a lost step's prediction is from the last estimate
   for (std::uint64_t step = 0; step <= 200; ++step) {
     if (lost(step)) {
+      const double t = static_cast<double>(step) * 0.02;
+      const RangeRateEstimate predicted = bridged.predict(t);
+      EXPECT_NEAR(one[step].range_rate(), predicted.rate_mps, 1e-9) << "step " << step;
+      EXPECT_NEAR(one[step].range(), predicted.range_m, 1e-9) << "step " << step;
+      EXPECT_GT(one[step].range_rate_std_mps(), one[step - 1].range_rate_std_mps()) << "step " << step;
+      moved = std::max(moved, std::abs(one[step].range() - one[step - 1].range()));
       continue;
     }
     const double t = static_cast<double>(step) * 0.02;
@@ -163,6 +183,7 @@ TEST(RangeRateObserverNode, LostRangesAreBridgedWithTheSensorsSamplePeriod) {
     EXPECT_NEAR(one[step].range_rate(), expected, 1e-9) << "step " << step;
   }
   EXPECT_GT(differs, 0.01) << "the two ways of integrating a gap must differ for this test to mean anything";
+  EXPECT_GT(moved, 0.05) << "the range moves ~0.1 m a step: a republished estimate would not";
 }
 
 TEST(RangeRateObserverNode, GainsOutsideThePapersConditionsAreConfigErrorsNamingTheKey) {

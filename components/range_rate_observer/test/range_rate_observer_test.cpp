@@ -518,7 +518,10 @@ TEST(RangeRateObserver, LostSamplesDoNotLowerItsBoundOnTheRangeAcceleration) {
   // per second (1.54 m/s^2 at 30 % losses). Range 50 + 2 t + 8 sin(t / 2), |s''| up to 2 m/s^2, max
   // error over 20-120 s: no losses 0.144 m/s; now 0.144-0.157 (10 %), 0.171-0.208 (30 %); correcting
   // over one period and predicting 0.22-0.29 (10 %), 1.04-1.32 (30 %); one Euler step per gap
-  // 0.31-0.49 (30 %).
+  // 0.31-0.49 (30 %). Lost ranges on the straight line between the received ones (the chord lies
+  // r'' tau (dt - tau) / 2 inside the range, a few mm, above the sliding mode's range error):
+  // 0.171-0.208, RMS 0.051-0.054 (30 %); on the curve bent by the law's s'' estimate: 0.120-0.141
+  // (30 %), 0.138-0.144 (10 %), RMS 0.036-0.038 (no losses 0.036).
   const auto range = [](double t) { return 50.0 + 2.0 * t + 8.0 * std::sin(0.5 * t); };
   const auto rate = [](double t) { return 2.0 + 4.0 * std::cos(0.5 * t); };
   const Track clean = track_with_losses(SuperTwistingObserver(SuperTwistingParams{}, {}, 0.02), 0.0, 1, range, rate).first;
@@ -528,9 +531,85 @@ TEST(RangeRateObserver, LostSamplesDoNotLowerItsBoundOnTheRangeAcceleration) {
       std::printf("|s''| 2 m/s^2, loss %.0f %% seed %d: max %.4f RMS %.4f m/s (no loss: max %.4f RMS %.4f)\n", 100.0 * loss,
                   static_cast<int>(seed), lossy.max_abs_after_mps, lossy.rms_after_mps, clean.max_abs_after_mps,
                   clean.rms_after_mps);
-      EXPECT_LT(lossy.max_abs_after_mps, 0.22) << "loss " << loss << " seed " << seed;
+      EXPECT_LT(lossy.max_abs_after_mps, 1.1 * clean.max_abs_after_mps) << "loss " << loss << " seed " << seed;
+      EXPECT_LT(lossy.rms_after_mps, 1.1 * clean.rms_after_mps) << "loss " << loss << " seed " << seed;
     }
   }
+}
+
+/// Worst |error| of predict(t + k T) (k = 1..7 lost periods) over every sample of 40-120 s, and of
+/// the estimate held instead (what the node republished before), against the truth, for rate and
+/// range; the worst |rate error| of the estimates themselves; and whether every prediction's std
+/// was the fresh one widened by 2.2 m/s^2 x k T.
+struct PredictionErrors {
+  double fresh_rate_mps = 0.0;
+  double predicted_rate_mps = 0.0;
+  double held_rate_mps = 0.0;
+  double predicted_range_m = 0.0;
+  double held_range_m = 0.0;
+  bool std_widened = true;
+};
+
+template <class Observer>
+PredictionErrors prediction_errors(Observer observer) {
+  // The observer study's orbit: a robot at ~9 m/s turning at the plant's 0.15 rad/s limit,
+  // |s''| up to 1.35 m/s^2 (< b = 2.2).
+  const auto range = [](double t) { return 300.0 + 60.0 * std::sin(0.15 * t); };
+  const auto rate = [](double t) { return 9.0 * std::cos(0.15 * t); };
+  constexpr double kPeriodS = 0.02;
+  PredictionErrors out;
+  for (int i = 0; i <= 6000; ++i) {
+    const double t = i * kPeriodS;
+    const RangeRateEstimate fresh = observer.update(t, range(t));
+    if (t < 40.0) {
+      continue;
+    }
+    out.fresh_rate_mps = std::max(out.fresh_rate_mps, std::abs(fresh.rate_mps - rate(t)));
+    for (int k = 1; k <= 7; ++k) {
+      const double later = t + k * kPeriodS;
+      const RangeRateEstimate predicted = observer.predict(later);
+      out.predicted_rate_mps = std::max(out.predicted_rate_mps, std::abs(predicted.rate_mps - rate(later)));
+      out.held_rate_mps = std::max(out.held_rate_mps, std::abs(fresh.rate_mps - rate(later)));
+      out.predicted_range_m = std::max(out.predicted_range_m, std::abs(predicted.range_m - range(later)));
+      out.held_range_m = std::max(out.held_range_m, std::abs(fresh.range_m - range(later)));
+      const double widening = 2.2 * k * kPeriodS;
+      out.std_widened &= std::abs(predicted.rate_std_mps -
+                                  std::sqrt(fresh.rate_std_mps * fresh.rate_std_mps + widening * widening)) < 1e-12 &&
+                         predicted.time_s == later && predicted.valid == fresh.valid;
+    }
+    // Before and at the last sample: the estimate itself.
+    out.std_widened &= observer.predict(t).rate_mps == fresh.rate_mps && observer.predict(t - 1.0).range_m == fresh.range_m;
+  }
+  return out;
+}
+
+TEST(RangeRateObserver, ALostSampleIsPredictedOnTheLawsModelWithAWiderStd) {
+  // Issue 27, finding 6: while ranges are lost the node republished the last estimate, so a
+  // burst of k lost samples held the rate for k T while the truth moved by s'' k T (0.28 m/s at
+  // 2 m/s^2 over 7 periods) and the range by the rate times k T, claiming the std of a fresh
+  // estimate. predict() carries each law's state on its own model of s'' (the Kalman filter's
+  // acceleration state; the low-passed v_hat' of paper 2's laws, their equivalent output
+  // injection) and widens the std by the bound times the hold. Noise-free orbit, 50 Hz, worst over
+  // 40-120 s and 1-7 lost periods, rate m/s: sta 0.118 fresh (its chattering), 0.172 predicted,
+  // 0.306 held; Kalman 0.050 / 0.072 / 0.200; linear (its lag) 1.771 / 1.772 / 1.958; range m,
+  // predicted / held: sta 0.022 / 1.26, Kalman 0.017 / 1.25, linear 0.84 / 1.50 (its own range lag).
+  // Predicting the rate as held (no s'' model) is the held figure.
+  RateUncertaintyParams uncertainty;
+  uncertainty.range_accel_mps2 = 2.2;
+  const PredictionErrors sta = prediction_errors(SuperTwistingObserver(SuperTwistingParams{}, uncertainty, 0.02));
+  const PredictionErrors linear = prediction_errors(LinearRangeRateObserver(LinearObserverParams{}, uncertainty, 0.02));
+  const PredictionErrors kalman = prediction_errors(KalmanRangeRateObserver(KalmanObserverParams{}, uncertainty, 0.02));
+  for (const auto& [name, e] : {std::pair<const char*, PredictionErrors>{"sta", sta}, {"linear", linear}, {"kalman", kalman}}) {
+    std::printf("%s: rate fresh %.4f predicted %.4f held %.4f m/s, range predicted %.4f held %.4f m\n", name,
+                e.fresh_rate_mps, e.predicted_rate_mps, e.held_rate_mps, e.predicted_range_m, e.held_range_m);
+    EXPECT_TRUE(e.std_widened) << name;
+    EXPECT_LT(e.predicted_range_m, 0.6 * e.held_range_m) << name;
+    // What 7 lost periods add to the rate error: held, |s''| 7 T = 0.19 m/s; predicted, a third of it.
+    EXPECT_GT(e.held_rate_mps - e.fresh_rate_mps, 0.15) << name;
+    EXPECT_LT(e.predicted_rate_mps - e.fresh_rate_mps, 0.06) << name;
+  }
+  EXPECT_LT(sta.predicted_range_m, 0.05);
+  EXPECT_LT(kalman.predicted_range_m, 0.05);
 }
 
 TEST(RangeRateObserver, BadInputThrowsAndChangesNothing) {

@@ -3,6 +3,9 @@
 // starts included), one sliding window of 3 robots (w = 30, and 160), the particle filter and the
 // baseline of 500 particles for each peer, odometry dead reckoning. The peers circle this robot at
 // 4-6 m; ranges carry issue 11's structured errors (components/uwb_sensor's model, seeded).
+// Issue 29: the same with 3 and 7 peers (4 and 8 robots tracked by one estimator; every pair of
+// peers is a link, as in RelativeEstimator: 6 and 28 eq. (1) solves per epoch), peers k >= 2 on
+// circles of 3-9 m at their own speeds.
 // Counters: the median and p99 (nearest rank) of the per-epoch wall times, in ms, and the share
 // of each stage.
 
@@ -10,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <optional>
 #include <vector>
 
@@ -30,44 +34,64 @@ struct Epoch {
   std::vector<std::optional<Eigen::MatrixXd>> links;
 };
 
-/// kEpochs epochs of two peers circling this (static) robot, 16 ranges per direction.
-std::vector<Epoch> make_epochs() {
+/// kEpochs epochs of `num_peers` peers circling this (static) robot, 16 ranges per direction, and
+/// the ranges of every pair of peers (RelativeEstimator's links, in its order). With 2 peers the
+/// sequence is the one this benchmark always had.
+std::vector<Epoch> make_epochs(std::size_t num_peers) {
   const model::UwbArray array = square_array(0.5);
   const uwb_sensor::UwbErrorParams noise;
   std::vector<model::Pose2> pose{{4.0, 0.0, M_PI / 2}, {-6.0, 0.0, -M_PI / 2}};
-  const std::vector<model::Twist> twist{{0.2, 0.05}, {0.2, 1.0 / 30.0}};
+  std::vector<model::Twist> twist{{0.2, 0.05}, {0.2, 1.0 / 30.0}};
+  for (std::size_t k = 2; k < num_peers; ++k) {
+    const double radius = 3.0 + static_cast<double>(k - 2);  // 3 .. 7 m
+    const double bearing = 2.0 * M_PI * static_cast<double>(k) / static_cast<double>(num_peers);
+    pose.push_back({radius * std::cos(bearing), radius * std::sin(bearing), bearing + M_PI / 2});
+    twist.push_back({0.2, 0.2 / radius});
+  }
   RandomEngine white(derive_seed(1, "bench/white"));
   RandomEngine nlos(derive_seed(1, "bench/nlos"));
+  // Error streams: one per peer (its direct pair), then one per link; with 2 peers: 0, 1, then 2.
   std::vector<uwb_sensor::PairErrors> errors;
-  for (int k = 0; k < 3; ++k) {
+  const std::size_t num_links = num_peers * (num_peers - 1) / 2;
+  for (std::size_t k = 0; k < num_peers + num_links; ++k) {
     errors.emplace_back(4, 4, 0.0, noise, RandomEngine(derive_seed(1, "bench/bias" + std::to_string(k))),
                         RandomEngine(derive_seed(1, "bench/common" + std::to_string(k))));
   }
   std::vector<Epoch> out;
   for (int e = 1; e <= kEpochs; ++e) {
     Epoch epoch;
-    for (std::size_t k = 0; k < 2; ++k) {
+    for (std::size_t k = 0; k < num_peers; ++k) {
       pose[k] = model::integrate_exact(pose[k], twist[k], kEpochS);
     }
-    for (std::size_t k = 0; k < 3; ++k) {
-      errors[k].advance_to(e * kEpochS);
+    for (auto& stream : errors) {
+      stream.advance_to(e * kEpochS);
     }
-    for (std::size_t k = 0; k < 2; ++k) {
+    for (std::size_t k = 0; k < num_peers; ++k) {
       const Eigen::MatrixXd d = model::array_ranges(array, model::Pose2{}, array, pose[k]);
       epoch.peers.push_back(PeerEpoch{model::integrate_exact(model::Pose2{}, twist[k], kEpochS),
                                       uwb_sensor::measure_ranges(d, errors[k].link_bias_m(true), errors[k].common_m(), noise,
                                                                  white, nlos)});
     }
-    const Eigen::MatrixXd link = model::array_ranges(array, pose[0], array, pose[1]);
-    epoch.links.push_back(uwb_sensor::measure_ranges(link, errors[2].link_bias_m(true), errors[2].common_m(), noise, white, nlos));
+    std::size_t stream = num_peers;
+    for (std::size_t a = 0; a < num_peers; ++a) {
+      for (std::size_t b = a + 1; b < num_peers; ++b, ++stream) {
+        const Eigen::MatrixXd link = model::array_ranges(array, pose[a], array, pose[b]);
+        epoch.links.push_back(
+            uwb_sensor::measure_ranges(link, errors[stream].link_bias_m(true), errors[stream].common_m(), noise, white, nlos));
+      }
+    }
     out.push_back(std::move(epoch));
   }
   return out;
 }
 
-const std::vector<Epoch>& epochs() {
-  static const std::vector<Epoch> e = make_epochs();
-  return e;
+const std::vector<Epoch>& epochs(std::size_t num_peers) {
+  static std::map<std::size_t, std::vector<Epoch>> made;
+  auto it = made.find(num_peers);
+  if (it == made.end()) {
+    it = made.emplace(num_peers, make_epochs(num_peers)).first;
+  }
+  return it->second;
 }
 
 double nearest_rank(std::vector<double> v, double q) {
@@ -77,8 +101,10 @@ double nearest_rank(std::vector<double> v, double q) {
 }
 
 /// One iteration = one epoch; the estimator runs through the 600 s sequence and starts over.
+/// Arguments: the window (epochs) and the number of peers.
 void BM_Exp2Cycle(benchmark::State& state) {
-  const std::vector<Epoch>& sequence = epochs();
+  const auto num_peers = static_cast<std::size_t>(state.range(1));
+  const std::vector<Epoch>& sequence = epochs(num_peers);
   const model::UwbArray array = square_array(0.5);
   RelativeEstimatorParams params;
   params.window_epochs = static_cast<int>(state.range(0));
@@ -90,8 +116,11 @@ void BM_Exp2Cycle(benchmark::State& state) {
   for (auto _ : state) {
     if (e == sequence.size()) {
       state.PauseTiming();
-      estimator.emplace(array, std::vector<PeerSetup>{PeerSetup{2, array, std::nullopt}, PeerSetup{3, array, std::nullopt}},
-                        params, 1);
+      std::vector<PeerSetup> peers;
+      for (std::size_t k = 0; k < num_peers; ++k) {
+        peers.push_back(PeerSetup{static_cast<std::uint32_t>(k + 2), array, std::nullopt});
+      }
+      estimator.emplace(array, peers, params, 1);
       e = 0;
       time_s = 0.0;
       state.ResumeTiming();
@@ -113,7 +142,13 @@ void BM_Exp2Cycle(benchmark::State& state) {
     state.counters[std::string(stage_name(static_cast<Stage>(s))) + "_ms"] = stage_total[s] / static_cast<double>(cycle_ms.size());
   }
 }
-BENCHMARK(BM_Exp2Cycle)->Arg(30)->Arg(160)->Iterations(3000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Exp2Cycle)
+    ->Args({30, 2})
+    ->Args({160, 2})
+    ->Args({30, 3})
+    ->Args({30, 7})
+    ->Iterations(3000)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 BENCHMARK_MAIN();

@@ -27,10 +27,12 @@ std::uint64_t pair_key(std::uint32_t robot, std::uint32_t peer) { return (std::u
 /// The topic of each stage, in Stage order.
 constexpr std::array<const char*, kStageCount> kStageTopics = {
     "estimate/relative_pose_uwb", "estimate/relative_pose_window", "estimate/relative_pose",
-    "estimate/relative_pose_pf_baseline", "estimate/relative_pose_odometry"};
+    "estimate/relative_pose_pf_baseline", "estimate/relative_pose_odometry", "estimate/relative_pose_tc"};
 
 /// Stages that rest on UWB frames (invalid when a peer's frames are older than uwb_timeout_s).
-bool uses_frames(Stage s) { return s == Stage::kWindow || s == Stage::kPf || s == Stage::kPfBaseline; }
+bool uses_frames(Stage s) {
+  return s == Stage::kWindow || s == Stage::kPf || s == Stage::kPfBaseline || s == Stage::kTc;
+}
 
 class UwbRelativeEstimatorNode : public Component {
  public:

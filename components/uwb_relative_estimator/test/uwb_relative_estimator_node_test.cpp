@@ -106,7 +106,8 @@ void feed(NodeHarness& h, std::function<bool(std::uint64_t)> frames, std::functi
 }
 
 const std::vector<const char*> kTopics = {"estimate/relative_pose", "estimate/relative_pose_uwb", "estimate/relative_pose_window",
-                                          "estimate/relative_pose_pf_baseline", "estimate/relative_pose_odometry"};
+                                          "estimate/relative_pose_pf_baseline", "estimate/relative_pose_odometry",
+                                          "estimate/relative_pose_tc"};
 
 TEST(UwbRelativeEstimatorNode, EveryStageOnItsTopicForEachPeerAtEveryEpoch) {
   Harness h(scenario(""));

@@ -31,7 +31,8 @@ class WaypointControllerNode : public Component {
     require_valid_ = node_params.require_valid_estimate;
     invalid_estimate_speed_mps_ = node_params.invalid_estimate_speed_mps;
     const CreepLimits creep_limits{node_params.invalid_estimate_creep_max_m, node_params.invalid_estimate_creep_limit_s,
-                                   node_params.invalid_estimate_creep_restarts};
+                                   node_params.invalid_estimate_creep_restarts, node_params.invalid_estimate_creep_extensions,
+                                   node_params.invalid_estimate_creep_progress};
     estimate_timeout_s_ = node_params.estimate_timeout_s;
     p.validate(params_);  // the body is checked where it is declared (system::check_facts)
     p.check([&] {
@@ -123,6 +124,7 @@ class WaypointControllerNode : public Component {
           cmd.v(out.v);
           cmd.omega(out.omega);
         } else {
+          robot.creep.observe_heading_std(std::sqrt(std::max(0.0, estimate->cov()[8])));
           const bool creeping = invalid_estimate_speed_mps_ > 0.0 && may_creep(id, robot, info.time_s);
           const Command out = tracker.hold(creeping ? Command{invalid_estimate_speed_mps_, 0.0} : Command{});
           if (creeping) {
@@ -233,7 +235,13 @@ class WaypointControllerNode : public Component {
 
   /// Whether robot `id` may creep at `time_s` (s) (creep_budget.hpp). Says once why it may not.
   static bool may_creep(std::uint32_t id, Robot& robot, double time_s) {
+    const int extensions = robot.creep.extensions();
     const CreepVerdict verdict = robot.creep.check(time_s, robot.tracker.done());
+    if (robot.creep.extensions() > extensions) {
+      log::info("waypoint_controller", "robot " + std::to_string(id) + ": creep budget extended (" +
+                                           std::to_string(robot.creep.extensions()) + ") at " + std::to_string(time_s) +
+                                           " s: the estimate's heading std is still falling");
+    }
     if (verdict != CreepVerdict::kAllowed && verdict != robot.told) {
       log::warn("waypoint_controller", "robot " + std::to_string(id) + ": no valid pose estimate at " +
                                            std::to_string(time_s) + " s: " + describe(verdict));

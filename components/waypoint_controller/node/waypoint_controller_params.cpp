@@ -31,6 +31,14 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
                params::at_least(0),
                "with invalid_estimate_speed_mps: how many estimator restarts (PoseEstimate.restarts rising: a lost filter "
                "redrawn from the fixes, its heading unknown) may each grant a new creep budget in a run; 0 = none")
+          .add("invalid_estimate_creep_extensions", &WaypointControllerNodeParams::invalid_estimate_creep_extensions, "",
+               params::at_least(0),
+               "with invalid_estimate_speed_mps: a creep budget that runs out while the estimate's heading std is still "
+               "falling (by invalid_estimate_creep_progress since the budget started) is extended by one more, at most "
+               "this many times per budget (noisier fixes need more creeping: issue 27); 0 = none")
+          .add("invalid_estimate_creep_progress", &WaypointControllerNodeParams::invalid_estimate_creep_progress, "",
+               params::in_half_open_interval(0.0, 1.0),
+               "the fraction by which the heading std must have fallen since a creep budget started for it to be extended")
           .add("estimate_timeout_s", &WaypointControllerNodeParams::estimate_timeout_s, "s", params::positive(),
                "real time only: an estimate received longer ago than this stops the robot (state ESTIMATE_STALE); > the control period. "
                "One older than two of its producer's periods (next_step - step) already holds the last command")

@@ -23,6 +23,8 @@ struct WaypointControllerNodeParams {
   double invalid_estimate_creep_max_m = 12.0;
   double invalid_estimate_creep_limit_s = 40.0;
   int invalid_estimate_creep_restarts = 3;
+  int invalid_estimate_creep_extensions = 2;
+  double invalid_estimate_creep_progress = 0.1;
   double estimate_timeout_s = 0.5;
   model::HoldParams gap_hold;  // issue 27: through a brief invalid estimate while driving
 };

@@ -70,5 +70,64 @@ TEST(CreepBudget, NoRestartBudgetWhenNoneIsAllowed) {
   EXPECT_EQ(creep.check(1.0, false), CreepVerdict::kAfterValidEstimate);
 }
 
+// Issue 27: fixes noisier than configured teach the heading more slowly; a budget that runs out
+// while the estimate's heading std is still falling (by min_progress since the budget started) is
+// extended, at most max_extensions times per budget.
+TEST(CreepBudget, IsExtendedWhileTheHeadingStdKeepsFalling) {
+  CreepBudget creep(CreepLimits{1000.0, 10.0, 0, 2, 0.1});
+  creep.observe_heading_std(1.8);  // uniform headings at the start
+  EXPECT_EQ(creep.check(0.0, false), CreepVerdict::kAllowed);
+  creep.observe_heading_std(0.26);  // learned a lot, not enough to be valid
+  EXPECT_EQ(creep.check(10.5, false), CreepVerdict::kAllowed) << "extended: 1.8 -> 0.26 rad";
+  EXPECT_EQ(creep.extensions(), 1);
+  creep.observe_heading_std(0.24);  // less than 10 % since the extension started
+  EXPECT_EQ(creep.check(20.5, false), CreepVerdict::kAllowed) << "the extension's own 10 s";
+  EXPECT_EQ(creep.check(20.6, false), CreepVerdict::kTimeSpent) << "0.26 -> 0.24 rad: no progress";
+  creep.observe_heading_std(0.23);
+  EXPECT_EQ(creep.check(30.0, false), CreepVerdict::kAllowed) << "0.26 -> 0.23 rad: progress, the second";
+  EXPECT_EQ(creep.extensions(), 2);
+  creep.observe_heading_std(0.05);
+  EXPECT_EQ(creep.check(40.1, false), CreepVerdict::kTimeSpent) << "at most max_extensions";
+}
+
+TEST(CreepBudget, AnExtensionStartsTheDistanceAgainToo) {
+  CreepBudget creep(CreepLimits{1.0, 1000.0, 0, 1, 0.1});
+  creep.observe_heading_std(1.0);
+  EXPECT_EQ(creep.check(0.0, false), CreepVerdict::kAllowed);
+  creep.crept(0.5, 2.0);  // 1 m
+  creep.observe_heading_std(0.5);
+  EXPECT_EQ(creep.check(2.0, false), CreepVerdict::kAllowed);
+  EXPECT_EQ(creep.distance_m(), 0.0);
+  creep.crept(0.5, 2.0);
+  EXPECT_EQ(creep.check(4.0, false), CreepVerdict::kDistanceSpent);
+}
+
+TEST(CreepBudget, NoExtensionWithoutAHeadingStdOrWhenOff) {
+  CreepBudget unseen(CreepLimits{1000.0, 10.0, 0, 2, 0.1});
+  EXPECT_EQ(unseen.check(0.0, false), CreepVerdict::kAllowed);
+  unseen.observe_heading_std(0.1);  // none when the budget started: no progress to judge
+  EXPECT_EQ(unseen.check(10.5, false), CreepVerdict::kTimeSpent);
+  CreepBudget off(CreepLimits{1000.0, 10.0, 0, 0, 0.1});
+  off.observe_heading_std(1.8);
+  EXPECT_EQ(off.check(0.0, false), CreepVerdict::kAllowed);
+  off.observe_heading_std(0.2);
+  EXPECT_EQ(off.check(10.5, false), CreepVerdict::kTimeSpent);
+}
+
+TEST(CreepBudget, AnEstimatorRestartGrantsItsExtensionsAgain) {
+  CreepBudget creep(CreepLimits{1000.0, 10.0, 1, 1, 0.1});
+  creep.observe_heading_std(1.8);
+  EXPECT_EQ(creep.check(0.0, false), CreepVerdict::kAllowed);
+  creep.observe_heading_std(0.3);
+  EXPECT_EQ(creep.check(10.5, false), CreepVerdict::kAllowed);
+  creep.estimate_was_valid();
+  ASSERT_TRUE(creep.estimator_restarted());
+  EXPECT_EQ(creep.extensions(), 0);
+  creep.observe_heading_std(1.8);
+  EXPECT_EQ(creep.check(50.0, false), CreepVerdict::kAllowed);
+  creep.observe_heading_std(0.3);
+  EXPECT_EQ(creep.check(60.5, false), CreepVerdict::kAllowed);
+}
+
 }  // namespace
 }  // namespace robodds::waypoint_controller

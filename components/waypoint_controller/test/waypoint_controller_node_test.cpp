@@ -164,6 +164,32 @@ TEST(WaypointControllerNode, CreepingStopsAfterItsLimitWithoutAValidEstimate) {
   EXPECT_EQ(status[25].state(), idl::TRACKING) << "a valid estimate tracks again";
 }
 
+// Issue 27: a creep budget that runs out while the estimate's heading std is still falling is
+// extended (invalid_estimate_creep_extensions): the node hands the budget the estimate's heading std.
+TEST(WaypointControllerNode, CreepingIsExtendedWhileTheHeadingStdFalls) {
+  Harness h(ScenarioText("waypoint_controller_creep_extension", 0.01, 0.3)
+                .fact("robot_body: {max_accel_mps2: 100.0}")
+                .robots({1})
+                .component("{name: controller, type: waypoint_controller, "
+                           "params: {invalid_estimate_speed_mps: 0.3, invalid_estimate_creep_limit_s: 0.1, "
+                           "invalid_estimate_creep_extensions: 1}}"));
+  h.feed([&h](std::uint64_t step) {
+    if (step == 0) {
+      h.publish("mission/waypoints", mission({{0.0, 10.0}}), 0, kNeverAgain);
+    }
+    idl::PoseEstimate e = estimate(0.0, 0.0, 0.0, false);
+    const double heading_std = step < 5 ? 1.0 : 0.5;  // rad: learning while creeping
+    e.cov()[8] = heading_std * heading_std;
+    h.publish("estimate/pose", e, step, step + 1);
+  });
+  const auto& commands = h.record<idl::VelocityCommand>("plant/cmd");
+  h.run({"controller"});
+  ASSERT_EQ(commands.size(), 31u);
+  EXPECT_NEAR(commands[15].v(), 0.3, 1e-12) << "past the 0.1 s limit: extended (1.0 -> 0.5 rad)";
+  EXPECT_NEAR(commands[20].v(), 0.3, 1e-12);
+  EXPECT_DOUBLE_EQ(commands[25].v(), 0.0) << "the extension's 0.1 s are spent, no more allowed";
+}
+
 // Issue 24, finding 3: the creep is also bounded by the commanded distance (|v| integrated over
 // the control steps): 0.018 m at 0.5 m/s (0.005 m per 0.01 s step) allows 4 steps, the last one
 // past it by less than a step.

@@ -35,6 +35,7 @@ inline const char* relative_stage_of(const std::string& topic) {
       {"estimate/relative_pose_window", "window"},
       {"estimate/relative_pose_pf_baseline", "pf_baseline"},
       {"estimate/relative_pose_odometry", "odometry"},
+      {"estimate/relative_pose_tc", "tc"},
   };
   for (const auto& [name, stage] : kStages) {
     if (topic == name) {

@@ -1,0 +1,124 @@
+#pragma once
+// Issue 28 (beyond paper 3): a tightly coupled fixed-lag estimator of one (robot, peer) pair. The
+// paper is loosely coupled (eq. 1 turns the K x L ranges into a pose, the window and the filter fuse
+// poses); here the raw ranges and both robots' odometry enter ONE least-squares problem over the last
+// `window_epochs` epochs, with the range errors' slow parts as states:
+//   per epoch t: x_t, the peer's pose in this robot's body frame (m, m, rad);
+//                c_t, the pair's common-mode range error (Gauss-Markov, common_std_m / common_time_s);
+//                b_t, one bias per link (k, l) (Gauss-Markov, link_bias_std_m / link_bias_time_s),
+//                     when link_bias_states (else their variance is added to the white noise);
+//   ranges       r_kl(t) = d(x_t, C_i^k, C_j^l) + c_t + b_t,kl + white (white_std_m);
+//   motion       x_t = inverse(m_i) x_{t-1} m_j + noise from both increments (odometry_*_std per
+//                robot and epoch, propagated through the composition);
+//   Gauss-Markov c_t = a c_{t-1} + q, a = exp(-dt / tau), q ~ N(0, sigma^2 (1 - a^2)) (exact
+//                discretisation, as the UWB sensor draws them), the same for each b_kl;
+//   prior        on the oldest epoch: what marginalising the epochs that left the window (Schur
+//                complement of their linearised factors, fixed at their last estimate) says.
+// Solved with Ceres (Levenberg-Marquardt, warm started: every state keeps its last estimate, a new
+// epoch starts from the prediction). The reported covariance of the newest pose is the inverse of the
+// problem's information at the solution (block-tridiagonal elimination over the window).
+// Pure: Eigen + std + Ceres, time in seconds.
+#include <deque>
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "common/model/pose2.hpp"
+#include "common/model/uwb_array.hpp"
+#include "common/param_table.hpp"
+
+namespace robodds::uwb_relative_estimator {
+
+/// Keys tc.* of the estimator (tightly_coupled_window_param_table()). The range error defaults are
+/// the UWB sensor's (components/uwb_sensor: white 0.04 m, link 0.07 m / 2 s, common 0.30 m / 10 s).
+struct TightWindowParams {
+  int window_epochs = 3;
+  double white_std_m = 0.04;
+  double link_bias_std_m = 0.07;
+  double link_bias_time_s = 2.0;
+  double common_std_m = 0.30;
+  double common_time_s = 10.0;
+  /// The common mode as a state (false: held at 0, its variance counted in no residual: the
+  /// ablation that shows what the state buys).
+  bool common_bias_state = true;
+  /// One Gauss-Markov bias per link as states (false: their variance added to the white noise).
+  bool link_bias_states = true;
+  double odometry_xy_std_m = 0.002;
+  double odometry_theta_std_rad = 0.004;
+  /// Prior of the first pose around the fix it starts from.
+  double start_xy_std_m = 1.0;
+  double start_theta_std_rad = 0.5;
+  int max_iterations = 5;
+  /// Restart from the next fix after this long without ranges.
+  double restart_after_gap_s = 2.0;
+  /// Restart from the fix when it disagrees by more than these for disagreement_epochs epochs in a row
+  /// (a wrong minimum the estimator cannot leave by itself).
+  double disagreement_position_m = 1.0;
+  double disagreement_heading_rad = 0.5;
+  int disagreement_epochs = 20;
+  /// Throws std::invalid_argument "key: requirement (got value)".
+  void validate() const;
+};
+
+const params::ParamTable<TightWindowParams>& tight_window_param_table();
+
+class TightlyCoupledWindow {
+ public:
+  /// Throws std::invalid_argument on invalid params or arrays.
+  TightlyCoupledWindow(model::UwbArray own_array, model::UwbArray peer_array, TightWindowParams params);
+
+  /// One epoch at `time_s` (non-decreasing): both robots' increments since the previous epoch (own
+  /// frames), this epoch's K x L ranges (nullopt: none; must fit the arrays and be finite) and this
+  /// epoch's eq. (1) fix if one is valid (starts the estimator, and restarts it after a gap or a
+  /// lasting disagreement). Returns true when the estimate is valid afterwards: started, ranges
+  /// within restart_after_gap_s, the solve converged to a finite pose. Throws std::invalid_argument
+  /// (nothing changed) on a non-finite input or ranges of the wrong shape.
+  bool step(double time_s, const model::Pose2& own_increment, const model::Pose2& peer_increment,
+            const std::optional<Eigen::MatrixXd>& ranges_m, const std::optional<model::Pose2>& fix);
+
+  bool started() const { return !epochs_.empty(); }
+  /// The newest pose (heading wrapped) and its covariance [x, y, theta].
+  model::Pose2 pose() const;
+  const Eigen::Matrix3d& covariance() const { return covariance_; }
+  /// The newest common-mode estimate and its posterior std (m); 0 / 0 when not a state.
+  double common_bias_m() const;
+  double common_bias_std_m() const { return common_std_; }
+  std::size_t epochs() const { return epochs_.size(); }
+  int restarts() const { return restarts_; }
+
+ private:
+  struct Epoch {
+    double time_s = 0.0;
+    double pose[3] = {0.0, 0.0, 0.0};
+    double common = 0.0;
+    std::vector<double> links;      // K x L, row-major (empty without link states)
+    std::optional<Eigen::VectorXd> ranges;  // K x L row-major
+    model::Pose2 own_increment;     // into this epoch
+    model::Pose2 peer_increment;
+    Eigen::Matrix3d motion_sqrt_information = Eigen::Matrix3d::Zero();  // of the motion factor into it
+  };
+  struct Prior {  // on the oldest epoch: r = S (p - p0) + s0 (heading difference wrapped)
+    Eigen::MatrixXd sqrt_information;
+    Eigen::VectorXd offset;
+    Eigen::VectorXd linearization;
+  };
+
+  void start(double time_s, const model::Pose2& fix);
+  bool solve();
+  void marginalize_oldest();
+  int epoch_size() const;
+
+  model::UwbArray own_array_;
+  model::UwbArray peer_array_;
+  TightWindowParams params_;
+  std::deque<Epoch> epochs_;
+  Prior prior_;
+  Eigen::Matrix3d covariance_ = Eigen::Matrix3d::Zero();
+  double common_std_ = 0.0;
+  std::optional<double> last_ranges_s_;
+  int disagreements_ = 0;
+  int restarts_ = 0;
+};
+
+}  // namespace robodds::uwb_relative_estimator
