@@ -171,13 +171,13 @@ bool InnovationMonitor::lost(const Eigen::Matrix3d& filter_covariance, Eigen::Ve
   return true;
 }
 
-Eigen::Matrix3d InnovationMonitor::excess() const {
+Eigen::Matrix3d InnovationMonitor::excess(const Eigen::Matrix3d& estimate_covariance) const {
   Eigen::Vector3d typical_innovation;
   Eigen::Matrix3d mean_s;
-  if (!typical(typical_innovation, mean_s, covariances_)) {
+  if (!typical(typical_innovation, mean_s, covariances_) || !estimate_covariance.allFinite()) {
     return Eigen::Matrix3d::Zero();
   }
-  const Eigen::Matrix3d unexplained = typical_innovation * typical_innovation.transpose() - mean_s;
+  const Eigen::Matrix3d unexplained = typical_innovation * typical_innovation.transpose() - mean_s - estimate_covariance;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (unexplained + unexplained.transpose()));
   if (eigen.info() != Eigen::Success) {
     return Eigen::Matrix3d::Zero();

@@ -102,8 +102,10 @@ class InnovationMonitor {
   void add(const model::Pose2& estimate, const model::Pose2& fix, const Eigen::Matrix3d& fix_covariance,
            const std::optional<Eigen::Matrix3d>& own_error_covariance = std::nullopt);
   /// The unexplained discrepancy (above), positive semi-definite; zero with fewer fixes than a
-  /// fifth of the window (and 3).
-  Eigen::Matrix3d excess() const;
+  /// fifth of the window (and 3). `estimate_covariance`: what the estimate's own covariance
+  /// explains too (an estimate independent of the fixes: the odometry stage's dead reckoning);
+  /// zero for the filters, which assume they follow the fixes.
+  Eigen::Matrix3d excess(const Eigen::Matrix3d& estimate_covariance = Eigen::Matrix3d::Zero()) const;
   /// The lost-filter test, once per epoch: with enough fixes (as excess()), the median innovation
   /// m and the typical fix's own-error covariance S (add(); the fix of median trace: an outlier's
   /// own variance must not hide the discrepancy) give d^2 = m^T (S + filter_covariance)^-1 m; true when d^2 exceeds

@@ -114,7 +114,9 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
                                FilterErrorCovariance(params_.uncertainty), FilterErrorCovariance(params_.uncertainty),
                                InnovationMonitor(params_.uncertainty), InnovationMonitor(params_.uncertainty),
                                model::Pose2{}, model::Pose2{}, peer.known_start, Eigen::Matrix3d::Zero(), {}, {}, RangeErrorMap{}, false,
-                               Eigen::VectorXd(), std::nullopt, std::nullopt});
+                               Eigen::VectorXd(), std::nullopt, std::nullopt, Eigen::Matrix3d::Zero(),
+                               FixTrackCheck(params_.uncertainty), InnovationMonitor(params_.uncertainty),
+                               Eigen::Matrix3d::Zero()});
     tc_.emplace_back(own_array_, peer.array, params_.tc);
   }
   for (std::size_t a = 0; a < setups_.size(); ++a) {
@@ -161,6 +163,8 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
   for (std::size_t k = 0; k < peers.size(); ++k) {
     PeerResult& out = result.peers[k];
     peers_[k].fix_variances.resize(0);
+    peers_[k].fix_check.predict(own_increment, peers[k].odometry_increment, params_.window.odometry_xy_std_m,
+                                params_.window.odometry_theta_std_rad);
     out.had_ranges = peers[k].ranges_m.has_value();
     if (!out.had_ranges) {
       ++counts_.frames_missing;
@@ -190,11 +194,16 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
         error.independent_variance_m2 =
             range_error_variances(own_array_, setups_[k].array, ranges, uwb.pose, std::max(noise_std_m, epoch_std_m),
                                   noise_std_m, params_.uncertainty.outlier_sigma);
-        uwb.covariance = with_bearing_curvature(error.covariance(), uwb.pose);
+        peer.fix_model_covariance = with_bearing_curvature(error.covariance(), uwb.pose);
+        // What the sequence of fixes shows beyond the model (an error that one epoch's residuals
+        // cannot see but that changes as the robots move) widens what this stage reports.
+        peer.fix_check.add(time_s, uwb.pose, error, peer.fix_model_covariance);
+        uwb.covariance = peer.fix_check.inflate(peer.fix_model_covariance);
         peer.fix_variances = error.independent_variance_m2;
         peer.fix_own_covariance = error.independent_map * error.independent_variance_m2.asDiagonal() * error.independent_map.transpose();
       } else {
         uwb.covariance = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());  // degenerate geometry
+        peer.fix_model_covariance = uwb.covariance;
       }
     }
   }
@@ -227,7 +236,12 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
     odometry.valid = peer.odometry_pose.has_value();
     if (odometry.valid) {
       odometry.pose = *peer.odometry_pose;
-      odometry.covariance = peer.odometry_covariance;
+      // Its own check: the fixes (independent of the odometry) against the dead reckoning; what
+      // neither covariance explains (a slip's drift) is added.
+      if (uwb.valid) {
+        peer.odometry_check.add(odometry.pose, uwb.pose, peer.fix_model_covariance);
+      }
+      odometry.covariance = peer.odometry_covariance + peer.odometry_check.excess(peer.odometry_covariance);
     }
   }
   result.stage_ms[static_cast<std::size_t>(Stage::kOdometry)] = ms_since(start);
@@ -295,7 +309,7 @@ void RelativeEstimator::run_pf(std::size_t k, double time_s, double dt_s, const 
     peer.last_fix_s = time_s;
   }
   result.stages[static_cast<std::size_t>(Stage::kPf)] =
-      reported_filter_estimate(peer.pf, peer.pf_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.fix_own_covariance,
+      reported_filter_estimate(peer.pf, peer.pf_error, model_fix(peer, result), peer.fix_own_covariance,
                                peer.pf_check, peer.pf_random, peer.pf_pose, counts_.filter_restarts);
 }
 
@@ -353,7 +367,7 @@ void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, 
     }
   }
   result.stages[static_cast<std::size_t>(Stage::kPfBaseline)] = reported_filter_estimate(
-      peer.baseline, peer.baseline_error, result.stages[static_cast<std::size_t>(Stage::kUwb)], peer.fix_own_covariance,
+      peer.baseline, peer.baseline_error, model_fix(peer, result), peer.fix_own_covariance,
       peer.baseline_check, peer.baseline_random, peer.baseline_pose, counts_.baseline_restarts);
 }
 
@@ -440,6 +454,14 @@ void RelativeEstimator::run_window(const model::Pose2& own_increment, const std:
       }
     }
   }
+}
+
+StageEstimate RelativeEstimator::model_fix(const PeerState& peer, const PeerResult& result) {
+  StageEstimate fix = result.stages[static_cast<std::size_t>(Stage::kUwb)];
+  if (fix.valid) {
+    fix.covariance = peer.fix_model_covariance;
+  }
+  return fix;
 }
 
 void RelativeEstimator::run_tc(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,

@@ -42,6 +42,7 @@
 #include "common/model/uwb_array.hpp"
 #include "common/random.hpp"
 #include "components/uwb_relative_estimator/filter_error_covariance.hpp"
+#include "components/uwb_relative_estimator/fix_track_check.hpp"
 #include "components/uwb_relative_estimator/relative_estimator_params.hpp"
 #include "components/uwb_relative_estimator/relative_pf.hpp"
 #include "components/uwb_relative_estimator/relative_pose_covariance.hpp"
@@ -62,7 +63,8 @@ struct StageEstimate {
   /// Covariance of [x, y, theta] (m^2, m rad, rad^2): the filters': the covariance of their error
   /// when their measurements' errors last as long as the range errors do (FilterErrorCovariance;
   /// the particles' spread counts every epoch's measurement as new, and is not reported), plus the
-  /// eq. (1) fixes' unexplained median innovation (InnovationMonitor); every UWB stage: each range
+  /// eq. (1) fixes' unexplained median innovation (InnovationMonitor); uwb: scaled by its check of the
+  /// fixes against earlier fixes dead-reckoned by odometry (FixTrackCheck); every UWB stage: each range
   /// an outlier's own variance when beyond outlier_sigma, a bias per UWB node (node_bias_std_m,
   /// configured: the fit absorbs it), plus the bearing's curvature; uwb: the least-squares fit's (range_fix_covariance, with the range noise estimated from the
   /// residuals); window: the same at the window's pose (the fixes' errors last longer than the
@@ -172,10 +174,21 @@ class RelativeEstimator {
     /// This epoch's eq. (1) covariance from its independent range errors alone (what the filters
     /// do not share with the fix: their lost-filter test).
     Eigen::Matrix3d fix_own_covariance = Eigen::Matrix3d::Zero();
+    /// The uwb stage's check of its fixes over time (FixTrackCheck): scales what it reports.
+    FixTrackCheck fix_check;
+    /// The odometry stage's check against the eq. (1) fixes: a dead reckoning that drifted beyond
+    /// its covariance (wheel slips grow as t, the propagated white noise as sqrt(t)) says so.
+    InnovationMonitor odometry_check;
+    /// This epoch's eq. (1) covariance as the error model gives it, before fix_check's scaling
+    /// (what the filters' InnovationMonitor compares their estimates with).
+    Eigen::Matrix3d fix_model_covariance = Eigen::Matrix3d::Zero();
   };
 
   void run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
                   const std::vector<PairMeasurement>& link_edges, EpochResult& result);
+  /// This epoch's uwb estimate with the error model's covariance (before the fix-track check's
+  /// scaling): what the filters' checks compare with (their InnovationMonitor has its own test).
+  static StageEstimate model_fix(const PeerState& peer, const PeerResult& result);
   /// Peer `k` has an eq. (1) edge in the window: its poses there rest on a measurement.
   bool placed(std::size_t k) const;
   /// The tc stage of every peer (issue 28).

@@ -54,7 +54,11 @@ const params::ParamTable<UncertaintyParams>& uncertainty_param_table() {
           .add("lost_window_epochs", &P::lost_window_epochs, "epochs", params::at_least(2),
                "pf, pf_baseline: epochs of the lost-filter test's mean")
           .add("outlier_sigma", &P::outlier_sigma, "", params::positive(),
-               "a range whose leave-one-out residual exceeds this many range stds gets its own variance (that residual squared)");
+               "a range whose leave-one-out residual exceeds this many range stds gets its own variance (that residual squared)")
+          .add("fix_check_lag_s", &P::fix_check_lag_s, "s", params::non_negative("0 = off"),
+               "uwb: each fix against the fix of this long ago dead-reckoned by odometry; what the error model does not explain scales the covariance")
+          .add("fix_check_window_epochs", &P::fix_check_window_epochs, "epochs", params::at_least(1),
+               "uwb: tests whose mean statistics give the fix-track check's scales");
   return table;
 }
 

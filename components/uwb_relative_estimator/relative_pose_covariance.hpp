@@ -54,6 +54,14 @@ struct UncertaintyParams {
   /// pf, pf_baseline: ... or when its mean over the last lost_window_epochs epochs exceeds this.
   double lost_mean_d2 = 4.0;
   int lost_window_epochs = 200;
+  /// uwb: the fix-track check (FixTrackCheck): each fix against the fix of this long ago
+  /// dead-reckoned by odometry; the fixes' error that changes over the lag, beyond what the error
+  /// model says, scales the stage's covariance. 0: off.
+  /// 20 s: the common mode (10 s) and the node term are mostly forgotten, so their changes show;
+  /// the configured odometry noise over 20 s stays below the fixes' own spread.
+  double fix_check_lag_s = 20.0;
+  /// uwb: the tests (one per fix) whose mean statistics give the scales.
+  int fix_check_window_epochs = 100;
   /// Throws std::invalid_argument "key: requirement (got value)".
   void validate() const;
 };

@@ -220,6 +220,19 @@ TEST(InnovationMonitor, AFilterThatFollowsItsFixesAddsLittleOneThatLostThemAddsT
   EXPECT_FALSE(lost.excess().isZero());
 }
 
+TEST(InnovationMonitor, AnEstimateIndependentOfTheFixesIsExcusedByItsOwnCovarianceToo) {
+  // The odometry stage's check: fixes 2 m off along x with a 0.1 m^2 variance; an estimate that
+  // reports no spread of its own gets 4 - 0.1 added along x, one that reports 1 m^2 gets 2.9 less,
+  // one that reports 10 m^2 gets nothing.
+  InnovationMonitor monitor(UncertaintyParams{});
+  for (int i = 0; i < 50; ++i) {
+    monitor.add(model::Pose2{0.0, 0.0, 0.0}, model::Pose2{2.0, 0.0, 0.0}, diagonal(0.1, 0.1, 0.01));
+  }
+  EXPECT_NEAR(monitor.excess()(0, 0), 3.9, 1e-9);
+  EXPECT_NEAR(monitor.excess(diagonal(1.0, 1.0, 0.01))(0, 0), 2.9, 1e-9);
+  EXPECT_NEAR(monitor.excess(diagonal(10.0, 10.0, 0.01)).norm(), 0.0, 1e-9);
+}
+
 TEST(InnovationMonitor, LostIsCalledAtOnceWhenFarOffAfterAWhileWhenModeratelyOffNeverWhenFollowing) {
   UncertaintyParams params;  // 50 fixes; d^2 > 16.27 at once, mean d^2 > 4 over 200 tests
   const Eigen::Matrix3d fix_covariance = diagonal(1.0, 1.0, 0.01);
