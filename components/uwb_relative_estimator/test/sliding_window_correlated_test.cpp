@@ -15,39 +15,13 @@
 #include "common/angle.hpp"
 #include "common/random.hpp"
 #include "components/uwb_relative_estimator/relative_pose_solver.hpp"
+#include "components/uwb_relative_estimator/test/exp1a_route.hpp"
 #include "components/uwb_relative_estimator/sliding_window.hpp"
 
 namespace robodds::uwb_relative_estimator {
 namespace {
 
 constexpr double kEpochS = 0.1;  // 10 Hz epochs
-
-/// Robot 1 of the paper's experiment 1-a: the rectangle with corners (+-3.5, +-3) counter-clockwise
-/// from (-3.5, -3) at 0.2 m/s, turning in place by 90 deg at 0.5 rad/s at each corner.
-model::Pose2 rectangle_pose(double t) {
-  constexpr double kSpeed = 0.2;
-  constexpr double kTurnRate = 0.5;
-  const std::array<double, 4> lengths{7.0, 6.0, 7.0, 6.0};
-  const std::array<std::array<double, 2>, 4> corners{{{-3.5, -3.0}, {3.5, -3.0}, {3.5, 3.0}, {-3.5, 3.0}}};
-  const double turn_s = (kPi / 2.0) / kTurnRate;
-  const double lap_s = (lengths[0] + lengths[1] + lengths[2] + lengths[3]) / kSpeed + 4.0 * turn_s;
-  double rest = std::fmod(t, lap_s);
-  for (std::size_t side = 0; side < 4; ++side) {
-    const double heading = kPi / 2.0 * static_cast<double>(side);
-    const double drive_s = lengths[side] / kSpeed;
-    if (rest < drive_s) {
-      const double s = kSpeed * rest;
-      return {corners[side][0] + s * std::cos(heading), corners[side][1] + s * std::sin(heading), wrap_angle(heading)};
-    }
-    rest -= drive_s;
-    const std::array<double, 2>& end = corners[(side + 1) % 4];
-    if (rest < turn_s || side == 3) {
-      return {end[0], end[1], wrap_angle(heading + kTurnRate * std::min(rest, turn_s))};
-    }
-    rest -= turn_s;
-  }
-  return {};
-}
 
 /// Range errors of issue 11's UWB model without outliers: white w, a Gauss-Markov bias per link
 /// b_kl(t) and a common-mode Gauss-Markov error c(t) of the robot pair, all in m (a local
@@ -123,7 +97,7 @@ MeanErrors run(const RangeErrors::Model& model, double duration_s, std::uint64_t
   const int epochs = static_cast<int>(std::lround(duration_s / kEpochS));
   for (int e = 0; e < epochs; ++e) {
     const double t = kEpochS * e;
-    const model::Pose2 truth = model::between(robot0, rectangle_pose(t));
+    const model::Pose2 truth = model::between(robot0, testing::exp1a_rectangle_pose(t));
     Eigen::MatrixXd ranges = errors.next(kEpochS, engine);
     for (Eigen::Index k = 0; k < 4; ++k) {
       for (Eigen::Index l = 0; l < 4; ++l) {
@@ -134,7 +108,7 @@ MeanErrors run(const RangeErrors::Model& model, double duration_s, std::uint64_t
     const model::Pose2 uwb = solve_relative_pose(array, array, ranges, truth, solver).pose;
     std::vector<model::Pose2> odometry(2);
     if (e > 0) {
-      odometry[1] = model::between(rectangle_pose(t - kEpochS), rectangle_pose(t));
+      odometry[1] = model::between(testing::exp1a_rectangle_pose(t - kEpochS), testing::exp1a_rectangle_pose(t));
     }
     for (model::Pose2& o : odometry) {
       const double nx = standard_normal(engine);

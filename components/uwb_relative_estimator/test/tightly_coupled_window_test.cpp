@@ -19,6 +19,7 @@
 #include "common/angle.hpp"
 #include "common/random.hpp"
 #include "components/uwb_relative_estimator/relative_pose_solver.hpp"
+#include "components/uwb_relative_estimator/test/exp1a_route.hpp"
 #include "components/uwb_relative_estimator/test/true_ranges.hpp"
 #include "components/uwb_relative_estimator/tightly_coupled_window.hpp"
 #include "components/uwb_sensor/uwb_error_model.hpp"
@@ -27,33 +28,6 @@ namespace robodds::uwb_relative_estimator {
 namespace {
 
 constexpr double kEpochS = 0.1;  // 10 Hz epochs
-
-/// Robot 1 of the paper's experiment 1-a: the rectangle with corners (+-3.5, +-3) counter-clockwise
-/// from (-3.5, -3) at 0.2 m/s, turning in place by 90 deg at 0.5 rad/s at each corner.
-model::Pose2 rectangle_pose(double t) {
-  constexpr double kSpeed = 0.2;
-  constexpr double kTurnRate = 0.5;
-  const std::array<double, 4> lengths{7.0, 6.0, 7.0, 6.0};
-  const std::array<std::array<double, 2>, 4> corners{{{-3.5, -3.0}, {3.5, -3.0}, {3.5, 3.0}, {-3.5, 3.0}}};
-  const double turn_s = (kPi / 2.0) / kTurnRate;
-  const double lap_s = (lengths[0] + lengths[1] + lengths[2] + lengths[3]) / kSpeed + 4.0 * turn_s;
-  double rest = std::fmod(t, lap_s);
-  for (std::size_t side = 0; side < 4; ++side) {
-    const double heading = kPi / 2.0 * static_cast<double>(side);
-    const double drive_s = lengths[side] / kSpeed;
-    if (rest < drive_s) {
-      const double s = kSpeed * rest;
-      return {corners[side][0] + s * std::cos(heading), corners[side][1] + s * std::sin(heading), wrap_angle(heading)};
-    }
-    rest -= drive_s;
-    const std::array<double, 2>& end = corners[(side + 1) % 4];
-    if (rest < turn_s || side == 3) {
-      return {end[0], end[1], wrap_angle(heading + kTurnRate * std::min(rest, turn_s))};
-    }
-    rest -= turn_s;
-  }
-  return {};
-}
 
 struct TcRun {
   double tc_m = 0.0;
@@ -96,7 +70,7 @@ TcRun run(const uwb_sensor::UwbErrorParams& model, const TightWindowParams& para
   model::Pose2 previous_uwb;
   for (int e = 0; e < epochs; ++e) {
     const double t = kEpochS * e;
-    const model::Pose2 truth = model::between(robot0, rectangle_pose(t));
+    const model::Pose2 truth = model::between(robot0, testing::exp1a_rectangle_pose(t));
     errors.advance_to(t);
     const Eigen::MatrixXd ranges = uwb_sensor::measure_ranges(testing::true_ranges(array, array, truth), errors.link_bias_m(true),
                                                               errors.common_m(), model, engine, nlos_engine);
@@ -105,7 +79,7 @@ TcRun run(const uwb_sensor::UwbErrorParams& model, const TightWindowParams& para
     previous_uwb = uwb;
     model::Pose2 odometry;
     if (e > 0) {
-      odometry = model::between(rectangle_pose(t - kEpochS), rectangle_pose(t));
+      odometry = model::between(testing::exp1a_rectangle_pose(t - kEpochS), testing::exp1a_rectangle_pose(t));
     }
     odometry = {odometry.x + 0.001 * standard_normal(odometry_engine), odometry.y + 0.001 * standard_normal(odometry_engine),
                 wrap_angle(odometry.theta + 0.001 * standard_normal(odometry_engine))};
