@@ -17,3 +17,27 @@ ROBODDS="$ROBODDS" timeout -k 5 "$limit_s" python3 "$SRC/scripts/paper3_results.
 grep -q "Table 2" "$WORK/tables.md" || fail "no tables printed"
 cat "$WORK/tables.md"
 echo "ok: every checked paper-3 acceptance figure over 5 seeds holds"
+# Issue 28: the tightly coupled stage (tc) of the same runs against its targets, means over the 5
+# seeds (docs/results/paper3.md "Beyond the paper"; the 10-seed table: scripts/paper3_tc_results.sh).
+# Experiment 2's heading target (2.7 deg) is printed, not checked: 2.703 deg over seeds 1-10 and
+# 2.72 over seeds 1-5, a miss the doc states.
+python3 - "$WORK/results" <<'PY' || fail "the tc stage misses issue 28's targets"
+import json, statistics, sys
+out = sys.argv[1]
+def means(name, stage):
+    rows = [json.load(open(f"{out}/{name}_seed{k}/summary.json"))["metrics"]["stages"][stage] for k in range(1, 6)]
+    return (statistics.mean(r["position_error_m_mean"] for r in rows), statistics.mean(r["heading_error_deg_mean"] for r in rows))
+failed = []
+for name, label, max_m, max_deg in (("exp2", "experiment 2", 0.25, None), ("exp1a_s0.5_w30", "experiment 1-a side 0.5 m", 0.176, 2.16)):
+    tc, pf = means(name, "tc"), means(name, "pf")
+    print(f"{label}: tc {tc[0]:.3f} m / {tc[1]:.2f} deg, pf {pf[0]:.3f} m / {pf[1]:.2f} deg (seeds 1-5)")
+    if tc[0] > max_m:
+        failed.append(f"{label}: tc position {tc[0]:.3f} m > {max_m} m")
+    if max_deg is not None and tc[1] > max_deg:
+        failed.append(f"{label}: tc heading {tc[1]:.2f} deg > {max_deg} deg")
+    if tc[0] >= pf[0]:
+        failed.append(f"{label}: tc position {tc[0]:.3f} m not below the pf's {pf[0]:.3f} m")
+if failed:
+    sys.exit("FAIL: " + "; ".join(failed))
+PY
+echo "ok: the tc stage meets issue 28's position targets (both experiments) and experiment 1-a's heading target"
