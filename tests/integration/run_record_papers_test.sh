@@ -9,7 +9,7 @@
 #     values of the run's CSVs (recording_matches_csvs.py: counts, every column, log and publish
 #     times; paper 3's evaluator serves robot 1, so a second run with an evaluator of robots 2 and
 #     3 gives their rows);
-#   - paper 3's pair-keyed topics are in the file: the five estimate/relative_pose* (in the CSVs)
+#   - paper 3's pair-keyed topics are in the file: the six estimate/relative_pose* (in the CSVs)
 #     and sensor/uwb (no CSV: every direction at every 50 Hz step, shape, ranges near the true
 #     distance of plant_state.csv);
 #   - each recorded co-located and with --deploy processes gives byte-identical files;
@@ -31,7 +31,7 @@ command -v node >/dev/null || fail "node not found (scripts/setup.sh installs no
 sed 's/time_s: 1000\.0/time_s: 10.0/' "$SRC/sim/scenarios/paper2_circumnavigation.yaml" >"$WORK/paper2.yaml"
 grep -q "time_s: 10.0, robots: \[4\], leave: true" "$WORK/paper2.yaml" || fail "paper2_circumnavigation.yaml's events changed: update this test"
 PAPER2_TOPICS="[plant/state, plant/cmd, estimate/pose, mission/target, sensor/range, observer/range_rate, observer/range_rate_linear, observer/range_rate_kf]"
-PAPER3_TOPICS="[plant/state, plant/cmd, estimate/pose, sensor/odometry, estimate/relative_pose, estimate/relative_pose_uwb, estimate/relative_pose_window, estimate/relative_pose_pf_baseline, estimate/relative_pose_odometry]"
+PAPER3_TOPICS="[plant/state, plant/cmd, estimate/pose, sensor/odometry, estimate/relative_pose, estimate/relative_pose_uwb, estimate/relative_pose_window, estimate/relative_pose_pf_baseline, estimate/relative_pose_odometry, estimate/relative_pose_tc]"
 
 record() {  # record NAME SCENARIO DEPLOY TOPICS
   local rc=0
@@ -99,7 +99,7 @@ for pair in directions:
     assert seen.get(pair) == list(range(0, STEPS + 1, 2)), f"sensor/uwb {pair}: not every 50 Hz step, in order"
 print(f"ok: sensor/uwb: {len(uwb)} messages, every direction at every 50 Hz step, ranges near the true distances")
 PY
-grep -q "channels: *10" <("$ROBODDS" info "$WORK/paper3.mcap") || fail "paper 3: not 10 channels: $("$ROBODDS" info "$WORK/paper3.mcap")"
+grep -q "channels: *11" <("$ROBODDS" info "$WORK/paper3.mcap") || fail "paper 3: not 11 channels: $("$ROBODDS" info "$WORK/paper3.mcap")"
 
 # Replay (issue 25): paper 3's relative estimator alone re-run on this recording (replay_source of
 # sensor/uwb, keyed by pairs of robots, sensor/odometry and plant/state for the evaluator's truth):
@@ -143,7 +143,7 @@ for f in "$WORK"/paper3/estimate_relative_pose*.csv; do
 done
 ! cmp -s "$WORK/paper3/estimate_relative_pose.csv" "$WORK/paper3_tuned/estimate_relative_pose.csv" ||
   fail "paper 3 re-run with window_epochs 20: estimate_relative_pose.csv did not change"
-echo "ok: paper 3's estimator re-run on the recording: 5 estimate_relative_pose*.csv byte-identical ($(wc -l <"$WORK/paper3/estimate_relative_pose.csv") lines), $(uwb_count "$WORK/paper3_replayed.mcap") sensor/uwb recorded again; window_epochs 20 differs"
+echo "ok: paper 3's estimator re-run on the recording: 6 estimate_relative_pose*.csv byte-identical ($(wc -l <"$WORK/paper3/estimate_relative_pose.csv") lines), $(uwb_count "$WORK/paper3_replayed.mcap") sensor/uwb recorded again; window_epochs 20 differs"
 (cd "$WORK" && expect_error 2 "paper3_replay_robot4\.yaml: components: lockstep: component 'estimator1' waits at every step for sensor/uwb \(robot_id=1 peer_id=4\), an instance its producer 'replay' does not publish" -- \
   "$ROBODDS" run paper3_replay_robot4.yaml --duration 20 --domain "$DOMAIN" --out robot4 --no-plots)
 (cd "$WORK" && expect_error 2 "replay: paper3\.mcap cannot drive this run: sensor/uwb \(robot_id=1 peer_id=3\): robot 3 is not a robot of the scenario \(its robots: 1, 2\)" -- \
