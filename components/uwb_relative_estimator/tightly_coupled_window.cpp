@@ -221,13 +221,33 @@ struct Factor {
   std::vector<double*> parameters;
 };
 
+/// The factors between consecutive epochs `prev` and `next` (the window's Epoch): the relative
+/// motion of both odometries, and the Gauss-Markov transitions of the pair's common mode and of
+/// the link biases (exact discretisation over their time step) when they are states. `kl`: links.
+template <class Epoch>
+void add_transition_factors(std::vector<Factor>& factors, const TightWindowParams& params, int kl, Epoch& prev,
+                            Epoch& next) {
+  const double dt = next.time_s - prev.time_s;
+  factors.push_back(Factor{std::make_unique<MotionCost>(next.own_increment, next.peer_increment, next.motion_sqrt_information),
+                           {prev.pose, next.pose}});
+  if (params.common_bias_state) {
+    const double a = std::exp(-dt / params.common_time_s);
+    const double q = params.common_std_m * std::sqrt(std::max(1.0 - a * a, 1e-12));
+    factors.push_back(Factor{std::make_unique<GaussMarkovCost>(1, a, q), {&prev.common, &next.common}});
+  }
+  if (params.link_bias_states) {
+    const double a = std::exp(-dt / params.link_bias_time_s);
+    const double q = params.link_bias_std_m * std::sqrt(std::max(1.0 - a * a, 1e-12));
+    factors.push_back(Factor{std::make_unique<GaussMarkovCost>(kl, a, q), {prev.links.data(), next.links.data()}});
+  }
+}
+
 /// Adds J^T J and J^T r of `factors` to H and g, for the parameter blocks `offset_of` maps to an
 /// index (others ignored).
 template <class OffsetOf>
-void accumulate(const std::vector<const Factor*>& factors, const OffsetOf& offset_of, Eigen::MatrixXd& h,
-                Eigen::VectorXd& g) {
-  for (const Factor* f : factors) {
-    const ceres::CostFunction& cost = *f->cost;
+void accumulate(const std::vector<Factor>& factors, const OffsetOf& offset_of, Eigen::MatrixXd& h, Eigen::VectorXd& g) {
+  for (const Factor& factor : factors) {
+    const ceres::CostFunction& cost = *factor.cost;
     const int m = cost.num_residuals();
     const std::vector<int32_t>& sizes = cost.parameter_block_sizes();
     std::vector<RowMatrix> jac(sizes.size());
@@ -237,15 +257,15 @@ void accumulate(const std::vector<const Factor*>& factors, const OffsetOf& offse
       jp[b] = jac[b].data();
     }
     Eigen::VectorXd r(m);
-    cost.Evaluate(f->parameters.data(), r.data(), jp.data());
+    cost.Evaluate(factor.parameters.data(), r.data(), jp.data());
     for (std::size_t a = 0; a < sizes.size(); ++a) {
-      const int oa = offset_of(f->parameters[a]);
+      const int oa = offset_of(factor.parameters[a]);
       if (oa < 0) {
         continue;
       }
       g.segment(oa, sizes[a]) += jac[a].transpose() * r;
       for (std::size_t b = 0; b < sizes.size(); ++b) {
-        const int ob = offset_of(f->parameters[b]);
+        const int ob = offset_of(factor.parameters[b]);
         if (ob >= 0) {
           h.block(oa, ob, sizes[a], sizes[b]) += jac[a].transpose() * jac[b];
         }
@@ -446,20 +466,7 @@ bool TightlyCoupledWindow::solve() {
     if (t == 0) {
       continue;
     }
-    Epoch& prev = epochs_[t - 1];
-    const double dt = e.time_s - prev.time_s;
-    factors.push_back(Factor{std::make_unique<MotionCost>(e.own_increment, e.peer_increment, e.motion_sqrt_information),
-                             {prev.pose, e.pose}});
-    if (params_.common_bias_state) {
-      const double a = std::exp(-dt / params_.common_time_s);
-      const double q = params_.common_std_m * std::sqrt(std::max(1.0 - a * a, 1e-12));
-      factors.push_back(Factor{std::make_unique<GaussMarkovCost>(1, a, q), {&prev.common, &e.common}});
-    }
-    if (links) {
-      const double a = std::exp(-dt / params_.link_bias_time_s);
-      const double q = params_.link_bias_std_m * std::sqrt(std::max(1.0 - a * a, 1e-12));
-      factors.push_back(Factor{std::make_unique<GaussMarkovCost>(kl, a, q), {prev.links.data(), e.links.data()}});
-    }
+    add_transition_factors(factors, params_, kl, epochs_[t - 1], e);
   }
 
   ceres::Problem::Options problem_options;
@@ -500,11 +507,7 @@ bool TightlyCoupledWindow::solve() {
     }
     return -1;
   };
-  std::vector<const Factor*> all;
-  for (const Factor& f : factors) {
-    all.push_back(&f);
-  }
-  accumulate(all, offset_of, h, g);
+  accumulate(factors, offset_of, h, g);
   if (!params_.common_bias_state) {
     for (int t = 0; t < epochs; ++t) {
       h(t * n + 3, t * n + 3) += 1e12;  // held at zero
@@ -544,20 +547,7 @@ void TightlyCoupledWindow::marginalize_oldest() {
   if (old.ranges) {
     factors.push_back(Factor{std::make_unique<RangeCost>(own_array_, peer_array_, *old.ranges, white, links), blocks(old)});
   }
-  factors.push_back(Factor{std::make_unique<MotionCost>(next.own_increment, next.peer_increment, next.motion_sqrt_information),
-                           {old.pose, next.pose}});
-  const double dt = next.time_s - old.time_s;
-  if (params_.common_bias_state) {
-    const double a = std::exp(-dt / params_.common_time_s);
-    factors.push_back(Factor{std::make_unique<GaussMarkovCost>(1, a, params_.common_std_m * std::sqrt(std::max(1.0 - a * a, 1e-12))),
-                             {&old.common, &next.common}});
-  }
-  if (links) {
-    const double a = std::exp(-dt / params_.link_bias_time_s);
-    factors.push_back(
-        Factor{std::make_unique<GaussMarkovCost>(kl, a, params_.link_bias_std_m * std::sqrt(std::max(1.0 - a * a, 1e-12))),
-               {old.links.data(), next.links.data()}});
-  }
+  add_transition_factors(factors, params_, kl, old, next);
   Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * n);
   const auto offset_of = [&](const double* p) {
@@ -569,11 +559,7 @@ void TightlyCoupledWindow::marginalize_oldest() {
     if (links && p == next.links.data()) return n + 4;
     return -1;
   };
-  std::vector<const Factor*> all;
-  for (const Factor& f : factors) {
-    all.push_back(&f);
-  }
-  accumulate(all, offset_of, h, g);
+  accumulate(factors, offset_of, h, g);
   if (!params_.common_bias_state) {
     h(3, 3) += 1e12;      // held at zero: nothing of it passes on
     h(n + 3, n + 3) += 1.0;  // keeps the prior positive definite (the state is constant anyway)
