@@ -91,11 +91,13 @@ CheckResult check_uwb_ranges(const idl::UwbRanges& s) {
 }
 
 CheckResult check_pose_estimate(const idl::PoseEstimate& s) {
-  return first({within("x", s.x(), kPos), within("y", s.y(), kPos), within("theta", s.theta(), kAngle), covariance(s.cov())});
+  return first({within("x", s.x(), kPos), within("y", s.y(), kPos), within("theta", s.theta(), kAngle), covariance(s.cov()),
+                variance("fix_noise_std_m", s.fix_noise_std_m())});
 }
 
 CheckResult check_relative_pose_estimate(const idl::RelativePoseEstimate& s) {
-  return first({within("x", s.x(), kPos), within("y", s.y(), kPos), within("theta", s.theta(), kAngle), covariance(s.cov())});
+  return first({within("x", s.x(), kPos), within("y", s.y(), kPos), within("theta", s.theta(), kAngle), covariance(s.cov()),
+                variance("range_noise_std_m", s.range_noise_std_m())});
 }
 
 CheckResult check_range_rate_estimate(const idl::RangeRateEstimate& s) {

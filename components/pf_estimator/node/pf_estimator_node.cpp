@@ -115,6 +115,7 @@ class PfEstimatorNode : public Component {
       // have confirmed the belief first (issue 27).
       m.valid(validity.next(e, filter.confirmed(), filter.recovery_count()));
       m.restarts(static_cast<std::uint32_t>(filter.recovery_count()));  // a consumer sees each redraw, even one it missed
+      m.fix_noise_std_m(filter.measurement_std_estimate_m());           // what it gates and weighs the fixes with
     }
     return m;
   }

@@ -34,6 +34,10 @@ bool uses_frames(Stage s) {
   return s == Stage::kWindow || s == Stage::kPf || s == Stage::kPfBaseline || s == Stage::kTc;
 }
 
+/// The stages whose covariance the estimated range noise sizes (tc fits the raw ranges with its
+/// own model; odometry takes none).
+bool uses_range_noise(Stage s) { return s != Stage::kOdometry && s != Stage::kTc; }
+
 class UwbRelativeEstimatorNode : public Component {
  public:
   void configure(ComponentContext& ctx) override {
@@ -238,13 +242,15 @@ class UwbRelativeEstimatorNode : public Component {
         const StageEstimate& stage = peer.stages[s];
         const auto kind = static_cast<Stage>(s);
         const bool valid = stage.valid && (odometry_fresh || kind == Stage::kUwb) && (frames_fresh || !uses_frames(kind));
-        publish(*outputs_[s], id, setups[k].id, stage, valid);
+        // The range noise sizes the range errors in these stages' covariances (issue 27).
+        const double range_noise_std_m = uses_range_noise(kind) ? robot.estimator.range_noise_std_m(k) : 0.0;
+        publish(*outputs_[s], id, setups[k].id, stage, valid, range_noise_std_m);
       }
     }
   }
 
   static void publish(Output<idl::RelativePoseEstimate>& out, std::uint32_t robot, std::uint32_t peer,
-                      const StageEstimate& stage, bool valid) {
+                      const StageEstimate& stage, bool valid, double range_noise_std_m) {
     idl::RelativePoseEstimate m;
     m.robot_id(robot);
     m.peer_id(peer);
@@ -261,6 +267,7 @@ class UwbRelativeEstimatorNode : public Component {
       }
     }
     m.valid(valid && finite);
+    m.range_noise_std_m(range_noise_std_m);
     out.publish(m);
   }
 

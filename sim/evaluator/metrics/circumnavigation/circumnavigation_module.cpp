@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +16,7 @@
 #include "robodds/idl/robodds.h"
 #include "runtime/base/log.hpp"
 #include "sim/evaluator/metrics/circumnavigation/circumnavigation_metrics.hpp"
+#include "sim/evaluator/noise_levels.hpp"
 #include "sim/evaluator/module/metrics_module_registry.hpp"
 #include "system/robot_facts.hpp"
 
@@ -29,9 +29,7 @@ class CircumnavigationModule : public MetricsModule {
   /// designed for), else its default.
   void configure(MetricsSetup& setup) override {
     metrics_.reset();
-    for (auto& by_robot : noise_std_m_) {
-      by_robot.clear();
-    }
+    noise_std_m_ = {};
     if (!setup.recorded("plant/state") || !setup.recorded("mission/target")) {
       return;
     }
@@ -61,7 +59,7 @@ class CircumnavigationModule : public MetricsModule {
       setup.on<idl::RangeRateEstimate>(topic, [this, &m, kind = kind](const idl::RangeRateEstimate& e) {
         m.add_estimate(kind, e.robot_id(),
                        {e.header().step(), e.target_id(), e.range_rate(), e.valid(), e.restarted(), e.range_rate_std_mps()});
-        noise_std_m_[static_cast<std::size_t>(kind)][e.robot_id()] = e.range_noise_std_m();
+        noise_std_m_[static_cast<std::size_t>(kind)].add(e.robot_id(), e.range_noise_std_m());
       });
     }
   }
@@ -134,17 +132,9 @@ class CircumnavigationModule : public MetricsModule {
       optional("max_error_after_restart_mps", o.max_error_after_restart_mps);
       json.value("restarts", static_cast<std::int64_t>(o.restarts));
       json.value("matched_samples", static_cast<std::int64_t>(o.matched));
-      if (!noise_std_m_[k].empty()) {
-        // The range noise the observers estimated (issue 27), at their last sample: the mean over
-        // the robots (m), and the largest.
-        double sum = 0.0, largest = 0.0;
-        for (const auto& [robot, sigma] : noise_std_m_[k]) {
-          sum += sigma;
-          largest = std::max(largest, sigma);
-        }
-        json.value("range_noise_std_m", sum / static_cast<double>(noise_std_m_[k].size()));
-        json.value("range_noise_std_max_m", largest);
-      }
+      // The range noise the observers estimated (issue 27), at their last sample: the mean over
+      // the robots (m), and the largest.
+      noise_std_m_[k].write(json, "range_noise_std_m", "range_noise_std_max_m");
       json.begin_object("consistency");
       write_scalar_consistency(json, o.consistency, "worst_error_valid_mps");
       json.end_object();
@@ -177,7 +167,7 @@ class CircumnavigationModule : public MetricsModule {
 
  private:
   std::unique_ptr<CircumnavigationMetrics> metrics_;  // null: the mission is not recorded
-  std::array<std::map<std::uint32_t, double>, kObserverKinds> noise_std_m_;  // by kind: robot -> its last estimate, m
+  std::array<NoiseLevels, kObserverKinds> noise_std_m_;  // by kind: each robot's last estimate, m
   bool b_is_default_ = false;  // the scenario declares no range_accel_bound_mps2, b is its default
   std::string component_name_;
 };

@@ -14,6 +14,7 @@
 #include "sim/evaluator/consistency.hpp"
 #include "sim/evaluator/module/metrics_module_registry.hpp"
 #include "sim/evaluator/module/per_robot.hpp"
+#include "sim/evaluator/noise_levels.hpp"
 #include "sim/evaluator/track.hpp"
 
 namespace robodds::evaluator {
@@ -52,6 +53,7 @@ class ConsistencyModule : public MetricsModule {
       e.valid = m.valid();
       std::copy(m.cov().begin(), m.cov().end(), e.cov.begin());
       robot(m.robot_id()).pending.push_back(e);
+      fix_noise_.add(m.robot_id(), m.fix_noise_std_m());
     });
   }
 
@@ -77,6 +79,9 @@ class ConsistencyModule : public MetricsModule {
     }
     json.begin_object("estimate_pose");
     write_consistency(json, r->tracker.stats());
+    NoiseLevels own;  // the same keys as the pooled figure's, of this robot alone
+    own.add(id, fix_noise_.last(id));
+    own.write(json, "fix_noise_std_m", "fix_noise_std_max_m");
     json.end_object();
   }
 
@@ -95,6 +100,9 @@ class ConsistencyModule : public MetricsModule {
     }
     json.begin_object("estimate_pose");
     write_consistency(json, all);
+    // The fix noise the estimator estimated (issue 27), at its last sample: mean over the robots
+    // (m, per axis), and the largest.
+    fix_noise_.write(json, "fix_noise_std_m", "fix_noise_std_max_m");
     json.end_object();
   }
 
@@ -105,6 +113,7 @@ class ConsistencyModule : public MetricsModule {
   std::vector<std::uint64_t> served_;
   double step_s_ = 0.0;
   PerRobot<RobotConsistency> robots_;
+  NoiseLevels fix_noise_;  // each robot's last estimated fix noise, m
 };
 
 std::unique_ptr<MetricsModule> make_consistency_module() { return std::make_unique<ConsistencyModule>(); }

@@ -15,6 +15,7 @@
 #include "sim/evaluator/metrics/relative_pose/relative_pose_metrics.hpp"
 #include "sim/evaluator/metrics/relative_pose/relative_recorder.hpp"
 #include "sim/evaluator/metrics/relative_pose/truth_by_robot.hpp"
+#include "sim/evaluator/noise_levels.hpp"
 #include "sim/evaluator/module/metrics_module_registry.hpp"
 
 namespace robodds::evaluator {
@@ -65,7 +66,7 @@ class RelativePoseModule : public MetricsModule {
   void finish(bool /*completed*/) override { settle(true); }
 
   /// "stages": {"<stage>": {position_error_m_mean, position_error_m_std, heading_error_deg_mean,
-  /// heading_error_deg_std, epochs, invalid_epochs, consistency}} for each recorded relative pose
+  /// heading_error_deg_std, epochs, invalid_epochs, range_noise_std_m, range_noise_std_max_m, consistency}} for each recorded relative pose
   /// topic; means and stds only with epochs; consistency (sim/evaluator/consistency.hpp) from step
   /// 0, every estimate with truth against the covariance it reports.
   void write_metrics(JsonWriter& json) const override {
@@ -84,11 +85,16 @@ class RelativePoseModule : public MetricsModule {
       json.value("epochs", static_cast<std::int64_t>(stage.epochs));
       json.value("invalid_epochs", static_cast<std::int64_t>(stage.invalid_epochs));
       ConsistencyStats consistency;
+      NoiseLevels range_noise;
       for (const RelativeRecorder* recorder : recorders_) {
         if (recorder->stage() == name) {
           consistency = pooled(consistency, recorder->consistency());
+          range_noise.merge(recorder->range_noise());
         }
       }
+      // The independent range noise the estimator saw (issue 27): mean over the pairs of their last
+      // estimate (m), and the largest; stages that use none (odometry, tc) report none.
+      range_noise.write(json, "range_noise_std_m", "range_noise_std_max_m");
       if (consistency.samples > 0) {
         json.begin_object("consistency");
         write_consistency(json, consistency);

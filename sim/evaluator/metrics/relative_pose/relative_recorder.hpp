@@ -22,6 +22,7 @@
 #include "sim/evaluator/consistency.hpp"
 #include "sim/evaluator/metrics/relative_pose/relative_pose_metrics.hpp"
 #include "sim/evaluator/metrics/relative_pose/truth_by_robot.hpp"
+#include "sim/evaluator/noise_levels.hpp"
 #include "sim/evaluator/module/recorder.hpp"
 
 namespace robodds::evaluator {
@@ -79,6 +80,7 @@ class RelativeRecorder : public TopicRecorder {
     for (std::uint64_t key : keys_) {
       for (Msg& sample : input_->take_new(key)) {
         last_step_ = std::max(last_step_, sample.header().step());
+        range_noise_.add(key, sample.range_noise_std_m());
         pending_.push_back(std::move(sample));
         ++rows_;
       }
@@ -141,6 +143,8 @@ class RelativeRecorder : public TopicRecorder {
     }
     return all;
   }
+  /// The range noise each pair's estimator reported at its last sample (issue 27).
+  const NoiseLevels& range_noise() const { return range_noise_; }
   const std::string& stage() const { return stage_; }
   /// The oldest step of truth this recorder may still need.
   std::uint64_t truth_needed_from() const {
@@ -159,6 +163,7 @@ class RelativeRecorder : public TopicRecorder {
   std::deque<Msg> pending_;     // taken, waiting for the truth of their step
   std::map<std::uint64_t, ConsistencyTracker> consistency_;  // by pair
   std::uint64_t last_step_ = 0; // the newest step taken
+  NoiseLevels range_noise_;     // by pair, m
 };
 
 }  // namespace robodds::evaluator

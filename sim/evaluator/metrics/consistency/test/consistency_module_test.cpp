@@ -38,6 +38,7 @@ components:
     e.x(step < 3 ? 60.0 : 11.0);
     const double var = step < 6 ? 0.04 : 1.0;
     e.cov({var, 0, 0, 0, var, 0, 0, 0, 0.01});
+    e.fix_noise_std_m(step < 10 ? 2.0 : 1.5);  // m: the last one is what summary.json reports
     h.publish("estimate/pose", e, step, step + 1);
   });
   h.run({"evaluator"});
@@ -48,6 +49,8 @@ components:
   EXPECT_NEAR(pose.at("overconfident_fraction").get<double>(), 3.0 / 8.0, 1e-12);
   EXPECT_NEAR(pose.at("worst_position_error_valid_m").get<double>(), 1.0, 1e-12) << "not the invalid 50 m";
   EXPECT_NEAR(pose.at("longest_overconfident_s").get<double>(), 0.03, 1e-12);
+  EXPECT_EQ(pose.at("fix_noise_std_m").get<double>(), 1.5) << "issue 27: the estimated fix noise, last sample";
+  EXPECT_EQ(pose.at("fix_noise_std_max_m").get<double>(), 1.5);
   EXPECT_EQ(summary.at("metrics").at("robots").at("1").at("estimate_pose"), pose) << "one robot: pooled = its own";
 }
 

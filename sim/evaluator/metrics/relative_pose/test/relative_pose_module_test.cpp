@@ -79,6 +79,7 @@ void feed_relative(NodeHarness& h, bool pf_valid = true) {
         e.y(truth.y);
         e.theta(truth.theta + 0.1);
         e.valid(pf_valid);
+        e.range_noise_std_m(0.125 * peer);  // m; last per pair: 0.25, 0.375, 0.125, 0.375
         if (robot == 1 && peer == 3 && step == 6) {
           e.x(std::numeric_limits<double>::quiet_NaN());
         }
@@ -86,6 +87,7 @@ void feed_relative(NodeHarness& h, bool pf_valid = true) {
         e.x(truth.x);
         e.theta(truth.theta);
         e.valid(step % 2 == 1);
+        e.range_noise_std_m(0.0);  // this stage estimates none
         h.publish("estimate/relative_pose_uwb", e, step, step + 1);
       }
     }
@@ -134,6 +136,10 @@ TEST(EvaluatorNode, RecordsRelativePosesWithTheirTruthAndWritesTheStageErrors) {
   EXPECT_EQ(stage_value(summary, "uwb", "epochs"), 12.0) << "steps 5, 7, 9 of 4 pairs: " << summary;
   EXPECT_EQ(stage_value(summary, "uwb", "invalid_epochs"), 12.0) << "steps 6, 8, 10 of 4 pairs: " << summary;
   EXPECT_NEAR(stage_value(summary, "uwb", "position_error_m_mean"), 0.0, 1e-9);
+  // Issue 27: the range noise the estimator reported, per stage: mean over the pairs' last values, largest.
+  EXPECT_NEAR(stage_value(summary, "pf", "range_noise_std_m"), (0.25 + 0.375 + 0.125 + 0.375) / 4.0, 1e-12) << summary;
+  EXPECT_NEAR(stage_value(summary, "pf", "range_noise_std_max_m"), 0.375, 1e-12) << summary;
+  EXPECT_TRUE(std::isnan(stage_value(summary, "uwb", "range_noise_std_m"))) << "reported 0: none estimated: " << summary;
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("samples": \{\s*"estimate/relative_pose": 43,\s*)"
                                                     R"("plant/state": 33,\s*"estimate/relative_pose_uwb": 44\s*\})")))
       << "plant/state of all three robots (the peers' truth): " << summary;
@@ -144,13 +150,13 @@ TEST(EvaluatorNode, RecordsRelativePosesWithTheirTruthAndWritesTheStageErrors) {
   ASSERT_EQ(csv.size(), 1u + 43u) << "11 steps x 4 pairs - the NaN sample";
   EXPECT_EQ(csv[0].rfind("t_s,robot_id,peer_id,header.step,header.next_step,header.stamp_ns,x,y,theta,cov[0],", 0), 0u)
       << csv[0];
-  EXPECT_NE(csv[0].find(",cov[8],valid,true_x,true_y,true_theta"), std::string::npos) << csv[0];
+  EXPECT_NE(csv[0].find(",cov[8],valid,range_noise_std_m,true_x,true_y,true_theta"), std::string::npos) << csv[0];
   // Step 0 in key order (1,2), (1,3), (2,1), (2,3); j in i's frame: robot 2 at 2 m ahead of robot 1,
   // turned +90 deg; robot 1 seen from robot 2 (facing +y, 2 m to its right) at (0, 2), -90 deg.
   EXPECT_EQ(csv[1].rfind("0.000000000,1,2,0,1,0,102.5,0,1.6707963267948966,", 0), 0u) << csv[1];
-  EXPECT_NE(csv[1].find(",1,2,0,1.5707963267948966"), std::string::npos) << "valid, then the truth: " << csv[1];
+  EXPECT_NE(csv[1].find(",1,0.25,2,0,1.5707963267948966"), std::string::npos) << "valid, range noise, then the truth: " << csv[1];
   EXPECT_EQ(csv[3].rfind("0.000000000,2,1,", 0), 0u) << csv[3];
-  const std::string robot1_from_2 = csv[3].substr(csv[3].rfind(",1,") + 3);
+  const std::string robot1_from_2 = csv[3].substr(csv[3].rfind(",1,0.125,") + 9);
   EXPECT_NEAR(std::stod(robot1_from_2.substr(0, robot1_from_2.find(','))), 0.0, 1e-12) << csv[3];
   EXPECT_NE(csv[3].find(",-1.5707963267948966"), std::string::npos) << csv[3];
   EXPECT_EQ(lines_of(h.output_dir() + "/plant_state.csv").size(), 1u + 33u);
