@@ -2,11 +2,25 @@
 # `robodds topics` lists the live topics with type and QoS; `robodds echo` prints samples readably
 # (enums by name), filtered by key (--robot, --key), one field (--field), as JSON or CSV.
 source "$(dirname "$0")/lib.sh"
+# await_topics PATTERN...: `robodds topics` (2 s of discovery each) until every PATTERN matches a
+# line of one listing, within 60 s (a start-up on a loaded machine can take several seconds);
+# the last listing in $topics.
+await_topics() {
+  local deadline=$((SECONDS + 60)) pattern missing
+  while :; do
+    topics="$(timeout -k 2 20 "$ROBODDS" topics --duration 2 --domain "$DOMAIN")" || fail "robodds topics failed: $topics"
+    missing=""
+    for pattern in "$@"; do
+      grep -qE "$pattern" <<<"$topics" || missing="$pattern"
+    done
+    [[ -z $missing ]] && return 0
+    (( SECONDS < deadline )) || fail "no listing within 60 s matched '$missing': $topics"
+  done
+}
 "$ROBODDS" host --scenario "$SRC/sim/scenarios/plant_smoke.yaml" --components plant,commander,position_sensor --realtime $(rt_priority_flag) \
   --duration 30 --domain "$DOMAIN" >"$WORK/host.log" 2>&1 &
 cleanup_pids+=("$!")
-sleep 1
-topics="$(timeout -k 2 20 "$ROBODDS" topics --duration 2 --domain "$DOMAIN")" || fail "robodds topics failed: $topics"
+await_topics "^plant/state " "^sensor/position " "^plant/cmd +robodds::idl::VelocityCommand +1 +1 "
 echo "$topics"
 grep -qE "^plant/state +robodds::idl::RobotState +1 .*RELIABLE/VOLATILE" <<<"$topics" || fail "plant/state missing or wrong QoS"
 grep -qE "^sensor/position +robodds::idl::PositionMeasurement +1 .*BEST_EFFORT/VOLATILE" <<<"$topics" || fail "sensor/position missing"
@@ -59,7 +73,9 @@ grep -q "open_loop_commander" "$WORK/no_commander.yaml" && fail "could not remov
 timeout -k 5 60 "$ROBODDS" run "$WORK/no_commander.yaml" --realtime --duration 6 --domain "$DOMAIN" --out "$WORK/colocated" \
   --no-plots >"$WORK/colocated.log" 2>&1 &
 cleanup_pids+=("$!")
-sleep 2
+# Once the run's endpoints are seen, one more listing: a participant's endpoints may be
+# discovered one after the other, and "no reader" must not be read from a half-discovered run.
+await_topics "^plant/state +robodds::idl::RobotState +1 " "^plant/cmd +robodds::idl::VelocityCommand +[0-9]+ +1 "
 topics="$(timeout -k 2 20 "$ROBODDS" topics --duration 2 --domain "$DOMAIN")" || fail "robodds topics failed: $topics"
 echo "$topics"
 grep -qE "^plant/state +robodds::idl::RobotState +1 +0 " <<<"$topics" || fail "co-located real time: plant/state should have a writer and no reader"
