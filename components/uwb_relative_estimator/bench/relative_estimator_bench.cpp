@@ -163,6 +163,39 @@ BENCHMARK(BM_Exp2Cycle)
     ->UseRealTime()
     ->Unit(benchmark::kMillisecond);
 
+/// One iteration = one epoch of the tc stage of one peer (TightlyCoupledWindow::step: the solve, the
+/// marginalisation, the covariance) through the 600 s sequence of BM_Exp2Cycle's first peer, with
+/// the eq. (1) fixes (RelativePoseTracker, ok only) computed beforehand; started over at its end.
+void BM_TcEpoch(benchmark::State& state) {
+  const std::vector<Epoch>& sequence = epochs(2);
+  const model::UwbArray array = square_array(0.5);
+  const RelativeEstimatorParams params;
+  std::vector<std::optional<model::Pose2>> fixes;
+  RelativePoseTracker tracker(array, array, params.solver, params.tracker);
+  for (std::size_t e = 0; e < sequence.size(); ++e) {
+    const TrackerOutput solved = tracker.update(*sequence[e].peers[0].ranges_m, kEpochS * static_cast<double>(e + 1));
+    fixes.push_back(solved.status == TrackStatus::kOk ? std::optional<model::Pose2>(solved.pose) : std::nullopt);
+  }
+  std::optional<TightlyCoupledWindow> tc;
+  std::size_t e = sequence.size();
+  std::size_t valid = 0;
+  for (auto _ : state) {
+    if (e == sequence.size()) {
+      state.PauseTiming();
+      tc.emplace(array, array, params.tc);
+      e = 0;
+      state.ResumeTiming();
+    }
+    valid += tc->step(kEpochS * static_cast<double>(e + 1), model::Pose2{}, sequence[e].peers[0].odometry_increment,
+                      sequence[e].peers[0].ranges_m, fixes[e])
+                 ? 1
+                 : 0;
+    ++e;
+  }
+  state.counters["valid"] = static_cast<double>(valid);
+}
+BENCHMARK(BM_TcEpoch)->Iterations(6000)->Unit(benchmark::kMillisecond);
+
 struct WindowEpoch {
   std::vector<model::Pose2> odometry;
   std::vector<PairMeasurement> uwb;
