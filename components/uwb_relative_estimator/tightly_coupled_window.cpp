@@ -492,22 +492,6 @@ bool TightlyCoupledWindow::solve() {
   options.num_threads = 1;
   options.logging_type = ceres::SILENT;
   options.minimizer_progress_to_stdout = false;
-  if (links && epochs_.size() > 1) {
-    // The link biases of every other epoch (no factor joins two of them) eliminated first, the rest
-    // by a dense Schur complement (issue 29): BM_TcEpoch 0.285 -> 0.25 ms CPU per epoch against the
-    // sparse normal Cholesky of the whole window (its 20 x 20 blocks are dense).
-    auto ordering = std::make_shared<ceres::ParameterBlockOrdering>();
-    std::vector<double*> all;
-    problem.GetParameterBlocks(&all);
-    for (double* block : all) {
-      ordering->AddElementToGroup(block, 1);
-    }
-    for (std::size_t t = 0; t < epochs_.size(); t += 2) {
-      ordering->AddElementToGroup(epochs_[t].links.data(), 0);
-    }
-    options.linear_solver_ordering = ordering;
-    options.linear_solver_type = ceres::DENSE_SCHUR;
-  }
   ceres::Solver::Summary summary;
   ceres::Solve(options, &problem, &summary);
   const bool converged = summary.termination_type == ceres::CONVERGENCE ||
