@@ -125,7 +125,12 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
       link_trackers_.emplace_back(setups_[a].array, setups_[b].array, params_.solver, params_.tracker);
     }
   }
+  pool_ = std::make_unique<WorkerPool>(params_.threads);
 }
+
+RelativeEstimator::~RelativeEstimator() = default;
+RelativeEstimator::RelativeEstimator(RelativeEstimator&&) = default;
+RelativeEstimator& RelativeEstimator::operator=(RelativeEstimator&&) = default;
 
 EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
                                     const std::vector<std::optional<Eigen::MatrixXd>>& link_ranges) {
@@ -156,120 +161,164 @@ EpochResult RelativeEstimator::step(double time_s, const model::Pose2& own_incre
   ++counts_.epochs;
   const double dt_s = last_time_s_ ? time_s - *last_time_s_ : 0.0;
   last_time_s_ = time_s;
+  const auto cycle_start = std::chrono::steady_clock::now();
   EpochResult result;
   result.peers.resize(peers.size());
+  const std::size_t n = peers.size();
+  // Each task below writes only its own peer's (or link's) state and result, and the counts and
+  // times it returns are added up afterwards in a fixed order: the estimates do not depend on how
+  // many threads run them (issue 29). A stage's time is the sum of its pieces' wall-clock times.
+  std::vector<double> piece_ms(2 * n + links_.size(), 0.0);
 
-  auto start = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < peers.size(); ++k) {
-    PeerResult& out = result.peers[k];
-    peers_[k].fix_variances.resize(0);
-    peers_[k].fix_check.predict(own_increment, peers[k].odometry_increment, params_.window.odometry_xy_std_m,
-                                params_.window.odometry_theta_std_rad);
-    out.had_ranges = peers[k].ranges_m.has_value();
-    if (!out.had_ranges) {
-      ++counts_.frames_missing;
-      out.uwb_reason = "no frame";
-      continue;
-    }
-    const TrackerOutput solved = peers_[k].tracker.update(*peers[k].ranges_m, time_s);
-    out.uwb_status = solved.status;
-    out.uwb_reason = solved.reason;
-    StageEstimate& uwb = out.stages[static_cast<std::size_t>(Stage::kUwb)];
-    uwb.pose = solved.pose;
-    uwb.valid = solved.status == TrackStatus::kOk;
-    if (uwb.valid) {
-      PeerState& peer = peers_[k];
-      const Eigen::MatrixXd& ranges = *peers[k].ranges_m;
-      peer.range_noise.add(robust_residual_std_m(own_array_, setups_[k].array, ranges, uwb.pose));
-      // The running median of robust stds is the noise level (a lucky epoch does not shrink it);
-      // this epoch's plain residual std, when larger, widens it while the link biases line up
-      // badly (they last ~2 s) or a range the fit followed is far off (non-line-of-sight).
-      const double epoch_std_m = residual_rms_std_m(own_array_, setups_[k].array, ranges, uwb.pose);
-      const double noise_std_m = peer.range_noise.std_m();
-      // A range whose leave-one-out residual is far beyond the noise level (non-line-of-sight, a
-      // blocked link) gets its own variance: the fit moved by what it pulled.
-      RangeErrorMap error;
-      if (range_error_map(own_array_, setups_[k].array, uwb.pose, std::max(noise_std_m, epoch_std_m),
-                          params_.uncertainty.range_common_std_m, error, params_.uncertainty.node_bias_std_m)) {
-        error.independent_variance_m2 =
-            range_error_variances(own_array_, setups_[k].array, ranges, uwb.pose, std::max(noise_std_m, epoch_std_m),
-                                  noise_std_m, params_.uncertainty.outlier_sigma);
-        peer.fix_model_covariance = with_bearing_curvature(error.covariance(), uwb.pose);
-        // What the sequence of fixes shows beyond the model (an error that one epoch's residuals
-        // cannot see but that changes as the robots move) widens what this stage reports.
-        peer.fix_check.add(time_s, uwb.pose, error, peer.fix_model_covariance);
-        uwb.covariance = peer.fix_check.inflate(peer.fix_model_covariance);
-        peer.fix_variances = error.independent_variance_m2;
-        peer.fix_own_covariance = error.independent_map * error.independent_variance_m2.asDiagonal() * error.independent_map.transpose();
-      } else {
-        uwb.covariance = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());  // degenerate geometry
-        peer.fix_model_covariance = uwb.covariance;
+  // Eq. (1) of every peer (then its odometry stage) and of every link.
+  std::vector<std::optional<PairMeasurement>> link_solved(links_.size());
+  pool_->run(n + links_.size(), [&](std::size_t i) {
+    const auto start = std::chrono::steady_clock::now();
+    if (i >= n) {
+      const std::size_t l = i - n;
+      if (l < link_ranges.size() && link_ranges[l]) {
+        const TrackerOutput solved = link_trackers_[l].update(*link_ranges[l], time_s);
+        if (solved.status == TrackStatus::kOk) {
+          link_solved[l] = PairMeasurement{links_[l].first + 1, links_[l].second + 1, solved.pose};
+        }
       }
+      piece_ms[2 * n + l] = ms_since(start);
+      return;
     }
-  }
+    run_uwb(i, time_s, own_increment, peers[i], result.peers[i]);
+    const auto odometry_start = std::chrono::steady_clock::now();
+    piece_ms[i] = std::chrono::duration<double, std::milli>(odometry_start - start).count();
+    run_odometry(i, own_increment, peers[i], result.peers[i]);
+    piece_ms[n + i] = ms_since(odometry_start);
+  });
   std::vector<PairMeasurement> link_edges;
-  for (std::size_t l = 0; l < link_ranges.size(); ++l) {
-    if (link_ranges[l]) {
-      const TrackerOutput solved = link_trackers_[l].update(*link_ranges[l], time_s);
-      if (solved.status == TrackStatus::kOk) {
-        link_edges.push_back(PairMeasurement{links_[l].first + 1, links_[l].second + 1, solved.pose});
-      }
+  for (std::size_t l = 0; l < links_.size(); ++l) {
+    result.stage_ms[static_cast<std::size_t>(Stage::kUwb)] += piece_ms[2 * n + l];
+    if (link_solved[l]) {
+      link_edges.push_back(*link_solved[l]);
     }
   }
-  result.stage_ms[static_cast<std::size_t>(Stage::kUwb)] = ms_since(start);
-
-  start = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < peers.size(); ++k) {
-    PeerState& peer = peers_[k];
-    const StageEstimate& uwb = result.peers[k].stages[static_cast<std::size_t>(Stage::kUwb)];
-    if (peer.odometry_pose) {
-      peer.odometry_covariance =
-          propagate_relative_covariance(peer.odometry_covariance, *peer.odometry_pose, own_increment,
-                                        peers[k].odometry_increment, params_.window.odometry_xy_std_m,
-                                        params_.window.odometry_theta_std_rad);
-      peer.odometry_pose = model::compose(model::between(own_increment, *peer.odometry_pose), peers[k].odometry_increment);
-    } else if (uwb.valid) {
-      peer.odometry_pose = uwb.pose;  // no known start: dead reckoning from the first valid fix
-      peer.odometry_covariance = uwb.covariance;
-    }
-    StageEstimate& odometry = result.peers[k].stages[static_cast<std::size_t>(Stage::kOdometry)];
-    odometry.valid = peer.odometry_pose.has_value();
-    if (odometry.valid) {
-      odometry.pose = *peer.odometry_pose;
-      // Its own check: the fixes (independent of the odometry) against the dead reckoning; what
-      // neither covariance explains (a slip's drift) is added.
-      if (uwb.valid) {
-        peer.odometry_check.add(odometry.pose, uwb.pose, peer.fix_model_covariance);
-      }
-      odometry.covariance = peer.odometry_covariance + peer.odometry_check.excess(peer.odometry_covariance);
+  for (std::size_t k = 0; k < n; ++k) {
+    result.stage_ms[static_cast<std::size_t>(Stage::kUwb)] += piece_ms[k];
+    result.stage_ms[static_cast<std::size_t>(Stage::kOdometry)] += piece_ms[n + k];
+    if (!result.peers[k].had_ranges) {
+      ++counts_.frames_missing;
     }
   }
-  result.stage_ms[static_cast<std::size_t>(Stage::kOdometry)] = ms_since(start);
 
-  start = std::chrono::steady_clock::now();
-  run_tc(time_s, own_increment, peers, result);
-  result.stage_ms[static_cast<std::size_t>(Stage::kTc)] = ms_since(start);
-
-  start = std::chrono::steady_clock::now();
-  run_window(own_increment, peers, link_edges, result);
-  result.stage_ms[static_cast<std::size_t>(Stage::kWindow)] = ms_since(start);
-
-  start = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < peers.size(); ++k) {
-    run_pf(k, time_s, dt_s, own_increment, peers[k], result.peers[k]);
+  // The window (one task, the longest: first), and every peer's tc and pf_baseline beside it.
+  std::vector<std::uint64_t> restarts(n, 0);
+  pool_->run(1 + 2 * n, [&](std::size_t i) {
+    const auto start = std::chrono::steady_clock::now();
+    if (i == 0) {
+      run_window(own_increment, peers, link_edges, result);
+      result.stage_ms[static_cast<std::size_t>(Stage::kWindow)] = ms_since(start);
+    } else if (i <= n) {
+      run_tc(i - 1, time_s, own_increment, peers[i - 1], result.peers[i - 1]);
+      piece_ms[i - 1] = ms_since(start);
+    } else {
+      run_baseline(i - 1 - n, time_s, dt_s, own_increment, peers[i - 1 - n], result.peers[i - 1 - n], restarts[i - 1 - n]);
+      piece_ms[i - 1] = ms_since(start);
+    }
+  });
+  for (std::size_t k = 0; k < n; ++k) {
+    result.stage_ms[static_cast<std::size_t>(Stage::kTc)] += piece_ms[k];
+    result.stage_ms[static_cast<std::size_t>(Stage::kPfBaseline)] += piece_ms[n + k];
+    counts_.baseline_restarts += restarts[k];
+    restarts[k] = 0;
   }
-  result.stage_ms[static_cast<std::size_t>(Stage::kPf)] = ms_since(start);
 
-  start = std::chrono::steady_clock::now();
-  for (std::size_t k = 0; k < peers.size(); ++k) {
-    run_baseline(k, time_s, dt_s, own_increment, peers[k], result.peers[k]);
+  // The pf of every peer (weighted by the window's estimate).
+  pool_->run(n, [&](std::size_t k) {
+    const auto start = std::chrono::steady_clock::now();
+    run_pf(k, time_s, dt_s, own_increment, peers[k], result.peers[k], restarts[k]);
+    piece_ms[k] = ms_since(start);
+  });
+  for (std::size_t k = 0; k < n; ++k) {
+    result.stage_ms[static_cast<std::size_t>(Stage::kPf)] += piece_ms[k];
+    counts_.filter_restarts += restarts[k];
   }
-  result.stage_ms[static_cast<std::size_t>(Stage::kPfBaseline)] = ms_since(start);
+  result.cycle_ms = ms_since(cycle_start);
   return result;
 }
 
+void RelativeEstimator::run_uwb(std::size_t k, double time_s, const model::Pose2& own_increment, const PeerEpoch& input,
+                                PeerResult& out) {
+  PeerState& peer = peers_[k];
+  peer.fix_variances.resize(0);
+  peer.fix_check.predict(own_increment, input.odometry_increment, params_.window.odometry_xy_std_m,
+                         params_.window.odometry_theta_std_rad);
+  out.had_ranges = input.ranges_m.has_value();
+  if (!out.had_ranges) {
+    out.uwb_reason = "no frame";
+    return;
+  }
+  const TrackerOutput solved = peer.tracker.update(*input.ranges_m, time_s);
+  out.uwb_status = solved.status;
+  out.uwb_reason = solved.reason;
+  StageEstimate& uwb = out.stages[static_cast<std::size_t>(Stage::kUwb)];
+  uwb.pose = solved.pose;
+  uwb.valid = solved.status == TrackStatus::kOk;
+  if (!uwb.valid) {
+    return;
+  }
+  const Eigen::MatrixXd& ranges = *input.ranges_m;
+  peer.range_noise.add(robust_residual_std_m(own_array_, setups_[k].array, ranges, uwb.pose));
+  // The running median of robust stds is the noise level (a lucky epoch does not shrink it);
+  // this epoch's plain residual std, when larger, widens it while the link biases line up
+  // badly (they last ~2 s) or a range the fit followed is far off (non-line-of-sight).
+  const double epoch_std_m = residual_rms_std_m(own_array_, setups_[k].array, ranges, uwb.pose);
+  const double noise_std_m = peer.range_noise.std_m();
+  // A range whose leave-one-out residual is far beyond the noise level (non-line-of-sight, a
+  // blocked link) gets its own variance: the fit moved by what it pulled.
+  RangeErrorMap error;
+  if (range_error_map(own_array_, setups_[k].array, uwb.pose, std::max(noise_std_m, epoch_std_m),
+                      params_.uncertainty.range_common_std_m, error, params_.uncertainty.node_bias_std_m)) {
+    error.independent_variance_m2 =
+        range_error_variances(own_array_, setups_[k].array, ranges, uwb.pose, std::max(noise_std_m, epoch_std_m),
+                              noise_std_m, params_.uncertainty.outlier_sigma);
+    peer.fix_model_covariance = with_bearing_curvature(error.covariance(), uwb.pose);
+    // What the sequence of fixes shows beyond the model (an error that one epoch's residuals
+    // cannot see but that changes as the robots move) widens what this stage reports.
+    peer.fix_check.add(time_s, uwb.pose, error, peer.fix_model_covariance);
+    uwb.covariance = peer.fix_check.inflate(peer.fix_model_covariance);
+    peer.fix_variances = error.independent_variance_m2;
+    peer.fix_own_covariance = error.independent_map * error.independent_variance_m2.asDiagonal() * error.independent_map.transpose();
+  } else {
+    uwb.covariance = Eigen::Matrix3d::Constant(std::numeric_limits<double>::quiet_NaN());  // degenerate geometry
+    peer.fix_model_covariance = uwb.covariance;
+  }
+}
+
+void RelativeEstimator::run_odometry(std::size_t k, const model::Pose2& own_increment, const PeerEpoch& input,
+                                     PeerResult& out) {
+  PeerState& peer = peers_[k];
+  const StageEstimate& uwb = out.stages[static_cast<std::size_t>(Stage::kUwb)];
+  if (peer.odometry_pose) {
+    peer.odometry_covariance =
+        propagate_relative_covariance(peer.odometry_covariance, *peer.odometry_pose, own_increment,
+                                      input.odometry_increment, params_.window.odometry_xy_std_m,
+                                      params_.window.odometry_theta_std_rad);
+    peer.odometry_pose = model::compose(model::between(own_increment, *peer.odometry_pose), input.odometry_increment);
+  } else if (uwb.valid) {
+    peer.odometry_pose = uwb.pose;  // no known start: dead reckoning from the first valid fix
+    peer.odometry_covariance = uwb.covariance;
+  }
+  StageEstimate& odometry = out.stages[static_cast<std::size_t>(Stage::kOdometry)];
+  odometry.valid = peer.odometry_pose.has_value();
+  if (odometry.valid) {
+    odometry.pose = *peer.odometry_pose;
+    // Its own check: the fixes (independent of the odometry) against the dead reckoning; what
+    // neither covariance explains (a slip's drift) is added.
+    if (uwb.valid) {
+      peer.odometry_check.add(odometry.pose, uwb.pose, peer.fix_model_covariance);
+    }
+    odometry.covariance = peer.odometry_covariance + peer.odometry_check.excess(peer.odometry_covariance);
+  }
+}
+
 void RelativeEstimator::run_pf(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment,
-                               const PeerEpoch& input, PeerResult& result) {
+                               const PeerEpoch& input, PeerResult& result, std::uint64_t& restarts) {
   PeerState& peer = peers_[k];
   const WindowWeights& odometry = params_.window;  // the odometry stds the odometry stage reports with
   peer.pf.predict(own_increment, input.odometry_increment, peer.pf_random);
@@ -310,11 +359,11 @@ void RelativeEstimator::run_pf(std::size_t k, double time_s, double dt_s, const 
   }
   result.stages[static_cast<std::size_t>(Stage::kPf)] =
       reported_filter_estimate(peer.pf, peer.pf_error, model_fix(peer, result), peer.fix_own_covariance,
-                               peer.pf_check, peer.pf_random, peer.pf_pose, counts_.filter_restarts);
+                               peer.pf_check, peer.pf_random, peer.pf_pose, restarts);
 }
 
 void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment,
-                                     const PeerEpoch& input, PeerResult& result) {
+                                     const PeerEpoch& input, PeerResult& result, std::uint64_t& restarts) {
   PeerState& peer = peers_[k];
   const WindowWeights& odometry = params_.window;
   peer.baseline.predict(own_increment, input.odometry_increment, peer.baseline_random);
@@ -368,7 +417,7 @@ void RelativeEstimator::run_baseline(std::size_t k, double time_s, double dt_s, 
   }
   result.stages[static_cast<std::size_t>(Stage::kPfBaseline)] = reported_filter_estimate(
       peer.baseline, peer.baseline_error, model_fix(peer, result), peer.fix_own_covariance,
-      peer.baseline_check, peer.baseline_random, peer.baseline_pose, counts_.baseline_restarts);
+      peer.baseline_check, peer.baseline_random, peer.baseline_pose, restarts);
 }
 
 void RelativeEstimator::run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
@@ -464,21 +513,18 @@ StageEstimate RelativeEstimator::model_fix(const PeerState& peer, const PeerResu
   return fix;
 }
 
-void RelativeEstimator::run_tc(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
-                               EpochResult& result) {
-  for (std::size_t k = 0; k < peers.size(); ++k) {
-    // Beyond the paper (issue 28): the raw ranges of an accepted frame, started from an ok fix.
-    PeerResult& out = result.peers[k];
-    const StageEstimate& uwb = out.stages[static_cast<std::size_t>(Stage::kUwb)];
-    const bool accepted = out.had_ranges && out.uwb_status != TrackStatus::kRejected;
-    StageEstimate& estimate = out.stages[static_cast<std::size_t>(Stage::kTc)];
-    estimate.valid = tc_[k].step(time_s, own_increment, peers[k].odometry_increment,
-                                 accepted ? peers[k].ranges_m : std::optional<Eigen::MatrixXd>(),
-                                 uwb.valid ? std::optional<model::Pose2>(uwb.pose) : std::nullopt);
-    if (estimate.valid) {
-      estimate.pose = tc_[k].pose();
-      estimate.covariance = tc_[k].covariance();
-    }
+void RelativeEstimator::run_tc(std::size_t k, double time_s, const model::Pose2& own_increment, const PeerEpoch& input,
+                               PeerResult& out) {
+  // Beyond the paper (issue 28): the raw ranges of an accepted frame, started from an ok fix.
+  const StageEstimate& uwb = out.stages[static_cast<std::size_t>(Stage::kUwb)];
+  const bool accepted = out.had_ranges && out.uwb_status != TrackStatus::kRejected;
+  StageEstimate& estimate = out.stages[static_cast<std::size_t>(Stage::kTc)];
+  estimate.valid = tc_[k].step(time_s, own_increment, input.odometry_increment,
+                               accepted ? input.ranges_m : std::optional<Eigen::MatrixXd>(),
+                               uwb.valid ? std::optional<model::Pose2>(uwb.pose) : std::nullopt);
+  if (estimate.valid) {
+    estimate.pose = tc_[k].pose();
+    estimate.covariance = tc_[k].covariance();
   }
 }
 

@@ -32,6 +32,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -49,6 +50,7 @@
 #include "components/uwb_relative_estimator/relative_pose_tracker.hpp"
 #include "components/uwb_relative_estimator/sliding_window.hpp"
 #include "components/uwb_relative_estimator/tightly_coupled_window.hpp"
+#include "components/uwb_relative_estimator/worker_pool.hpp"
 
 namespace robodds::uwb_relative_estimator {
 
@@ -99,7 +101,10 @@ struct PeerResult {
 
 struct EpochResult {
   std::vector<PeerResult> peers;                 // in the order of the constructor's peers
-  std::array<double, kStageCount> stage_ms{};    // wall-clock compute time of each stage, ms
+  /// Wall-clock compute time of each stage, ms: the sum of its pieces (per peer, per link), which
+  /// may run side by side (params threads > 1), so that together they may exceed cycle_ms.
+  std::array<double, kStageCount> stage_ms{};
+  double cycle_ms = 0.0;  // wall-clock time of the whole step(), ms
 };
 
 struct EstimatorCounts {
@@ -124,6 +129,9 @@ class RelativeEstimator {
   /// `seed` seeds every peer's two filters (streams derived from it and the peer id).
   RelativeEstimator(model::UwbArray own_array, std::vector<PeerSetup> peers, RelativeEstimatorParams params,
                     std::uint64_t seed);
+  ~RelativeEstimator();
+  RelativeEstimator(RelativeEstimator&&);
+  RelativeEstimator& operator=(RelativeEstimator&&);
 
   /// One epoch at `time_s` (non-decreasing): `own_increment` is this robot's motion since the
   /// previous epoch in its own frame, `peers` one entry per peer in the constructor's order,
@@ -184,6 +192,9 @@ class RelativeEstimator {
     Eigen::Matrix3d fix_model_covariance = Eigen::Matrix3d::Zero();
   };
 
+  /// Peer k's eq. (1) solve and what the uwb stage reports; its odometry stage.
+  void run_uwb(std::size_t k, double time_s, const model::Pose2& own_increment, const PeerEpoch& input, PeerResult& out);
+  void run_odometry(std::size_t k, const model::Pose2& own_increment, const PeerEpoch& input, PeerResult& out);
   void run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
                   const std::vector<PairMeasurement>& link_edges, EpochResult& result);
   /// This epoch's uwb estimate with the error model's covariance (before the fix-track check's
@@ -191,12 +202,13 @@ class RelativeEstimator {
   static StageEstimate model_fix(const PeerState& peer, const PeerResult& result);
   /// Peer `k` has an eq. (1) edge in the window: its poses there rest on a measurement.
   bool placed(std::size_t k) const;
-  /// The tc stage of every peer (issue 28).
-  void run_tc(double time_s, const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers, EpochResult& result);
+  /// The tc stage of peer k (issue 28).
+  void run_tc(std::size_t k, double time_s, const model::Pose2& own_increment, const PeerEpoch& input, PeerResult& out);
+  /// The filters of peer k; `restarts` counts their restarts by the lost-filter check.
   void run_pf(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment, const PeerEpoch& input,
-              PeerResult& result);
+              PeerResult& result, std::uint64_t& restarts);
   void run_baseline(std::size_t k, double time_s, double dt_s, const model::Pose2& own_increment, const PeerEpoch& input,
-                    PeerResult& result);
+                    PeerResult& result, std::uint64_t& restarts);
 
   model::UwbArray own_array_;
   std::vector<PeerSetup> setups_;
@@ -210,6 +222,7 @@ class RelativeEstimator {
   std::optional<double> last_time_s_;
   EstimatorCounts counts_;
   std::vector<TightlyCoupledWindow> tc_;  // the tc stage of each peer (constructor order; issue 28)
+  std::unique_ptr<WorkerPool> pool_;      // params threads (issue 29)
 };
 
 }  // namespace robodds::uwb_relative_estimator

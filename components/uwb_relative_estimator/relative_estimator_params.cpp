@@ -24,6 +24,8 @@ const params::ParamTable<RelativeEstimatorParams>& relative_estimator_param_tabl
           .add("window_epochs", &P::window_epochs, "epochs", params::at_least(2), "eq. (2): epochs in the sliding window (paper: w = 30)")
           .add("restart_after_gap_s", &P::restart_after_gap_s, "s", params::positive(),
                "a filter restarts around the next measurement of a peer after a gap longer than this")
+          .add("threads", &P::threads, "", params::at_least(1),
+               "threads of one estimator's epoch (per-peer stages and the window side by side; the estimates do not depend on it)")
           .include_as("window", &P::window, window_weights_param_table(), "eq. (2): constant information matrices")
           .include_as("solver", &P::solver, solver_param_table(), "eq. (1): single-epoch solve (the paper: loss none)")
           .include_as("tracker", &P::tracker, tracker_param_table(), "eq. (1) epoch after epoch: cold-start recovery")

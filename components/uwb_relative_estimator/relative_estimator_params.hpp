@@ -32,6 +32,10 @@ struct RelativeEstimatorParams {
   RelativePfParams pf;                            // keys pf.* (eq. 3-6 and the baseline [22])
   UncertaintyParams uncertainty;                  // keys uncertainty.* (reported covariances, issue 27)
   TightWindowParams tc;                           // keys tc.* (the tc stage, issue 28)
+  /// Threads of one estimator's epoch (issue 29): the per-peer stages (eq. 1 solves, tc, the
+  /// filters) and the window run on a pool of this many (the caller's included); 1: all on the
+  /// caller. The estimates do not depend on it (bit for bit), only the time an epoch takes.
+  int threads = 2;
 
   /// Throws std::invalid_argument "key: reason (got value)" for the first bad field (the included
   /// structs' keys carry their prefix).

@@ -27,6 +27,27 @@ struct RangeResidual {
   }
 };
 
+/// Every range of the epoch in one residual block (row-major k, l), each residual as RangeResidual's:
+/// for plain least squares, where the loss does not tell the ranges apart (issue 29: one block
+/// instead of K x L, less of Ceres' per-block work).
+struct AllRangesResidual {
+  const UwbArray* own;
+  const UwbArray* other;
+  const Eigen::MatrixXd* ranges_m;
+
+  template <class T>
+  bool operator()(const T* const pose, T* residual) const {
+    const std::size_t cols = other->nodes_m.size();
+    for (std::size_t k = 0; k < own->nodes_m.size(); ++k) {
+      for (std::size_t l = 0; l < cols; ++l) {
+        residual[k * cols + l] = T((*ranges_m)(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l))) -
+                                 predicted_range(pose[0], pose[1], pose[2], own->nodes_m[k], other->nodes_m[l]);
+      }
+    }
+    return true;
+  }
+};
+
 ceres::LossFunction* make_loss(const SolverOptions& options) {
   switch (options.loss) {
     case RobustLoss::kHuber:
@@ -44,11 +65,17 @@ SolverResult solve_from(const UwbArray& own, const UwbArray& other, const Eigen:
                         const SolverOptions& options) {
   std::array<double, 3> pose{start.x, start.y, start.theta};
   ceres::Problem problem;
-  for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
-    for (Eigen::Index l = 0; l < ranges_m.cols(); ++l) {
-      auto* cost = new ceres::AutoDiffCostFunction<RangeResidual, 1, 3>(
-          new RangeResidual{own.nodes_m[static_cast<std::size_t>(k)], other.nodes_m[static_cast<std::size_t>(l)], ranges_m(k, l)});
-      problem.AddResidualBlock(cost, make_loss(options), pose.data());
+  if (options.loss == RobustLoss::kNone) {
+    auto* cost = new ceres::AutoDiffCostFunction<AllRangesResidual, ceres::DYNAMIC, 3>(
+        new AllRangesResidual{&own, &other, &ranges_m}, static_cast<int>(ranges_m.size()));
+    problem.AddResidualBlock(cost, nullptr, pose.data());
+  } else {
+    for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
+      for (Eigen::Index l = 0; l < ranges_m.cols(); ++l) {
+        auto* cost = new ceres::AutoDiffCostFunction<RangeResidual, 1, 3>(
+            new RangeResidual{own.nodes_m[static_cast<std::size_t>(k)], other.nodes_m[static_cast<std::size_t>(l)], ranges_m(k, l)});
+        problem.AddResidualBlock(cost, make_loss(options), pose.data());
+      }
     }
   }
   ceres::Solver::Options solver;

@@ -1,11 +1,13 @@
 #include "components/uwb_relative_estimator/sliding_window.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include <ceres/ceres.h>
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
 
 #include "common/angle.hpp"
 #include "common/param_checks.hpp"
@@ -98,55 +100,244 @@ bool SlidingWindowGraph::optimize() {
   if (epochs_.empty()) {
     return true;
   }
-  std::vector<std::array<double, 3>> blocks(epochs_.size() * num_robots_);
-  const auto block = [&](std::size_t e, std::size_t i) { return blocks[e * num_robots_ + i].data(); };
-  for (std::size_t e = 0; e < epochs_.size(); ++e) {
+  // Levenberg-Marquardt as Ceres runs it (issue 29; until then this was a ceres::Problem solved with
+  // SPARSE_NORMAL_CHOLESKY): Jacobi scaling fixed at the start point, the damped normal equations
+  // (J^T J + diag(J^T J) / radius) step = -J^T r in the scaled variables, the radius grown after a
+  // good step and shrunk after a bad one, and Ceres' default tolerances (function 1e-6, gradient
+  // 1e-10, parameter 1e-8; at most 50 iterations). What Ceres' general sparse Cholesky could not use
+  // is the structure: ordered by epoch, J^T J is block tridiagonal (an odometry edge joins one robot
+  // at two consecutive epochs, a UWB edge two robots at one epoch), so each step is one block
+  // elimination along the window, 3 N unknowns per epoch, with no symbolic analysis.
+  const std::size_t epochs = epochs_.size();
+  const auto n = static_cast<Eigen::Index>(3 * num_robots_);
+  std::vector<double> x(epochs * num_robots_ * 3);
+  for (std::size_t e = 0; e < epochs; ++e) {
     for (std::size_t i = 0; i < num_robots_; ++i) {
       const model::Pose2& p = epochs_[e].poses[i];
-      blocks[e * num_robots_ + i] = {p.x, p.y, p.theta};
+      double* xi = &x[(e * num_robots_ + i) * 3];
+      xi[0] = p.x;
+      xi[1] = p.y;
+      xi[2] = p.theta;
     }
   }
-  ceres::Problem::Options problem_options;
-  problem_options.disable_all_safety_checks = true;  // the edges join validated, distinct blocks (3 % less per solve)
-  ceres::Problem problem(problem_options);
-  const auto add_edge = [&](double* a, double* b, const model::Pose2& measured, double xy_std, double theta_std) {
-    problem.AddResidualBlock(new WindowEdgeResidual(measured, xy_std, theta_std), nullptr, a, b);
+  struct Edge {
+    Edge(const model::Pose2& measured, double xy_std, double theta_std, std::size_t a_index, std::size_t b_index)
+        : residual(measured, xy_std, theta_std), a(a_index), b(b_index) {}
+    WindowEdgeResidual residual;
+    std::size_t a;  // index of pose a (epoch * num_robots + robot)
+    std::size_t b;
   };
-  for (std::size_t e = 0; e < epochs_.size(); ++e) {
+  std::deque<Edge> edges;  // (a cost function is not movable)
+  for (std::size_t e = 0; e < epochs; ++e) {
     for (std::size_t i = 0; i < num_robots_ && e > 0; ++i) {
-      add_edge(block(e - 1, i), block(e, i), epochs_[e].odometry[i], weights_.odometry_xy_std_m,
-               weights_.odometry_theta_std_rad);
+      edges.emplace_back(epochs_[e].odometry[i], weights_.odometry_xy_std_m, weights_.odometry_theta_std_rad,
+                         (e - 1) * num_robots_ + i, e * num_robots_ + i);
     }
     for (const PairMeasurement& m : epochs_[e].uwb) {
-      add_edge(block(e, m.own), block(e, m.other), m.pose, weights_.uwb_xy_std_m, weights_.uwb_theta_std_rad);
+      edges.emplace_back(m.pose, weights_.uwb_xy_std_m, weights_.uwb_theta_std_rad, e * num_robots_ + m.own,
+                         e * num_robots_ + m.other);
     }
   }
-  for (std::size_t e = 0; e < epochs_.size(); ++e) {
-    for (std::size_t i = 0; i < num_robots_; ++i) {
-      problem.AddParameterBlock(block(e, i), 3);  // a robot without any edge yet still has a block
+  if (edges.empty()) {
+    return true;  // one epoch without a measurement: nothing to solve
+  }
+  // Unknowns: every pose but robot 0's oldest (the gauge, unknowns 0-2), whose rows and columns are
+  // the identity in the system solved.
+  // J^T J and J^T r by epoch: diagonal blocks (3N x 3N) and, between epochs e - 1 and e, one 3 x 3
+  // block per robot (its odometry edge).
+  std::vector<Eigen::MatrixXd> diagonal(epochs, Eigen::MatrixXd(n, n));
+  std::vector<Eigen::Matrix3d> coupling(epochs * num_robots_);
+  Eigen::VectorXd gradient(static_cast<Eigen::Index>(x.size()));
+  const auto cost_at = [&](const std::vector<double>& at) {
+    double cost = 0.0;
+    for (const Edge& edge : edges) {
+      const double* parameters[2] = {&at[edge.a * 3], &at[edge.b * 3]};
+      double r[3];
+      edge.residual.Evaluate(parameters, r, nullptr);
+      cost += r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    }
+    return 0.5 * cost;
+  };
+  // The normal equations at `at` (unscaled), and the cost.
+  const auto linearize = [&](const std::vector<double>& at) {
+    for (Eigen::MatrixXd& d : diagonal) {
+      d.setZero();
+    }
+    for (Eigen::Matrix3d& c : coupling) {
+      c.setZero();
+    }
+    gradient.setZero();
+    double cost = 0.0;
+    for (const Edge& edge : edges) {
+      const double* parameters[2] = {&at[edge.a * 3], &at[edge.b * 3]};
+      Eigen::Vector3d r;
+      Eigen::Matrix<double, 3, 3, Eigen::RowMajor> ja;
+      Eigen::Matrix<double, 3, 3, Eigen::RowMajor> jb;
+      double* jacobians[2] = {ja.data(), jb.data()};
+      edge.residual.Evaluate(parameters, r.data(), jacobians);
+      cost += r.squaredNorm();
+      const std::size_t ea = edge.a / num_robots_;
+      const std::size_t eb = edge.b / num_robots_;
+      const auto ia = static_cast<Eigen::Index>(3 * (edge.a % num_robots_));
+      const auto ib = static_cast<Eigen::Index>(3 * (edge.b % num_robots_));
+      diagonal[ea].block<3, 3>(ia, ia) += ja.transpose() * ja;
+      diagonal[eb].block<3, 3>(ib, ib) += jb.transpose() * jb;
+      if (ea == eb) {
+        diagonal[ea].block<3, 3>(ia, ib) += ja.transpose() * jb;
+        diagonal[ea].block<3, 3>(ib, ia) += jb.transpose() * ja;
+      } else {
+        coupling[edge.b] += ja.transpose() * jb;  // rows: robot at epoch e - 1, columns: at e
+      }
+      gradient.segment<3>(static_cast<Eigen::Index>(3 * edge.a)) += ja.transpose() * r;
+      gradient.segment<3>(static_cast<Eigen::Index>(3 * edge.b)) += jb.transpose() * r;
+    }
+    return 0.5 * cost;
+  };
+  double cost = linearize(x);
+  // Jacobi scaling from the start point: column k of J times 1 / (1 + |J_k|).
+  Eigen::VectorXd scale(gradient.size());
+  for (std::size_t e = 0; e < epochs; ++e) {
+    for (Eigen::Index k = 0; k < n; ++k) {
+      scale(static_cast<Eigen::Index>(e) * n + k) = 1.0 / (1.0 + std::sqrt(diagonal[e](k, k)));
     }
   }
-  problem.SetParameterBlockConstant(block(0, 0));  // gauge: the oldest pose of robot 0
-  ceres::Solver::Options options;
-  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;  // a chain of 3x3 blocks: sparse
-  options.max_num_iterations = 50;
-  // The window is warm-started (every pose from the previous solve, the new epoch by dead reckoning),
-  // so the first step is taken nearly as Gauss-Newton's: 2.2 rather than 3.1 evaluations per solve
-  // on average (issue 29, docs/performance.md "Paper 3 with more robots"). Convergence is judged
-  // by the same tolerances; experiment 2's window errors moved by < 1e-5 m and 1e-4 deg.
-  options.initial_trust_region_radius = 1e6;
-  options.logging_type = ceres::SILENT;
-  options.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  for (std::size_t e = 0; e < epochs_.size(); ++e) {
+  const auto gradient_converged = [&] {
+    double most = 0.0;
+    for (Eigen::Index k = 3; k < gradient.size(); ++k) {
+      most = std::max(most, std::abs(gradient(k)));
+    }
+    return most <= 1e-10;
+  };
+  if (gradient_converged()) {
+    return true;
+  }
+  double radius = 1e6;  // as the Ceres solve had: a warm start, the first step nearly Gauss-Newton's
+  double decrease_factor = 2.0;
+  std::vector<double> candidate(x.size());
+  std::vector<Eigen::LLT<Eigen::MatrixXd>> factor(epochs);
+  std::vector<Eigen::MatrixXd> inverse(epochs);
+  std::vector<Eigen::Matrix3d> scaled_coupling(epochs * num_robots_);  // C of the scaled system
+  Eigen::VectorXd step(gradient.size());
+  bool converged = false;
+  for (int iteration = 1; iteration <= 50; ++iteration) {
+    // Scaled, damped system A s = -g_s; A block tridiagonal: eliminate epoch by epoch.
+    bool solved = true;
+    Eigen::VectorXd rhs = -(scale.array() * gradient.array()).matrix();
+    rhs.head<3>().setZero();
+    for (std::size_t e = 0; e < epochs && solved; ++e) {
+      const auto offset = static_cast<Eigen::Index>(e) * n;
+      Eigen::MatrixXd a = scale.segment(offset, n).asDiagonal() * diagonal[e] * scale.segment(offset, n).asDiagonal();
+      for (Eigen::Index k = 0; k < n; ++k) {
+        a(k, k) += std::min(std::max(a(k, k), 1e-6), 1e32) / radius;
+      }
+      if (e == 0) {
+        a.topRows<3>().setZero();
+        a.leftCols<3>().setZero();
+        a.topLeftCorner<3, 3>().setIdentity();
+      } else {
+        // A_e -= C^T A_{e-1}^-1 C, rhs_e -= C^T A_{e-1}^-1 rhs_{e-1}, C block diagonal (3 x 3 per robot).
+        const auto previous = offset - n;
+        Eigen::MatrixXd ct_inverse(n, n);  // C^T A_{e-1}^-1
+        for (std::size_t i = 0; i < num_robots_; ++i) {
+          const auto r = static_cast<Eigen::Index>(3 * i);
+          Eigen::Matrix3d c = scale.segment<3>(previous + r).asDiagonal() * coupling[e * num_robots_ + i] *
+                              scale.segment<3>(offset + r).asDiagonal();
+          if (e == 1 && i == 0) {
+            c.setZero();  // the gauge pose is not an unknown
+          }
+          ct_inverse.middleRows<3>(r) = c.transpose() * inverse[e - 1].middleRows<3>(r);
+          scaled_coupling[e * num_robots_ + i] = c;
+        }
+        for (std::size_t j = 0; j < num_robots_; ++j) {
+          const auto col = static_cast<Eigen::Index>(3 * j);
+          a.middleCols<3>(col) -= ct_inverse.middleCols<3>(col) * scaled_coupling[e * num_robots_ + j];
+        }
+        rhs.segment(offset, n) -= ct_inverse * rhs.segment(previous, n);
+      }
+      factor[e].compute(a);
+      if (factor[e].info() != Eigen::Success) {
+        solved = false;
+        break;
+      }
+      inverse[e] = factor[e].solve(Eigen::MatrixXd::Identity(n, n));
+    }
+    if (!solved) {
+      // Ceres: a failed linear solve shrinks the radius like a rejected step.
+      radius /= decrease_factor;
+      decrease_factor *= 2.0;
+      if (radius < 1e-32) {
+        break;
+      }
+      continue;
+    }
+    for (std::size_t e = epochs; e-- > 0;) {
+      const auto offset = static_cast<Eigen::Index>(e) * n;
+      Eigen::VectorXd y = rhs.segment(offset, n);
+      if (e + 1 < epochs) {
+        for (std::size_t i = 0; i < num_robots_; ++i) {
+          const auto r = static_cast<Eigen::Index>(3 * i);
+          y.segment<3>(r) -= scaled_coupling[(e + 1) * num_robots_ + i] * step.segment<3>(offset + n + r);
+        }
+      }
+      step.segment(offset, n) = inverse[e] * y;
+    }
+    step = (step.array() * scale.array()).matrix();  // back to the unknowns' own units
+    step.head<3>().setZero();
+    double x_norm = 0.0;
+    for (double v : x) {
+      x_norm += v * v;
+    }
+    if (step.norm() <= 1e-8 * (std::sqrt(x_norm) + 1e-8)) {
+      converged = true;  // parameter tolerance
+      break;
+    }
+    // Linear model: cost change = -(g^T d + d^T J^T J d / 2).
+    double quadratic = 0.0;
+    for (std::size_t e = 0; e < epochs; ++e) {
+      const auto offset = static_cast<Eigen::Index>(e) * n;
+      const Eigen::VectorXd d = step.segment(offset, n);
+      quadratic += d.dot(diagonal[e] * d);
+      if (e > 0) {
+        for (std::size_t i = 0; i < num_robots_; ++i) {
+          const auto r = static_cast<Eigen::Index>(3 * i);
+          quadratic += 2.0 * step.segment<3>(offset - n + r).dot(coupling[e * num_robots_ + i] * d.segment<3>(r));
+        }
+      }
+    }
+    const double model_change = -(gradient.dot(step) + 0.5 * quadratic);
+    for (std::size_t k = 0; k < x.size(); ++k) {
+      candidate[k] = x[k] + step(static_cast<Eigen::Index>(k));
+    }
+    const double candidate_cost = cost_at(candidate);
+    if (std::abs(cost - candidate_cost) <= 1e-6 * cost) {
+      converged = true;  // function tolerance (Ceres keeps the current point)
+      break;
+    }
+    const double relative_decrease = (cost - candidate_cost) / model_change;
+    if (std::isfinite(candidate_cost) && model_change > 0.0 && relative_decrease > 1e-3) {
+      x.swap(candidate);
+      cost = linearize(x);
+      radius = std::min(1e16, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * relative_decrease - 1.0, 3)));
+      decrease_factor = 2.0;
+      if (gradient_converged()) {
+        converged = true;
+        break;
+      }
+    } else {
+      radius /= decrease_factor;
+      decrease_factor *= 2.0;
+      if (radius < 1e-32) {
+        break;
+      }
+    }
+  }
+  for (std::size_t e = 0; e < epochs; ++e) {
     for (std::size_t i = 0; i < num_robots_; ++i) {
-      const double* p = block(e, i);
+      const double* p = &x[(e * num_robots_ + i) * 3];
       epochs_[e].poses[i] = {p[0], p[1], wrap_angle(p[2])};
     }
   }
-  return summary.termination_type == ceres::CONVERGENCE;
+  return converged;
 }
 
 void SlidingWindowGraph::place_robot(std::size_t robot, std::size_t own, const model::Pose2& relative) {

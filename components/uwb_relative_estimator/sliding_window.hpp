@@ -2,8 +2,11 @@
 // The sliding-window pose graph of paper 3, eq. (2): the poses of N robots over the last `window`
 // epochs, constrained by each robot's odometry between consecutive epochs and by the single-epoch
 // UWB relative poses of eq. (1); least squares with constant information matrices (as the paper:
-// "set to constants"), solved with Ceres. Poses live in an arbitrary common frame whose gauge is
-// fixed by holding robot 0's oldest pose in the window; only relative poses are meaningful.
+// "set to constants"), solved by Levenberg-Marquardt as Ceres runs it (the edges are Ceres cost
+// functions) but with the window's structure: ordered by epoch the normal equations are block
+// tridiagonal, so each step is one block elimination along the window (issue 29). Poses live in an
+// arbitrary common frame whose gauge is fixed by holding robot 0's oldest pose in the window; only
+// relative poses are meaningful.
 
 #include <cstddef>
 #include <deque>
@@ -49,8 +52,9 @@ class SlidingWindowGraph {
   /// changes nothing.
   void add_epoch(const std::vector<model::Pose2>& odometry, const std::vector<PairMeasurement>& uwb);
 
-  /// Re-estimates every pose in the window (Levenberg-Marquardt). Returns false if Ceres did not
-  /// report convergence; the poses are still its best estimate.
+  /// Re-estimates every pose in the window (Levenberg-Marquardt: Ceres' steps, radius and default
+  /// tolerances, initial trust region 1e6). Returns false if it did not converge within 50
+  /// iterations; the poses are still its best estimate.
   bool optimize();
 
   /// Moves every pose of robot `robot` in the window so that at the newest epoch it sits at

@@ -4,6 +4,7 @@
 #include "components/uwb_relative_estimator/relative_estimator.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <vector>
 
@@ -166,6 +167,106 @@ TEST(RelativeEstimator, SameSeedSameEstimates) {
   for (std::size_t s = 0; s < kStageCount; ++s) {
     EXPECT_EQ(a[s].position_m, b[s].position_m) << stage_name(static_cast<Stage>(s));
     EXPECT_EQ(a[s].heading_deg, b[s].heading_deg) << stage_name(static_cast<Stage>(s));
+  }
+}
+
+/// Every epoch's result of three circling peers (structured range errors, the links between them,
+/// peer 3's frames missing for 3 s from t = 10 s: its filters and tc restart) with `threads`.
+std::vector<EpochResult> run_with_threads(int threads, EstimatorCounts& counts) {
+  const model::UwbArray array = square_array(0.5);
+  std::vector<CirclingPeer> truth{{2, {4.0, 0.0, M_PI / 2}}, {3, {-5.0, 0.0, -M_PI / 2}}, {4, {0.0, 6.0, M_PI}, {0.2, 0.04}}};
+  const uwb_sensor::UwbErrorParams noise;
+  RandomEngine white(derive_seed(5, "white"));
+  RandomEngine nlos(derive_seed(5, "nlos"));
+  std::vector<PeerSetup> setups;
+  std::vector<uwb_sensor::PairErrors> errors;
+  for (std::size_t k = 0; k < truth.size() + 3; ++k) {  // each peer's pair, then the three links
+    errors.emplace_back(4, 4, 0.0, noise, RandomEngine(derive_seed(5, "bias" + std::to_string(k))),
+                        RandomEngine(derive_seed(5, "common" + std::to_string(k))));
+  }
+  for (const CirclingPeer& p : truth) {
+    setups.push_back(PeerSetup{p.id, array, std::nullopt});
+  }
+  RelativeEstimatorParams params;
+  params.threads = threads;
+  RelativeEstimator estimator(array, setups, params, 5);
+  std::vector<EpochResult> out;
+  for (int e = 1; e <= 250; ++e) {
+    const double t = e * kEpochS;
+    std::vector<PeerEpoch> inputs;
+    for (std::size_t k = 0; k < truth.size(); ++k) {
+      truth[k].pose = model::integrate_exact(truth[k].pose, truth[k].twist, kEpochS);
+    }
+    for (std::size_t k = 0; k < errors.size(); ++k) {
+      errors[k].advance_to(t);
+    }
+    for (std::size_t k = 0; k < truth.size(); ++k) {
+      const Eigen::MatrixXd d = model::array_ranges(array, model::Pose2{}, array, truth[k].pose);
+      std::optional<Eigen::MatrixXd> ranges =
+          uwb_sensor::measure_ranges(d, errors[k].link_bias_m(true), errors[k].common_m(), noise, white, nlos);
+      if (k == 1 && t > 10.0 && t < 13.0) {
+        ranges.reset();
+      }
+      inputs.push_back(PeerEpoch{increment_of(truth[k].twist), ranges});
+    }
+    std::vector<std::optional<Eigen::MatrixXd>> links;
+    std::size_t stream = truth.size();
+    for (const PeerLink& link : estimator.links()) {
+      const Eigen::MatrixXd d = model::array_ranges(array, truth[link.first].pose, array, truth[link.second].pose);
+      links.push_back(uwb_sensor::measure_ranges(d, errors[stream].link_bias_m(true), errors[stream].common_m(), noise,
+                                                 white, nlos));
+      ++stream;
+    }
+    out.push_back(estimator.step(t, model::Pose2{}, inputs, links));
+  }
+  counts = estimator.counts();
+  return out;
+}
+
+/// The bytes of a double (NaN equals NaN, 0.0 differs from -0.0): "bit for bit".
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+TEST(RelativeEstimator, TheEstimatesDoNotDependOnTheNumberOfThreads) {
+  EstimatorCounts one_counts;
+  const std::vector<EpochResult> one = run_with_threads(1, one_counts);
+  for (int threads : {2, 3, 8}) {
+    EstimatorCounts counts;
+    const std::vector<EpochResult> many = run_with_threads(threads, counts);
+    ASSERT_EQ(many.size(), one.size());
+    int differences = 0;
+    for (std::size_t e = 0; e < one.size(); ++e) {
+      for (std::size_t k = 0; k < one[e].peers.size(); ++k) {
+        const PeerResult& a = one[e].peers[k];
+        const PeerResult& b = many[e].peers[k];
+        EXPECT_EQ(a.had_ranges, b.had_ranges);
+        EXPECT_EQ(a.uwb_status, b.uwb_status);
+        EXPECT_EQ(a.uwb_reason, b.uwb_reason);
+        for (std::size_t s = 0; s < kStageCount; ++s) {
+          const StageEstimate& x = a.stages[s];
+          const StageEstimate& y = b.stages[s];
+          bool same = x.valid == y.valid && same_bits(x.pose.x, y.pose.x) && same_bits(x.pose.y, y.pose.y) &&
+                      same_bits(x.pose.theta, y.pose.theta);
+          for (int i = 0; i < 9; ++i) {
+            same = same && same_bits(x.covariance(i / 3, i % 3), y.covariance(i / 3, i % 3));
+          }
+          if (!same && ++differences <= 5) {
+            ADD_FAILURE() << threads << " threads: epoch " << e << " peer " << k << " stage "
+                          << stage_name(static_cast<Stage>(s)) << " differs from 1 thread's";
+          }
+        }
+      }
+    }
+    EXPECT_EQ(differences, 0) << threads << " threads";
+    EXPECT_EQ(counts.epochs, one_counts.epochs);
+    EXPECT_EQ(counts.frames_missing, one_counts.frames_missing);
+    EXPECT_EQ(counts.window_not_converged, one_counts.window_not_converged);
+    EXPECT_EQ(counts.filter_restarts, one_counts.filter_restarts);
+    EXPECT_EQ(counts.baseline_restarts, one_counts.baseline_restarts);
+  }
+  // The run exercises what the threads share out: every stage valid at the end, frames missed.
+  EXPECT_EQ(one_counts.frames_missing, 29u);
+  for (std::size_t s = 0; s < kStageCount; ++s) {
+    EXPECT_TRUE(one.back().peers[1].stages[s].valid) << stage_name(static_cast<Stage>(s));
   }
 }
 
