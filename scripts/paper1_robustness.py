@@ -40,6 +40,16 @@ CASES = {
     "start_20m": ("start 20 m off, heading unknown",
                   {"estimator": {"init_mode": "uniform_area", "init_area_min_x": 69.0, "init_area_max_x": 71.0,
                                  "init_area_min_y": 9.0, "init_area_max_y": 11.0}}, {}),
+    # Issue 27, finding 3: a start belief 50 m wrong (the robot is at (50, 10)) must never be valid
+    # while the estimate is more than 5 m or 30 deg off; with the heading unknown, and given as known
+    # (right, so that only the position is wrong: every particle agrees on the heading from t = 0).
+    "start_50m": ("start belief 50 m off, heading unknown",
+                  {"estimator": {"init_mode": "uniform_area", "init_area_min_x": 99.0, "init_area_max_x": 101.0,
+                                 "init_area_min_y": 9.0, "init_area_max_y": 11.0}}, {}),
+    "start_50m_heading_known": ("start belief 50 m off, heading known (right)",
+                                {"estimator": {"init_mode": "uniform_area", "init_area_min_x": 99.0, "init_area_max_x": 101.0,
+                                               "init_area_min_y": 9.0, "init_area_max_y": 11.0,
+                                               "init_theta_known": True, "init_theta_rad": 0.0}}, {}),
     "outliers_30m": ("5 % of fixes +30 m in x", {"position_sensor": {"outlier_probability": 0.05, "outlier_offset_m": 30.0}}, {}),
     "outliers_100m": ("5 % of fixes +100 m in x", {"position_sensor": {"outlier_probability": 0.05, "outlier_offset_m": 100.0}}, {}),
     "kidnap_10m": ("robot moved 10 m at t = %g s" % DISTURBANCE_AT_S,
@@ -199,6 +209,9 @@ def main(argv):
             m = results[label]["metrics"]
             series = error_series(os.path.join(args.out, label))
             row = {"reached": m["waypoints_reached"], "rmse": m["pf_rmse_m"]}
+            consistency = m.get("estimate_pose", {})
+            row["worst_position_error_valid_m"] = consistency.get("worst_position_error_valid_m")
+            row["worst_heading_error_valid_deg"] = consistency.get("worst_heading_error_valid_deg")
             if case.startswith("kidnap"):
                 row["position_recovery_s"], row["heading_recovery_s"] = recovery_times(series)
             if case.startswith("standstill"):
@@ -230,6 +243,17 @@ def main(argv):
             required = "18/18 each seed"
             for s, r in zip(seeds, rows):
                 need(r["reached"] == 18, "%s seed %d: reached %d/18" % (case, s, r["reached"]))
+        elif case.startswith("start_50m"):
+            # Issue 27's bound for a wrong start belief: never valid more than 5 m or 30 deg off.
+            position = [r["worst_position_error_valid_m"] or 0.0 for r in rows]
+            heading = [r["worst_heading_error_valid_deg"] or 0.0 for r in rows]
+            recovery = "worst error while valid %.2f-%.2f m, %.1f-%.1f deg" % (min(position), max(position), min(heading),
+                                                                              max(heading))
+            required = "18/18 each seed; never valid > 5 m or > 30 deg off"
+            for s, r, p, h in zip(seeds, rows, position, heading):
+                need(r["reached"] == 18, "%s seed %d: reached %d/18" % (case, s, r["reached"]))
+                need(p <= 5.0, "%s seed %d: valid %.2f m off (> 5 m)" % (case, s, p))
+                need(h <= 30.0, "%s seed %d: valid %.1f deg off (> 30 deg)" % (case, s, h))
         elif case == "kidnap_10m":
             times = [r["position_recovery_s"] for r in rows]
             recovery = "position < 1 m after %s / %s" % (fmt(min(times, key=lambda v: v if v is not None else 1e9)),
