@@ -174,6 +174,13 @@ void ParticleFilter::check_heading_against_track(double z_x_m, double z_y_m) {
   if (track_confirmed_ && !driving) {
     return;
   }
+  if (driving && last_update_standing_) {
+    // A fix after standing says nothing about the heading (standstill_keeps_heading): the window keeps
+    // the fixes of the motion before, and nothing is judged. Judged with a window of standing fixes,
+    // the slip fit could pass a wrong heading below track_check_heading_std_rad and redraw a right
+    // cloud (nominal seed 1, 24 s after the mission: 27 deg off at a reported 11.5 deg).
+    return;
+  }
   track_check_.add_fix(z_x_m, z_y_m);
   if (track_check_.fixes() < HeadingTrackCheck::kMinFixes) {
     return;
