@@ -6,7 +6,8 @@ recovery time. Every run's CSVs and summary.json stay under OUT.
   scripts/paper1_robustness.py [--out DIR] [--seeds N] [--first-seed S] [--domains 124,125] [--cases LIST] [--check]
                                [--set component.key=value ...] [--duration S] [--reuse]   (needs a build)
 
---domains: one DDS domain per parallel run; --cases: comma-separated subset (default: all);
+--domains: one DDS domain per parallel run; --cases: comma-separated subset (default: all but the
+opt-in start_50m, start_50m_heading_known);
 --check: exit 1 and name every acceptance figure of issue 12 that is missed; --set: a parameter
 override applied to every case (e.g. estimator.num_particles=500)."""
 import argparse
@@ -64,6 +65,10 @@ CASES = {
                          "estimator": {"init_theta_known": True, "init_theta_rad": 0.0, "prior_heading_tolerance_rad": 0.0}},
                         {"duration_s": 600.0}),
 }
+# Run only when named in --cases (not in the default list, which tests/system/paper1_robustness_test.sh
+# runs within the suite's time budget): issue 27's wrong start beliefs, measured in
+# docs/results/paper1.md ("Degraded sensing").
+OPT_IN = ("start_50m", "start_50m_heading_known")
 STANDSTILL_FROM_S = 10.0  # s: heading spread growth of the standstill case is measured from here
 
 
@@ -168,7 +173,7 @@ def main(argv):
     ap.add_argument("--seeds", type=int, default=10)
     ap.add_argument("--first-seed", type=int, default=1, help="seeds first-seed .. first-seed + seeds - 1")
     ap.add_argument("--domains", default="124,125")
-    ap.add_argument("--cases", default=",".join(CASES))
+    ap.add_argument("--cases", default=",".join(c for c in CASES if c not in OPT_IN))
     ap.add_argument("--set", action="append", default=[], metavar="component.key=value")
     ap.add_argument("--duration", type=float, help="simulated seconds of every case but the standstill (default: the scenario's)")
     ap.add_argument("--check", action="store_true")
