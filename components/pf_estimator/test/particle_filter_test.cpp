@@ -843,6 +843,52 @@ TEST(ParticleFilter, UntilTheTrackJudgesTheCloudsSlipsAreAsUncertainAsTheFixesLe
   EXPECT_LT(overconfident_on, overconfident_off / 2);
 }
 
+// Standing after driving (a way-point reached, the mission done), the fixes say nothing about the
+// heading: the track check while driving neither stores nor judges them. Judged from a window of
+// standing fixes, its slip fit passed a wrong heading and redrew a right cloud (nominal seed 1 with
+// the estimate moved on to its step, 24 s after the mission: valid 27 deg off at a reported 11.5 deg).
+TEST(ParticleFilter, TheTrackCheckWhileDrivingIgnoresTheFixesOfARobotStandingStill) {
+  PfParams params = first_fix_params();
+  params.init_theta_known = false;
+  params.measurement_std_m = 1.51;
+  params.init_fix_std_m = 1.51;
+  ParticleFilter filter(params, 5);
+  RandomEngine world(derive_seed(5, "world"));
+  model::Pose2 truth{10.0, 20.0, 0.5};
+  filter.initialize_around(truth.x, truth.y);
+  std::size_t fixes_when_stopped = 0;
+  int standing_fixes = 0;
+  int steps_since_confirmed = -1;
+  for (int step = 1; step <= 6000; ++step) {
+    if (steps_since_confirmed < 0 && filter.confirmed() && filter.track_confirmed()) {
+      steps_since_confirmed = 0;
+    }
+    const bool stopped = steps_since_confirmed > 1000;  // 20 s of driving after the check passed, then standing
+    const model::Twist twist = stopped ? model::Twist{0.0, 0.0}
+                                       : model::Twist{steps_since_confirmed >= 0 ? 1.5 : 0.3, 0.2 * std::sin(0.01 * step)};
+    truth = model::integrate_exact(truth, twist, 0.02);
+    filter.predict(twist.v + 0.014 * standard_normal(world), twist.omega + 0.094 * standard_normal(world), 0.02, 0.0089);
+    if (steps_since_confirmed >= 0) {
+      ++steps_since_confirmed;
+    }
+    if (step % 5 != 0) {
+      continue;
+    }
+    filter.update(truth.x + 1.51 * standard_normal(world), truth.y + 1.51 * standard_normal(world));
+    if (stopped && filter.last_update_standing()) {
+      if (standing_fixes == 0) {
+        fixes_when_stopped = filter.heading_track_check().fixes();
+      }
+      ++standing_fixes;
+    }
+  }
+  ASSERT_GE(steps_since_confirmed, 0) << "never confirmed";
+  ASSERT_GT(standing_fixes, 300) << "more than a window of standing fixes";
+  EXPECT_GE(fixes_when_stopped, 200u) << "the driving filled the window";
+  EXPECT_EQ(filter.heading_track_check().fixes(), fixes_when_stopped) << "standing fixes were stored";
+  EXPECT_TRUE(filter.confirmed());
+}
+
 // Issue 27, finding 4: a fix after an interval in which the robot stood carries no heading
 // information. When it resamples, only the position is drawn from the weighted cloud: every
 // particle keeps its own heading and turn slip (before, whole particles were copied, thinning the
