@@ -145,6 +145,9 @@ void ParticleFilter::recover(double z_x_m, double z_y_m) {
   prior_check_.stop();  // half the headings are fresh: the spread, not a prior, says how sure it is
   track_check_.reset();  // ... and the fixes' track from here on whether it is right
   track_judged_driving_ = false;
+  // Half the particles keep their turn slips: the cloud knows more of the slip than the track's new
+  // window, so that window is no floor for it (track_check_floor) until the next initialisation.
+  floor_allowed_ = false;
   track_confirmed_ = !track_check_.enabled();
   track_learned_ = true;
   ++recovery_count_;
@@ -154,6 +157,7 @@ void ParticleFilter::start_confirmation() {
   accepted_since_init_ = 0;
   track_check_.reset();
   track_judged_driving_ = false;
+  floor_allowed_ = true;
   if (params_.init_theta_known) {
     prior_check_.start(params_.init_theta_rad);
     track_confirmed_ = true;  // a heading given as known: HeadingPriorCheck confirms it
@@ -194,8 +198,8 @@ void ParticleFilter::check_heading_against_track(double z_x_m, double z_y_m) {
     if (verdict == HeadingTrackCheck::Verdict::kConsistent) {
       inflate_towards_track(cloud.mean.z(), cloud_var);
     }
-    if (verdict == HeadingTrackCheck::Verdict::kPending && params_.track_check_floor && !track_judged_driving_ &&
-        track_check_.holds_every_fix()) {
+    if (verdict == HeadingTrackCheck::Verdict::kPending && params_.track_check_floor && floor_allowed_ &&
+        !track_judged_driving_ && track_check_.holds_every_fix()) {
       floor_to_track();
       if (params_.track_doubt_std_rad > 0.0 && std::sqrt(cloud_var) > params_.track_doubt_std_rad) {
         // With its slips as uncertain as the fixes leave them, the cloud's heading spread grew past
@@ -291,8 +295,9 @@ void ParticleFilter::floor_to_track() {
   // (Monte Carlo error of 1,000 particles with weak fixes), and a wrong slip bends its heading while
   // it drives, its spread staying small. Widened about their mean, not moved: the headings then
   // spread as far as the slips allow over the next metres, and the fixes narrow both again. Only
-  // while the window holds every fix since the (re)initialisation (the cloud knows no more than
-  // those) and until the track first judges while driving (from then on it judges and widens by its
+  // after an initialisation (slips drawn from the prior; a recovery keeps half of them), while the
+  // window holds every fix since (the cloud knows no more than those) and until the track first
+  // judges while driving (from then on it judges and widens by its
   // difference; a window of standing fixes after the mission knows less than the cloud).
   const double slip_std = track_check_.slip_std_with_prior_radpm(params_.turn_slip_std_radpm);
   const double floor_var = slip_std * slip_std;

@@ -217,7 +217,8 @@ class ParticleFilter {
   std::size_t track_inflation_count_ = 0;
   std::size_t track_floor_count_ = 0;
   std::size_t track_doubt_count_ = 0;
-  bool track_judged_driving_ = false;  // check_drifting() judged since the last (re)initialisation
+  bool track_judged_driving_ = false;
+  bool floor_allowed_ = true;  // track_check_floor: since an initialisation, not a recovery  // check_drifting() judged since the last (re)initialisation
   std::size_t accepted_since_init_ = 0;  // fixes used since the last (re)initialisation
   double last_update_nis_ = 0.0;
   bool last_update_rejected_ = false;
