@@ -6,7 +6,8 @@ recovery time. Every run's CSVs and summary.json stay under OUT.
   scripts/paper1_robustness.py [--out DIR] [--seeds N] [--first-seed S] [--domains 124,125] [--cases LIST] [--check]
                                [--set component.key=value ...] [--duration S] [--reuse]   (needs a build)
 
---domains: one DDS domain per parallel run; --cases: comma-separated subset (default: all);
+--domains: one DDS domain per parallel run; --cases: comma-separated subset (default: all but the
+opt-in start_50m, start_50m_heading_known);
 --check: exit 1 and name every acceptance figure of issue 12 that is missed; --set: a parameter
 override applied to every case (e.g. estimator.num_particles=500)."""
 import argparse
@@ -40,6 +41,16 @@ CASES = {
     "start_20m": ("start 20 m off, heading unknown",
                   {"estimator": {"init_mode": "uniform_area", "init_area_min_x": 69.0, "init_area_max_x": 71.0,
                                  "init_area_min_y": 9.0, "init_area_max_y": 11.0}}, {}),
+    # Issue 27, finding 3: a start belief 50 m wrong (the robot is at (50, 10)) must never be valid
+    # while the estimate is more than 5 m or 30 deg off; with the heading unknown, and given as known
+    # (right, so that only the position is wrong: every particle agrees on the heading from t = 0).
+    "start_50m": ("start belief 50 m off, heading unknown",
+                  {"estimator": {"init_mode": "uniform_area", "init_area_min_x": 99.0, "init_area_max_x": 101.0,
+                                 "init_area_min_y": 9.0, "init_area_max_y": 11.0}}, {}),
+    "start_50m_heading_known": ("start belief 50 m off, heading known (right)",
+                                {"estimator": {"init_mode": "uniform_area", "init_area_min_x": 99.0, "init_area_max_x": 101.0,
+                                               "init_area_min_y": 9.0, "init_area_max_y": 11.0,
+                                               "init_theta_known": True, "init_theta_rad": 0.0}}, {}),
     "outliers_30m": ("5 % of fixes +30 m in x", {"position_sensor": {"outlier_probability": 0.05, "outlier_offset_m": 30.0}}, {}),
     "outliers_100m": ("5 % of fixes +100 m in x", {"position_sensor": {"outlier_probability": 0.05, "outlier_offset_m": 100.0}}, {}),
     "kidnap_10m": ("robot moved 10 m at t = %g s" % DISTURBANCE_AT_S,
@@ -54,6 +65,10 @@ CASES = {
                          "estimator": {"init_theta_known": True, "init_theta_rad": 0.0, "prior_heading_tolerance_rad": 0.0}},
                         {"duration_s": 600.0}),
 }
+# Run only when named in --cases (not in the default list, which tests/system/paper1_robustness_test.sh
+# runs within the suite's time budget): issue 27's wrong start beliefs, measured in
+# docs/results/paper1.md ("Degraded sensing").
+OPT_IN = ("start_50m", "start_50m_heading_known")
 STANDSTILL_FROM_S = 10.0  # s: heading spread growth of the standstill case is measured from here
 
 
@@ -158,7 +173,7 @@ def main(argv):
     ap.add_argument("--seeds", type=int, default=10)
     ap.add_argument("--first-seed", type=int, default=1, help="seeds first-seed .. first-seed + seeds - 1")
     ap.add_argument("--domains", default="124,125")
-    ap.add_argument("--cases", default=",".join(CASES))
+    ap.add_argument("--cases", default=",".join(c for c in CASES if c not in OPT_IN))
     ap.add_argument("--set", action="append", default=[], metavar="component.key=value")
     ap.add_argument("--duration", type=float, help="simulated seconds of every case but the standstill (default: the scenario's)")
     ap.add_argument("--check", action="store_true")
@@ -199,6 +214,9 @@ def main(argv):
             m = results[label]["metrics"]
             series = error_series(os.path.join(args.out, label))
             row = {"reached": m["waypoints_reached"], "rmse": m["pf_rmse_m"]}
+            consistency = m.get("estimate_pose", {})
+            row["worst_position_error_valid_m"] = consistency.get("worst_position_error_valid_m")
+            row["worst_heading_error_valid_deg"] = consistency.get("worst_heading_error_valid_deg")
             if case.startswith("kidnap"):
                 row["position_recovery_s"], row["heading_recovery_s"] = recovery_times(series)
             if case.startswith("standstill"):
@@ -230,6 +248,17 @@ def main(argv):
             required = "18/18 each seed"
             for s, r in zip(seeds, rows):
                 need(r["reached"] == 18, "%s seed %d: reached %d/18" % (case, s, r["reached"]))
+        elif case.startswith("start_50m"):
+            # Issue 27's bound for a wrong start belief: never valid more than 5 m or 30 deg off.
+            position = [r["worst_position_error_valid_m"] or 0.0 for r in rows]
+            heading = [r["worst_heading_error_valid_deg"] or 0.0 for r in rows]
+            recovery = "worst error while valid %.2f-%.2f m, %.1f-%.1f deg" % (min(position), max(position), min(heading),
+                                                                              max(heading))
+            required = "18/18 each seed; never valid > 5 m or > 30 deg off"
+            for s, r, p, h in zip(seeds, rows, position, heading):
+                need(r["reached"] == 18, "%s seed %d: reached %d/18" % (case, s, r["reached"]))
+                need(p <= 5.0, "%s seed %d: valid %.2f m off (> 5 m)" % (case, s, p))
+                need(h <= 30.0, "%s seed %d: valid %.1f deg off (> 30 deg)" % (case, s, h))
         elif case == "kidnap_10m":
             times = [r["position_recovery_s"] for r in rows]
             recovery = "position < 1 m after %s / %s" % (fmt(min(times, key=lambda v: v if v is not None else 1e9)),

@@ -232,4 +232,15 @@ HeadingTrackCheck::Verdict HeadingTrackCheck::check_drifting(double cloud_theta_
   return verdict(phi + track.theta_now, track_var, cloud_theta_rad, cloud_theta_var_rad2);
 }
 
+double HeadingTrackCheck::slip_std_with_prior_radpm(double prior_std_radpm) const {
+  if (!(prior_std_radpm > 0.0)) {
+    return slip_std_radpm_;
+  }
+  if (!(slip_std_radpm_ > 0.0)) {
+    return 0.0;
+  }
+  const double precision = 1.0 / (slip_std_radpm_ * slip_std_radpm_) + 1.0 / (prior_std_radpm * prior_std_radpm);
+  return 1.0 / std::sqrt(precision);
+}
+
 }  // namespace robodds::pf_estimator

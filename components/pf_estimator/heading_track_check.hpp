@@ -68,6 +68,13 @@ class HeadingTrackCheck {
   double track_theta_std_rad() const { return track_theta_std_rad_; }
   double difference_rad() const { return difference_rad_; }
   std::size_t fixes() const { return count_; }
+  /// The window holds every fix since reset(): the track knows all the fixes said since.
+  bool holds_every_fix() const { return count_ <= capacity_; }
+  /// The std of the odometry's turn slip (rad/m) the last check_drifting() fitted, given a prior
+  /// N(0, prior_std_radpm^2) on it as well (the filter's: the fit itself takes the slip as free, so
+  /// that it judges the cloud independently of the cloud's prior): 1 / sqrt(1 / var_fit + 1 / var_prior),
+  /// the exact marginal of a linear Gaussian fit. prior_std_radpm <= 0: the fit's.
+  double slip_std_with_prior_radpm(double prior_std_radpm) const;
 
  private:
   struct Sample {

@@ -144,6 +144,10 @@ void ParticleFilter::recover(double z_x_m, double z_y_m) {
   accepted_since_init_ = 0;
   prior_check_.stop();  // half the headings are fresh: the spread, not a prior, says how sure it is
   track_check_.reset();  // ... and the fixes' track from here on whether it is right
+  track_judged_driving_ = false;
+  // Half the particles keep their turn slips: the cloud knows more of the slip than the track's new
+  // window, so that window is no floor for it (track_check_floor) until the next initialisation.
+  floor_allowed_ = false;
   track_confirmed_ = !track_check_.enabled();
   track_learned_ = true;
   ++recovery_count_;
@@ -152,6 +156,8 @@ void ParticleFilter::recover(double z_x_m, double z_y_m) {
 void ParticleFilter::start_confirmation() {
   accepted_since_init_ = 0;
   track_check_.reset();
+  track_judged_driving_ = false;
+  floor_allowed_ = true;
   if (params_.init_theta_known) {
     prior_check_.start(params_.init_theta_rad);
     track_confirmed_ = true;  // a heading given as known: HeadingPriorCheck confirms it
@@ -172,6 +178,13 @@ void ParticleFilter::check_heading_against_track(double z_x_m, double z_y_m) {
   if (track_confirmed_ && !driving) {
     return;
   }
+  if (driving && last_update_standing_) {
+    // A fix after standing says nothing about the heading (standstill_keeps_heading): the window keeps
+    // the fixes of the motion before, and nothing is judged. Judged with a window of standing fixes,
+    // the slip fit could pass a wrong heading below track_check_heading_std_rad and redraw a right
+    // cloud (nominal seed 1, 24 s after the mission: 27 deg off at a reported 11.5 deg).
+    return;
+  }
   track_check_.add_fix(z_x_m, z_y_m);
   if (track_check_.fixes() < HeadingTrackCheck::kMinFixes) {
     return;
@@ -184,6 +197,25 @@ void ParticleFilter::check_heading_against_track(double z_x_m, double z_y_m) {
   if (driving) {
     if (verdict == HeadingTrackCheck::Verdict::kConsistent) {
       inflate_towards_track(cloud.mean.z(), cloud_var);
+    }
+    if (verdict == HeadingTrackCheck::Verdict::kPending && params_.track_check_floor && floor_allowed_ &&
+        !track_judged_driving_ && track_check_.holds_every_fix()) {
+      floor_to_track();
+      if (params_.track_doubt_std_rad > 0.0 && std::sqrt(cloud_var) > params_.track_doubt_std_rad) {
+        // With its slips as uncertain as the fixes leave them, the cloud's heading spread grew past
+        // what a consumer keeps driving on, before the track could judge: the heading is not known
+        // any more. Not confirmed until the check passes again (positions, headings and slips kept),
+        // and a restart, so that the consumer may move again to learn it (a robot stopped on an
+        // invalid estimate stood for good: std 5x seed 7).
+        track_confirmed_ = false;
+        accepted_since_init_ = 0;
+        ++track_doubt_count_;
+        ++recovery_count_;
+        return;
+      }
+    }
+    if (verdict != HeadingTrackCheck::Verdict::kPending) {
+      track_judged_driving_ = true;
     }
     if (verdict != HeadingTrackCheck::Verdict::kContradicted) {
       return;
@@ -255,6 +287,27 @@ void ParticleFilter::inflate_towards_track(double cloud_theta_rad, double cloud_
     const double slip_mean = (weights_ * turn_slip_).sum();
     turn_slip_ = slip_mean + std::sqrt(slip_var / cloud_slip_var) * (turn_slip_ - slip_mean);
   }
+}
+
+void ParticleFilter::floor_to_track() {
+  // The window's fixes, with the filter's own turn-slip prior, know the odometry's turn slip only to
+  // the track fit's std: a cloud whose slips are narrower learned them faster than the fixes justify
+  // (Monte Carlo error of 1,000 particles with weak fixes), and a wrong slip bends its heading while
+  // it drives, its spread staying small. Widened about their mean, not moved: the headings then
+  // spread as far as the slips allow over the next metres, and the fixes narrow both again. Only
+  // after an initialisation (slips drawn from the prior; a recovery keeps half of them), while the
+  // window holds every fix since (the cloud knows no more than those) and until the track first
+  // judges while driving (from then on it judges and widens by its
+  // difference; a window of standing fixes after the mission knows less than the cloud).
+  const double slip_std = track_check_.slip_std_with_prior_radpm(params_.turn_slip_std_radpm);
+  const double floor_var = slip_std * slip_std;
+  const double cloud_slip_var = turn_slip_variance();
+  if (!(floor_var > cloud_slip_var) || !(cloud_slip_var > 0.0)) {
+    return;
+  }
+  const double slip_mean = (weights_ * turn_slip_).sum();
+  turn_slip_ = slip_mean + std::sqrt(floor_var / cloud_slip_var) * (turn_slip_ - slip_mean);
+  ++track_floor_count_;
 }
 
 bool ParticleFilter::confirmed() const {

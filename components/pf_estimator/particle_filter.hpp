@@ -123,6 +123,15 @@ class ParticleFilter {
   std::size_t track_redraw_while_driving_count() const { return track_redraw_driving_count_; }
   /// Fixes after which the heading spread was widened to the track's difference (track_check_inflate_sigmas).
   std::size_t track_inflation_count() const { return track_inflation_count_; }
+  /// Fixes after which the turn-slip spread was widened to the track fit's (track_check_floor).
+  std::size_t track_floor_count() const { return track_floor_count_; }
+  /// Weighted std of the particles' turn slips (rad/m).
+  double turn_slip_std_radpm() const { return std::sqrt(turn_slip_variance()); }
+  /// The track check judged while driving since the last (re)initialisation (track_check_floor
+  /// applies until then).
+  bool track_judged_while_driving() const { return track_judged_driving_; }
+  /// Restarts because the heading spread passed track_doubt_std_rad before the track judged.
+  std::size_t track_doubt_count() const { return track_doubt_count_; }
   /// The fix std per axis (m) the filter uses: estimated from the innovations
   /// (PfParams::noise_window_fixes), never below measurement_std_m.
   double measurement_std_estimate_m() const { return noise_.std_m(); }
@@ -159,6 +168,9 @@ class ParticleFilter {
   /// While driving: widens the cloud's heading (and turn slip) spread about its mean where its
   /// difference to the track's exceeds track_check_inflate_sigmas combined sigmas.
   void inflate_towards_track(double cloud_theta_rad, double cloud_theta_var);
+  /// Widens the turn-slip spread about its mean to at least the track fit's std with the slip prior
+  /// (track_check_floor).
+  void floor_to_track();
   /// Weighted variance of the particles' turn slips ((rad/m)^2).
   double turn_slip_variance() const;
   void start_confirmation();
@@ -203,6 +215,10 @@ class ParticleFilter {
   std::size_t track_redraw_count_ = 0;
   std::size_t track_redraw_driving_count_ = 0;
   std::size_t track_inflation_count_ = 0;
+  std::size_t track_floor_count_ = 0;
+  std::size_t track_doubt_count_ = 0;
+  bool track_judged_driving_ = false;
+  bool floor_allowed_ = true;  // track_check_floor: since an initialisation, not a recovery  // check_drifting() judged since the last (re)initialisation
   std::size_t accepted_since_init_ = 0;  // fixes used since the last (re)initialisation
   double last_update_nis_ = 0.0;
   bool last_update_rejected_ = false;

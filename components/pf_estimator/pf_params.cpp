@@ -136,6 +136,10 @@ const params::ParamTable<PfParams>& pf_param_table() {
                "after it passed, a learned heading stays checked against the track of the last fixes (the odometry's turn slip fitted too, its drift counted); a contradiction redraws the headings (a restart)")
           .add("track_redraw_widens_position", &PfParams::track_redraw_widens_position, "", params::any<bool>(),
                "a redraw of the headings by the track check also widens the positions about their mean to at least the estimated fix noise per axis")
+          .add("track_check_floor", &PfParams::track_check_floor, "", params::any<bool>(),
+               "while driving, until the track first judges, the cloud's turn-slip spread is at least the track fit's (with the turn-slip prior)")
+          .add("track_doubt_std_rad", &PfParams::track_doubt_std_rad, "rad", non_negative("0 = never"),
+               "with track_check_floor: a heading std above this before the track judged ends the confirmation (a restart); the node's valid_keep_max_heading_std_rad")
           .add("track_check_inflate_sigmas", &PfParams::track_check_inflate_sigmas, "", non_negative("0 = off"),
                "while driving, the heading (and turn slip) spread is widened until the cloud is within this many combined sigmas of the track's; 0 = off")
           .add("init_fix_std_m", &PfParams::init_fix_std_m, "m", positive(), "spread around the first fix (first_fix mode)");

@@ -166,6 +166,15 @@ struct PfParams {
   /// A redraw of the headings by the track check also widens the positions about their mean to at
   /// least the estimated fix noise per axis: they followed the wrong heading. false = kept (before).
   bool track_redraw_widens_position = true;
+  /// While driving, the cloud's heading variance is at least the track's (check_drifting() with the
+  /// filter's turn-slip prior: what the fixes of the window say about the heading now), also before
+  /// the track knows the heading well enough to judge (issue 27: fixes 2-5x noisier, clouds 25-40 deg
+  /// off at a reported 5-10 deg in the first ~20 s after `valid`). false = not (before).
+  bool track_check_floor = true;
+  /// With track_check_floor: a cloud whose heading std passes this before the track judged is no
+  /// longer confirmed (a restart: the consumer may move again to learn the heading). The node's
+  /// valid_keep_max_heading_std_rad. 0 = never.
+  double track_doubt_std_rad = 0.35;
   double init_fix_std_m = 1.51;
 
   /// Throws std::invalid_argument naming the first offending key: the table's ranges, then

@@ -1,8 +1,10 @@
 #include "components/pf_estimator/pose_estimate.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/angle.hpp"
+#include "common/model/diff_drive_kinematics.hpp"
 
 namespace robodds::pf_estimator {
 
@@ -63,6 +65,19 @@ bool ValidityTracker::next(const PoseEstimate& estimate, bool confirmed, std::si
   const bool valid = confirmed && next_validity(estimate, limits_, established_);
   established_ = established_ || valid;
   return valid;
+}
+
+PoseEstimate extrapolate_estimate(const PoseEstimate& estimate, double v_mps, double omega_radps,
+                                  double omega_var_radps2, double age_s) {
+  if (!(age_s > 0.0)) {
+    return estimate;
+  }
+  PoseEstimate moved = estimate;
+  const model::Pose2 pose =
+      model::integrate_exact({estimate.mean.x(), estimate.mean.y(), estimate.mean.z()}, {v_mps, omega_radps}, age_s);
+  moved.mean << pose.x, pose.y, pose.theta;
+  moved.covariance(2, 2) += std::max(0.0, omega_var_radps2) * age_s * age_s;
+  return moved;
 }
 
 }  // namespace robodds::pf_estimator

@@ -1,6 +1,7 @@
 // Adapter: Odometry/PositionMeasurement -> ParticleFilter -> PoseEstimate.
 #include "components/pf_estimator/node/pf_estimator_node.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -35,6 +36,7 @@ class PfEstimatorNode : public Component {
     ctx.limits_age_of("sensor/odometry", "input_timeout_s", input_timeout_s_, /*realtime_only=*/true);
     ctx.limits_age_of("sensor/position", "input_timeout_s", input_timeout_s_, /*realtime_only=*/true);
     realtime_ = ctx.mode() == TimeMode::kRealtime;
+    extrapolate_ = node_params.extrapolate_to_step;
     for (const RobotSpec& robot : ctx.robots()) {
       filters_.emplace(robot.id, std::make_unique<ParticleFilter>(params, ctx.seed_for("robot" + std::to_string(robot.id))));
       validity_.emplace(robot.id, ValidityTracker(limits));
@@ -46,7 +48,7 @@ class PfEstimatorNode : public Component {
     compute_times_ = &ctx.compute_times();
   }
 
-  void on_step(const StepInfo&) override {
+  void on_step(const StepInfo& info) override {
     ScopedComputeTimer timer(*compute_times_, "pf");  // summary.json run.timing.pf: every filter's step
     for (auto& [id, filter] : filters_) {
       const std::vector<idl::Odometry> odometry = odometry_->take_new(id);
@@ -69,11 +71,15 @@ class PfEstimatorNode : public Component {
       for (; next_odometry < odometry.size(); ++next_odometry) {
         predict(*filter, odometry[next_odometry]);
       }
-      // The estimate is published every step but the cloud only changes with new odometry or
-      // fixes: reuse the last estimate otherwise (it costs a pass with sin/cos over M particles).
-      if (!odometry.empty() || !fixes.empty() || published_.count(id) == 0) {
-        published_[id] = to_message(id, *filter, validity_.at(id));
+      if (!odometry.empty()) {
+        last_odometry_[id] = odometry.back();
       }
+      // The cloud only changes with new odometry or fixes: its estimate is reused otherwise (it costs a
+      // pass with sin/cos over M particles), moved on to this step along the last odometry's arc.
+      if (!odometry.empty() || !fixes.empty() || estimates_.count(id) == 0) {
+        estimates_[id] = filter_estimate(*filter, validity_.at(id));
+      }
+      published_[id] = to_message(id, estimates_.at(id), age_of_odometry(id, info));
       if (realtime_ && !inputs_fresh(id)) {
         // Safe behaviour: a filter without fresh sensors says so, and its consumers stop.
         idl::PoseEstimate stale = published_[id];
@@ -92,36 +98,73 @@ class PfEstimatorNode : public Component {
     return odometry_->fresh(id, input_timeout_s_) && fixes_->fresh(id, input_timeout_s_);
   }
 
+  /// Seconds from the last odometry sample to this step (issue 27: the estimate's age), at most one
+  /// sample interval (the next sample is due then); 0 without odometry or with extrapolation off.
+  double age_of_odometry(std::uint32_t id, const StepInfo& info) const {
+    const auto last = last_odometry_.find(id);
+    if (!extrapolate_ || last == last_odometry_.end()) {
+      return 0.0;
+    }
+    const double age_s = 1e-9 * static_cast<double>(info.stamp_ns - last->second.header().stamp_ns());
+    return std::clamp(age_s, 0.0, std::max(0.0, last->second.dt_s()));
+  }
+
   static void predict(ParticleFilter& filter, const idl::Odometry& odometry) {
     if (filter.initialized() && odometry.dt_s() > 0.0) {
       filter.predict(odometry.v(), odometry.omega(), odometry.dt_s(), odometry.var_omega());
     }
   }
 
-  /// `validity`: the filter's own judgement (not the real-time staleness override: stale inputs say
-  /// nothing about what the cloud knows).
-  static idl::PoseEstimate to_message(std::uint32_t id, const ParticleFilter& filter, ValidityTracker& validity) {
+  /// The filter's estimate and its validity now. `validity`: the filter's own judgement (not the
+  /// real-time staleness override: stale inputs say nothing about what the cloud knows).
+  struct Judged {
+    bool initialized = false;
+    PoseEstimate estimate;
+    bool valid = false;
+    std::size_t restarts = 0;
+    double fix_noise_std_m = 0.0;  // m, per axis: what the filter gates and weighs the fixes with
+  };
+  static Judged filter_estimate(const ParticleFilter& filter, ValidityTracker& validity) {
+    Judged j;
+    if (filter.initialized()) {
+      j.initialized = true;
+      j.estimate = filter.estimate();
+      // The spread alone is no proof (a heading given as known has none): the measurements must
+      // have confirmed the belief first (issue 27).
+      j.valid = validity.next(j.estimate, filter.confirmed(), filter.recovery_count());
+      j.restarts = filter.recovery_count();
+      j.fix_noise_std_m = filter.measurement_std_estimate_m();
+    }
+    return j;
+  }
+
+  idl::PoseEstimate to_message(std::uint32_t id, const Judged& judged, double age_s) const {
     idl::PoseEstimate m;
     m.robot_id(id);
-    if (filter.initialized()) {
-      const PoseEstimate e = filter.estimate();
+    if (judged.initialized) {
+      PoseEstimate e = judged.estimate;
+      const auto last = last_odometry_.find(id);
+      if (age_s > 0.0 && last != last_odometry_.end()) {
+        e = extrapolate_estimate(e, last->second.v(), last->second.omega(), last->second.var_omega(), age_s);
+      }
       m.x(e.mean.x());
       m.y(e.mean.y());
       m.theta(e.mean.z());
       for (int i = 0; i < 9; ++i) {
         m.cov()[static_cast<std::size_t>(i)] = e.covariance(i / 3, i % 3);
       }
-      // The spread alone is no proof (a heading given as known has none): the measurements must
-      // have confirmed the belief first (issue 27).
-      m.valid(validity.next(e, filter.confirmed(), filter.recovery_count()));
-      m.restarts(static_cast<std::uint32_t>(filter.recovery_count()));  // a consumer sees each redraw, even one it missed
-      m.fix_noise_std_m(filter.measurement_std_estimate_m());           // what it gates and weighs the fixes with
+      m.valid(judged.valid);
+      m.restarts(static_cast<std::uint32_t>(judged.restarts));  // a consumer sees each redraw, even one it missed
+      m.fix_noise_std_m(judged.fix_noise_std_m);
     }
     return m;
   }
 
   std::map<std::uint32_t, std::unique_ptr<ParticleFilter>> filters_;
   std::map<std::uint32_t, idl::PoseEstimate> published_;  // last estimate per robot
+  std::map<std::uint32_t, Judged> estimates_;             // the filter's last estimate per robot
+  std::map<std::uint32_t, idl::Odometry> last_odometry_;  // per robot
+  bool extrapolate_ = true;
   std::map<std::uint32_t, ValidityTracker> validity_;  // per robot
   double input_timeout_s_ = 0.5;
   bool realtime_ = false;

@@ -22,7 +22,9 @@ const params::ParamTable<PfEstimatorNodeParams>& pf_estimator_param_table() {
                params::shown_as(params::non_negative(), ">= valid_max_heading_std_rad"),
                "once valid, the estimate stays valid while the heading's std is below this (a band against flicker)")
           .add("input_timeout_s", &PfEstimatorNodeParams::input_timeout_s, "s", params::positive(),
-               "real time only: valid = false while odometry or position was last received longer ago than this; > the period");
+               "real time only: valid = false while odometry or position was last received longer ago than this; > the period")
+          .add("extrapolate_to_step", &PfEstimatorNodeParams::extrapolate_to_step, "", params::any<bool>(),
+               "true: an estimate published after the last odometry sample is moved on along that sample's arc to the publication time (at most one sample interval)");
   return table;
 }
 

@@ -17,6 +17,7 @@ struct PfEstimatorNodeParams {
   double valid_max_heading_std_rad = 0.2;
   double valid_keep_max_heading_std_rad = 0.35;
   double input_timeout_s = 0.5;
+  bool extrapolate_to_step = true;
 
   /// The table's ranges, then valid_keep_max_heading_std_rad >= valid_max_heading_std_rad.
   void validate() const;

@@ -138,6 +138,22 @@ TEST(HeadingTrackCheck, WhileDrivingTheSlipOfTheDeadReckoningIsFittedToo) {
   EXPECT_GE(covered, 9);
 }
 
+// The slip the fit leaves, with a prior on it as well (the filter's, for track_check_floor): on a
+// straight creep the fit alone hardly knows the slip; the prior bounds it; the exact marginal of
+// the two Gaussians. The fit itself (and so its verdicts) does not use the prior.
+TEST(HeadingTrackCheck, TheSlipStdWithAPriorIsTheFitsCombinedWithIt) {
+  double truth_theta = 0.0;
+  HeadingTrackCheck check = drive(0.4, 4.53, 0.3, 40.0, 7, &truth_theta);  // 12 m of creep, fixes 3x noisier
+  check.check_drifting(truth_theta, 0.01);
+  const double fit = check.slip_std_radpm();
+  EXPECT_GT(fit, 0.05) << "a straight creep hardly shows the slip";
+  const double with_prior = check.slip_std_with_prior_radpm(0.05);
+  EXPECT_NEAR(with_prior, 1.0 / std::sqrt(1.0 / (fit * fit) + 1.0 / 0.0025), 1e-12);
+  EXPECT_LT(with_prior, 0.05);
+  EXPECT_GT(with_prior, 0.7 * 0.05) << "the fit adds little to the prior here";
+  EXPECT_EQ(check.slip_std_with_prior_radpm(0.0), fit);
+}
+
 TEST(HeadingTrackCheck, WhileDrivingTheTurnNoiseSinceTheWindowCounts) {
   // Without a slip, the track's heading now still carries the odometry's turn-rate noise since the
   // window's fixes (0.094 rad/s per 50 Hz sample: ~0.013 rad/sqrt(s), ~0.05 rad over 15 s): the

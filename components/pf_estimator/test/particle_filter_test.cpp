@@ -772,6 +772,162 @@ TEST(ParticleFilter, WhileDrivingTheHeadingStaysCheckedAgainstTheFixesTrack) {
   EXPECT_LT(redraw_only.overconfident, off.overconfident / 4);
 }
 
+// Issue 27, fixes 2-5x noisier than configured: right after the track check passed, while driving,
+// the track fits the turn slip too and knows the heading only to more than
+// track_check_heading_std_rad, so it does not judge yet, while 1,000 particles had narrowed their
+// turn slips (and with them the heading) faster than the fixes justify: clouds 25-40 deg off at a
+// reported 5-10 deg in the first ~20 s after `valid` (std 2x seed 9, 5x variance seed 9, std 5x
+// seed 7). With track_check_floor, until the track first judges, the cloud's slip spread is at
+// least what the track's fit with the filter's own slip prior leaves. A robot creeping at 0.3 m/s
+// (as the controller does before `valid`), then weaving at 1.5 m/s, fixes of std `fix_std` m
+// against the configured 1.51 m.
+struct EarlyRun {
+  int confirmed_before_judged = 0;  // fixes after which the filter is confirmed, the track not judging yet
+  int narrower_than_track = 0;      // ... with the cloud's slip std below the track's (with the prior)
+  int overconfident = 0;            // ... with a heading error beyond 3 reported sigmas
+  std::size_t floors = 0;
+};
+
+EarlyRun creep_then_drive(bool floor, double fix_std, std::uint64_t seed) {
+  PfParams params = first_fix_params();
+  params.init_theta_known = false;
+  params.measurement_std_m = 1.51;
+  params.init_fix_std_m = 1.51;
+  params.track_check_floor = floor;
+  params.track_doubt_std_rad = 0.0;  // about the spread, not the restart
+  ParticleFilter filter(params, seed);
+  RandomEngine world(derive_seed(seed, "world"));
+  model::Pose2 truth{10.0, 20.0, 0.5};
+  filter.initialize_around(truth.x + fix_std * standard_normal(world), truth.y + fix_std * standard_normal(world));
+  EarlyRun run;
+  bool driving = false;
+  for (int step = 1; step <= 4500; ++step) {  // at most 90 s
+    driving = driving || filter.confirmed();
+    const model::Twist twist = driving ? model::Twist{1.5, 0.3 * std::sin(0.3 * 0.02 * step)} : model::Twist{0.3, 0.0};
+    truth = model::integrate_exact(truth, twist, 0.02);
+    filter.predict(twist.v + 0.014 * standard_normal(world), twist.omega + 0.094 * standard_normal(world), 0.02, 0.0089);
+    if (step % 5 != 0) {
+      continue;
+    }
+    filter.update(truth.x + fix_std * standard_normal(world), truth.y + fix_std * standard_normal(world));
+    if (!filter.confirmed() || filter.track_judged_while_driving()) {
+      continue;
+    }
+    ++run.confirmed_before_judged;
+    const double track_slip_std = filter.heading_track_check().slip_std_with_prior_radpm(params.turn_slip_std_radpm);
+    run.narrower_than_track += filter.turn_slip_std_radpm() < 0.999 * track_slip_std;
+    const PoseEstimate estimate = filter.estimate();
+    run.overconfident += std::abs(wrap_angle(estimate.mean.z() - truth.theta)) > 3.0 * std::sqrt(estimate.covariance(2, 2));
+  }
+  run.floors = filter.track_floor_count();
+  return run;
+}
+
+TEST(ParticleFilter, UntilTheTrackJudgesTheCloudsSlipsAreAsUncertainAsTheFixesLeaveThem) {
+  // Fixes of std 3.02 m (twice the configured std, as std 2x). Measured: off, the slips narrower than
+  // the track's on 36-72 of 48-73 confirmed fixes (seeds 1-6), 12 over-confident on seed 1; on, none
+  // narrower, 4 over-confident on seed 1, the others 0.
+  int overconfident_on = 0, overconfident_off = 0;
+  for (const std::uint64_t seed : {1u, 4u}) {
+    const EarlyRun on = creep_then_drive(true, 3.02, seed);
+    const EarlyRun off = creep_then_drive(false, 3.02, seed);
+    ASSERT_GT(on.confirmed_before_judged, 20) << seed;
+    EXPECT_EQ(on.confirmed_before_judged, off.confirmed_before_judged) << seed << ": the same run until then";
+    EXPECT_GE(on.floors, 1u) << seed;
+    EXPECT_EQ(on.narrower_than_track, 0) << seed;
+    EXPECT_EQ(off.floors, 0u) << seed;
+    EXPECT_GT(off.narrower_than_track, off.confirmed_before_judged / 2) << seed;
+    overconfident_on += on.overconfident;
+    overconfident_off += off.overconfident;
+  }
+  EXPECT_LT(overconfident_on, overconfident_off / 2);
+}
+
+// A recovery keeps half the particles' turn slips: the cloud then knows more of the slip than the
+// track's new window, which is no floor for it until the next initialisation (with the floor after
+// the 10 m kidnap of kidnap_10m the slips were widened to the prior again). The robot of
+// creep_then_drive's set-up, moved 15 m once the filter is confirmed and driving (the monitor
+// redraws the cloud around the fixes), then creeping and driving again.
+TEST(ParticleFilter, TheSlipFloorActsAfterAnInitialisationNotAfterARecovery) {
+  PfParams params = first_fix_params();
+  params.init_theta_known = false;
+  params.measurement_std_m = 1.51;
+  params.init_fix_std_m = 1.51;
+  params.track_doubt_std_rad = 0.0;
+  ParticleFilter filter(params, 2);
+  RandomEngine world(derive_seed(2, "world"));
+  model::Pose2 truth{10.0, 20.0, 0.5};
+  filter.initialize_around(truth.x + 3.02 * standard_normal(world), truth.y + 3.02 * standard_normal(world));
+  std::size_t floors_before_recovery = 0;
+  bool kidnapped = false;
+  int confirmed_after_recovery = 0;
+  for (int step = 1; step <= 6000; ++step) {
+    const bool driving = filter.confirmed();
+    const model::Twist twist = driving ? model::Twist{1.5, 0.3 * std::sin(0.3 * 0.02 * step)} : model::Twist{0.3, 0.0};
+    truth = model::integrate_exact(truth, twist, 0.02);
+    if (!kidnapped && driving && filter.track_floor_count() > 0 && filter.track_judged_while_driving()) {
+      truth.x += 15.0;  // kidnapped: the fixes jump, the odometry does not
+      kidnapped = true;
+      floors_before_recovery = filter.track_floor_count();
+    }
+    filter.predict(twist.v + 0.014 * standard_normal(world), twist.omega + 0.094 * standard_normal(world), 0.02, 0.0089);
+    if (step % 5 == 0) {
+      filter.update(truth.x + 3.02 * standard_normal(world), truth.y + 3.02 * standard_normal(world));
+      confirmed_after_recovery += kidnapped && filter.recovery_count() > 0 && filter.confirmed();
+    }
+  }
+  ASSERT_TRUE(kidnapped) << "the floor never acted, or the track never judged";
+  ASSERT_GE(filter.recovery_count(), 1u);
+  EXPECT_GT(confirmed_after_recovery, 50) << "confirmed and driving again after the recovery";
+  EXPECT_EQ(filter.track_floor_count(), floors_before_recovery) << "the floor acted after the recovery";
+}
+
+// Standing after driving (a way-point reached, the mission done), the fixes say nothing about the
+// heading: the track check while driving neither stores nor judges them. Judged from a window of
+// standing fixes, its slip fit passed a wrong heading and redrew a right cloud (nominal seed 1 with
+// the estimate moved on to its step, 24 s after the mission: valid 27 deg off at a reported 11.5 deg).
+TEST(ParticleFilter, TheTrackCheckWhileDrivingIgnoresTheFixesOfARobotStandingStill) {
+  PfParams params = first_fix_params();
+  params.init_theta_known = false;
+  params.measurement_std_m = 1.51;
+  params.init_fix_std_m = 1.51;
+  ParticleFilter filter(params, 5);
+  RandomEngine world(derive_seed(5, "world"));
+  model::Pose2 truth{10.0, 20.0, 0.5};
+  filter.initialize_around(truth.x, truth.y);
+  std::size_t fixes_when_stopped = 0;
+  int standing_fixes = 0;
+  int steps_since_confirmed = -1;
+  for (int step = 1; step <= 6000; ++step) {
+    if (steps_since_confirmed < 0 && filter.confirmed() && filter.track_confirmed()) {
+      steps_since_confirmed = 0;
+    }
+    const bool stopped = steps_since_confirmed > 1000;  // 20 s of driving after the check passed, then standing
+    const model::Twist twist = stopped ? model::Twist{0.0, 0.0}
+                                       : model::Twist{steps_since_confirmed >= 0 ? 1.5 : 0.3, 0.2 * std::sin(0.01 * step)};
+    truth = model::integrate_exact(truth, twist, 0.02);
+    filter.predict(twist.v + 0.014 * standard_normal(world), twist.omega + 0.094 * standard_normal(world), 0.02, 0.0089);
+    if (steps_since_confirmed >= 0) {
+      ++steps_since_confirmed;
+    }
+    if (step % 5 != 0) {
+      continue;
+    }
+    filter.update(truth.x + 1.51 * standard_normal(world), truth.y + 1.51 * standard_normal(world));
+    if (stopped && filter.last_update_standing()) {
+      if (standing_fixes == 0) {
+        fixes_when_stopped = filter.heading_track_check().fixes();
+      }
+      ++standing_fixes;
+    }
+  }
+  ASSERT_GE(steps_since_confirmed, 0) << "never confirmed";
+  ASSERT_GT(standing_fixes, 300) << "more than a window of standing fixes";
+  EXPECT_GE(fixes_when_stopped, 200u) << "the driving filled the window";
+  EXPECT_EQ(filter.heading_track_check().fixes(), fixes_when_stopped) << "standing fixes were stored";
+  EXPECT_TRUE(filter.confirmed());
+}
+
 // Issue 27, finding 4: a fix after an interval in which the robot stood carries no heading
 // information. When it resamples, only the position is drawn from the weighted cloud: every
 // particle keeps its own heading and turn slip (before, whole particles were copied, thinning the
