@@ -226,6 +226,7 @@ TEST(TightlyCoupledWindow, SlipStatesFollowSlippingWheels) {
   slip.constant_curvature_radpm = 0.02;
   for (std::uint64_t seed : {1u, 2u}) {
     TightWindowParams params;
+    params.odometry_slip_states = true;
     const TcRun with_states = run(kSensor, params, kDurationS, seed, slip);
     print("slipping wheels, slip states", with_states);
     params.odometry_slip_states = false;
