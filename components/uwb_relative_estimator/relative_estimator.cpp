@@ -118,7 +118,6 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
                                FixTrackCheck(params_.uncertainty), InnovationMonitor(params_.uncertainty),
                                Eigen::Matrix3d::Zero()});
     tc_.emplace_back(own_array_, peer.array, params_.tc);
-    tc_checks_.emplace_back(params_.uncertainty);
   }
   for (std::size_t a = 0; a < setups_.size(); ++a) {
     for (std::size_t b = a + 1; b < setups_.size(); ++b) {
@@ -492,28 +491,11 @@ void RelativeEstimator::run_tc(double time_s, const model::Pose2& own_increment,
                                  uwb.valid ? std::optional<model::Pose2>(uwb.pose) : std::nullopt, outliers,
                                  uwb.valid ? std::optional<Eigen::Matrix3d>(uwb.covariance) : std::nullopt);
     if (estimate.valid) {
+      estimate.pose = tc_[k].pose();
       // What the uwb stage's check over time finds in the fixes beyond the range error model (an
       // error of another kind: a board's excess on the links through it) reaches tc through the
       // same ranges: its covariance is scaled alike (1 while the fixes hold their model).
-      const FixTrackCheck& fix_check = peers_[k].fix_check;
-      Eigen::Matrix3d covariance = fix_check.inflate(tc_[k].covariance());
-      // Its own check against the fixes, as the filters' (InnovationMonitor): a wrong start or a
-      // wrong minimum the fixes disagree with for long is restarted at the estimate plus the
-      // fixes' median innovation; what is left unexplained is added.
-      InnovationMonitor& check = tc_checks_[k];
-      if (uwb.valid) {
-        check.add(tc_[k].pose(), uwb.pose, peers_[k].fix_model_covariance, peers_[k].fix_own_covariance);
-      }
-      Eigen::Vector3d correction;
-      Eigen::Matrix3d fix_covariance;
-      if (check.lost(covariance, correction, fix_covariance)) {
-        const model::Pose2 p = tc_[k].pose();
-        tc_[k].restart(model::Pose2{p.x + correction.x(), p.y + correction.y(), wrap_angle(p.theta + correction.z())});
-        check.reset();
-        covariance = fix_check.inflate(tc_[k].covariance());
-      }
-      estimate.pose = tc_[k].pose();
-      estimate.covariance = covariance + check.excess();
+      estimate.covariance = peers_[k].fix_check.inflate(tc_[k].covariance());
     }
   }
 }

@@ -210,7 +210,6 @@ class RelativeEstimator {
   std::optional<double> last_time_s_;
   EstimatorCounts counts_;
   std::vector<TightlyCoupledWindow> tc_;  // the tc stage of each peer (constructor order; issue 28)
-  std::vector<InnovationMonitor> tc_checks_;  // tc against the eq. (1) fixes, as the filters' checks
 };
 
 }  // namespace robodds::uwb_relative_estimator

@@ -506,19 +506,6 @@ void TightlyCoupledWindow::start(double time_s, const model::Pose2& fix) {
   disagreements_ = 0;
 }
 
-void TightlyCoupledWindow::restart(const model::Pose2& pose) {
-  if (epochs_.empty()) {
-    return;
-  }
-  const Epoch last = epochs_.back();
-  ++restarts_;
-  start(last.time_s, pose);
-  epochs_.back().ranges = last.ranges;
-  epochs_.back().range_inv_sigma = last.range_inv_sigma;
-  solve();
-  add_excess_noise_term();
-}
-
 void TightlyCoupledWindow::add_excess_noise_term() {
   const Epoch& e = epochs_.back();
   if (!e.ranges || e.range_inv_sigma.size() == 0) {

@@ -111,10 +111,6 @@ class TightlyCoupledWindow {
             const Eigen::VectorXd& outlier_variances_m2 = Eigen::VectorXd(),
             const std::optional<Eigen::Matrix3d>& fix_covariance = std::nullopt);
 
-  /// Starts again at `pose` (the newest epoch's time and ranges kept, solved again): for a caller
-  /// whose check finds the estimate lost. Nothing when not started.
-  void restart(const model::Pose2& pose);
-
   bool started() const { return !epochs_.empty(); }
   /// The newest pose (heading wrapped) and its covariance [x, y, theta].
   model::Pose2 pose() const;
