@@ -488,8 +488,7 @@ void RelativeEstimator::run_tc(double time_s, const model::Pose2& own_increment,
     }
     estimate.valid = tc_[k].step(time_s, own_increment, peers[k].odometry_increment,
                                  accepted ? peers[k].ranges_m : std::optional<Eigen::MatrixXd>(),
-                                 uwb.valid ? std::optional<model::Pose2>(uwb.pose) : std::nullopt, outliers,
-                                 uwb.valid ? std::optional<Eigen::Matrix3d>(uwb.covariance) : std::nullopt);
+                                 uwb.valid ? std::optional<model::Pose2>(uwb.pose) : std::nullopt, outliers);
     if (estimate.valid) {
       estimate.pose = tc_[k].pose();
       // What the uwb stage's check over time finds in the fixes beyond the range error model (an
