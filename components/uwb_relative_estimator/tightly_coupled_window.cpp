@@ -422,8 +422,6 @@ const params::ParamTable<TightWindowParams>& tight_window_param_table() {
                "restart from the fix when further from it than this ...")
           .add("disagreement_heading_rad", &P::disagreement_heading_rad, "rad", params::positive(),
                "... or than this in heading ...")
-          .add("disagreement_d2", &P::disagreement_d2, "", params::positive(),
-               "... and, given the fix's covariance, when its difference's d^2 against both covariances exceeds this ...")
           .add("disagreement_epochs", &P::disagreement_epochs, "epochs", params::at_least(1),
                "... for this many epochs in a row");
   return table;
@@ -539,8 +537,7 @@ std::optional<Eigen::Vector3d> TightlyCoupledWindow::first_estimate() const {
 
 bool TightlyCoupledWindow::step(double time_s, const model::Pose2& own_increment, const model::Pose2& peer_increment,
                                 const std::optional<Eigen::MatrixXd>& ranges_m, const std::optional<model::Pose2>& fix,
-                                const Eigen::VectorXd& outlier_variances_m2,
-                                const std::optional<Eigen::Matrix3d>& fix_covariance) {
+                                const Eigen::VectorXd& outlier_variances_m2) {
   if (!std::isfinite(time_s) || !finite(own_increment) || !finite(peer_increment) || (fix && !finite(*fix))) {
     throw std::invalid_argument("TightlyCoupledWindow::step: non-finite time, increment or fix");
   }
@@ -661,15 +658,8 @@ bool TightlyCoupledWindow::step(double time_s, const model::Pose2& own_increment
   }
   if (fix) {
     const model::Pose2 p = pose();
-    bool far = std::hypot(p.x - fix->x, p.y - fix->y) > params_.disagreement_position_m ||
-               std::abs(wrap_angle(p.theta - fix->theta)) > params_.disagreement_heading_rad;
-    if (fix_covariance && fix_covariance->allFinite() && covariance_.allFinite()) {
-      // Statistical, not metres: far only beyond both covariances (a fix at 8 m errs by a metre
-      // sideways as a rule; restarting on it threw a better estimate away).
-      const Eigen::Vector3d difference(fix->x - p.x, fix->y - p.y, wrap_angle(fix->theta - p.theta));
-      const Eigen::Matrix3d spread = *fix_covariance + covariance_;
-      far = far && difference.dot(spread.ldlt().solve(difference)) > params_.disagreement_d2;
-    }
+    const bool far = std::hypot(p.x - fix->x, p.y - fix->y) > params_.disagreement_position_m ||
+                     std::abs(wrap_angle(p.theta - fix->theta)) > params_.disagreement_heading_rad;
     disagreements_ = far ? disagreements_ + 1 : 0;
     if (disagreements_ >= params_.disagreement_epochs) {
       ++restarts_;

@@ -81,9 +81,6 @@ struct TightWindowParams {
   /// (a wrong minimum the estimator cannot leave by itself).
   double disagreement_position_m = 1.0;
   double disagreement_heading_rad = 0.5;
-  /// With the fix's covariance given, also its difference's d^2 against the fix's and this
-  /// estimate's covariance beyond this (chi-square, 3 dof, 99.9 %).
-  double disagreement_d2 = 16.27;
   int disagreement_epochs = 20;
   /// Throws std::invalid_argument "key: requirement (got value)".
   void validate() const;
@@ -102,14 +99,12 @@ class TightlyCoupledWindow {
   /// lasting disagreement). Returns true when the estimate is valid afterwards: started, ranges
   /// within restart_after_gap_s, the solve converged to a finite pose. Throws std::invalid_argument
   /// (nothing changed) on a non-finite input or ranges of the wrong shape.
-  /// `fix_covariance`: the fix's, when known (the disagreement test is then statistical too).
   /// `outlier_variances_m2`: empty, or K x L (row-major) variances added to each range's white
   /// noise this epoch (what the caller's outlier test found beyond the model, e.g. the uwb stage's
   /// range_error_variances beyond its base: a non-line-of-sight range).
   bool step(double time_s, const model::Pose2& own_increment, const model::Pose2& peer_increment,
             const std::optional<Eigen::MatrixXd>& ranges_m, const std::optional<model::Pose2>& fix,
-            const Eigen::VectorXd& outlier_variances_m2 = Eigen::VectorXd(),
-            const std::optional<Eigen::Matrix3d>& fix_covariance = std::nullopt);
+            const Eigen::VectorXd& outlier_variances_m2 = Eigen::VectorXd());
 
   bool started() const { return !epochs_.empty(); }
   /// The newest pose (heading wrapped) and its covariance [x, y, theta].
