@@ -373,7 +373,7 @@ def main(argv):
         print()
         print("| stage | over-confident (per seed) | longest over-confident run | mean position error (t >= 20 s) |")
         print("|---|---|---|---|")
-        for stage in STAGES:
+        for stage in STAGES + ["tc"]:  # and the tc stage beyond the paper (issue 28)
             fractions = values("degraded", stage, "consistency", "overconfident_fraction")
             runs = values("degraded", stage, "consistency", "longest_overconfident_s")
             print("| `%s` | %s %% | %.2f s | %.3f m |" % (stage, ", ".join("%.2f" % (100 * f) for f in fractions), max(runs),

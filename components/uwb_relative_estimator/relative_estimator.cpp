@@ -519,12 +519,29 @@ void RelativeEstimator::run_tc(std::size_t k, double time_s, const model::Pose2&
   const StageEstimate& uwb = out.stages[static_cast<std::size_t>(Stage::kUwb)];
   const bool accepted = out.had_ranges && out.uwb_status != TrackStatus::kRejected;
   StageEstimate& estimate = out.stages[static_cast<std::size_t>(Stage::kTc)];
+  // A range the uwb stage's outlier test finds far beyond the noise level (non-line-of-sight, a
+  // blocked link) gets the excess of its own variance over tc's model of an independent range
+  // error (white and link bias): range_error_variances at this epoch's fix, as the uwb stage.
+  Eigen::VectorXd outliers;
+  if (accepted && uwb.valid) {
+    const TightWindowParams& tc = params_.tc;
+    const double base_std_m = std::hypot(tc.white_std_m, tc.link_bias_std_m);
+    outliers = (range_error_variances(own_array_, setups_[k].array, *input.ranges_m, uwb.pose, base_std_m,
+                                      peers_[k].range_noise.std_m(), params_.uncertainty.outlier_sigma)
+                    .array() -
+                base_std_m * base_std_m)
+                   .cwiseMax(0.0)
+                   .matrix();
+  }
   estimate.valid = tc_[k].step(time_s, own_increment, input.odometry_increment,
                                accepted ? input.ranges_m : std::optional<Eigen::MatrixXd>(),
-                               uwb.valid ? std::optional<model::Pose2>(uwb.pose) : std::nullopt);
+                               uwb.valid ? std::optional<model::Pose2>(uwb.pose) : std::nullopt, outliers);
   if (estimate.valid) {
     estimate.pose = tc_[k].pose();
-    estimate.covariance = tc_[k].covariance();
+    // What the uwb stage's check over time finds in the fixes beyond the range error model (an
+    // error of another kind: a board's excess on the links through it) reaches tc through the
+    // same ranges: its covariance is scaled alike (1 while the fixes hold their model).
+    estimate.covariance = peers_[k].fix_check.inflate(tc_[k].covariance());
   }
 }
 

@@ -22,9 +22,11 @@ using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 
 bool finite(const model::Pose2& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.theta); }
 
-/// compose(between(m_i, x), m_j) on arrays, and its Jacobian with respect to x (3 x 3).
+/// compose(between(m_i, x), m_j) on arrays, and its Jacobians with respect to x, m_i and m_j (3 x 3
+/// each; those not wanted nullptr).
 void predict_pose(const double* x, const model::Pose2& mi, const model::Pose2& mj, double* out,
-                  Eigen::Matrix3d* jacobian) {
+                  Eigen::Matrix3d* jacobian, Eigen::Matrix3d* jacobian_mi = nullptr,
+                  Eigen::Matrix3d* jacobian_mj = nullptr) {
   const double ci = std::cos(mi.theta);
   const double si = std::sin(mi.theta);
   const double dx = x[0] - mi.x;
@@ -42,14 +44,54 @@ void predict_pose(const double* x, const model::Pose2& mi, const model::Pose2& m
         -si, ci, c * mj.x - s * mj.y,           //
         0.0, 0.0, 1.0;
   }
+  if (jacobian_mi != nullptr) {
+    *jacobian_mi << -ci, -si, yy + s * mj.x + c * mj.y,  //
+        si, -ci, -yx - c * mj.x + s * mj.y,              //
+        0.0, 0.0, -1.0;
+  }
+  if (jacobian_mj != nullptr) {
+    *jacobian_mj << c, -s, 0.0,  //
+        s, c, 0.0,               //
+        0.0, 0.0, 1.0;
+  }
 }
 
-/// The K x L ranges of one epoch: (d_kl(x) + c + b_kl - r_kl) / sigma.
+/// An odometry increment m corrected by its robot's slips: scale s (distance and turn read
+/// (1 + s) x the true ones) and curvature k (rad per metre driven): the turn error is
+/// e = s theta + k d (d the chord, signed by the direction of travel), the true turn theta - e,
+/// the chord (1 - s) x the measured one turned by -e / 2 (a chord points half way through the
+/// turn). First order in (s, k), as they are ~1e-2. `jacobian`: d(corrected) / d(s, k).
+model::Pose2 corrected_increment(const model::Pose2& m, double scale, double curvature,
+                                 Eigen::Matrix<double, 3, 2>* jacobian) {
+  const double d = std::copysign(std::hypot(m.x, m.y), m.x);
+  const double e = scale * m.theta + curvature * d;
+  const double a = -0.5 * e;
+  const double ca = std::cos(a);
+  const double sa = std::sin(a);
+  const double f = 1.0 - scale;
+  const model::Pose2 out{f * (ca * m.x - sa * m.y), f * (sa * m.x + ca * m.y), m.theta - e};
+  if (jacobian != nullptr) {
+    // d(chord)/de = f R'(a) p (-1/2), R'(a) p = (-sa x - ca y, ca x - sa y).
+    const double gx = -0.5 * f * (-sa * m.x - ca * m.y);
+    const double gy = -0.5 * f * (ca * m.x - sa * m.y);
+    *jacobian << -(ca * m.x - sa * m.y) + gx * m.theta, gx * d,  //
+        -(sa * m.x + ca * m.y) + gy * m.theta, gy * d,           //
+        -m.theta, -d;
+  }
+  return out;
+}
+
+/// The K x L ranges of one epoch: (d_kl(x) + c + b_kl - r_kl) / sigma_kl. With `first_estimate`,
+/// the Jacobian with respect to the pose is taken there instead of at x (first-estimates Jacobian:
+/// an epoch whose states the marginalisation prior holds keeps the linearisation point of that
+/// prior, so the window does not gain information the prior and the factor would not have at one
+/// point).
 class RangeCost : public ceres::CostFunction {
  public:
-  RangeCost(const model::UwbArray& own, const model::UwbArray& peer, const Eigen::VectorXd& ranges, double sigma,
-            bool links)
-      : own_(own), peer_(peer), ranges_(ranges), inv_sigma_(1.0 / sigma), links_(links) {
+  RangeCost(const model::UwbArray& own, const model::UwbArray& peer, const Eigen::VectorXd& ranges,
+            Eigen::VectorXd inv_sigma, bool links, std::optional<Eigen::Vector3d> first_estimate = std::nullopt)
+      : own_(own), peer_(peer), ranges_(ranges), inv_sigma_(std::move(inv_sigma)), links_(links),
+        first_estimate_(first_estimate) {
     const int n = static_cast<int>(ranges.size());
     set_num_residuals(n);
     mutable_parameter_block_sizes()->push_back(3);
@@ -60,9 +102,12 @@ class RangeCost : public ceres::CostFunction {
   }
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const double* x = parameters[0];
+    const double* xj = first_estimate_ ? first_estimate_->data() : x;
     const double common = parameters[1][0];
     const double c = std::cos(x[2]);
     const double s = std::sin(x[2]);
+    const double cj = std::cos(xj[2]);
+    const double sj = std::sin(xj[2]);
     const int n = static_cast<int>(ranges_.size());
     const std::size_t cols = peer_.nodes_m.size();
     if (jacobians != nullptr && links_ && jacobians[2] != nullptr) {
@@ -71,6 +116,7 @@ class RangeCost : public ceres::CostFunction {
     for (std::size_t k = 0; k < own_.nodes_m.size(); ++k) {
       for (std::size_t l = 0; l < cols; ++l) {
         const int i = static_cast<int>(k * cols + l);
+        const double w = inv_sigma_(i);
         const Eigen::Vector2d& nj = peer_.nodes_m[l];
         const Eigen::Vector2d& ni = own_.nodes_m[k];
         const double rx = c * nj.x() - s * nj.y();
@@ -79,19 +125,31 @@ class RangeCost : public ceres::CostFunction {
         const double vy = x[1] + ry - ni.y();
         const double d = std::sqrt(vx * vx + vy * vy);
         const double bias = links_ ? parameters[2][i] : 0.0;
-        residuals[i] = (d + common + bias - ranges_(i)) * inv_sigma_;
+        residuals[i] = (d + common + bias - ranges_(i)) * w;
         if (jacobians != nullptr) {
           if (jacobians[0] != nullptr) {
-            const double inv_d = d > 1e-9 ? inv_sigma_ / d : 0.0;
-            jacobians[0][3 * i + 0] = vx * inv_d;
-            jacobians[0][3 * i + 1] = vy * inv_d;
-            jacobians[0][3 * i + 2] = (vx * -ry + vy * rx) * inv_d;
+            double jx = vx;
+            double jy = vy;
+            double jrx = rx;
+            double jry = ry;
+            double jd = d;
+            if (first_estimate_) {
+              jrx = cj * nj.x() - sj * nj.y();
+              jry = sj * nj.x() + cj * nj.y();
+              jx = xj[0] + jrx - ni.x();
+              jy = xj[1] + jry - ni.y();
+              jd = std::sqrt(jx * jx + jy * jy);
+            }
+            const double inv_d = jd > 1e-9 ? w / jd : 0.0;
+            jacobians[0][3 * i + 0] = jx * inv_d;
+            jacobians[0][3 * i + 1] = jy * inv_d;
+            jacobians[0][3 * i + 2] = (jx * -jry + jy * jrx) * inv_d;
           }
           if (jacobians[1] != nullptr) {
-            jacobians[1][i] = inv_sigma_;
+            jacobians[1][i] = w;
           }
           if (links_ && jacobians[2] != nullptr) {
-            jacobians[2][i * n + i] = inv_sigma_;
+            jacobians[2][i * n + i] = w;
           }
         }
       }
@@ -103,28 +161,30 @@ class RangeCost : public ceres::CostFunction {
   const model::UwbArray& own_;
   const model::UwbArray& peer_;
   Eigen::VectorXd ranges_;
-  double inv_sigma_;
+  Eigen::VectorXd inv_sigma_;
   bool links_;
+  std::optional<Eigen::Vector3d> first_estimate_;
 };
 
-/// Gauss-Markov step of n independent states: (b_t - a b_{t-1}) / sigma_q.
+/// Gauss-Markov step of n independent states of one time constant: (b_t - a b_{t-1}) / sigma_q,
+/// sigma_q per state (one for all when `inv` has one entry: 1 / sigma_q).
 class GaussMarkovCost : public ceres::CostFunction {
  public:
-  GaussMarkovCost(int n, double a, double sigma_q) : n_(n), a_(a), inv_(1.0 / sigma_q) {
+  GaussMarkovCost(int n, double a, std::vector<double> inv) : n_(n), a_(a), inv_(std::move(inv)) {
     set_num_residuals(n);
     mutable_parameter_block_sizes()->push_back(n);
     mutable_parameter_block_sizes()->push_back(n);
   }
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     for (int i = 0; i < n_; ++i) {
-      residuals[i] = (parameters[1][i] - a_ * parameters[0][i]) * inv_;
+      residuals[i] = (parameters[1][i] - a_ * parameters[0][i]) * inv(i);
     }
     if (jacobians != nullptr) {
       for (int b = 0; b < 2; ++b) {
         if (jacobians[b] != nullptr) {
           std::fill(jacobians[b], jacobians[b] + n_ * n_, 0.0);
           for (int i = 0; i < n_; ++i) {
-            jacobians[b][i * n_ + i] = b == 0 ? -a_ * inv_ : inv_;
+            jacobians[b][i * n_ + i] = b == 0 ? -a_ * inv(i) : inv(i);
           }
         }
       }
@@ -133,20 +193,44 @@ class GaussMarkovCost : public ceres::CostFunction {
   }
 
  private:
+  double inv(int i) const { return inv_.size() == 1 ? inv_[0] : inv_[static_cast<std::size_t>(i)]; }
   int n_;
   double a_;
-  double inv_;
+  std::vector<double> inv_;
 };
 
-/// Relative motion between consecutive epochs: S (x_t - compose(between(m_i, x_{t-1}), m_j)).
-class MotionCost : public ceres::SizedCostFunction<3, 3, 3> {
+/// Relative motion between consecutive epochs: S (x_t - compose(between(m_i', x_{t-1}), m_j')),
+/// m' the increments corrected by the slip block (own s, k, peer s, k) when there is one, else
+/// m' = m. Blocks: x_{t-1}, x_t[, slip].
+class MotionCost : public ceres::CostFunction {
  public:
-  MotionCost(const model::Pose2& mi, const model::Pose2& mj, const Eigen::Matrix3d& sqrt_information)
-      : mi_(mi), mj_(mj), s_(sqrt_information) {}
+  MotionCost(const model::Pose2& mi, const model::Pose2& mj, const Eigen::Matrix3d& sqrt_information, bool slip,
+             std::optional<Eigen::Vector3d> first_estimate = std::nullopt)
+      : mi_(mi), mj_(mj), s_(sqrt_information), slip_(slip), first_estimate_(first_estimate) {
+    set_num_residuals(3);
+    mutable_parameter_block_sizes()->push_back(3);
+    mutable_parameter_block_sizes()->push_back(3);
+    if (slip_) {
+      mutable_parameter_block_sizes()->push_back(4);
+    }
+  }
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    Eigen::Matrix<double, 3, 2> ci;
+    Eigen::Matrix<double, 3, 2> cj;
+    const model::Pose2 mi = slip_ ? corrected_increment(mi_, parameters[2][0], parameters[2][1], &ci) : mi_;
+    const model::Pose2 mj = slip_ ? corrected_increment(mj_, parameters[2][2], parameters[2][3], &cj) : mj_;
+    const bool slip_jacobian = slip_ && jacobians != nullptr && jacobians[2] != nullptr;
     double predicted[3];
     Eigen::Matrix3d jp;
-    predict_pose(parameters[0], mi_, mj_, predicted, &jp);
+    Eigen::Matrix3d jmi;
+    Eigen::Matrix3d jmj;
+    predict_pose(parameters[0], mi, mj, predicted, &jp, slip_jacobian ? &jmi : nullptr, slip_jacobian ? &jmj : nullptr);
+    if (first_estimate_ && jacobians != nullptr) {
+      // Jacobians at the previous pose's first estimate (the marginalisation prior's point).
+      double unused[3];
+      predict_pose(first_estimate_->data(), mi, mj, unused, &jp, slip_jacobian ? &jmi : nullptr,
+                   slip_jacobian ? &jmj : nullptr);
+    }
     const Eigen::Vector3d e(parameters[1][0] - predicted[0], parameters[1][1] - predicted[1],
                             wrap_angle(parameters[1][2] - predicted[2]));
     Eigen::Map<Eigen::Vector3d> r(residuals);
@@ -160,6 +244,11 @@ class MotionCost : public ceres::SizedCostFunction<3, 3, 3> {
         Eigen::Map<Eigen::Matrix<double, 3, 3, Eigen::RowMajor>> j(jacobians[1]);
         j = s_;
       }
+      if (slip_jacobian) {
+        Eigen::Map<Eigen::Matrix<double, 3, 4, Eigen::RowMajor>> j(jacobians[2]);
+        j.leftCols<2>() = -s_ * (jmi * ci);
+        j.rightCols<2>() = -s_ * (jmj * cj);
+      }
     }
     return true;
   }
@@ -168,41 +257,40 @@ class MotionCost : public ceres::SizedCostFunction<3, 3, 3> {
   model::Pose2 mi_;
   model::Pose2 mj_;
   Eigen::Matrix3d s_;
+  bool slip_;
+  std::optional<Eigen::Vector3d> first_estimate_;
 };
 
-/// Dense prior on one epoch's states [pose, common, links]: S (p - p0) + s0, heading wrapped.
+/// Dense prior on one epoch's states (its blocks of `sizes`, the pose first): S (p - p0) + s0,
+/// heading wrapped.
 class PriorCost : public ceres::CostFunction {
  public:
-  PriorCost(const Eigen::MatrixXd& s, const Eigen::VectorXd& offset, const Eigen::VectorXd& p0, bool links)
-      : s_(s), offset_(offset), p0_(p0), links_(links) {
+  PriorCost(const Eigen::MatrixXd& s, const Eigen::VectorXd& offset, const Eigen::VectorXd& p0, std::vector<int> sizes)
+      : s_(s), offset_(offset), p0_(p0), sizes_(std::move(sizes)) {
     set_num_residuals(static_cast<int>(s.rows()));
-    mutable_parameter_block_sizes()->push_back(3);
-    mutable_parameter_block_sizes()->push_back(1);
-    if (links_) {
-      mutable_parameter_block_sizes()->push_back(static_cast<int>(s.cols()) - 4);
+    for (int size : sizes_) {
+      mutable_parameter_block_sizes()->push_back(size);
     }
   }
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const int n = static_cast<int>(s_.cols());
     Eigen::VectorXd dp(n);
-    for (int i = 0; i < 3; ++i) {
-      dp(i) = parameters[0][i] - p0_(i);
+    int column = 0;
+    for (std::size_t b = 0; b < sizes_.size(); ++b) {
+      for (int i = 0; i < sizes_[b]; ++i, ++column) {
+        dp(column) = parameters[b][i] - p0_(column);
+      }
     }
     dp(2) = wrap_angle(dp(2));
-    dp(3) = parameters[1][0] - p0_(3);
-    for (int i = 4; i < n; ++i) {
-      dp(i) = parameters[2][i - 4] - p0_(i);
-    }
     Eigen::Map<Eigen::VectorXd> r(residuals, n);
     r = s_ * dp + offset_;
     if (jacobians != nullptr) {
-      const int sizes[3] = {3, 1, n - 4};
-      int column = 0;
-      for (int b = 0; b < (links_ ? 3 : 2); ++b) {
+      column = 0;
+      for (std::size_t b = 0; b < sizes_.size(); ++b) {
         if (jacobians[b] != nullptr) {
-          Eigen::Map<RowMatrix>(jacobians[b], n, sizes[b]) = s_.middleCols(column, sizes[b]);
+          Eigen::Map<RowMatrix>(jacobians[b], n, sizes_[b]) = s_.middleCols(column, sizes_[b]);
         }
-        column += sizes[b];
+        column += sizes_[b];
       }
     }
     return true;
@@ -212,7 +300,7 @@ class PriorCost : public ceres::CostFunction {
   Eigen::MatrixXd s_;
   Eigen::VectorXd offset_;
   Eigen::VectorXd p0_;
-  bool links_;
+  std::vector<int> sizes_;
 };
 
 /// A residual block and the parameter blocks it reads.
@@ -226,19 +314,33 @@ struct Factor {
 /// the link biases (exact discretisation over their time step) when they are states. `kl`: links.
 template <class Epoch>
 void add_transition_factors(std::vector<Factor>& factors, const TightWindowParams& params, int kl, Epoch& prev,
-                            Epoch& next) {
+                            Epoch& next, const std::optional<Eigen::Vector3d>& prev_first_estimate) {
   const double dt = next.time_s - prev.time_s;
-  factors.push_back(Factor{std::make_unique<MotionCost>(next.own_increment, next.peer_increment, next.motion_sqrt_information),
-                           {prev.pose, next.pose}});
+  const bool slip = params.odometry_slip_states;
+  std::vector<double*> motion{prev.pose, next.pose};
+  if (slip) {
+    motion.push_back(next.slip);  // the slips over the interval that ends at `next`
+  }
+  factors.push_back(Factor{
+      std::make_unique<MotionCost>(next.own_increment, next.peer_increment, next.motion_sqrt_information, slip,
+                                   prev_first_estimate),
+      motion});
   if (params.common_bias_state) {
     const double a = std::exp(-dt / params.common_time_s);
     const double q = params.common_std_m * std::sqrt(std::max(1.0 - a * a, 1e-12));
-    factors.push_back(Factor{std::make_unique<GaussMarkovCost>(1, a, q), {&prev.common, &next.common}});
+    factors.push_back(Factor{std::make_unique<GaussMarkovCost>(1, a, std::vector<double>{1.0 / q}), {&prev.common, &next.common}});
+  }
+  if (slip) {
+    const double a = std::exp(-dt / params.slip_time_s);
+    const double unit = std::sqrt(std::max(1.0 - a * a, 1e-12));
+    const double is = 1.0 / (params.slip_scale_std * unit);
+    const double ik = 1.0 / (params.slip_curvature_std_radpm * unit);
+    factors.push_back(Factor{std::make_unique<GaussMarkovCost>(4, a, std::vector<double>{is, ik, is, ik}), {prev.slip, next.slip}});
   }
   if (params.link_bias_states) {
     const double a = std::exp(-dt / params.link_bias_time_s);
     const double q = params.link_bias_std_m * std::sqrt(std::max(1.0 - a * a, 1e-12));
-    factors.push_back(Factor{std::make_unique<GaussMarkovCost>(kl, a, q), {prev.links.data(), next.links.data()}});
+    factors.push_back(Factor{std::make_unique<GaussMarkovCost>(kl, a, std::vector<double>{1.0 / q}), {prev.links.data(), next.links.data()}});
   }
 }
 
@@ -299,6 +401,17 @@ const params::ParamTable<TightWindowParams>& tight_window_param_table() {
                "odometry increment position std per robot and epoch")
           .add("odometry_theta_std_rad", &P::odometry_theta_std_rad, "rad", params::positive(),
                "odometry increment heading std per robot and epoch")
+          .add("odometry_slip_states", &P::odometry_slip_states, "", params::any<bool>(),
+               "each robot's odometry slips (scale, curvature) as Gauss-Markov states (false: the white stds cover them)")
+          .add("slip_scale_std", &P::slip_scale_std, "", params::positive(),
+               "odometry scale error (both wheels' mean slip) per robot: Gauss-Markov std")
+          .add("slip_curvature_std_radpm", &P::slip_curvature_std_radpm, "rad/m", params::positive(),
+               "odometry curvature error (wheel slip difference / wheel base) per robot: Gauss-Markov std")
+          .add("slip_time_s", &P::slip_time_s, "s", params::positive(), "odometry slips: Gauss-Markov time constant")
+          .add("noise_window_epochs", &P::noise_window_epochs, "epochs", params::at_least(0),
+               "each link's variance: the mean square of its residuals over this many epochs, at least white_std_m^2 (0: off)")
+          .add("first_estimates_jacobians", &P::first_estimates_jacobians, "", params::any<bool>(),
+               "the oldest epoch's factors linearised at the marginalisation prior's point (false: at the estimate, the ablation)")
           .add("start_xy_std_m", &P::start_xy_std_m, "m", params::positive(), "prior std of the first position around its fix")
           .add("start_theta_std_rad", &P::start_theta_std_rad, "rad", params::positive(),
                "prior std of the first heading around its fix")
@@ -324,7 +437,33 @@ TightlyCoupledWindow::TightlyCoupledWindow(model::UwbArray own_array, model::Uwb
 }
 
 int TightlyCoupledWindow::epoch_size() const {
-  return 4 + (params_.link_bias_states ? static_cast<int>(own_array_.nodes_m.size() * peer_array_.nodes_m.size()) : 0);
+  int n = 0;
+  for (int size : block_sizes()) {
+    n += size;
+  }
+  return n;
+}
+
+std::vector<int> TightlyCoupledWindow::block_sizes() const {
+  std::vector<int> sizes{3, 1};
+  if (params_.odometry_slip_states) {
+    sizes.push_back(4);
+  }
+  if (params_.link_bias_states) {
+    sizes.push_back(static_cast<int>(own_array_.nodes_m.size() * peer_array_.nodes_m.size()));
+  }
+  return sizes;
+}
+
+std::vector<double*> TightlyCoupledWindow::blocks(Epoch& e) const {
+  std::vector<double*> p{e.pose, &e.common};
+  if (params_.odometry_slip_states) {
+    p.push_back(e.slip);
+  }
+  if (params_.link_bias_states) {
+    p.push_back(e.links.data());
+  }
+  return p;
 }
 
 model::Pose2 TightlyCoupledWindow::pose() const {
@@ -345,11 +484,19 @@ void TightlyCoupledWindow::start(double time_s, const model::Pose2& fix) {
   e.pose[1] = fix.y;
   e.pose[2] = fix.theta;
   const int n = epoch_size();
-  e.links.assign(static_cast<std::size_t>(n - 4), 0.0);
+  const int slip = params_.odometry_slip_states ? 4 : 0;
+  const int kl = n - 4 - slip;
+  e.links.assign(static_cast<std::size_t>(kl), 0.0);
   epochs_.push_back(std::move(e));
   Eigen::VectorXd inv_std(n);
-  inv_std << 1.0 / params_.start_xy_std_m, 1.0 / params_.start_xy_std_m, 1.0 / params_.start_theta_std_rad,
-      1.0 / params_.common_std_m, Eigen::VectorXd::Constant(n - 4, 1.0 / params_.link_bias_std_m);
+  inv_std.head<4>() << 1.0 / params_.start_xy_std_m, 1.0 / params_.start_xy_std_m, 1.0 / params_.start_theta_std_rad,
+      1.0 / params_.common_std_m;
+  if (slip > 0) {
+    const double is = 1.0 / params_.slip_scale_std;
+    const double ik = 1.0 / params_.slip_curvature_std_radpm;
+    inv_std.segment<4>(4) << is, ik, is, ik;
+  }
+  inv_std.tail(kl).setConstant(1.0 / params_.link_bias_std_m);
   prior_.sqrt_information = inv_std.asDiagonal();
   prior_.offset = Eigen::VectorXd::Zero(n);
   prior_.linearization = Eigen::VectorXd::Zero(n);
@@ -357,8 +504,40 @@ void TightlyCoupledWindow::start(double time_s, const model::Pose2& fix) {
   disagreements_ = 0;
 }
 
+void TightlyCoupledWindow::add_excess_noise_term() {
+  const Epoch& e = epochs_.back();
+  if (!e.ranges || e.range_inv_sigma.size() == 0) {
+    return;
+  }
+  double white = params_.white_std_m;
+  if (!params_.link_bias_states) {
+    white = std::hypot(params_.white_std_m, params_.link_bias_std_m);
+  }
+  const Eigen::VectorXd excess = (e.range_inv_sigma.cwiseAbs2().cwiseInverse().array() - white * white).cwiseMax(0.0).matrix();
+  if (excess.maxCoeff() <= 0.0) {
+    return;
+  }
+  // A link noisier than the model (or an outlier) is such because something lies in its way, and
+  // that lasts as long as the geometry does: the window cannot average it out, nor the link bias
+  // state, whose prior does not cover it. What its excess would move a fit by (range_error_map: a
+  // persistent error on one range reaches the pose as in one epoch's least squares) is added.
+  RangeErrorMap map;
+  if (range_error_map(own_array_, peer_array_, pose(), 1.0, 0.0, map)) {
+    const Eigen::Matrix3d term = map.independent_map * excess.asDiagonal() * map.independent_map.transpose();
+    covariance_ += 0.5 * (term + term.transpose());
+  }
+}
+
+std::optional<Eigen::Vector3d> TightlyCoupledWindow::first_estimate() const {
+  if (!params_.first_estimates_jacobians) {
+    return std::nullopt;
+  }
+  return Eigen::Vector3d(prior_.linearization.head<3>());
+}
+
 bool TightlyCoupledWindow::step(double time_s, const model::Pose2& own_increment, const model::Pose2& peer_increment,
-                                const std::optional<Eigen::MatrixXd>& ranges_m, const std::optional<model::Pose2>& fix) {
+                                const std::optional<Eigen::MatrixXd>& ranges_m, const std::optional<model::Pose2>& fix,
+                                const Eigen::VectorXd& outlier_variances_m2) {
   if (!std::isfinite(time_s) || !finite(own_increment) || !finite(peer_increment) || (fix && !finite(*fix))) {
     throw std::invalid_argument("TightlyCoupledWindow::step: non-finite time, increment or fix");
   }
@@ -378,6 +557,10 @@ bool TightlyCoupledWindow::step(double time_s, const model::Pose2& own_increment
       }
     }
     ranges = std::move(flat);
+    if (outlier_variances_m2.size() != 0 &&
+        (outlier_variances_m2.size() != ranges->size() || !outlier_variances_m2.allFinite() || outlier_variances_m2.minCoeff() < 0.0)) {
+      throw std::invalid_argument("TightlyCoupledWindow::step: outlier variances do not fit the ranges or are negative");
+    }
   }
   if (!epochs_.empty() && fix && last_ranges_s_ && time_s - *last_ranges_s_ > params_.restart_after_gap_s) {
     epochs_.clear();
@@ -394,8 +577,17 @@ bool TightlyCoupledWindow::step(double time_s, const model::Pose2& own_increment
     e.time_s = time_s;
     e.own_increment = own_increment;
     e.peer_increment = peer_increment;
-    predict_pose(prev.pose, own_increment, peer_increment, e.pose, nullptr);
     const double dt = time_s - prev.time_s;
+    if (params_.odometry_slip_states) {
+      const double a = std::exp(-dt / params_.slip_time_s);
+      for (int i = 0; i < 4; ++i) {
+        e.slip[i] = a * prev.slip[i];
+      }
+      predict_pose(prev.pose, corrected_increment(own_increment, e.slip[0], e.slip[1], nullptr),
+                   corrected_increment(peer_increment, e.slip[2], e.slip[3], nullptr), e.pose, nullptr);
+    } else {
+      predict_pose(prev.pose, own_increment, peer_increment, e.pose, nullptr);
+    }
     e.common = std::exp(-dt / params_.common_time_s) * prev.common;
     const double a = std::exp(-dt / params_.link_bias_time_s);
     e.links.resize(prev.links.size());
@@ -417,8 +609,50 @@ bool TightlyCoupledWindow::step(double time_s, const model::Pose2& own_increment
   epochs_.back().ranges = ranges;
   if (ranges) {
     last_ranges_s_ = time_s;
+    // Each range's variance: the white noise (with the link biases' when they are not states),
+    // plus what the caller found beyond the model (a non-line-of-sight range's excess).
+    double white = params_.white_std_m;
+    if (!params_.link_bias_states) {
+      white = std::hypot(params_.white_std_m, params_.link_bias_std_m);
+    }
+    Eigen::VectorXd variance = Eigen::VectorXd::Constant(ranges->size(), white * white);
+    // A link noisier than the model (a board in its way: a changing excess each frame) shows in
+    // its residuals at the solutions of the last noise_window_epochs epochs: their mean square,
+    // never below the configured variance, is its variance (a residual at a solution is smaller
+    // than the error it leaves: a link that holds its model stays at the floor).
+    if (params_.noise_window_epochs > 0 && static_cast<int>(residuals_.size()) >= params_.noise_window_epochs / 2 &&
+        residual_sum_.size() == variance.size()) {
+      variance = variance.cwiseMax(residual_sum_ / static_cast<double>(residuals_.size()));
+    }
+    if (outlier_variances_m2.size() != 0) {
+      variance += outlier_variances_m2;
+    }
+    epochs_.back().range_inv_sigma = variance.cwiseSqrt().cwiseInverse();
   }
   bool converged = solve();
+  if (ranges && params_.noise_window_epochs > 0) {
+    const Epoch& e = epochs_.back();
+    const Eigen::MatrixXd predicted =
+        model::array_ranges(own_array_, model::Pose2{}, peer_array_, model::Pose2{e.pose[0], e.pose[1], e.pose[2]});
+    Eigen::VectorXd squared(ranges->size());
+    for (Eigen::Index k = 0; k < predicted.rows(); ++k) {
+      for (Eigen::Index l = 0; l < predicted.cols(); ++l) {
+        const Eigen::Index i = k * predicted.cols() + l;
+        const double bias = e.links.empty() ? 0.0 : e.links[static_cast<std::size_t>(i)];
+        const double r = (*ranges)(i) - predicted(k, l) - e.common - bias;
+        squared(i) = r * r;
+      }
+    }
+    if (residual_sum_.size() != squared.size()) {
+      residual_sum_ = Eigen::VectorXd::Zero(squared.size());
+    }
+    residual_sum_ += squared;
+    residuals_.push_back(std::move(squared));
+    if (static_cast<int>(residuals_.size()) > params_.noise_window_epochs) {
+      residual_sum_ -= residuals_.front();
+      residuals_.pop_front();
+    }
+  }
   while (epochs_.size() > static_cast<std::size_t>(params_.window_epochs)) {
     marginalize_oldest();
   }
@@ -429,11 +663,14 @@ bool TightlyCoupledWindow::step(double time_s, const model::Pose2& own_increment
     disagreements_ = far ? disagreements_ + 1 : 0;
     if (disagreements_ >= params_.disagreement_epochs) {
       ++restarts_;
+      Eigen::VectorXd inv_sigma = epochs_.back().range_inv_sigma;
       start(time_s, *fix);
       epochs_.back().ranges = ranges;
+      epochs_.back().range_inv_sigma = inv_sigma;
       converged = solve();
     }
   }
+  add_excess_noise_term();
   const model::Pose2 p = pose();
   return converged && finite(p) && covariance_.allFinite() && last_ranges_s_ &&
          time_s - *last_ranges_s_ <= params_.restart_after_gap_s;
@@ -443,30 +680,28 @@ bool TightlyCoupledWindow::solve() {
   const bool links = params_.link_bias_states;
   const int n = epoch_size();
   const int kl = static_cast<int>(own_array_.nodes_m.size() * peer_array_.nodes_m.size());
-  double white = params_.white_std_m;
-  if (!links) {
-    white = std::hypot(params_.white_std_m, params_.link_bias_std_m);
-  }
   std::vector<Factor> factors;
-  factors.reserve(4 * epochs_.size() + 1);
-  auto blocks = [&](Epoch& e) {
+  factors.reserve(5 * epochs_.size() + 1);
+  auto range_blocks = [&](Epoch& e) {
     std::vector<double*> p{e.pose, &e.common};
     if (links) {
       p.push_back(e.links.data());
     }
     return p;
   };
-  factors.push_back(Factor{std::make_unique<PriorCost>(prior_.sqrt_information, prior_.offset, prior_.linearization, links),
+  factors.push_back(Factor{std::make_unique<PriorCost>(prior_.sqrt_information, prior_.offset, prior_.linearization, block_sizes()),
                            blocks(epochs_.front())});
   for (std::size_t t = 0; t < epochs_.size(); ++t) {
     Epoch& e = epochs_[t];
     if (e.ranges) {
-      factors.push_back(Factor{std::make_unique<RangeCost>(own_array_, peer_array_, *e.ranges, white, links), blocks(e)});
+      factors.push_back(Factor{std::make_unique<RangeCost>(own_array_, peer_array_, *e.ranges, e.range_inv_sigma, links,
+                                                           t == 0 ? first_estimate() : std::nullopt),
+                               range_blocks(e)});
     }
     if (t == 0) {
       continue;
     }
-    add_transition_factors(factors, params_, kl, epochs_[t - 1], e);
+    add_transition_factors(factors, params_, kl, epochs_[t - 1], e, t == 1 ? first_estimate() : std::nullopt);
   }
 
   ceres::Problem::Options problem_options;
@@ -506,12 +741,14 @@ bool TightlyCoupledWindow::solve() {
   const int epochs = static_cast<int>(epochs_.size());
   Eigen::MatrixXd h = Eigen::MatrixXd::Zero(epochs * n, epochs * n);
   Eigen::VectorXd g = Eigen::VectorXd::Zero(epochs * n);
+  const int link_offset = params_.odometry_slip_states ? 8 : 4;
   const auto offset_of = [&](const double* p) {
     for (int t = 0; t < epochs; ++t) {
       const Epoch& e = epochs_[static_cast<std::size_t>(t)];
       if (p == e.pose) return t * n;
       if (p == &e.common) return t * n + 3;
-      if (links && p == e.links.data()) return t * n + 4;
+      if (p == e.slip) return t * n + 4;
+      if (links && p == e.links.data()) return t * n + link_offset;
     }
     return -1;
   };
@@ -535,36 +772,34 @@ bool TightlyCoupledWindow::solve() {
 void TightlyCoupledWindow::marginalize_oldest() {
   const bool links = params_.link_bias_states;
   const int n = epoch_size();
-  const int kl = n - 4;
+  const int slip = params_.odometry_slip_states ? 4 : 0;
+  const int kl = n - 4 - slip;
   Epoch& old = epochs_[0];
   Epoch& next = epochs_[1];
-  double white = params_.white_std_m;
-  if (!links) {
-    white = std::hypot(params_.white_std_m, params_.link_bias_std_m);
+  std::vector<double*> range_blocks{old.pose, &old.common};
+  if (links) {
+    range_blocks.push_back(old.links.data());
   }
-  auto blocks = [&](Epoch& e) {
-    std::vector<double*> p{e.pose, &e.common};
-    if (links) {
-      p.push_back(e.links.data());
-    }
-    return p;
-  };
   std::vector<Factor> factors;
   factors.push_back(
-      Factor{std::make_unique<PriorCost>(prior_.sqrt_information, prior_.offset, prior_.linearization, links), blocks(old)});
+      Factor{std::make_unique<PriorCost>(prior_.sqrt_information, prior_.offset, prior_.linearization, block_sizes()), blocks(old)});
   if (old.ranges) {
-    factors.push_back(Factor{std::make_unique<RangeCost>(own_array_, peer_array_, *old.ranges, white, links), blocks(old)});
+    factors.push_back(Factor{
+        std::make_unique<RangeCost>(own_array_, peer_array_, *old.ranges, old.range_inv_sigma, links, first_estimate()),
+        range_blocks});
   }
-  add_transition_factors(factors, params_, kl, old, next);
+  add_transition_factors(factors, params_, kl, old, next, first_estimate());
   Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2 * n, 2 * n);
   Eigen::VectorXd g = Eigen::VectorXd::Zero(2 * n);
   const auto offset_of = [&](const double* p) {
     if (p == old.pose) return 0;
     if (p == &old.common) return 3;
-    if (links && p == old.links.data()) return 4;
+    if (p == old.slip) return 4;
+    if (links && p == old.links.data()) return 4 + slip;
     if (p == next.pose) return n;
     if (p == &next.common) return n + 3;
-    if (links && p == next.links.data()) return n + 4;
+    if (p == next.slip) return n + 4;
+    if (links && p == next.links.data()) return n + 4 + slip;
     return -1;
   };
   accumulate(factors, offset_of, h, g);
@@ -582,8 +817,11 @@ void TightlyCoupledWindow::marginalize_oldest() {
   prior_.sqrt_information = u;
   prior_.offset = u.transpose().triangularView<Eigen::Lower>().solve(gm);
   prior_.linearization.resize(n);
-  prior_.linearization << next.pose[0], next.pose[1], next.pose[2], next.common,
-      Eigen::Map<const Eigen::VectorXd>(next.links.data(), kl);
+  prior_.linearization.head<4>() << next.pose[0], next.pose[1], next.pose[2], next.common;
+  if (slip > 0) {
+    prior_.linearization.segment<4>(4) = Eigen::Map<const Eigen::Vector4d>(next.slip);
+  }
+  prior_.linearization.tail(kl) = Eigen::Map<const Eigen::VectorXd>(next.links.data(), kl);
   epochs_.pop_front();
 }
 
