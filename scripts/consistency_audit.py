@@ -183,8 +183,9 @@ def main():
                     failures.append(f"{name} {stage} seed {seed}: over-confident for {figures['longest_s']:.2f} s in a row "
                                     f"> {args.longest_s:g} s")
     if failures:
+        # Only a failed run or a bound that was asked for puts anything here.
         print("\nFAIL:\n" + "\n".join(f"- {f}" for f in failures))
-        return 1 if (args.check is not None or args.longest_s is not None or any("run failed" in f for f in failures)) else 0
+        return 1
     return 0
 
 
