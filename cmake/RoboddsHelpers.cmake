@@ -26,6 +26,11 @@ function(robodds_unit_test name)
   cmake_parse_arguments(ARG "READS_SOURCE_TREE" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock robodds_warnings)
+  # The test's own sources at -O1 (the last -O wins): they were 45 % of a clean build's compile
+  # time, and -O3 buys them nothing, since the code under test comes from the libraries, built as
+  # configured. -O1 compiles a test file in two thirds of the time (runtime/host/test/host_test.cpp:
+  # 9.0 s -> 6.0 s), which keeps scripts/test.sh within its 30 minutes on 2 cores.
+  target_compile_options(${name} PRIVATE $<$<CONFIG:Release>:-O1>)
   if(ARG_READS_SOURCE_TREE)
     target_compile_definitions(${name} PRIVATE ROBODDS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   endif()
