@@ -118,14 +118,7 @@ bool InnovationMonitor::typical(Eigen::Vector3d& median_innovation, Eigen::Matri
   if (innovations_.size() < needed) {
     return false;
   }
-  for (int c = 0; c < 3; ++c) {
-    std::vector<double> values;
-    values.reserve(innovations_.size());
-    for (const Eigen::Vector3d& d : innovations_) {
-      values.push_back(d(c));
-    }
-    median_innovation(c) = median(std::move(values));
-  }
+  median_innovation = this->median_innovation(0, innovations_.size());
   // The typical fix's covariance (the one of median trace), not their mean: an outlier fix's own
   // variance (a non-line-of-sight range's leave-one-out residual squared) must not hide the
   // discrepancy, as the median innovation ignores the outlier fix itself.
@@ -137,6 +130,19 @@ bool InnovationMonitor::typical(Eigen::Vector3d& median_innovation, Eigen::Matri
   std::nth_element(traces.begin(), traces.begin() + static_cast<std::ptrdiff_t>(traces.size() / 2), traces.end());
   typical_covariance = covariances[traces[traces.size() / 2].second];
   return true;
+}
+
+Eigen::Vector3d InnovationMonitor::median_innovation(std::size_t first, std::size_t last) const {
+  Eigen::Vector3d result;
+  for (int c = 0; c < 3; ++c) {
+    std::vector<double> values;
+    values.reserve(last - first);
+    for (std::size_t i = first; i < last; ++i) {
+      values.push_back(innovations_[i](c));
+    }
+    result(c) = median(std::move(values));
+  }
+  return result;
 }
 
 bool InnovationMonitor::lost(const Eigen::Matrix3d& filter_covariance, Eigen::Vector3d& correction,
@@ -177,7 +183,25 @@ Eigen::Matrix3d InnovationMonitor::excess(const Eigen::Matrix3d& estimate_covari
   if (!typical(typical_innovation, mean_s, covariances_) || !estimate_covariance.allFinite()) {
     return Eigen::Matrix3d::Zero();
   }
-  const Eigen::Matrix3d unexplained = typical_innovation * typical_innovation.transpose() - mean_s - estimate_covariance;
+  return unexplained_part(typical_innovation, mean_s, estimate_covariance);
+}
+
+Eigen::Matrix3d InnovationMonitor::drifting_excess(const Eigen::Matrix3d& estimate_covariance) const {
+  Eigen::Vector3d typical_innovation;
+  Eigen::Matrix3d mean_s;
+  if (!typical(typical_innovation, mean_s, covariances_) || !estimate_covariance.allFinite()) {
+    return Eigen::Matrix3d::Zero();
+  }
+  const std::size_t half = innovations_.size() / 2;
+  const Eigen::Vector3d trend = median_innovation(innovations_.size() - half, innovations_.size()) - median_innovation(0, half);
+  Eigen::Vector3d carried = typical_innovation + trend;
+  carried(2) = wrap_angle(carried(2));
+  return unexplained_part(carried, mean_s, estimate_covariance);
+}
+
+Eigen::Matrix3d InnovationMonitor::unexplained_part(const Eigen::Vector3d& innovation, const Eigen::Matrix3d& typical_covariance,
+                                                    const Eigen::Matrix3d& estimate_covariance) {
+  const Eigen::Matrix3d unexplained = innovation * innovation.transpose() - typical_covariance - estimate_covariance;
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (unexplained + unexplained.transpose()));
   if (eigen.info() != Eigen::Success) {
     return Eigen::Matrix3d::Zero();

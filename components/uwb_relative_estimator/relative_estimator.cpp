@@ -309,11 +309,11 @@ void RelativeEstimator::run_odometry(std::size_t k, const model::Pose2& own_incr
   if (odometry.valid) {
     odometry.pose = *peer.odometry_pose;
     // Its own check: the fixes (independent of the odometry) against the dead reckoning; what
-    // neither covariance explains (a slip's drift) is added.
+    // neither covariance explains (a slip's drift, carried to now along its trend) is added.
     if (uwb.valid) {
       peer.odometry_check.add(odometry.pose, uwb.pose, peer.fix_model_covariance);
     }
-    odometry.covariance = peer.odometry_covariance + peer.odometry_check.excess(peer.odometry_covariance);
+    odometry.covariance = peer.odometry_covariance + peer.odometry_check.drifting_excess(peer.odometry_covariance);
   }
 }
 

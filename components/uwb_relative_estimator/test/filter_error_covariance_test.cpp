@@ -233,6 +233,24 @@ TEST(InnovationMonitor, AnEstimateIndependentOfTheFixesIsExcusedByItsOwnCovarian
   EXPECT_NEAR(monitor.excess(diagonal(10.0, 10.0, 0.01)).norm(), 0.0, 1e-9);
 }
 
+TEST(InnovationMonitor, ADriftIsCarriedToTheNewestFixAlongItsTrend) {
+  // A dead reckoning drifting 0.02 m per fix away from fixes of 0.01 m^2: after 50 fixes it is
+  // 0.98 m off. The window's median innovation is the drift of half a window ago (~0.49 m);
+  // carried along the trend it is the newest one. A constant offset has no trend: the same as excess().
+  const Eigen::Matrix3d fix_covariance = diagonal(0.01, 0.01, 0.0001);
+  InnovationMonitor drifting(UncertaintyParams{});  // 50 fixes
+  InnovationMonitor constant(UncertaintyParams{});
+  for (int i = 0; i < 50; ++i) {
+    drifting.add(model::Pose2{0.0, 0.0, 0.0}, model::Pose2{0.02 * i, 0.0, 0.0}, fix_covariance);
+    constant.add(model::Pose2{0.0, 0.0, 0.0}, model::Pose2{0.5, 0.0, 0.0}, fix_covariance);
+  }
+  const double newest_m = 0.98;
+  EXPECT_NEAR(std::sqrt(drifting.drifting_excess(Eigen::Matrix3d::Zero())(0, 0) + 0.01), newest_m, 0.03);
+  EXPECT_LT(std::sqrt(drifting.excess()(0, 0) + 0.01), 0.6 * newest_m) << "the window's median lags";
+  EXPECT_NEAR(constant.drifting_excess(Eigen::Matrix3d::Zero())(0, 0), constant.excess()(0, 0), 1e-12);
+  EXPECT_TRUE(InnovationMonitor(UncertaintyParams{}).drifting_excess(Eigen::Matrix3d::Zero()).isZero()) << "no fixes";
+}
+
 TEST(InnovationMonitor, LostIsCalledAtOnceWhenFarOffAfterAWhileWhenModeratelyOffNeverWhenFollowing) {
   UncertaintyParams params;  // 50 fixes; d^2 > 16.27 at once, mean d^2 > 4 over 200 tests
   const Eigen::Matrix3d fix_covariance = diagonal(1.0, 1.0, 0.01);
