@@ -33,4 +33,14 @@ std::vector<LoopSilence::Silent> LoopSilence::check(double elapsed_s, double end
   return silent;
 }
 
+std::vector<std::string> LoopSilence::heard_groups() const {
+  std::vector<std::string> heard;
+  for (const auto& [name, group] : groups_) {
+    if (group.heard) {
+      heard.push_back(name);
+    }
+  }
+  return heard;
+}
+
 }  // namespace robodds

@@ -43,6 +43,10 @@ class LoopSilence {
   /// dropped process is PeerLossWatch's to name, with its own reason).
   std::vector<Silent> check(double elapsed_s, double end_s, const std::function<bool(const std::string&)>& participant_alive);
 
+  /// The watched groups heard at least once (PeerWatch: a group whose participant was discovered
+  /// but whose loop was never heard shares no topic with this host in practice).
+  std::vector<std::string> heard_groups() const;
+
  private:
   struct Group {
     bool heard = false;

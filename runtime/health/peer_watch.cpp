@@ -35,7 +35,11 @@ std::string group_of_participant(const std::string& participant, const std::vect
 
 PeerWatch::PeerWatch(std::vector<std::string> others, double deadline_s) : others_(std::move(others)), deadline_s_(deadline_s) {}
 
-bool PeerWatch::check(double elapsed_s, const std::vector<std::string>& discovered, bool run_ended) {
+bool PeerWatch::check(double elapsed_s, const std::vector<std::string>& discovered, bool run_ended,
+                      const std::vector<std::string>* heard) {
+  const auto found = [&](const std::string& group) {
+    return has(discovered, participant_name_of_group(group)) && (heard == nullptr || has(*heard, group));
+  };
   if (!checked_) {
     if (elapsed_s < deadline_s_ && !run_ended) {
       return false;
@@ -45,13 +49,17 @@ bool PeerWatch::check(double elapsed_s, const std::vector<std::string>& discover
     for (const std::string& group : others_) {
       if (!has(discovered, participant_name_of_group(group))) {
         missing_.push_back(group);
+      } else if (!found(group)) {
+        unheard_.push_back(group);
       }
     }
-    return !missing_.empty();
+    return !missing_.empty() || !unheard_.empty();
   }
-  for (const std::string& group : missing_) {
-    if (!has(late_, group) && has(discovered, participant_name_of_group(group))) {
-      late_.push_back(group);
+  for (const std::vector<std::string>* judged : {&missing_, &unheard_}) {
+    for (const std::string& group : *judged) {
+      if (!has(late_, group) && found(group)) {
+        late_.push_back(group);
+      }
     }
   }
   return false;
@@ -76,15 +84,19 @@ std::string PeerWatch::degraded() const {
 }
 
 std::string PeerWatch::discovery_text() const {
-  if (missing_.empty()) {
+  if (missing_.empty() && unheard_.empty()) {
     return "";
   }
-  std::string text = "did not discover group(s) " + quoted_list(missing_);
-  if (judged_s_ < deadline_s_) {
-    text += " during its run (" + shortest_text(std::round(judged_s_ * 10.0) / 10.0) + " s, shorter than the start timeout of " +
-            shortest_text(deadline_s_) + " s)";
-  } else {
-    text += " within " + shortest_text(deadline_s_) + " s of its start";
+  const std::string when = judged_s_ < deadline_s_ ? " during its run (" + shortest_text(std::round(judged_s_ * 10.0) / 10.0) +
+                                                         " s, shorter than the start timeout of " + shortest_text(deadline_s_) + " s)"
+                                                   : " within " + shortest_text(deadline_s_) + " s of its start";
+  std::string text;
+  if (!missing_.empty()) {
+    text = "did not discover group(s) " + quoted_list(missing_) + when;
+  }
+  if (!unheard_.empty()) {
+    text += (text.empty() ? "" : "; ") + std::string("discovered group(s) ") + quoted_list(unheard_) + " but heard nothing from them" +
+            when + " (their participant was seen, none of their topics matched: e.g. a Discovery Server restarted within its lease)";
   }
   if (missing_.size() == others_.size()) {
     text += ": no participant of the run at all (are the other hosts running, on the same domain, and is discovery reachable:"

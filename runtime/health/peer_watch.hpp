@@ -26,9 +26,13 @@ class PeerWatch {
 
   /// Checks once, at the first call with `elapsed_s` >= the deadline (or with `run_ended`: a run
   /// shorter than the deadline is judged at its end), which of the other groups have no
-  /// participant in `discovered` (participant names). True when that made the run degraded (then
-  /// degraded() says why); later calls only note groups that turned up late.
-  bool check(double elapsed_s, const std::vector<std::string>& discovered, bool run_ended = false);
+  /// participant in `discovered` (participant names), and, given `heard` (the groups whose run/alive
+  /// beats arrived; null: not known), which were discovered but never heard: their participant was
+  /// relayed but none of their topics matched (seen with a Discovery Server restarted within its
+  /// lease, docs/deployment.md). True when that made the run degraded (then degraded() says why);
+  /// later calls only note groups that turned up (or were heard) late.
+  bool check(double elapsed_s, const std::vector<std::string>& discovered, bool run_ended = false,
+             const std::vector<std::string>* heard = nullptr);
 
   /// Real time: group `group` was lost `at_s` after the start (its participant's lease expired,
   /// or it left before the run's end): the run is degraded from then on. `how` says how, e.g.
@@ -53,6 +57,7 @@ class PeerWatch {
   bool checked_ = false;
   double judged_s_ = 0.0;  // s after the start when it was checked
   std::vector<std::string> missing_;
+  std::vector<std::string> unheard_;  // discovered but never heard at the deadline
   std::vector<std::string> late_;  // missing at the deadline, discovered since
   std::vector<std::string> lost_;  // lost(): "lost group 'x' at T s after the start (how)"
   std::vector<std::string> lost_groups_;

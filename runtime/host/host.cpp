@@ -106,7 +106,10 @@ struct Host::Impl {
       return;
     }
     next_check_s = elapsed_s + 0.5;
-    if (watch.check(elapsed_s, run.bus->discovered_participants().value_or(std::vector<std::string>{}), run_ended)) {
+    // run/alive's beats tell a group that was discovered from one that can also be heard.
+    const std::vector<std::string> heard = loop_alive ? loop_alive->heard_groups() : std::vector<std::string>{};
+    if (watch.check(elapsed_s, run.bus->discovered_participants().value_or(std::vector<std::string>{}), run_ended,
+                    loop_alive ? &heard : nullptr)) {
       log::warn(options.member, "degraded: " + watch.degraded() + (run_ended ? "" : "; the run goes on without them"));
     }
   }

@@ -29,6 +29,9 @@ class LoopAlive {
   std::vector<LoopSilence::Silent> silent(double elapsed_s, double end_s,
                                           const std::function<bool(const std::string&)>& participant_alive);
 
+  /// The groups whose beats arrived at least once (as of the last silent()).
+  std::vector<std::string> heard_groups() const { return silence_.heard_groups(); }
+
  private:
   RunContext& run_;
   std::string member_;

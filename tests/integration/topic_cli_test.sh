@@ -70,7 +70,9 @@ wait "${cleanup_pids[0]}" 2>/dev/null || true
 sed '/{name: commander, type: open_loop_commander}/d; /^  control: \[commander\]$/d' \
   "$SRC/sim/scenarios/plant_smoke.yaml" >"$WORK/no_commander.yaml"
 grep -q "open_loop_commander" "$WORK/no_commander.yaml" && fail "could not remove the commander from plant_smoke.yaml: $(cat "$WORK/no_commander.yaml")"
-timeout -k 5 60 "$ROBODDS" run "$WORK/no_commander.yaml" --realtime --duration 6 --domain "$DOMAIN" --out "$WORK/colocated" \
+# 60 s of run, ended by the test's cleanup once seen: a 6 s run had ended before the second listing
+# on a machine at load 12 (its endpoints listed as gone: 0 writers, 0 readers).
+timeout -k 5 90 "$ROBODDS" run "$WORK/no_commander.yaml" --realtime --duration 60 --domain "$DOMAIN" --out "$WORK/colocated" \
   --no-plots >"$WORK/colocated.log" 2>&1 &
 cleanup_pids+=("$!")
 # Once the run's endpoints are seen, one more listing: a participant's endpoints may be
@@ -82,3 +84,6 @@ grep -qE "^plant/state +robodds::idl::RobotState +1 +0 " <<<"$topics" || fail "c
 grep -qE "^sensor/position +robodds::idl::PositionMeasurement +1 +0 " <<<"$topics" || fail "co-located real time: sensor/position should have a writer and no reader"
 grep -qE "^plant/cmd +robodds::idl::VelocityCommand +0 +1 " <<<"$topics" || fail "co-located real time: plant/cmd (no producer in the run) should have a DDS reader"
 echo "ok: a co-located real-time run reads its own topics in memory and an outside producer's from DDS"
+colocated_pid="${cleanup_pids[${#cleanup_pids[@]}-1]}"
+kill -TERM "$colocated_pid" 2>/dev/null || true
+wait "$colocated_pid" 2>/dev/null || true

@@ -58,5 +58,13 @@ TEST(LoopSilence, GroupsNotWatchedAreIgnored) {
   EXPECT_TRUE(watch.check(5.0, 60.0, kAlive).empty());
 }
 
+TEST(LoopSilence, HeardGroupsAreTheWatchedOnesABeatArrivedFrom) {
+  LoopSilence silence({"sim", "sensing"});
+  EXPECT_TRUE(silence.heard_groups().empty());
+  silence.heard("sensing", 1.0);
+  silence.heard("stranger", 1.0);  // not watched
+  EXPECT_EQ(silence.heard_groups(), std::vector<std::string>{"sensing"});
+}
+
 }  // namespace
 }  // namespace robodds

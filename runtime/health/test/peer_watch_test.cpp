@@ -35,6 +35,38 @@ TEST(PeerWatch, APartlyMissingRunNamesTheMissingAndThoseThatCameLate) {
   EXPECT_EQ(watch.degraded(), "did not discover group(s) 'sim', 'control' within 3 s of its start (discovered later: 'control')");
 }
 
+// A group whose participant was relayed to this host but none of whose topics matched (a Discovery
+// Server restarted within its lease: integration.netns_discovery_restart's failure before the
+// server got the clients' lease) is discovered but never heard on run/alive: degraded, named.
+TEST(PeerWatch, AGroupDiscoveredButNeverHeardIsDegradedAndNamed) {
+  PeerWatch watch({"sim", "sensing"}, 10.0);
+  const std::vector<std::string> both{"robodds-sim", "robodds-sensing"};
+  const std::vector<std::string> only_sim{"sim"};
+  EXPECT_TRUE(watch.check(10.0, both, false, &only_sim));
+  EXPECT_EQ(watch.degraded(),
+            "discovered group(s) 'sensing' but heard nothing from them within 10 s of its start (their participant was seen, none "
+            "of their topics matched: e.g. a Discovery Server restarted within its lease)");
+  const std::vector<std::string> all{"sim", "sensing"};
+  EXPECT_FALSE(watch.check(12.0, both, false, &all)) << "degraded once, not again";
+  EXPECT_NE(watch.degraded().find("(discovered later: 'sensing')"), std::string::npos) << watch.degraded();
+}
+
+TEST(PeerWatch, WithoutBeatsToGoByDiscoveryAloneCounts) {
+  PeerWatch watch({"sim", "sensing"}, 10.0);
+  EXPECT_FALSE(watch.check(10.0, {"robodds-sim", "robodds-sensing"}));
+  EXPECT_EQ(watch.degraded(), "");
+  PeerWatch heard_all({"sim", "sensing"}, 10.0);
+  const std::vector<std::string> all{"sensing", "sim"};
+  EXPECT_FALSE(heard_all.check(10.0, {"robodds-sim", "robodds-sensing"}, false, &all));
+  PeerWatch missing_and_unheard({"sim", "sensing", "control"}, 10.0);
+  const std::vector<std::string> none;
+  EXPECT_TRUE(missing_and_unheard.check(10.0, {"robodds-sim", "robodds-sensing"}, false, &none));
+  EXPECT_EQ(missing_and_unheard.degraded().find("did not discover group(s) 'control' within 10 s of its start; discovered group(s) "
+                                                "'sim', 'sensing' but heard nothing"),
+            0u)
+      << missing_and_unheard.degraded();
+}
+
 // A run shorter than the start timeout is judged at its end, and says so (it did not wait 30 s).
 TEST(PeerWatch, ARunShorterThanTheDeadlineIsJudgedAtItsEnd) {
   PeerWatch watch({"sim", "control"}, 30.0);
