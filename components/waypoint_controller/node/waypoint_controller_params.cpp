@@ -39,6 +39,17 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
           .add("invalid_estimate_creep_progress", &WaypointControllerNodeParams::invalid_estimate_creep_progress, "",
                params::in_half_open_interval(0.0, 1.0),
                "the fraction by which the heading std must have fallen since a creep budget started for it to be extended")
+          .add("invalid_estimate_creep_relearns", &WaypointControllerNodeParams::invalid_estimate_creep_relearns, "",
+               params::at_least(0),
+               "with invalid_estimate_speed_mps: an estimate that turns invalid after it was valid, its position std "
+               "still below invalid_estimate_relearn_max_position_std_m (only the heading spread grew), grants a new creep "
+               "budget once the gap hold ran out, at most this many times in a row without a way-point reached in "
+               "between (issue 27: a standing robot cannot learn its heading again); 0 = none (zero command after a "
+               "valid estimate)")
+          .add("invalid_estimate_relearn_max_position_std_m",
+               &WaypointControllerNodeParams::invalid_estimate_relearn_max_position_std_m, "m", params::positive(),
+               "the invalid estimate's position std (sqrt(var x + var y)) must be below this for a relearn creep: the "
+               "position fixes still hold the estimate")
           .add("estimate_timeout_s", &WaypointControllerNodeParams::estimate_timeout_s, "s", params::positive(),
                "real time only: an estimate received longer ago than this stops the robot (state ESTIMATE_STALE); > the control period. "
                "One older than two of its producer's periods (next_step - step) already holds the last command")
