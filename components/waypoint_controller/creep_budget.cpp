@@ -52,8 +52,8 @@ void CreepBudget::observe_heading_std(double std_rad) {
   }
 }
 
-void CreepBudget::observe_position_std(double std_m) {
-  position_std_m_ = std::isfinite(std_m) && std_m >= 0.0 ? std_m : -1.0;
+void CreepBudget::observe_position_std(double std_m, bool inputs_stale) {
+  position_std_m_ = !inputs_stale && std::isfinite(std_m) && std_m >= 0.0 ? std_m : -1.0;
 }
 
 bool CreepBudget::estimator_restarted() {

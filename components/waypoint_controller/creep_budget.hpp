@@ -70,7 +70,9 @@ class CreepBudget {
   /// The (invalid) estimate's heading std now (rad): what an extension judges progress by.
   void observe_heading_std(double std_rad);
   /// The (invalid) estimate's position std now (m, sqrt(var x + var y)): what a relearn needs.
-  void observe_position_std(double std_m);
+  /// `inputs_stale`: the estimator says its own sensors went quiet (real time; the sensor host may
+  /// be dead): the position counts as not known, whatever its std says (issue 24: no blind creeping).
+  void observe_position_std(double std_m, bool inputs_stale);
   /// A way-point was reached: the relearns in a row start from zero.
   void waypoint_reached() { relearns_ = 0; }
   /// Relearns granted since the last way-point reached.

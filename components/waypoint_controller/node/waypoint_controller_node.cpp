@@ -129,7 +129,8 @@ class WaypointControllerNode : public Component {
           cmd.omega(out.omega);
         } else {
           robot.creep.observe_heading_std(std::sqrt(std::max(0.0, estimate->cov()[8])));
-          robot.creep.observe_position_std(std::sqrt(std::max(0.0, estimate->cov()[0] + estimate->cov()[4])));
+          robot.creep.observe_position_std(std::sqrt(std::max(0.0, estimate->cov()[0] + estimate->cov()[4])),
+                                           estimate->inputs_stale());
           const bool creeping = invalid_estimate_speed_mps_ > 0.0 && may_creep(id, robot, info.time_s);
           const Command out = tracker.hold(creeping ? Command{invalid_estimate_speed_mps_, 0.0} : Command{});
           if (creeping) {
