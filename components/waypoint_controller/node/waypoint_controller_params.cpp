@@ -18,7 +18,8 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
                params::non_negative("0 = stand still"),
                "with require_valid_estimate: drive straight ahead at this speed while the estimate is not valid "
                "(motion makes the heading observable from position fixes), within the acceleration limits; only "
-               "before the first valid estimate of the run and never once the mission is done: after that, zero")
+               "before the first valid estimate of the run (or of an estimator restart, or of a relearn) and never once "
+               "the mission is done: else zero")
           .add("invalid_estimate_creep_max_m", &WaypointControllerNodeParams::invalid_estimate_creep_max_m, "m",
                params::positive(),
                "with invalid_estimate_speed_mps: stop creeping once this distance was commanded (|v| integrated over "
@@ -57,7 +58,7 @@ const params::ParamTable<WaypointControllerNodeParams>& waypoint_controller_para
                       "with require_valid_estimate: a robot that was tracking and is moving, whose estimate arrives but "
                       "says it is not valid, keeps the curvature of its last command at a reduced speed (braked within "
                       "max_accel_mps2) for at most hold_s, then the rules above (stop, or creep after an estimator "
-                      "restart); never before the first valid estimate, never once the mission is done, never on a missing or "
+                      "restart or as a relearn); never before the first valid estimate, never once the mission is done, never on a missing or "
                       "stale estimate nor on one marked inputs_stale (issue 27)");
   return table;
 }
