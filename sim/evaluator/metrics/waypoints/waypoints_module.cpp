@@ -4,6 +4,7 @@
 // pooled over the served robots at the top level.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -193,8 +194,8 @@ class WaypointsModule : public MetricsModule {
         out.push_back(who + std::to_string(m.waypoints_reached) + " of " + std::to_string(m.waypoints_total) +
                       " way-points reached");
         if (r->invalid_since_step) {
-          out.push_back(who + "estimate not valid from " + shortest_text(static_cast<double>(*r->invalid_since_step) * step_s_) +
-                        " s to the end");
+          const double since_s = std::round(static_cast<double>(*r->invalid_since_step) * step_s_ * 1000.0) / 1000.0;  // ms
+          out.push_back(who + "estimate not valid from " + shortest_text(since_s) + " s to the end");
         }
       }
       if (r->estimated && !r->ever_valid) {
