@@ -5,11 +5,23 @@
 namespace robodds::waypoint_controller {
 
 CreepVerdict CreepBudget::check(double time_s, bool mission_done) {
-  if (had_valid_) {
-    return CreepVerdict::kAfterValidEstimate;
-  }
   if (mission_done) {
     return CreepVerdict::kMissionDone;
+  }
+  if (had_valid_) {
+    const bool position_known = position_std_m_ >= 0.0 && position_std_m_ < limits_.relearn_max_position_std_m;
+    if (limits_.max_relearns <= 0 || !position_known) {
+      return CreepVerdict::kAfterValidEstimate;
+    }
+    if (relearns_ >= limits_.max_relearns) {
+      return CreepVerdict::kRelearnsSpent;
+    }
+    // Valid before, invalid now with the position still known: creep to learn the heading again.
+    ++relearns_;
+    had_valid_ = false;
+    started_ = false;
+    distance_m_ = 0.0;
+    extensions_ = 0;
   }
   if (!started_) {
     started_ = true;
@@ -40,6 +52,10 @@ void CreepBudget::observe_heading_std(double std_rad) {
   }
 }
 
+void CreepBudget::observe_position_std(double std_m, bool inputs_stale) {
+  position_std_m_ = !inputs_stale && std::isfinite(std_m) && std_m >= 0.0 ? std_m : -1.0;
+}
+
 bool CreepBudget::estimator_restarted() {
   if (restarts_granted_ >= limits_.max_restarts) {
     return false;
@@ -59,7 +75,11 @@ const char* describe(CreepVerdict verdict) {
     case CreepVerdict::kAllowed:
       return "";
     case CreepVerdict::kAfterValidEstimate:
-      return "the estimate was valid before: no creeping after that (zero command)";
+      return "the estimate was valid before and its position is not known to invalid_estimate_relearn_max_position_std_m "
+             "(or relearning is off): no creeping (zero command)";
+    case CreepVerdict::kRelearnsSpent:
+      return "the estimate was valid before and invalid_estimate_creep_relearns are used up since the last way-point: "
+             "no creeping (zero command)";
     case CreepVerdict::kMissionDone:
       return "the mission is done: no creeping";
     case CreepVerdict::kDistanceSpent:

@@ -18,13 +18,31 @@ struct CreepLimits {
   /// and time from zero) is granted, at most max_extensions times per budget. 0 = none.
   int max_extensions = 0;
   double min_progress = 0.0;
+  /// Issue 27 ("missions degrade gracefully"): an estimate that turns invalid after it was valid,
+  /// while its position is still known (position std sqrt(var x + var y) below
+  /// relearn_max_position_std_m: the fixes still hold it, only the heading spread grew past the
+  /// estimator's keep limit), grants a new budget: a robot that stands still cannot bring its heading
+  /// spread down again (kidnap_10m seed 4 stood for good 14 s after a recovery with a true heading
+  /// error of 1-7 deg), a creeping one does, as at the start of a run. At most max_relearns times
+  /// in a row without a way-point reached in between (a robot whose estimate keeps failing on one
+  /// leg stops, and says so). 0 = none (before: never after a valid estimate).
+  int max_relearns = 0;
+  double relearn_max_position_std_m = 0.0;  // m
 };
 
 /// Why a creep step is refused (kAllowed: it is not).
-enum class CreepVerdict { kAllowed, kAfterValidEstimate, kMissionDone, kDistanceSpent, kTimeSpent };
+enum class CreepVerdict {
+  kAllowed,
+  kAfterValidEstimate,  // and no relearn: off, or the position not known well enough
+  kRelearnsSpent,       // after a valid estimate, max_relearns used up on this leg
+  kMissionDone,
+  kDistanceSpent,
+  kTimeSpent
+};
 
 /// What is left of one robot's creep. Creeping is allowed only until the first valid estimate of
-/// the run (or of an estimator restart, at most max_restarts times), never once the mission is
+/// the run (or of an estimator restart, at most max_restarts times, or of a relearn: an estimate
+/// invalid again with its position known, CreepLimits::max_relearns), never once the mission is
 /// done, and within both limits: the distance is the commanded
 /// speed integrated over the creeping steps (the controller has no pose to measure it with).
 /// The last allowed step may pass max_distance_m by at most one step's |v|·period.
@@ -51,6 +69,14 @@ class CreepBudget {
 
   /// The (invalid) estimate's heading std now (rad): what an extension judges progress by.
   void observe_heading_std(double std_rad);
+  /// The (invalid) estimate's position std now (m, sqrt(var x + var y)): what a relearn needs.
+  /// `inputs_stale`: the estimator says its own sensors went quiet (real time; the sensor host may
+  /// be dead): the position counts as not known, whatever its std says (issue 24: no blind creeping).
+  void observe_position_std(double std_m, bool inputs_stale);
+  /// A way-point was reached: the relearns in a row start from zero.
+  void waypoint_reached() { relearns_ = 0; }
+  /// Relearns granted since the last way-point reached.
+  int relearns() const { return relearns_; }
   /// Extensions granted since the last budget started.
   int extensions() const { return extensions_; }
 
@@ -67,6 +93,8 @@ class CreepBudget {
   double started_s_ = 0.0;   // s, time of the first creeping step
   double distance_m_ = 0.0;  // m, commanded so far
   int extensions_ = 0;
+  int relearns_ = 0;                      // since the last way-point reached
+  double position_std_m_ = -1.0;          // m, last observed (< 0: none yet)
   double heading_std_rad_ = -1.0;         // rad, last observed (< 0: none yet)
   double budget_start_std_rad_ = -1.0;    // rad, observed when this budget (or extension) started
 };

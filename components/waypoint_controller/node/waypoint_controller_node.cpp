@@ -32,7 +32,8 @@ class WaypointControllerNode : public Component {
     invalid_estimate_speed_mps_ = node_params.invalid_estimate_speed_mps;
     const CreepLimits creep_limits{node_params.invalid_estimate_creep_max_m, node_params.invalid_estimate_creep_limit_s,
                                    node_params.invalid_estimate_creep_restarts, node_params.invalid_estimate_creep_extensions,
-                                   node_params.invalid_estimate_creep_progress};
+                                   node_params.invalid_estimate_creep_progress, node_params.invalid_estimate_creep_relearns,
+                                   node_params.invalid_estimate_relearn_max_position_std_m};
     estimate_timeout_s_ = node_params.estimate_timeout_s;
     p.validate(params_);  // the body is checked where it is declared (system::check_facts)
     p.check([&] {
@@ -99,6 +100,9 @@ class WaypointControllerNode : public Component {
         cmd.v(out.command.v);
         cmd.omega(out.command.omega);
         robot.last_tracked = out.status;
+        if (out.status.reached_this_step) {
+          robot.creep.waypoint_reached();  // the relearns in a row start again
+        }
         set_tracking(status, out.status, out.status.reached_this_step);
         steered(robot, out.command);
       } else if (status.state() == idl::ESTIMATE_INVALID) {
@@ -125,6 +129,8 @@ class WaypointControllerNode : public Component {
           cmd.omega(out.omega);
         } else {
           robot.creep.observe_heading_std(std::sqrt(std::max(0.0, estimate->cov()[8])));
+          robot.creep.observe_position_std(std::sqrt(std::max(0.0, estimate->cov()[0] + estimate->cov()[4])),
+                                           estimate->inputs_stale());
           const bool creeping = invalid_estimate_speed_mps_ > 0.0 && may_creep(id, robot, info.time_s);
           const Command out = tracker.hold(creeping ? Command{invalid_estimate_speed_mps_, 0.0} : Command{});
           if (creeping) {
@@ -236,7 +242,15 @@ class WaypointControllerNode : public Component {
   /// Whether robot `id` may creep at `time_s` (s) (creep_budget.hpp). Says once why it may not.
   static bool may_creep(std::uint32_t id, Robot& robot, double time_s) {
     const int extensions = robot.creep.extensions();
+    const int relearns = robot.creep.relearns();
     const CreepVerdict verdict = robot.creep.check(time_s, robot.tracker.done());
+    if (robot.creep.relearns() > relearns) {
+      log::info("waypoint_controller", "robot " + std::to_string(id) + ": the estimate, valid before, is not at " +
+                                           std::to_string(time_s) + " s with its position known: creeping to learn the "
+                                           "heading again (relearn " + std::to_string(robot.creep.relearns()) +
+                                           " since the last way-point)");
+      robot.told = CreepVerdict::kAllowed;  // a refusal after this relearn is said again
+    }
     if (robot.creep.extensions() > extensions) {
       log::info("waypoint_controller", "robot " + std::to_string(id) + ": creep budget extended (" +
                                            std::to_string(robot.creep.extensions()) + ") at " + std::to_string(time_s) +

@@ -25,6 +25,8 @@ struct WaypointControllerNodeParams {
   int invalid_estimate_creep_restarts = 3;
   int invalid_estimate_creep_extensions = 2;
   double invalid_estimate_creep_progress = 0.1;
+  int invalid_estimate_creep_relearns = 3;
+  double invalid_estimate_relearn_max_position_std_m = 1.0;
   double estimate_timeout_s = 0.5;
   model::HoldParams gap_hold;  // issue 27: through a brief invalid estimate while driving
 };

@@ -129,5 +129,46 @@ TEST(CreepBudget, AnEstimatorRestartGrantsItsExtensionsAgain) {
   EXPECT_EQ(creep.check(60.5, false), CreepVerdict::kAllowed);
 }
 
+// Issue 27 ("missions degrade gracefully"): an estimate invalid again after it was valid, its
+// position still known, grants a new budget (a standing robot cannot learn its heading again), at
+// most max_relearns times in a row without a way-point reached in between.
+TEST(CreepBudget, AnEstimateInvalidAgainWithItsPositionKnownGrantsARelearn) {
+  CreepBudget creep(CreepLimits{2.0, 10.0, 0, 0, 0.0, 2, 1.0});
+  EXPECT_EQ(creep.check(0.0, false), CreepVerdict::kAllowed);
+  creep.crept(0.3, 1.0);
+  creep.estimate_was_valid();
+  creep.observe_position_std(0.4, false);
+  EXPECT_EQ(creep.check(20.0, false), CreepVerdict::kAllowed) << "valid before, position known: relearn";
+  EXPECT_EQ(creep.relearns(), 1);
+  EXPECT_EQ(creep.distance_m(), 0.0) << "a new budget";
+  EXPECT_EQ(creep.check(30.0, false), CreepVerdict::kAllowed) << "its time counts from 20 s";
+  EXPECT_EQ(creep.check(30.02, false), CreepVerdict::kTimeSpent);
+  creep.estimate_was_valid();
+  EXPECT_EQ(creep.check(40.0, false), CreepVerdict::kAllowed) << "the second relearn";
+  creep.estimate_was_valid();
+  EXPECT_EQ(creep.check(50.0, false), CreepVerdict::kRelearnsSpent) << "max_relearns 2 in a row";
+  EXPECT_EQ(creep.check(50.0, true), CreepVerdict::kMissionDone);
+  creep.waypoint_reached();
+  EXPECT_EQ(creep.check(60.0, false), CreepVerdict::kAllowed) << "a way-point reached: the count starts again";
+  EXPECT_EQ(creep.relearns(), 1);
+}
+
+TEST(CreepBudget, NoRelearnWithThePositionUnknownOrTheInputsStaleOrWhenOff) {
+  CreepBudget lost(CreepLimits{2.0, 10.0, 0, 0, 0.0, 3, 1.0});
+  lost.estimate_was_valid();
+  EXPECT_EQ(lost.check(1.0, false), CreepVerdict::kAfterValidEstimate) << "no position std seen";
+  lost.observe_position_std(1.0, false);
+  EXPECT_EQ(lost.check(1.0, false), CreepVerdict::kAfterValidEstimate) << "the position std at the limit";
+  lost.observe_position_std(0.2, true);
+  EXPECT_EQ(lost.check(1.0, false), CreepVerdict::kAfterValidEstimate) << "the estimator's inputs are stale";
+  lost.observe_position_std(0.2, false);
+  EXPECT_EQ(lost.check(1.0, true), CreepVerdict::kMissionDone);
+  EXPECT_EQ(lost.relearns(), 0);
+  CreepBudget off(CreepLimits{2.0, 10.0, 0, 0, 0.0, 0, 1.0});
+  off.estimate_was_valid();
+  off.observe_position_std(0.2, false);
+  EXPECT_EQ(off.check(1.0, false), CreepVerdict::kAfterValidEstimate) << "max_relearns 0: as before";
+}
+
 }  // namespace
 }  // namespace robodds::waypoint_controller

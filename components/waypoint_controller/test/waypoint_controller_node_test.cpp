@@ -214,12 +214,12 @@ TEST(WaypointControllerNode, CreepingStopsAtItsDistanceWithoutAValidEstimate) {
 
 // Issue 24, finding 3: once the estimate was valid, an invalid one means v = omega = 0 (the
 // sensors died at speed): the robot never creeps on blind. Before: it crept at 0.3 m/s. (The
-// hold of issue 27 off: its own tests are below.)
+// hold of issue 27 off, and its relearn creep: their own tests are below.)
 TEST(WaypointControllerNode, NoCreepingOnceTheEstimateWasValid) {
   Harness h(ScenarioText("waypoint_controller_no_blind", 0.01, 0.3)
                 .robots({1})
                 .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3, "
-                           "gap_hold: {hold_s: 0}}}"));
+                           "invalid_estimate_creep_relearns: 0, gap_hold: {hold_s: 0}}}"));
   h.feed([&h](std::uint64_t step) {
     if (step == 0) {
       h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
@@ -242,12 +242,12 @@ TEST(WaypointControllerNode, NoCreepingOnceTheEstimateWasValid) {
 
 // A lost filter redrawn (PoseEstimate.restarts rises) knows no heading, as at the start: one new
 // bounded creep, until its next valid estimate; a plain invalid estimate grants none (the hold of
-// issue 27 off).
+// issue 27 off, and its relearn creep).
 TEST(WaypointControllerNode, AnEstimatorRestartGrantsOneNewCreepUntilTheNextValidEstimate) {
   Harness h(ScenarioText("waypoint_controller_restart", 0.01, 0.3)
                 .robots({1})
                 .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3, "
-                           "invalid_estimate_creep_restarts: 1, gap_hold: {hold_s: 0}}}"));
+                           "invalid_estimate_creep_restarts: 1, invalid_estimate_creep_relearns: 0, gap_hold: {hold_s: 0}}}"));
   h.feed([&h](std::uint64_t step) {
     if (step == 0) {
       h.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
@@ -345,13 +345,13 @@ TEST(WaypointControllerNode, HoldsTheLastArcAtReducedSpeedThroughABriefInvalidEs
 }
 
 // Issue 27: the hold lasts at most gap_hold.hold_s (here 0.05 s: 5 steps at 100 Hz), then the
-// rules of issue 24 (no creeping once valid: zero). Without acceleration limits the reduced
-// speed (gap_hold.speed_fraction 0.25) is taken at once.
+// rules of issue 24 (no creeping once valid: zero; the relearn creep off). Without acceleration
+// limits the reduced speed (gap_hold.speed_fraction 0.25) is taken at once.
 TEST(WaypointControllerNode, TheHoldEndsAfterHoldSWithAStop) {
   Harness h(ScenarioText("waypoint_controller_hold_expiry", 0.01, 0.3)
                 .robots({1})
                 .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3, "
-                           "gap_hold: {hold_s: 0.05, speed_fraction: 0.25}}}"));
+                           "invalid_estimate_creep_relearns: 0, gap_hold: {hold_s: 0.05, speed_fraction: 0.25}}}"));
   h.feed([&h](std::uint64_t step) {
     if (step == 0) {
       h.publish("mission/waypoints", mission({{10.0, 5.0}}), 0, kNeverAgain);
@@ -422,6 +422,61 @@ TEST(WaypointControllerNode, NoHoldOnceTheMissionIsDone) {
   for (std::size_t i = 6; i < commands.size(); ++i) {
     EXPECT_DOUBLE_EQ(commands[i].v(), 0.0) << "step " << i << ": done: not held";
     EXPECT_DOUBLE_EQ(commands[i].omega(), 0.0) << "step " << i;
+  }
+}
+
+// Issue 27 ("missions degrade gracefully"): a robot whose estimate turns invalid after it was valid
+// (the heading spread passed the estimator's keep limit) stood for good (kidnap_10m seed 4: 2/18);
+// with its position still known it creeps again once the hold ran out, as before the first valid
+// estimate, until the estimate is valid again (invalid_estimate_creep_relearns). Not with the
+// position unknown (std >= invalid_estimate_relearn_max_position_std_m), not when the estimator's
+// inputs are stale (the sensor host may be dead: issue 24), not once the mission is done.
+TEST(WaypointControllerNode, AnEstimateInvalidAgainWithItsPositionKnownCreepsToRelearnTheHeading) {
+  // position_var: var x = var y (m^2); the estimate is valid at steps 2-5 and from 20 on.
+  const auto run = [](double position_var, bool inputs_stale) {
+    auto h = std::make_unique<Harness>(
+        ScenarioText("waypoint_controller_relearn", 0.01, 0.3)
+            .robots({1})
+            .component("{name: controller, type: waypoint_controller, params: {invalid_estimate_speed_mps: 0.3, "
+                       "gap_hold: {hold_s: 0.03}}}"));
+    Harness& hr = *h;
+    hr.feed([&hr, position_var, inputs_stale](std::uint64_t step) {
+      if (step == 0) {
+        hr.publish("mission/waypoints", mission({{10.0, 0.0}}), 0, kNeverAgain);
+      }
+      idl::PoseEstimate e = estimate(0.0, 0.0, 0.0, (step >= 2 && step < 6) || step >= 20);
+      e.cov()[0] = position_var;
+      e.cov()[4] = position_var;
+      e.cov()[8] = 0.4 * 0.4;  // the heading spread past a keep limit
+      e.inputs_stale(inputs_stale && step >= 6 && step < 20);
+      hr.publish("estimate/pose", e, step, step + 1);
+    });
+    const auto& commands = hr.record<idl::VelocityCommand>("plant/cmd");
+    const auto& status = hr.record<idl::ControllerStatus>("control/status");
+    hr.run({"controller"});
+    EXPECT_EQ(commands.size(), 31u);
+    std::vector<std::pair<double, double>> out;
+    for (std::size_t i = 0; i < commands.size(); ++i) {
+      EXPECT_EQ(status[i].state(), i < 2 || (i >= 6 && i < 20) ? idl::ESTIMATE_INVALID : idl::TRACKING) << "step " << i;
+      out.emplace_back(commands[i].v(), commands[i].omega());
+    }
+    return out;
+  };
+  const auto known = run(0.1, false);  // position std 0.45 m
+  ASSERT_EQ(known.size(), 31u);
+  EXPECT_GT(known[5].first, 0.3) << "tracking at speed";
+  for (std::size_t i = 10; i < 20; ++i) {
+    EXPECT_NEAR(known[i].first, 0.3, 1e-12) << "step " << i << ": the hold ran out, creeping again";
+    EXPECT_EQ(known[i].second, 0.0) << "step " << i << ": straight ahead";
+  }
+  EXPECT_GT(known[20].first, 0.3) << "valid again: tracking";
+  for (const auto& [what, commands] : {std::pair{"position std 2 m", run(2.0, false)},
+                                       std::pair{"inputs stale", run(0.1, true)}}) {
+    ASSERT_EQ(commands.size(), 31u) << what;
+    for (std::size_t i = 10; i < 20; ++i) {
+      EXPECT_DOUBLE_EQ(commands[i].first, 0.0) << what << ", step " << i << ": no creeping once valid";
+      EXPECT_DOUBLE_EQ(commands[i].second, 0.0) << what << ", step " << i;
+    }
   }
 }
 

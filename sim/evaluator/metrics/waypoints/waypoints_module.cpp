@@ -4,6 +4,7 @@
 // pooled over the served robots at the top level.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -13,6 +14,7 @@
 #include <vector>
 
 #include "common/angle.hpp"
+#include "common/number_text.hpp"
 #include "robodds/idl/robodds.h"
 #include "sim/evaluator/metrics/waypoints/leg_deviation.hpp"
 #include "sim/evaluator/metrics/waypoints/waypoint_metrics.hpp"
@@ -39,6 +41,9 @@ struct RobotFigures {
   LegDeviation legs;         // the true track against the mission's legs (issue 28)
   bool estimated = false;    // an estimate/pose sample came
   bool ever_valid = false;   // ... and one of them was valid
+  /// The step from which the estimate, valid before, has not been valid (issue 27: a robot that
+  /// stopped for it says so); none while valid or before the first valid sample.
+  std::optional<std::uint64_t> invalid_since_step;
 };
 
 class WaypointsModule : public MetricsModule {
@@ -70,6 +75,11 @@ class WaypointsModule : public MetricsModule {
       r.heading.add(s);
       r.estimated = true;
       r.ever_valid = r.ever_valid || m.valid();
+      if (m.valid()) {
+        r.invalid_since_step.reset();
+      } else if (r.ever_valid && !r.invalid_since_step) {
+        r.invalid_since_step = m.header().step();
+      }
     });
     setup.on<idl::ControllerStatus>("control/status", [this](const idl::ControllerStatus& m) {
       RobotFigures& r = robot(m.robot_id());
@@ -183,6 +193,10 @@ class WaypointsModule : public MetricsModule {
       if (m.waypoints_reached < m.waypoints_total) {
         out.push_back(who + std::to_string(m.waypoints_reached) + " of " + std::to_string(m.waypoints_total) +
                       " way-points reached");
+        if (r->invalid_since_step) {
+          const double since_s = std::round(static_cast<double>(*r->invalid_since_step) * step_s_ * 1000.0) / 1000.0;  // ms
+          out.push_back(who + "estimate not valid from " + shortest_text(since_s) + " s to the end");
+        }
       }
       if (r->estimated && !r->ever_valid) {
         out.push_back(who + "estimate never valid");

@@ -59,8 +59,9 @@ components:
 }
 
 // Issue 27: summary.json's "mission" says whether the robot reached every way-point, and names
-// an estimate that was never valid. `reached`: way-points reached by the last status (of 2).
-std::string waypoint_run_summary(std::uint32_t reached, bool valid) {
+// an estimate that was never valid, or not valid since some time. `reached`: way-points reached by
+// the last status (of 2); `valid_until_step`: the estimate is valid before this step (0: never).
+std::string waypoint_run_summary(std::uint32_t reached, bool valid, std::uint64_t valid_until_step = kNeverAgain) {
   NodeHarness h(R"(name: evaluator_waypoints
 step_s: 0.01
 duration_s: 0.1
@@ -72,7 +73,7 @@ components:
      metrics_after_s: 0.0}}
 )");
   add_evaluator(h);
-  h.feed([&h, reached, valid](std::uint64_t step) {
+  h.feed([&h, reached, valid, valid_until_step](std::uint64_t step) {
     if (step == 0) {
       idl::WaypointMission mission;
       mission.robot_id(1);
@@ -84,7 +85,7 @@ components:
     h.publish("plant/state", s, step, step + 1);
     idl::PoseEstimate e;
     e.robot_id(1);
-    e.valid(valid);
+    e.valid(valid && step < valid_until_step);
     h.publish("estimate/pose", e, step, step + 1);
     idl::ControllerStatus c;
     c.robot_id(1);
@@ -107,6 +108,16 @@ TEST(EvaluatorNode, AMissionShortOfItsWaypointsSaysHowManyAndANeverValidEstimate
   EXPECT_TRUE(std::regex_search(summary, std::regex(R"("mission": "incomplete: 1 of 2 way-points reached; estimate never valid",)")))
       << summary;
   EXPECT_TRUE(std::regex_search(waypoint_run_summary(1, true), std::regex(R"("mission": "incomplete: 1 of 2 way-points reached",)")));
+}
+
+// Issue 27: a robot that stopped because its estimate turned invalid after it was valid says so,
+// with the time from which it stayed invalid; a complete mission says nothing of it.
+TEST(EvaluatorNode, AMissionShortOfItsWaypointsSaysSinceWhenTheEstimateWasNotValid) {
+  const std::string summary = waypoint_run_summary(1, true, 7);
+  EXPECT_TRUE(std::regex_search(
+      summary, std::regex(R"("mission": "incomplete: 1 of 2 way-points reached; estimate not valid from 0.07 s to the end",)")))
+      << summary;
+  EXPECT_TRUE(std::regex_search(waypoint_run_summary(2, true, 7), std::regex(R"("mission": "complete",)")));
 }
 
 TEST(EvaluatorNode, WithoutAWaypointMissionThereIsNoMissionVerdict) {
