@@ -116,7 +116,7 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
                                model::Pose2{}, model::Pose2{}, peer.known_start, Eigen::Matrix3d::Zero(), {}, {}, RangeErrorMap{}, false,
                                Eigen::VectorXd(), std::nullopt, std::nullopt, Eigen::Matrix3d::Zero(),
                                FixTrackCheck(params_.uncertainty), InnovationMonitor(params_.uncertainty),
-                               Eigen::Matrix3d::Zero()});
+                               Eigen::Matrix3d::Zero(), InnovationMonitor(params_.uncertainty), 0});
     tc_.emplace_back(own_array_, peer.array, params_.tc);
   }
   for (std::size_t a = 0; a < setups_.size(); ++a) {
@@ -541,7 +541,37 @@ void RelativeEstimator::run_tc(std::size_t k, double time_s, const model::Pose2&
     // What the uwb stage's check over time finds in the fixes beyond the range error model (an
     // error of another kind: a board's excess on the links through it) reaches tc through the
     // same ranges: its covariance is scaled alike (1 while the fixes hold their model).
-    estimate.covariance = peers_[k].fix_check.inflate(tc_[k].covariance());
+    Eigen::Matrix3d covariance = tc_[k].covariance();
+    // A bias per UWB node (uncertainty.node_bias_std_m, a consider parameter of the uwb stage's
+    // error model: an antenna's delay, a node shadowed) moves the fit as a moved node would, into
+    // heading and bearing; tc's range model (white, link and common biases) has no such state and
+    // its window cannot average a bias that lasts: the covariance it would cause is added, as the
+    // uwb stage's model counts it (s_n^2 N N^T at tc's pose).
+    RangeErrorMap node;
+    if (params_.tc.node_bias_term &&
+        range_error_map(own_array_, setups_[k].array, estimate.pose, params_.tc.white_std_m, 0.0, node,
+                        params_.uncertainty.node_bias_std_m) &&
+        node.node_map.cols() > 0) {
+      covariance += node.node_bias_std_m * node.node_bias_std_m * (node.node_map * node.node_map.transpose());
+    }
+    estimate.covariance = peers_[k].fix_check.inflate(covariance);
+    // Its own check against the fixes (issue 27), as the filters': tc is kept by its odometry and
+    // its window near a minimum its ranges allow; where that minimum is wrong (a jump to a
+    // non-line-of-sight fix's pose, a start from a wrong fix, a geometry that hides the bearing)
+    // its information at the minimum does not say so, the fixes over the last
+    // innovation_window_epochs do: what their median innovation shows beyond the fixes' own
+    // covariance is added (zero while tc follows the fixes).
+    if (params_.tc.innovation_check) {
+      PeerState& peer = peers_[k];
+      if (tc_[k].restarts() != peer.tc_restarts) {
+        peer.tc_check.reset();
+        peer.tc_restarts = tc_[k].restarts();
+      }
+      if (uwb.valid) {
+        peer.tc_check.add(estimate.pose, uwb.pose, peer.fix_model_covariance, peer.fix_own_covariance);
+      }
+      estimate.covariance += peer.tc_check.excess();
+    }
   }
 }
 

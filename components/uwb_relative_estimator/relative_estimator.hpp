@@ -190,6 +190,10 @@ class RelativeEstimator {
     /// This epoch's eq. (1) covariance as the error model gives it, before fix_check's scaling
     /// (what the filters' InnovationMonitor compares their estimates with).
     Eigen::Matrix3d fix_model_covariance = Eigen::Matrix3d::Zero();
+    /// The tc stage's own check against the eq. (1) fixes, as the filters' (tc.innovation_check).
+    InnovationMonitor tc_check;
+    /// tc's restarts when tc_check last saw it (a restarted tc is a new estimate: the check forgets).
+    int tc_restarts = 0;
   };
 
   /// Peer k's eq. (1) solve and what the uwb stage reports; its odometry stage.

@@ -71,6 +71,15 @@ struct TightWindowParams {
   /// prior linearised at two points claim information neither has (the window gained it from
   /// relinearising alone and was over-confident where the bearing is weak). False: the ablation.
   bool first_estimates_jacobians = true;
+  /// Issue 27: the estimator (RelativeEstimator, not this class) checks tc against the eq. (1)
+  /// fixes as it does the filters (InnovationMonitor, uncertainty.innovation_window_epochs) and
+  /// adds to tc's covariance what their median innovation shows beyond the fixes' own (false: the
+  /// ablation, tc's information at its minimum alone).
+  bool innovation_check = true;
+  /// Issue 27: the estimator adds to tc's covariance what a bias per UWB node
+  /// (uncertainty.node_bias_std_m, the uwb stage's consider parameter) would cause at tc's pose:
+  /// tc's range model has no such state (false: the ablation).
+  bool node_bias_term = true;
   /// Prior of the first pose around the fix it starts from.
   double start_xy_std_m = 1.0;
   double start_theta_std_rad = 0.5;
