@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include <Eigen/Cholesky>
+
 #include "common/angle.hpp"
 
 namespace robodds::uwb_relative_estimator {
@@ -116,7 +118,8 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
                                model::Pose2{}, model::Pose2{}, peer.known_start, Eigen::Matrix3d::Zero(), {}, {}, RangeErrorMap{}, false,
                                Eigen::VectorXd(), std::nullopt, std::nullopt, Eigen::Matrix3d::Zero(),
                                FixTrackCheck(params_.uncertainty), InnovationMonitor(params_.uncertainty),
-                               Eigen::Matrix3d::Zero(), InnovationMonitor(params_.uncertainty), 0});
+                               Eigen::Matrix3d::Zero(), InnovationMonitor(params_.uncertainty), 0, std::nullopt,
+                               Eigen::Matrix3d::Zero(), 0.0, Eigen::Matrix3d::Zero()});
     tc_.emplace_back(own_array_, peer.array, params_.tc);
   }
   for (std::size_t a = 0; a < setups_.size(); ++a) {
@@ -572,7 +575,46 @@ void RelativeEstimator::run_tc(std::size_t k, double time_s, const model::Pose2&
       }
       estimate.covariance += peer.tc_check.excess();
     }
+    if (params_.tc.jump_check) {
+      estimate.covariance += tc_jump_term(peers_[k], time_s, own_increment, input.odometry_increment, estimate);
+    }
+  } else {
+    peers_[k].tc_pose.reset();
+    peers_[k].tc_jump.setZero();
   }
+}
+
+Eigen::Matrix3d RelativeEstimator::tc_jump_term(PeerState& peer, double time_s, const model::Pose2& own_increment,
+                                                const model::Pose2& peer_increment, const StageEstimate& estimate) const {
+  // tc's own check from one epoch to the next: its last estimate dead-reckoned by both odometries,
+  // with the covariance it reported then propagated (P'), against this epoch's. A least-squares
+  // window that jumps to another minimum (a non-line-of-sight fix's pose, a flipped bearing) moves
+  // by more than P' allows (d^2 of the position beyond chi-square's 99.9 % quantile with 2 degrees
+  // of freedom, 13.82, or z^2 of the heading beyond 10.83 with 1): one of the two minima is wrong
+  // and nothing within one epoch says which, so the jump nu nu^T is added to what tc reports, and
+  // decays as the pair's longest range error does (uncertainty.range_common_time_s). P' is an
+  // upper bound of the spread of a consistent estimator's step (its update only shrinks it).
+  constexpr double kPositionGate = 13.82;
+  constexpr double kHeadingGate = 10.83;
+  if (peer.tc_pose) {
+    peer.tc_jump *= std::exp(-(time_s - peer.tc_time_s) / params_.uncertainty.range_common_time_s);
+    const model::Pose2 predicted = model::compose(model::between(own_increment, *peer.tc_pose), peer_increment);
+    const Eigen::Matrix3d spread =
+        propagate_relative_covariance(peer.tc_covariance, *peer.tc_pose, own_increment, peer_increment,
+                                      params_.tc.odometry_xy_std_m, params_.tc.odometry_theta_std_rad);
+    const Eigen::Vector3d nu(estimate.pose.x - predicted.x, estimate.pose.y - predicted.y,
+                             wrap_angle(estimate.pose.theta - predicted.theta));
+    const Eigen::LLT<Eigen::Matrix2d> position(spread.topLeftCorner<2, 2>());
+    const bool testable = nu.allFinite() && position.info() == Eigen::Success && spread(2, 2) > 0.0;
+    if (testable && (nu.head<2>().dot(position.solve(nu.head<2>())) > kPositionGate ||
+                     nu.z() * nu.z() / spread(2, 2) > kHeadingGate)) {
+      peer.tc_jump += nu * nu.transpose();
+    }
+  }
+  peer.tc_pose = estimate.pose;
+  peer.tc_covariance = estimate.covariance + peer.tc_jump;
+  peer.tc_time_s = time_s;
+  return peer.tc_jump;
 }
 
 bool RelativeEstimator::placed(std::size_t k) const {

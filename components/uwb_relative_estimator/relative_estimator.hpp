@@ -194,10 +194,19 @@ class RelativeEstimator {
     InnovationMonitor tc_check;
     /// tc's restarts when tc_check last saw it (a restarted tc is a new estimate: the check forgets).
     int tc_restarts = 0;
+    /// tc's last reported estimate (nullopt: none valid at the last epoch), its time, and the
+    /// covariance its own jumps added (decaying with uncertainty.range_common_time_s).
+    std::optional<model::Pose2> tc_pose;
+    Eigen::Matrix3d tc_covariance = Eigen::Matrix3d::Zero();
+    double tc_time_s = 0.0;
+    Eigen::Matrix3d tc_jump = Eigen::Matrix3d::Zero();
   };
 
   /// Peer k's eq. (1) solve and what the uwb stage reports; its odometry stage.
   void run_uwb(std::size_t k, double time_s, const model::Pose2& own_increment, const PeerEpoch& input, PeerResult& out);
+  /// tc's jump check (tc.jump_check): what its own jumps beyond its reported covariance add to it.
+  Eigen::Matrix3d tc_jump_term(PeerState& peer, double time_s, const model::Pose2& own_increment,
+                               const model::Pose2& peer_increment, const StageEstimate& estimate) const;
   void run_odometry(std::size_t k, const model::Pose2& own_increment, const PeerEpoch& input, PeerResult& out);
   void run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
                   const std::vector<PairMeasurement>& link_edges, EpochResult& result);
