@@ -9,6 +9,7 @@
 #include <utility>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 
 #include "common/angle.hpp"
 
@@ -118,8 +119,8 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
                                model::Pose2{}, model::Pose2{}, peer.known_start, Eigen::Matrix3d::Zero(), {}, {}, RangeErrorMap{}, false,
                                Eigen::VectorXd(), std::nullopt, std::nullopt, Eigen::Matrix3d::Zero(),
                                FixTrackCheck(params_.uncertainty), InnovationMonitor(params_.uncertainty),
-                               Eigen::Matrix3d::Zero(), InnovationMonitor(params_.uncertainty), 0, std::nullopt,
-                               Eigen::Matrix3d::Zero(), 0.0, Eigen::Matrix3d::Zero()});
+                               Eigen::Matrix3d::Zero(), InnovationMonitor(params_.uncertainty), 0, {}, 0.0,
+                               Eigen::Matrix3d::Zero()});
     tc_.emplace_back(own_array_, peer.array, params_.tc);
   }
   for (std::size_t a = 0; a < setups_.size(); ++a) {
@@ -575,44 +576,62 @@ void RelativeEstimator::run_tc(std::size_t k, double time_s, const model::Pose2&
       }
       estimate.covariance += peer.tc_check.excess();
     }
-    if (params_.tc.jump_check) {
+    if (params_.tc.jump_check_epochs > 0) {
       estimate.covariance += tc_jump_term(peers_[k], time_s, own_increment, input.odometry_increment, estimate);
     }
   } else {
-    peers_[k].tc_pose.reset();
+    peers_[k].tc_kept.clear();
     peers_[k].tc_jump.setZero();
   }
 }
 
 Eigen::Matrix3d RelativeEstimator::tc_jump_term(PeerState& peer, double time_s, const model::Pose2& own_increment,
                                                 const model::Pose2& peer_increment, const StageEstimate& estimate) const {
-  // tc's own check from one epoch to the next: its last estimate dead-reckoned by both odometries,
-  // with the covariance it reported then propagated (P'), against this epoch's. A least-squares
-  // window that jumps to another minimum (a non-line-of-sight fix's pose, a flipped bearing) moves
-  // by more than P' allows (d^2 of the position beyond chi-square's 99.9 % quantile with 2 degrees
-  // of freedom, 13.82, or z^2 of the heading beyond 10.83 with 1): one of the two minima is wrong
-  // and nothing within one epoch says which, so the jump nu nu^T is added to what tc reports, and
-  // decays as the pair's longest range error does (uncertainty.range_common_time_s). P' is an
-  // upper bound of the spread of a consistent estimator's step (its update only shrinks it).
+  // tc's own check over its last tc.jump_check_epochs epochs: each estimate it reported then,
+  // dead-reckoned by both odometries to now with the covariance it reported propagated (P'),
+  // against this epoch's. A least-squares window that jumps to another minimum (a
+  // non-line-of-sight fix's pose, a flipped bearing), at once or over a few epochs, moves by more
+  // than P' allows (d^2 of the position beyond chi-square's 99.9 % quantile with 2 degrees of
+  // freedom, 13.82, or z^2 of the heading beyond 10.83 with 1): one of the two minima is wrong and
+  // nothing within the window says which, so the jump nu nu^T (the largest d^2's) is what tc
+  // reports beyond its own covariance (the part of it the term does not hold yet is added), and
+  // decays as the pair's longest range error does (uncertainty.range_common_time_s). P' bounds a
+  // consistent estimator's move from above (its updates only shrink it).
   constexpr double kPositionGate = 13.82;
   constexpr double kHeadingGate = 10.83;
-  if (peer.tc_pose) {
+  if (!peer.tc_kept.empty()) {
     peer.tc_jump *= std::exp(-(time_s - peer.tc_time_s) / params_.uncertainty.range_common_time_s);
-    const model::Pose2 predicted = model::compose(model::between(own_increment, *peer.tc_pose), peer_increment);
-    const Eigen::Matrix3d spread =
-        propagate_relative_covariance(peer.tc_covariance, *peer.tc_pose, own_increment, peer_increment,
-                                      params_.tc.odometry_xy_std_m, params_.tc.odometry_theta_std_rad);
-    const Eigen::Vector3d nu(estimate.pose.x - predicted.x, estimate.pose.y - predicted.y,
-                             wrap_angle(estimate.pose.theta - predicted.theta));
-    const Eigen::LLT<Eigen::Matrix2d> position(spread.topLeftCorner<2, 2>());
-    const bool testable = nu.allFinite() && position.info() == Eigen::Success && spread(2, 2) > 0.0;
-    if (testable && (nu.head<2>().dot(position.solve(nu.head<2>())) > kPositionGate ||
-                     nu.z() * nu.z() / spread(2, 2) > kHeadingGate)) {
-      peer.tc_jump += nu * nu.transpose();
+    double worst = 0.0;
+    Eigen::Vector3d jump = Eigen::Vector3d::Zero();
+    for (auto& [pose, covariance] : peer.tc_kept) {
+      covariance = propagate_relative_covariance(covariance, pose, own_increment, peer_increment,
+                                                 params_.tc.odometry_xy_std_m, params_.tc.odometry_theta_std_rad);
+      pose = model::compose(model::between(own_increment, pose), peer_increment);
+      const Eigen::Vector3d nu(estimate.pose.x - pose.x, estimate.pose.y - pose.y, wrap_angle(estimate.pose.theta - pose.theta));
+      const Eigen::LLT<Eigen::Matrix2d> position(covariance.topLeftCorner<2, 2>());
+      if (!nu.allFinite() || position.info() != Eigen::Success || !(covariance(2, 2) > 0.0)) {
+        continue;
+      }
+      const double d2 = nu.head<2>().dot(position.solve(nu.head<2>()));
+      const double z2 = nu.z() * nu.z() / covariance(2, 2);
+      const double excess = std::max(d2 / kPositionGate, z2 / kHeadingGate);
+      if (excess > 1.0 && excess > worst) {
+        worst = excess;
+        jump = nu;
+      }
+    }
+    if (worst > 1.0) {
+      // The smallest addition that makes the term hold nu nu^T: its positive eigen-part beyond it.
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(jump * jump.transpose() - peer.tc_jump);
+      if (eigen.info() == Eigen::Success) {
+        peer.tc_jump += eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
+      }
     }
   }
-  peer.tc_pose = estimate.pose;
-  peer.tc_covariance = estimate.covariance + peer.tc_jump;
+  peer.tc_kept.emplace_back(estimate.pose, estimate.covariance + peer.tc_jump);
+  while (peer.tc_kept.size() > static_cast<std::size_t>(params_.tc.jump_check_epochs)) {
+    peer.tc_kept.pop_front();
+  }
   peer.tc_time_s = time_s;
   return peer.tc_jump;
 }

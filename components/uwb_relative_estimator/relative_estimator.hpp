@@ -194,10 +194,11 @@ class RelativeEstimator {
     InnovationMonitor tc_check;
     /// tc's restarts when tc_check last saw it (a restarted tc is a new estimate: the check forgets).
     int tc_restarts = 0;
-    /// tc's last reported estimate (nullopt: none valid at the last epoch), its time, and the
-    /// covariance its own jumps added (decaying with uncertainty.range_common_time_s).
-    std::optional<model::Pose2> tc_pose;
-    Eigen::Matrix3d tc_covariance = Eigen::Matrix3d::Zero();
+    /// tc's reported estimates of the last tc.jump_check_epochs epochs, each dead-reckoned to the
+    /// latest epoch with its covariance propagated (newest last; empty: tc not valid at the last
+    /// epoch), the latest's time, and the covariance tc's own jumps added (decaying with
+    /// uncertainty.range_common_time_s).
+    std::deque<std::pair<model::Pose2, Eigen::Matrix3d>> tc_kept;
     double tc_time_s = 0.0;
     Eigen::Matrix3d tc_jump = Eigen::Matrix3d::Zero();
   };

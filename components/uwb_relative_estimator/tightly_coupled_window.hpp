@@ -80,10 +80,11 @@ struct TightWindowParams {
   /// (uncertainty.node_bias_std_m, the uwb stage's consider parameter) would cause at tc's pose:
   /// tc's range model has no such state (false: the ablation).
   bool node_bias_term = true;
-  /// Issue 27: the estimator checks each tc estimate against its last one dead-reckoned (with the
-  /// covariance it reported); a jump beyond chi-square's 99.9 % quantile is added to what tc
-  /// reports, decaying with uncertainty.range_common_time_s (false: the ablation).
-  bool jump_check = true;
+  /// Issue 27: the estimator checks each tc estimate against those of its last jump_check_epochs
+  /// epochs dead-reckoned (with the covariances it reported); a jump beyond chi-square's 99.9 %
+  /// quantile is added to what tc reports, decaying with uncertainty.range_common_time_s (0: off,
+  /// the ablation).
+  int jump_check_epochs = 10;
   /// Prior of the first pose around the fix it starts from.
   double start_xy_std_m = 1.0;
   double start_theta_std_rad = 0.5;
