@@ -558,6 +558,12 @@ void RelativeEstimator::run_tc(std::size_t k, double time_s, const model::Pose2&
         node.node_map.cols() > 0) {
       covariance += node.node_bias_std_m * node.node_bias_std_m * (node.node_map * node.node_map.transpose());
     }
+    // Ranges fix the distance and leave the bearing less certain: the peer lies on an arc, not on
+    // the tangent tc's linearised information draws (with_bearing_curvature, as the uwb stage and
+    // the filters report; tenths of a metre at a few metres with a weak bearing).
+    if (params_.tc.bearing_curvature_term) {
+      covariance = with_bearing_curvature(covariance, estimate.pose);
+    }
     estimate.covariance = peers_[k].fix_check.inflate(covariance);
     // Its own check against the fixes (issue 27), as the filters': tc is kept by its odometry and
     // its window near a minimum its ranges allow; where that minimum is wrong (a jump to a

@@ -80,6 +80,9 @@ struct TightWindowParams {
   /// (uncertainty.node_bias_std_m, the uwb stage's consider parameter) would cause at tc's pose:
   /// tc's range model has no such state (false: the ablation).
   bool node_bias_term = true;
+  /// Issue 27: the estimator adds the second-order term of tc's bearing (with_bearing_curvature, as
+  /// the uwb stage and the filters report) to its covariance (false: the ablation).
+  bool bearing_curvature_term = true;
   /// Issue 27: the estimator checks each tc estimate against those of its last jump_check_epochs
   /// epochs dead-reckoned (with the covariances it reported); a jump beyond chi-square's 99.9 %
   /// quantile is added to what tc reports, decaying with uncertainty.range_common_time_s (0: off,
