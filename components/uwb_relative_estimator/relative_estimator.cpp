@@ -8,6 +8,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+
 #include "common/angle.hpp"
 
 namespace robodds::uwb_relative_estimator {
@@ -116,6 +119,7 @@ RelativeEstimator::RelativeEstimator(model::UwbArray own_array, std::vector<Peer
                                model::Pose2{}, model::Pose2{}, peer.known_start, Eigen::Matrix3d::Zero(), {}, {}, RangeErrorMap{}, false,
                                Eigen::VectorXd(), std::nullopt, std::nullopt, Eigen::Matrix3d::Zero(),
                                FixTrackCheck(params_.uncertainty), InnovationMonitor(params_.uncertainty),
+                               Eigen::Matrix3d::Zero(), InnovationMonitor(params_.uncertainty), 0, {}, 0.0,
                                Eigen::Matrix3d::Zero()});
     tc_.emplace_back(own_array_, peer.array, params_.tc);
   }
@@ -541,8 +545,101 @@ void RelativeEstimator::run_tc(std::size_t k, double time_s, const model::Pose2&
     // What the uwb stage's check over time finds in the fixes beyond the range error model (an
     // error of another kind: a board's excess on the links through it) reaches tc through the
     // same ranges: its covariance is scaled alike (1 while the fixes hold their model).
-    estimate.covariance = peers_[k].fix_check.inflate(tc_[k].covariance());
+    Eigen::Matrix3d covariance = tc_[k].covariance();
+    // A bias per UWB node (uncertainty.node_bias_std_m, a consider parameter of the uwb stage's
+    // error model: an antenna's delay, a node shadowed) moves the fit as a moved node would, into
+    // heading and bearing; tc's range model (white, link and common biases) has no such state and
+    // its window cannot average a bias that lasts: the covariance it would cause is added, as the
+    // uwb stage's model counts it (s_n^2 N N^T at tc's pose).
+    RangeErrorMap node;
+    if (params_.tc.node_bias_term &&
+        range_error_map(own_array_, setups_[k].array, estimate.pose, params_.tc.white_std_m, 0.0, node,
+                        params_.uncertainty.node_bias_std_m) &&
+        node.node_map.cols() > 0) {
+      covariance += node.node_bias_std_m * node.node_bias_std_m * (node.node_map * node.node_map.transpose());
+    }
+    // Ranges fix the distance and leave the bearing less certain: the peer lies on an arc, not on
+    // the tangent tc's linearised information draws (with_bearing_curvature, as the uwb stage and
+    // the filters report; tenths of a metre at a few metres with a weak bearing).
+    if (params_.tc.bearing_curvature_term) {
+      covariance = with_bearing_curvature(covariance, estimate.pose);
+    }
+    estimate.covariance = peers_[k].fix_check.inflate(covariance);
+    // Its own check against the fixes (issue 27), as the filters': tc is kept by its odometry and
+    // its window near a minimum its ranges allow; where that minimum is wrong (a jump to a
+    // non-line-of-sight fix's pose, a start from a wrong fix, a geometry that hides the bearing)
+    // its information at the minimum does not say so, the fixes over the last
+    // innovation_window_epochs do: what their median innovation shows beyond the fixes' own
+    // covariance is added (zero while tc follows the fixes).
+    if (params_.tc.innovation_check) {
+      PeerState& peer = peers_[k];
+      if (tc_[k].restarts() != peer.tc_restarts) {
+        peer.tc_check.reset();
+        peer.tc_restarts = tc_[k].restarts();
+      }
+      if (uwb.valid) {
+        peer.tc_check.add(estimate.pose, uwb.pose, peer.fix_model_covariance, peer.fix_own_covariance);
+      }
+      estimate.covariance += peer.tc_check.excess();
+    }
+    if (params_.tc.jump_check_epochs > 0) {
+      estimate.covariance += tc_jump_term(peers_[k], time_s, own_increment, input.odometry_increment, estimate);
+    }
+  } else {
+    peers_[k].tc_kept.clear();
+    peers_[k].tc_jump.setZero();
   }
+}
+
+Eigen::Matrix3d RelativeEstimator::tc_jump_term(PeerState& peer, double time_s, const model::Pose2& own_increment,
+                                                const model::Pose2& peer_increment, const StageEstimate& estimate) const {
+  // tc's own check over its last tc.jump_check_epochs epochs: each estimate it reported then,
+  // dead-reckoned by both odometries to now with the covariance it reported propagated (P'),
+  // against this epoch's. A least-squares window that jumps to another minimum (a
+  // non-line-of-sight fix's pose, a flipped bearing), at once or over a few epochs, moves by more
+  // than P' allows (d^2 of the position beyond chi-square's 99.9 % quantile with 2 degrees of
+  // freedom, 13.82, or z^2 of the heading beyond 10.83 with 1): one of the two minima is wrong and
+  // nothing within the window says which, so the jump nu nu^T (the largest d^2's) is what tc
+  // reports beyond its own covariance (the part of it the term does not hold yet is added), and
+  // decays as the pair's longest range error does (uncertainty.range_common_time_s). P' bounds a
+  // consistent estimator's move from above (its updates only shrink it).
+  constexpr double kPositionGate = 13.82;
+  constexpr double kHeadingGate = 10.83;
+  if (!peer.tc_kept.empty()) {
+    peer.tc_jump *= std::exp(-(time_s - peer.tc_time_s) / params_.uncertainty.range_common_time_s);
+    double worst = 0.0;
+    Eigen::Vector3d jump = Eigen::Vector3d::Zero();
+    for (auto& [pose, covariance] : peer.tc_kept) {
+      covariance = propagate_relative_covariance(covariance, pose, own_increment, peer_increment,
+                                                 params_.tc.odometry_xy_std_m, params_.tc.odometry_theta_std_rad);
+      pose = model::compose(model::between(own_increment, pose), peer_increment);
+      const Eigen::Vector3d nu(estimate.pose.x - pose.x, estimate.pose.y - pose.y, wrap_angle(estimate.pose.theta - pose.theta));
+      const Eigen::LLT<Eigen::Matrix2d> position(covariance.topLeftCorner<2, 2>());
+      if (!nu.allFinite() || position.info() != Eigen::Success || !(covariance(2, 2) > 0.0)) {
+        continue;
+      }
+      const double d2 = nu.head<2>().dot(position.solve(nu.head<2>()));
+      const double z2 = nu.z() * nu.z() / covariance(2, 2);
+      const double excess = std::max(d2 / kPositionGate, z2 / kHeadingGate);
+      if (excess > 1.0 && excess > worst) {
+        worst = excess;
+        jump = nu;
+      }
+    }
+    if (worst > 1.0) {
+      // The smallest addition that makes the term hold nu nu^T: its positive eigen-part beyond it.
+      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(jump * jump.transpose() - peer.tc_jump);
+      if (eigen.info() == Eigen::Success) {
+        peer.tc_jump += eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
+      }
+    }
+  }
+  peer.tc_kept.emplace_back(estimate.pose, estimate.covariance + peer.tc_jump);
+  while (peer.tc_kept.size() > static_cast<std::size_t>(params_.tc.jump_check_epochs)) {
+    peer.tc_kept.pop_front();
+  }
+  peer.tc_time_s = time_s;
+  return peer.tc_jump;
 }
 
 bool RelativeEstimator::placed(std::size_t k) const {

@@ -190,10 +190,24 @@ class RelativeEstimator {
     /// This epoch's eq. (1) covariance as the error model gives it, before fix_check's scaling
     /// (what the filters' InnovationMonitor compares their estimates with).
     Eigen::Matrix3d fix_model_covariance = Eigen::Matrix3d::Zero();
+    /// The tc stage's own check against the eq. (1) fixes, as the filters' (tc.innovation_check).
+    InnovationMonitor tc_check;
+    /// tc's restarts when tc_check last saw it (a restarted tc is a new estimate: the check forgets).
+    int tc_restarts = 0;
+    /// tc's reported estimates of the last tc.jump_check_epochs epochs, each dead-reckoned to the
+    /// latest epoch with its covariance propagated (newest last; empty: tc not valid at the last
+    /// epoch), the latest's time, and the covariance tc's own jumps added (decaying with
+    /// uncertainty.range_common_time_s).
+    std::deque<std::pair<model::Pose2, Eigen::Matrix3d>> tc_kept;
+    double tc_time_s = 0.0;
+    Eigen::Matrix3d tc_jump = Eigen::Matrix3d::Zero();
   };
 
   /// Peer k's eq. (1) solve and what the uwb stage reports; its odometry stage.
   void run_uwb(std::size_t k, double time_s, const model::Pose2& own_increment, const PeerEpoch& input, PeerResult& out);
+  /// tc's jump check (tc.jump_check): what its own jumps beyond its reported covariance add to it.
+  Eigen::Matrix3d tc_jump_term(PeerState& peer, double time_s, const model::Pose2& own_increment,
+                               const model::Pose2& peer_increment, const StageEstimate& estimate) const;
   void run_odometry(std::size_t k, const model::Pose2& own_increment, const PeerEpoch& input, PeerResult& out);
   void run_window(const model::Pose2& own_increment, const std::vector<PeerEpoch>& peers,
                   const std::vector<PairMeasurement>& link_edges, EpochResult& result);

@@ -412,6 +412,14 @@ const params::ParamTable<TightWindowParams>& tight_window_param_table() {
                "each link's variance: the mean square of its residuals over this many epochs, at least white_std_m^2 (0: off)")
           .add("first_estimates_jacobians", &P::first_estimates_jacobians, "", params::any<bool>(),
                "the oldest epoch's factors linearised at the marginalisation prior's point (false: at the estimate, the ablation)")
+          .add("innovation_check", &P::innovation_check, "", params::any<bool>(),
+               "the estimator adds to tc's covariance what the eq. (1) fixes' median innovation shows beyond their own (false: the ablation)")
+          .add("node_bias_term", &P::node_bias_term, "", params::any<bool>(),
+               "the estimator adds to tc's covariance what uncertainty.node_bias_std_m's node biases cause at its pose (false: the ablation)")
+          .add("bearing_curvature_term", &P::bearing_curvature_term, "", params::any<bool>(),
+               "the estimator adds the second-order term of tc's bearing (with_bearing_curvature) to its covariance (false: the ablation)")
+          .add("jump_check_epochs", &P::jump_check_epochs, "epochs", params::at_least(0),
+               "the estimator adds to tc's covariance a jump of its estimate beyond those of this many last epochs, dead-reckoned with their covariances (0: off)")
           .add("start_xy_std_m", &P::start_xy_std_m, "m", params::positive(), "prior std of the first position around its fix")
           .add("start_theta_std_rad", &P::start_theta_std_rad, "rad", params::positive(),
                "prior std of the first heading around its fix")

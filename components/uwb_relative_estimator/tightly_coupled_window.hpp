@@ -71,6 +71,23 @@ struct TightWindowParams {
   /// prior linearised at two points claim information neither has (the window gained it from
   /// relinearising alone and was over-confident where the bearing is weak). False: the ablation.
   bool first_estimates_jacobians = true;
+  /// Issue 27: the estimator (RelativeEstimator, not this class) checks tc against the eq. (1)
+  /// fixes as it does the filters (InnovationMonitor, uncertainty.innovation_window_epochs) and
+  /// adds to tc's covariance what their median innovation shows beyond the fixes' own (false: the
+  /// ablation, tc's information at its minimum alone).
+  bool innovation_check = true;
+  /// Issue 27: the estimator adds to tc's covariance what a bias per UWB node
+  /// (uncertainty.node_bias_std_m, the uwb stage's consider parameter) would cause at tc's pose:
+  /// tc's range model has no such state (false: the ablation).
+  bool node_bias_term = true;
+  /// Issue 27: the estimator adds the second-order term of tc's bearing (with_bearing_curvature, as
+  /// the uwb stage and the filters report) to its covariance (false: the ablation).
+  bool bearing_curvature_term = true;
+  /// Issue 27: the estimator checks each tc estimate against those of its last jump_check_epochs
+  /// epochs dead-reckoned (with the covariances it reported); a jump beyond chi-square's 99.9 %
+  /// quantile is added to what tc reports, decaying with uncertainty.range_common_time_s (0: off,
+  /// the ablation).
+  int jump_check_epochs = 10;
   /// Prior of the first pose around the fix it starts from.
   double start_xy_std_m = 1.0;
   double start_theta_std_rad = 0.5;

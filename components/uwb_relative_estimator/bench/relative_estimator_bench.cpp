@@ -120,7 +120,9 @@ double nearest_rank(std::vector<double> v, double q) {
 }
 
 /// One iteration = one epoch; the estimator runs through the 600 s sequence and starts over.
-/// Arguments: the window (epochs), the number of peers and the estimator's threads.
+/// Arguments: the window (epochs), the number of peers, the estimator's threads and whether tc's
+/// issue-27 terms are on (1; 0: tc.node_bias_term, bearing_curvature_term, innovation_check off,
+/// jump_check_epochs 0, what they cost).
 void BM_Exp2Cycle(benchmark::State& state) {
   const auto num_peers = static_cast<std::size_t>(state.range(1));
   const std::vector<Epoch>& sequence = epochs(num_peers);
@@ -128,6 +130,12 @@ void BM_Exp2Cycle(benchmark::State& state) {
   RelativeEstimatorParams params;
   params.window_epochs = static_cast<int>(state.range(0));
   params.threads = static_cast<int>(state.range(2));
+  if (state.range(3) == 0) {
+    params.tc.node_bias_term = false;
+    params.tc.bearing_curvature_term = false;
+    params.tc.innovation_check = false;
+    params.tc.jump_check_epochs = 0;
+  }
   std::optional<RelativeEstimator> estimator;
   std::vector<double> cycle_ms;
   std::vector<double> cycle_cpu_ms;
@@ -165,13 +173,14 @@ void BM_Exp2Cycle(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_Exp2Cycle)
-    ->Args({30, 2, 1})
-    ->Args({160, 2, 1})
-    ->Args({30, 3, 1})
-    ->Args({30, 7, 1})
-    ->Args({30, 2, 2})
-    ->Args({30, 3, 2})
-    ->Args({30, 7, 2})
+    ->Args({30, 2, 1, 1})
+    ->Args({30, 2, 1, 0})
+    ->Args({160, 2, 1, 1})
+    ->Args({30, 3, 1, 1})
+    ->Args({30, 7, 1, 1})
+    ->Args({30, 2, 2, 1})
+    ->Args({30, 3, 2, 1})
+    ->Args({30, 7, 2, 1})
     ->Iterations(3000)
     ->MeasureProcessCPUTime()
     ->UseRealTime()
