@@ -202,12 +202,15 @@ Eigen::Matrix3d InnovationMonitor::drifting_excess(const Eigen::Matrix3d& estima
 Eigen::Matrix3d InnovationMonitor::unexplained_part(const Eigen::Vector3d& innovation, const Eigen::Matrix3d& typical_covariance,
                                                     const Eigen::Matrix3d& estimate_covariance) {
   const Eigen::Matrix3d unexplained = innovation * innovation.transpose() - typical_covariance - estimate_covariance;
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(0.5 * (unexplained + unexplained.transpose()));
+  return positive_part(0.5 * (unexplained + unexplained.transpose()));
+}
+
+Eigen::Matrix3d positive_part(const Eigen::Matrix3d& m) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(m);  // reads m's lower triangle
   if (eigen.info() != Eigen::Success) {
     return Eigen::Matrix3d::Zero();
   }
-  const Eigen::Vector3d positive = eigen.eigenvalues().cwiseMax(0.0);
-  return eigen.eigenvectors() * positive.asDiagonal() * eigen.eigenvectors().transpose();
+  return eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
 }
 
 }  // namespace robodds::uwb_relative_estimator

@@ -38,6 +38,12 @@ namespace robodds::uwb_relative_estimator {
 /// P + R is not positive definite.
 Eigen::Matrix3d update_gain(const Eigen::Matrix3d& prior, const Eigen::Matrix3d& measurement_covariance);
 
+/// The positive semi-definite part of symmetric `m` (only its lower triangle is read; its
+/// eigen-directions with positive eigenvalues;
+/// covariance matching: the smallest addition that makes a covariance hold a seen discrepancy).
+/// Zero when the eigen-decomposition fails.
+Eigen::Matrix3d positive_part(const Eigen::Matrix3d& m);
+
 class FilterErrorCovariance {
  public:
   /// `params`: range_common_time_s and range_link_time_s (validated; std::invalid_argument).

@@ -9,7 +9,6 @@
 #include <utility>
 
 #include <Eigen/Cholesky>
-#include <Eigen/Eigenvalues>
 
 #include "common/angle.hpp"
 
@@ -628,10 +627,7 @@ Eigen::Matrix3d RelativeEstimator::tc_jump_term(PeerState& peer, double time_s, 
     }
     if (worst > 1.0) {
       // The smallest addition that makes the term hold nu nu^T: its positive eigen-part beyond it.
-      const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(jump * jump.transpose() - peer.tc_jump);
-      if (eigen.info() == Eigen::Success) {
-        peer.tc_jump += eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
-      }
+      peer.tc_jump += positive_part(jump * jump.transpose() - peer.tc_jump);
     }
   }
   peer.tc_kept.emplace_back(estimate.pose, estimate.covariance + peer.tc_jump);

@@ -233,6 +233,14 @@ TEST(InnovationMonitor, AnEstimateIndependentOfTheFixesIsExcusedByItsOwnCovarian
   EXPECT_NEAR(monitor.excess(diagonal(10.0, 10.0, 0.01)).norm(), 0.0, 1e-9);
 }
 
+TEST(PositivePart, KeepsThePositiveEigenDirectionsOnly) {
+  const Eigen::Matrix3d m = diagonal(2.0, -3.0, 0.5);
+  EXPECT_TRUE(positive_part(m).isApprox(diagonal(2.0, 0.0, 0.5), 1e-12)) << positive_part(m);
+  const Eigen::Vector3d v(1.0, 2.0, -1.0);
+  EXPECT_TRUE(positive_part(v * v.transpose() - Eigen::Matrix3d::Identity()).isApprox(
+      (v.squaredNorm() - 1.0) * v * v.transpose() / v.squaredNorm(), 1e-12));
+}
+
 TEST(InnovationMonitor, ADriftIsCarriedToTheNewestFixAlongItsTrend) {
   // A dead reckoning drifting 0.02 m per fix away from fixes of 0.01 m^2: after 50 fixes it is
   // 0.98 m off. The window's median innovation is the drift of half a window ago (~0.49 m);
