@@ -178,30 +178,25 @@ bool InnovationMonitor::lost(const Eigen::Matrix3d& filter_covariance, Eigen::Ve
 }
 
 Eigen::Matrix3d InnovationMonitor::excess(const Eigen::Matrix3d& estimate_covariance) const {
-  Eigen::Vector3d typical_innovation;
-  Eigen::Matrix3d mean_s;
-  if (!typical(typical_innovation, mean_s, covariances_) || !estimate_covariance.allFinite()) {
-    return Eigen::Matrix3d::Zero();
-  }
-  return unexplained_part(typical_innovation, mean_s, estimate_covariance);
+  return unexplained(estimate_covariance, false);
 }
 
 Eigen::Matrix3d InnovationMonitor::drifting_excess(const Eigen::Matrix3d& estimate_covariance) const {
-  Eigen::Vector3d typical_innovation;
-  Eigen::Matrix3d mean_s;
-  if (!typical(typical_innovation, mean_s, covariances_) || !estimate_covariance.allFinite()) {
-    return Eigen::Matrix3d::Zero();
-  }
-  const std::size_t half = innovations_.size() / 2;
-  const Eigen::Vector3d trend = median_innovation(innovations_.size() - half, innovations_.size()) - median_innovation(0, half);
-  Eigen::Vector3d carried = typical_innovation + trend;
-  carried(2) = wrap_angle(carried(2));
-  return unexplained_part(carried, mean_s, estimate_covariance);
+  return unexplained(estimate_covariance, true);
 }
 
-Eigen::Matrix3d InnovationMonitor::unexplained_part(const Eigen::Vector3d& innovation, const Eigen::Matrix3d& typical_covariance,
-                                                    const Eigen::Matrix3d& estimate_covariance) {
-  const Eigen::Matrix3d unexplained = innovation * innovation.transpose() - typical_covariance - estimate_covariance;
+Eigen::Matrix3d InnovationMonitor::unexplained(const Eigen::Matrix3d& estimate_covariance, bool carry_trend) const {
+  Eigen::Vector3d innovation;
+  Eigen::Matrix3d mean_s;
+  if (!typical(innovation, mean_s, covariances_) || !estimate_covariance.allFinite()) {
+    return Eigen::Matrix3d::Zero();
+  }
+  if (carry_trend) {
+    const std::size_t half = innovations_.size() / 2;
+    innovation += median_innovation(innovations_.size() - half, innovations_.size()) - median_innovation(0, half);
+    innovation(2) = wrap_angle(innovation(2));
+  }
+  const Eigen::Matrix3d unexplained = innovation * innovation.transpose() - mean_s - estimate_covariance;
   return positive_part(0.5 * (unexplained + unexplained.transpose()));
 }
 

@@ -134,9 +134,9 @@ class InnovationMonitor {
                const std::deque<Eigen::Matrix3d>& covariances) const;
   /// The component-wise median of innovations_[first, last).
   Eigen::Vector3d median_innovation(std::size_t first, std::size_t last) const;
-  /// The positive part of innovation innovation^T - typical_covariance - estimate_covariance.
-  static Eigen::Matrix3d unexplained_part(const Eigen::Vector3d& innovation, const Eigen::Matrix3d& typical_covariance,
-                                          const Eigen::Matrix3d& estimate_covariance);
+  /// excess() (carry_trend false) and drifting_excess() (true): the positive part of m m^T - S -
+  /// estimate_covariance, m the typical innovation (carried along the trend), S the typical fix's.
+  Eigen::Matrix3d unexplained(const Eigen::Matrix3d& estimate_covariance, bool carry_trend) const;
 
   UncertaintyParams params_;
   std::deque<Eigen::Vector3d> innovations_;

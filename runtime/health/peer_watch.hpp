@@ -58,7 +58,7 @@ class PeerWatch {
   double judged_s_ = 0.0;  // s after the start when it was checked
   std::vector<std::string> missing_;
   std::vector<std::string> unheard_;  // discovered but never heard at the deadline
-  std::vector<std::string> late_;  // missing at the deadline, discovered since
+  std::vector<std::string> late_;  // missing or unheard at the deadline, found since
   std::vector<std::string> lost_;  // lost(): "lost group 'x' at T s after the start (how)"
   std::vector<std::string> lost_groups_;
 };
