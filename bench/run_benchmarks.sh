@@ -16,8 +16,6 @@
 #                        dominate the ticks/s figure; the scenario's own 20 s is 2,001 ticks
 #   DOMAIN=150           DDS domain for latency_bench; robodds runs use DOMAIN+1
 #   MIN_TIME=0.2         --benchmark_min_time for the Google Benchmark binaries
-#   DIAGNOSE=1           also run the latency (state profile) and lockstep measurements with
-#                        $BUILD/bench/libgettid_cache_preload.so preloaded (0: skip)
 #   RESULTS=<tmp dir>    where raw outputs, logs and scenario outputs are kept
 #
 # Exit status: 0 if everything ran, 1 if some measurement failed (its cell says FAIL).
@@ -38,14 +36,12 @@ LOCKSTEP_DURATION=${LOCKSTEP_DURATION:-200}
 LOCKSTEP_WINDOW=${LOCKSTEP_WINDOW:-16}
 DOMAIN=${DOMAIN:-150}
 MIN_TIME=${MIN_TIME:-0.2}
-DIAGNOSE=${DIAGNOSE:-1}
 RESULTS=${RESULTS:-$(mktemp -d /tmp/robodds-bench.XXXXXX)}
 mkdir -p "$RESULTS"
 cd "$ROOT" || exit 2
 
 LATENCY_BENCH=$BUILD/bench/latency_bench
 ROBODDS=$BUILD/tools/robodds/robodds
-PRELOAD_LIB=$BUILD/bench/libgettid_cache_preload.so
 SCENARIO=sim/scenarios/plant_smoke.yaml
 failures=0
 
@@ -78,9 +74,9 @@ echo "- raw outputs: $RESULTS"
 echo
 
 # ---------------------------------------------------------------------------------------------
-# latency_table PRELOAD PROFILES: raw vs runtime, colocated and processes (LD_PRELOAD=PRELOAD).
+# latency_table PROFILES: raw vs runtime, colocated and processes.
 latency_table() {
-  local preload=$1 profiles=$2 tag=${1:+-preload}
+  local profiles=$1
   echo "| deploy | QoS profile | raw median | runtime median | overhead (median) | raw p90 | runtime p90 | raw p99 | runtime p99 | overhead (p99) | raw max | runtime max |"
   echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
   local profile deploy r impl out line s
@@ -89,9 +85,9 @@ latency_table() {
       declare -A stat=() m=()
       for ((r = 1; r <= LATENCY_RUNS; r++)); do
         for impl in raw runtime; do
-          out=$RESULTS/latency$tag-$impl-$deploy-$profile-$r.txt
-          log "${preload:+[LD_PRELOAD] }latency_bench $impl $deploy --profile $profile (run $r/$LATENCY_RUNS)"
-          if env ${preload:+LD_PRELOAD=$preload} timeout 300 "$LATENCY_BENCH" "$impl" "$deploy" --profile "$profile" \
+          out=$RESULTS/latency-$impl-$deploy-$profile-$r.txt
+          log "latency_bench $impl $deploy --profile $profile (run $r/$LATENCY_RUNS)"
+          if timeout 300 "$LATENCY_BENCH" "$impl" "$deploy" --profile "$profile" \
                --samples "$SAMPLES" --domain "$DOMAIN" >"$out" 2>"$out.err"; then
             line=$(grep '^latency ' "$out" | tail -1)
             for s in median_us p90_us p99_us max_us; do
@@ -119,9 +115,8 @@ ticks_per_s() {
   awk '/"run": *\{/ { inrun = 1 } inrun && /"ticks_per_s"/ { gsub(/[^0-9.]/, "", $2); print $2; exit }' "$1"
 }
 
-# lockstep_table PRELOAD: robodds run of the smoke scenario, co-located and across processes.
+# lockstep_table: robodds run of the smoke scenario, co-located and across processes.
 lockstep_table() {
-  local preload=$1 tag=${1:+-preload}
   local no_plots=()
   if "$ROBODDS" run --help 2>&1 | grep -q -- --no-plots; then
     no_plots=(--no-plots)  # the PNGs are drawn after the timed part; skip them to save time
@@ -142,10 +137,10 @@ lockstep_table() {
     row="| $variant |"
     values=""
     for ((r = 1; r <= LOCKSTEP_RUNS; r++)); do
-      out=$RESULTS/lockstep$tag-$variant-$r
+      out=$RESULTS/lockstep-$variant-$r
       rm -rf "$out"
-      log "${preload:+[LD_PRELOAD] }robodds run $SCENARIO --deploy $deploy (run $r/$LOCKSTEP_RUNS)"
-      if env ${preload:+LD_PRELOAD=$preload} timeout 600 "$ROBODDS" run "$SCENARIO" --out "$out" --domain $((DOMAIN + 1)) \
+      log "robodds run $SCENARIO --deploy $deploy (run $r/$LOCKSTEP_RUNS)"
+      if timeout 600 "$ROBODDS" run "$SCENARIO" --out "$out" --domain $((DOMAIN + 1)) \
            --duration "$LOCKSTEP_DURATION" --deploy "$deploy" "${extra[@]}" "${no_plots[@]}" >"$out.log" 2>&1 && [[ -f $out/summary.json ]]; then
         v=$(ticks_per_s "$out/summary.json")
         row+=" ${v:-?} |"
@@ -175,7 +170,7 @@ else
   echo "latency_bench --samples $SAMPLES, $LATENCY_RUNS runs per cell (raw and runtime interleaved), median over runs of each statistic."
   echo "colocated = one participant, two threads (intra-process delivery); processes = one participant per process."
   echo
-  latency_table "" "$PROFILES"
+  latency_table "$PROFILES"
   echo
   out=$RESULTS/latency-cv-colocated.txt
   log "latency_bench cv colocated"
@@ -196,27 +191,11 @@ if [[ ! -x $ROBODDS ]]; then
   echo "(skipped: $ROBODDS not built)"
   failures=1
 else
-  lockstep_table ""
+  lockstep_table
 fi
 echo
 
 # ---------------------------------------------------------------------------------------------
-if [[ $DIAGNOSE != 0 && -f $PRELOAD_LIB ]]; then
-  echo "## Diagnostic: the same with syscall(SYS_gettid) cached (LD_PRELOAD=$(basename "$PRELOAD_LIB"))"
-  echo
-  echo "Not the platform's figures: estimates what a Fast DDS built with NDEBUG would give (the Debian"
-  echo "libfastrtps 2.9.1 keeps its asserts, which call gettid several times per sample)."
-  echo
-  if [[ -x $LATENCY_BENCH ]]; then
-    latency_table "$PRELOAD_LIB" "state"
-    echo
-  fi
-  if [[ -x $ROBODDS ]]; then
-    lockstep_table "$PRELOAD_LIB"
-    echo
-  fi
-fi
-
 # ---------------------------------------------------------------------------------------------
 echo "## Google Benchmark binaries (--benchmark_min_time=$MIN_TIME)"
 echo
