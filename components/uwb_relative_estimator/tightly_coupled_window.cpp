@@ -346,8 +346,10 @@ void add_transition_factors(std::vector<Factor>& factors, const TightWindowParam
 
 /// Adds J^T J and J^T r of `factors` to H and g, for the parameter blocks `offset_of` maps to an
 /// index (others ignored).
+/// Returns the cost, half the sum of the squared residuals.
 template <class OffsetOf>
-void accumulate(const std::vector<Factor>& factors, const OffsetOf& offset_of, Eigen::MatrixXd& h, Eigen::VectorXd& g) {
+double accumulate(const std::vector<Factor>& factors, const OffsetOf& offset_of, Eigen::MatrixXd& h, Eigen::VectorXd& g) {
+  double cost_sum = 0.0;
   for (const Factor& factor : factors) {
     const ceres::CostFunction& cost = *factor.cost;
     const int m = cost.num_residuals();
@@ -360,6 +362,7 @@ void accumulate(const std::vector<Factor>& factors, const OffsetOf& offset_of, E
     }
     Eigen::VectorXd r(m);
     cost.Evaluate(factor.parameters.data(), r.data(), jp.data());
+    cost_sum += 0.5 * r.squaredNorm();
     for (std::size_t a = 0; a < sizes.size(); ++a) {
       const int oa = offset_of(factor.parameters[a]);
       if (oa < 0) {
@@ -374,6 +377,7 @@ void accumulate(const std::vector<Factor>& factors, const OffsetOf& offset_of, E
       }
     }
   }
+  return cost_sum;
 }
 
 }  // namespace
@@ -712,43 +716,16 @@ bool TightlyCoupledWindow::solve() {
     add_transition_factors(factors, params_, kl, epochs_[t - 1], e, t == 1 ? first_estimate() : std::nullopt);
   }
 
-  ceres::Problem::Options problem_options;
-  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
-  for (const Factor& f : factors) {
-    problem.AddResidualBlock(f.cost.get(), nullptr, f.parameters);
-  }
-  if (!params_.common_bias_state) {
-    for (Epoch& e : epochs_) {
-      e.common = 0.0;
-      problem.SetParameterBlockConstant(&e.common);
-    }
-  }
-  ceres::Solver::Options options;
-  // A dense Schur complement after eliminating an independent set of blocks that Ceres picks (issue
-  // 29): BM_TcEpoch 0.275 -> 0.25 ms CPU per epoch against the sparse normal Cholesky of the whole
-  // window (EIGEN_SPARSE; its 20 x 20 blocks are dense). No user ordering: Ceres then takes the set
-  // in the order the blocks were added (ComputeStableSchurOrdering), deterministic; a user ordering's
-  // groups are sets ordered by address, which made the estimates follow the heap.
-  options.linear_solver_type = ceres::DENSE_SCHUR;
-  options.max_num_iterations = params_.max_iterations;
-  // Warm-started like the window: the first step nearly Gauss-Newton's (Ceres' default radius 1e4
-  // damps it), as the window's solver options (issue 29): 0.33 -> 0.28 ms CPU per epoch
-  // (relative_estimator_bench BM_TcEpoch).
-  options.initial_trust_region_radius = 1e6;
-  options.num_threads = 1;
-  options.logging_type = ceres::SILENT;
-  options.minimizer_progress_to_stdout = false;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  const bool converged = summary.termination_type == ceres::CONVERGENCE ||
-                         (summary.termination_type == ceres::NO_CONVERGENCE && summary.iterations.size() > 1);
-
-  // Information of the whole window at the solution, then block-tridiagonal elimination from the
-  // oldest epoch to the newest: the newest epoch's marginal covariance.
+  // Levenberg-Marquardt as Ceres ran it here until issue 29's session 13 (DENSE_SCHUR, radius 1e6,
+  // Ceres' default tolerances: function 1e-6, gradient 1e-10, parameter 1e-8; max_iterations), on
+  // the dense normal equations of the whole window (epochs x n unknowns, 60 with 3 epochs of 20):
+  // Jacobi scaling fixed at the start point, (J^T J + diag(J^T J) / radius) step = -J^T r in the
+  // scaled unknowns, the radius grown after a good step and shrunk after a bad one, as
+  // SlidingWindowGraph::optimize does. Ceres' preprocessing, program reordering and Schur
+  // machinery were ~70 % of this stage's CPU for a system this small; the steps are the same up to
+  // rounding (uwb_tightly_coupled_window_test ItsLevenbergMarquardtTakesTheStepsCeresTakes).
   const int epochs = static_cast<int>(epochs_.size());
-  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(epochs * n, epochs * n);
-  Eigen::VectorXd g = Eigen::VectorXd::Zero(epochs * n);
+  const int size = epochs * n;
   const int link_offset = params_.odometry_slip_states ? 8 : 4;
   const auto offset_of = [&](const double* p) {
     for (int t = 0; t < epochs; ++t) {
@@ -760,7 +737,135 @@ bool TightlyCoupledWindow::solve() {
     }
     return -1;
   };
-  accumulate(factors, offset_of, h, g);
+  if (!params_.common_bias_state) {
+    for (Epoch& e : epochs_) {
+      e.common = 0.0;  // held at zero (the ablation): not an unknown
+    }
+  }
+  const std::vector<int> sizes = block_sizes();
+  // The unknowns in the epochs' blocks <-> x.
+  const auto load = [&](Eigen::VectorXd& x) {
+    for (int t = 0; t < epochs; ++t) {
+      const std::vector<double*> b = blocks(epochs_[static_cast<std::size_t>(t)]);
+      int column = t * n;
+      for (std::size_t k = 0; k < b.size(); ++k) {
+        x.segment(column, sizes[k]) = Eigen::Map<const Eigen::VectorXd>(b[k], sizes[k]);
+        column += sizes[k];
+      }
+    }
+  };
+  const auto store = [&](const Eigen::VectorXd& x) {
+    for (int t = 0; t < epochs; ++t) {
+      const std::vector<double*> b = blocks(epochs_[static_cast<std::size_t>(t)]);
+      int column = t * n;
+      for (std::size_t k = 0; k < b.size(); ++k) {
+        Eigen::Map<Eigen::VectorXd>(b[k], sizes[k]) = x.segment(column, sizes[k]);
+        column += sizes[k];
+      }
+    }
+  };
+  const auto fixed = [&](int k) { return !params_.common_bias_state && k % n == 3; };
+  Eigen::VectorXd residual_buffer;
+  const auto cost_at_blocks = [&] {
+    double cost = 0.0;
+    for (const Factor& f : factors) {
+      residual_buffer.resize(f.cost->num_residuals());
+      f.cost->Evaluate(f.parameters.data(), residual_buffer.data(), nullptr);
+      cost += 0.5 * residual_buffer.squaredNorm();
+    }
+    return cost;
+  };
+  Eigen::MatrixXd h(size, size);
+  Eigen::VectorXd g(size);
+  const auto linearize = [&] {
+    h.setZero();
+    g.setZero();
+    return accumulate(factors, offset_of, h, g);
+  };
+  const auto gradient_converged = [&] {
+    double most = 0.0;
+    for (int k = 0; k < size; ++k) {
+      if (!fixed(k)) {
+        most = std::max(most, std::abs(g(k)));
+      }
+    }
+    return most <= 1e-10;
+  };
+  Eigen::VectorXd x(size);
+  load(x);
+  double cost = linearize();
+  Eigen::VectorXd scale(size);
+  for (int k = 0; k < size; ++k) {
+    scale(k) = fixed(k) ? 0.0 : 1.0 / (1.0 + std::sqrt(h(k, k)));
+  }
+  bool converged = true;  // Ceres: CONVERGENCE, or NO_CONVERGENCE after at least one iteration
+  if (!gradient_converged()) {
+    double radius = 1e6;  // warm-started: the first step nearly Gauss-Newton's (Ceres' default 1e4 damps it)
+    double decrease_factor = 2.0;
+    int invalid_steps = 0;
+    Eigen::MatrixXd a(size, size);
+    Eigen::LLT<Eigen::MatrixXd> llt(size);
+    Eigen::VectorXd step(size);
+    Eigen::VectorXd candidate(size);
+    for (int iteration = 1; iteration <= params_.max_iterations; ++iteration) {
+      a = scale.asDiagonal() * h * scale.asDiagonal();
+      Eigen::VectorXd rhs = -(scale.array() * g.array()).matrix();
+      for (int k = 0; k < size; ++k) {
+        if (fixed(k)) {
+          a.row(k).setZero();
+          a.col(k).setZero();
+          a(k, k) = 1.0;
+          rhs(k) = 0.0;
+        } else {
+          a(k, k) += std::min(std::max(a(k, k), 1e-6), 1e32) / radius;
+        }
+      }
+      llt.compute(a);
+      if (llt.info() != Eigen::Success) {
+        // Ceres: an invalid step shrinks the radius like a rejected one; five in a row fail.
+        if (++invalid_steps >= 5) {
+          converged = false;
+          break;
+        }
+        radius /= decrease_factor;
+        decrease_factor *= 2.0;
+        continue;
+      }
+      invalid_steps = 0;
+      step = (llt.solve(rhs).array() * scale.array()).matrix();
+      if (step.norm() <= 1e-8 * (x.norm() + 1e-8)) {
+        break;  // parameter tolerance
+      }
+      const double model_change = -(g.dot(step) + 0.5 * step.dot(h * step));
+      candidate = x + step;
+      store(candidate);
+      const double candidate_cost = cost_at_blocks();
+      if (std::abs(cost - candidate_cost) <= 1e-6 * cost) {
+        store(x);  // function tolerance (Ceres keeps the current point)
+        break;
+      }
+      const double relative_decrease = (cost - candidate_cost) / model_change;
+      if (std::isfinite(candidate_cost) && model_change > 0.0 && relative_decrease > 1e-3) {
+        x.swap(candidate);
+        cost = linearize();
+        radius = std::min(1e16, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * relative_decrease - 1.0, 3)));
+        decrease_factor = 2.0;
+        if (gradient_converged()) {
+          break;
+        }
+      } else {
+        store(x);
+        radius /= decrease_factor;
+        decrease_factor *= 2.0;
+        if (radius < 1e-32) {
+          break;  // Ceres: minimum trust region radius, a convergence
+        }
+      }
+    }
+  }
+
+  // Information of the whole window at the solution (h, as linearised there), then block-tridiagonal
+  // elimination from the oldest epoch to the newest: the newest epoch's marginal covariance.
   if (!params_.common_bias_state) {
     for (int t = 0; t < epochs; ++t) {
       h(t * n + 3, t * n + 3) += 1e12;  // held at zero
