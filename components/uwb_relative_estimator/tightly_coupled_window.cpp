@@ -345,34 +345,52 @@ void add_transition_factors(std::vector<Factor>& factors, const TightWindowParam
 }
 
 /// Adds J^T J and J^T r of `factors` to H and g, for the parameter blocks `offset_of` maps to an
-/// index (others ignored).
-/// Returns the cost, half the sum of the squared residuals.
+/// index (others ignored). Returns the cost, half the sum of the squared residuals. Row by row over
+/// each row's non-zero entries (issue 29): a range row touches 5 of a range factor's 20 columns, a
+/// bias transition row 2 of 32, so this is ~1/8 of the flops of the blocks' dense products.
 template <class OffsetOf>
 double accumulate(const std::vector<Factor>& factors, const OffsetOf& offset_of, Eigen::MatrixXd& h, Eigen::VectorXd& g) {
   double cost_sum = 0.0;
+  std::vector<RowMatrix> jac;
+  std::vector<double*> jp;
+  std::vector<int> offsets;
+  std::vector<int> columns;
+  std::vector<double> values;
+  Eigen::VectorXd r;
   for (const Factor& factor : factors) {
     const ceres::CostFunction& cost = *factor.cost;
     const int m = cost.num_residuals();
     const std::vector<int32_t>& sizes = cost.parameter_block_sizes();
-    std::vector<RowMatrix> jac(sizes.size());
-    std::vector<double*> jp(sizes.size());
+    jac.resize(sizes.size());
+    jp.resize(sizes.size());
+    offsets.resize(sizes.size());
     for (std::size_t b = 0; b < sizes.size(); ++b) {
       jac[b].resize(m, sizes[b]);
       jp[b] = jac[b].data();
+      offsets[b] = offset_of(factor.parameters[b]);
     }
-    Eigen::VectorXd r(m);
+    r.resize(m);
     cost.Evaluate(factor.parameters.data(), r.data(), jp.data());
     cost_sum += 0.5 * r.squaredNorm();
-    for (std::size_t a = 0; a < sizes.size(); ++a) {
-      const int oa = offset_of(factor.parameters[a]);
-      if (oa < 0) {
-        continue;
-      }
-      g.segment(oa, sizes[a]) += jac[a].transpose() * r;
+    for (int i = 0; i < m; ++i) {
+      columns.clear();
+      values.clear();
       for (std::size_t b = 0; b < sizes.size(); ++b) {
-        const int ob = offset_of(factor.parameters[b]);
-        if (ob >= 0) {
-          h.block(oa, ob, sizes[a], sizes[b]) += jac[a].transpose() * jac[b];
+        if (offsets[b] < 0) {
+          continue;
+        }
+        for (int k = 0; k < sizes[b]; ++k) {
+          const double v = jac[b](i, k);
+          if (v != 0.0) {
+            columns.push_back(offsets[b] + k);
+            values.push_back(v);
+          }
+        }
+      }
+      for (std::size_t p = 0; p < columns.size(); ++p) {
+        g(columns[p]) += values[p] * r(i);
+        for (std::size_t q = 0; q < columns.size(); ++q) {
+          h(columns[p], columns[q]) += values[p] * values[q];
         }
       }
     }
@@ -804,7 +822,11 @@ bool TightlyCoupledWindow::solve() {
     double decrease_factor = 2.0;
     int invalid_steps = 0;
     Eigen::MatrixXd a(size, size);
-    Eigen::LLT<Eigen::MatrixXd> llt(size);
+    // Block-tridiagonal elimination by epoch (a factor joins one epoch, or two consecutive ones):
+    // D_0 = A_00, D_t = A_tt - B_t D_{t-1}^-1 B_t^T (B_t = A_{t,t-1}), then back substitution.
+    std::vector<Eigen::LLT<Eigen::MatrixXd>> factor(static_cast<std::size_t>(epochs));
+    std::vector<Eigen::MatrixXd> gain(static_cast<std::size_t>(epochs));  // D_{t-1}^-1 B_t^T
+    Eigen::VectorXd y(size);
     Eigen::VectorXd step(size);
     Eigen::VectorXd candidate(size);
     for (int iteration = 1; iteration <= params_.max_iterations; ++iteration) {
@@ -820,8 +842,21 @@ bool TightlyCoupledWindow::solve() {
           a(k, k) += std::min(std::max(a(k, k), 1e-6), 1e32) / radius;
         }
       }
-      llt.compute(a);
-      if (llt.info() != Eigen::Success) {
+      y = rhs;
+      bool solved = true;
+      for (int t = 0; t < epochs && solved; ++t) {
+        const auto u = static_cast<std::size_t>(t);
+        if (t == 0) {
+          factor[u].compute(a.topLeftCorner(n, n));
+        } else {
+          const auto b = a.block(t * n, (t - 1) * n, n, n);
+          gain[u] = factor[u - 1].solve(b.transpose());
+          factor[u].compute(a.block(t * n, t * n, n, n) - b * gain[u]);
+          y.segment(t * n, n) -= gain[u].transpose() * y.segment((t - 1) * n, n);
+        }
+        solved = factor[u].info() == Eigen::Success;
+      }
+      if (!solved) {
         // Ceres: an invalid step shrinks the radius like a rejected one; five in a row fail.
         if (++invalid_steps >= 5) {
           converged = false;
@@ -832,7 +867,14 @@ bool TightlyCoupledWindow::solve() {
         continue;
       }
       invalid_steps = 0;
-      step = (llt.solve(rhs).array() * scale.array()).matrix();
+      for (int t = epochs - 1; t >= 0; --t) {
+        const auto u = static_cast<std::size_t>(t);
+        if (t + 1 < epochs) {
+          y.segment(t * n, n) -= a.block((t + 1) * n, t * n, n, n).transpose() * step.segment((t + 1) * n, n);
+        }
+        step.segment(t * n, n) = factor[u].solve(y.segment(t * n, n));
+      }
+      step = (step.array() * scale.array()).matrix();
       if (step.norm() <= 1e-8 * (x.norm() + 1e-8)) {
         break;  // parameter tolerance
       }
