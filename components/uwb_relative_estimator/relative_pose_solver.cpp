@@ -6,6 +6,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include <Eigen/QR>
 #include <ceres/ceres.h>
 
 #include "common/angle.hpp"
@@ -27,27 +28,6 @@ struct RangeResidual {
   }
 };
 
-/// Every range of the epoch in one residual block (row-major k, l), each residual as RangeResidual's:
-/// for plain least squares, where the loss does not tell the ranges apart (issue 29: one block
-/// instead of K x L, less of Ceres' per-block work).
-struct AllRangesResidual {
-  const UwbArray* own;
-  const UwbArray* other;
-  const Eigen::MatrixXd* ranges_m;
-
-  template <class T>
-  bool operator()(const T* const pose, T* residual) const {
-    const std::size_t cols = other->nodes_m.size();
-    for (std::size_t k = 0; k < own->nodes_m.size(); ++k) {
-      for (std::size_t l = 0; l < cols; ++l) {
-        residual[k * cols + l] = T((*ranges_m)(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l))) -
-                                 predicted_range(pose[0], pose[1], pose[2], own->nodes_m[k], other->nodes_m[l]);
-      }
-    }
-    return true;
-  }
-};
-
 ceres::LossFunction* make_loss(const SolverOptions& options) {
   switch (options.loss) {
     case RobustLoss::kHuber:
@@ -60,22 +40,153 @@ ceres::LossFunction* make_loss(const SolverOptions& options) {
   return nullptr;
 }
 
+/// The residuals r_kl - d_kl(pose) (row-major k, l) and, when `jacobian` is not null, their
+/// Jacobian (K L x 3), the heading's sine and cosine taken once (until issue 29's session 13 a Ceres
+/// AutoDiffCostFunction of all ranges, which took them once per range).
+void all_ranges(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m, const double* pose,
+                Eigen::VectorXd& residual, Eigen::MatrixXd* jacobian) {
+  const double c = std::cos(pose[2]);
+  const double s = std::sin(pose[2]);
+  const std::size_t cols = other.nodes_m.size();
+  for (std::size_t k = 0; k < own.nodes_m.size(); ++k) {
+    for (std::size_t l = 0; l < cols; ++l) {
+      const Eigen::Vector2d& ni = own.nodes_m[k];
+      const Eigen::Vector2d& nj = other.nodes_m[l];
+      const double rx = c * nj.x() - s * nj.y();
+      const double ry = s * nj.x() + c * nj.y();
+      const double dx = pose[0] + rx - ni.x();
+      const double dy = pose[1] + ry - ni.y();
+      const double d = std::sqrt(dx * dx + dy * dy);
+      const auto i = static_cast<Eigen::Index>(k * cols + l);
+      residual(i) = ranges_m(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) - d;
+      if (jacobian != nullptr) {
+        const double inv = d > 0.0 ? 1.0 / d : 0.0;
+        (*jacobian)(i, 0) = -dx * inv;
+        (*jacobian)(i, 1) = -dy * inv;
+        (*jacobian)(i, 2) = -(dx * -ry + dy * rx) * inv;
+      }
+    }
+  }
+}
+
+/// One Levenberg-Marquardt solve from `start` of the plain least squares (no robust loss), as
+/// Ceres ran it until issue 29's session 13 (TRUST_REGION, LEVENBERG_MARQUARDT, DENSE_QR, default
+/// radius 1e4 and tolerances: function 1e-6, gradient 1e-10, parameter 1e-8; max_iterations):
+/// Jacobi scaling fixed at the start, each step the QR solution of [J S; sqrt(diag(S J^T J S) /
+/// radius)] s = [r; 0], the radius grown after a good step and shrunk after a bad or invalid one.
+/// For 3 unknowns and 16 ranges Ceres' problem building, preprocessing and evaluators were ~3/4 of
+/// a warm solve.
+SolverResult solve_plain_from(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m,
+                              const model::Pose2& start, const SolverOptions& options) {
+  const auto m = static_cast<Eigen::Index>(ranges_m.size());
+  Eigen::Vector3d x(start.x, start.y, start.theta);
+  Eigen::VectorXd r(m);
+  Eigen::MatrixXd j(m, 3);
+  all_ranges(own, other, ranges_m, x.data(), r, &j);
+  double cost = 0.5 * r.squaredNorm();
+  Eigen::Vector3d gradient = j.transpose() * r;
+  SolverResult result;
+  result.starts = 1;
+  result.converged = true;
+  const auto finish = [&] {
+    result.pose = {x(0), x(1), wrap_angle(x(2))};
+    result.final_cost = cost;
+    return result;
+  };
+  if (gradient.lpNorm<Eigen::Infinity>() <= 1e-10) {
+    return finish();
+  }
+  Eigen::Vector3d scale;
+  for (int k = 0; k < 3; ++k) {
+    scale(k) = 1.0 / (1.0 + j.col(k).norm());
+  }
+  j = j * scale.asDiagonal();
+  double radius = 1e4;
+  double decrease_factor = 2.0;
+  int invalid_steps = 0;
+  Eigen::MatrixXd augmented(m + 3, 3);
+  Eigen::VectorXd rhs(m + 3);
+  Eigen::VectorXd candidate_r(m);
+  for (int iteration = 1;; ++iteration) {
+    if (iteration > options.max_iterations) {
+      result.converged = false;  // NO_CONVERGENCE
+      return finish();
+    }
+    const Eigen::RowVector3d diagonal = j.colwise().squaredNorm();
+    augmented.topRows(m) = j;
+    augmented.bottomRows<3>().setZero();
+    for (int k = 0; k < 3; ++k) {
+      augmented(m + k, k) = std::sqrt(std::min(std::max(diagonal(k), 1e-6), 1e32) / radius);
+    }
+    rhs.head(m) = r;
+    rhs.tail<3>().setZero();
+    const Eigen::Vector3d trust_region_step = -Eigen::HouseholderQR<Eigen::MatrixXd>(augmented).solve(rhs);
+    const Eigen::VectorXd model_residuals = j * trust_region_step;
+    const double model_cost_change = -model_residuals.dot(r + model_residuals / 2.0);
+    if (!trust_region_step.allFinite() || !(model_cost_change > 0.0)) {
+      // An invalid step: the radius shrinks as after a rejected one; five in a row fail.
+      if (++invalid_steps >= 5) {
+        result.converged = false;
+        return finish();
+      }
+      radius /= decrease_factor;
+      decrease_factor *= 2.0;
+      if (radius < 1e-32) {
+        return finish();  // Ceres: minimum trust region radius, a convergence
+      }
+      continue;
+    }
+    invalid_steps = 0;
+    const Eigen::Vector3d delta = (trust_region_step.array() * scale.array()).matrix();
+    const Eigen::Vector3d candidate = x + delta;
+    all_ranges(own, other, ranges_m, candidate.data(), candidate_r, nullptr);
+    double candidate_cost = 0.5 * candidate_r.squaredNorm();
+    if (!std::isfinite(candidate_cost)) {
+      candidate_cost = std::numeric_limits<double>::max();
+    }
+    if (delta.norm() <= 1e-8 * (x.norm() + 1e-8)) {
+      return finish();  // parameter tolerance
+    }
+    const double cost_change = cost - candidate_cost;
+    if (std::abs(cost_change) <= 1e-6 * cost) {
+      return finish();  // function tolerance (the current point kept)
+    }
+    const double relative_decrease = cost_change / model_cost_change;
+    if (relative_decrease > 1e-3) {
+      x = candidate;
+      all_ranges(own, other, ranges_m, x.data(), r, &j);
+      cost = 0.5 * r.squaredNorm();
+      gradient = j.transpose() * r;
+      j = j * scale.asDiagonal();
+      radius = std::min(1e16, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * relative_decrease - 1.0, 3)));
+      decrease_factor = 2.0;
+      if (gradient.lpNorm<Eigen::Infinity>() <= 1e-10) {
+        return finish();
+      }
+    } else {
+      radius /= decrease_factor;
+      decrease_factor *= 2.0;
+      if (radius < 1e-32) {
+        return finish();
+      }
+    }
+  }
+}
+
 /// One Levenberg-Marquardt solve from `start`.
 SolverResult solve_from(const UwbArray& own, const UwbArray& other, const Eigen::MatrixXd& ranges_m, model::Pose2 start,
                         const SolverOptions& options) {
+  if (options.loss == RobustLoss::kNone) {
+    return solve_plain_from(own, other, ranges_m, start, options);
+  }
   std::array<double, 3> pose{start.x, start.y, start.theta};
   ceres::Problem problem;
-  if (options.loss == RobustLoss::kNone) {
-    auto* cost = new ceres::AutoDiffCostFunction<AllRangesResidual, ceres::DYNAMIC, 3>(
-        new AllRangesResidual{&own, &other, &ranges_m}, static_cast<int>(ranges_m.size()));
-    problem.AddResidualBlock(cost, nullptr, pose.data());
-  } else {
-    for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
-      for (Eigen::Index l = 0; l < ranges_m.cols(); ++l) {
-        auto* cost = new ceres::AutoDiffCostFunction<RangeResidual, 1, 3>(
-            new RangeResidual{own.nodes_m[static_cast<std::size_t>(k)], other.nodes_m[static_cast<std::size_t>(l)], ranges_m(k, l)});
-        problem.AddResidualBlock(cost, make_loss(options), pose.data());
-      }
+  // A robust loss: one residual block per range, solved by Ceres.
+  for (Eigen::Index k = 0; k < ranges_m.rows(); ++k) {
+    for (Eigen::Index l = 0; l < ranges_m.cols(); ++l) {
+      auto* cost = new ceres::AutoDiffCostFunction<RangeResidual, 1, 3>(
+          new RangeResidual{own.nodes_m[static_cast<std::size_t>(k)], other.nodes_m[static_cast<std::size_t>(l)], ranges_m(k, l)});
+      problem.AddResidualBlock(cost, make_loss(options), pose.data());
     }
   }
   ceres::Solver::Options solver;
