@@ -123,11 +123,16 @@ bool SlidingWindowGraph::optimize() {
   struct Edge {
     Edge(const model::Pose2& measured, double xy_std, double theta_std, std::size_t a_index, std::size_t b_index)
         : residual(measured, xy_std, theta_std), a(a_index), b(b_index) {}
-    WindowEdgeResidual residual;
+    WindowEdge residual;
     std::size_t a;  // index of pose a (epoch * num_robots + robot)
     std::size_t b;
   };
-  std::deque<Edge> edges;  // (a cost function is not movable)
+  std::vector<Edge> edges;
+  std::size_t edge_count = 0;
+  for (std::size_t e = 0; e < epochs; ++e) {
+    edge_count += (e > 0 ? num_robots_ : 0) + epochs_[e].uwb.size();
+  }
+  edges.reserve(edge_count);
   for (std::size_t e = 0; e < epochs; ++e) {
     for (std::size_t i = 0; i < num_robots_ && e > 0; ++i) {
       edges.emplace_back(epochs_[e].odometry[i], weights_.odometry_xy_std_m, weights_.odometry_theta_std_rad,
@@ -145,7 +150,14 @@ bool SlidingWindowGraph::optimize() {
   // the identity in the system solved.
   // J^T J and J^T r by epoch: diagonal blocks (3N x 3N) and, between epochs e - 1 and e, one 3 x 3
   // block per robot (its odometry edge).
-  std::vector<Eigen::MatrixXd> diagonal(epochs, Eigen::MatrixXd(n, n));
+  diagonal_.resize(epochs);
+  inverse_.resize(epochs);
+  factor_.resize(epochs);
+  for (std::size_t e = 0; e < epochs; ++e) {
+    diagonal_[e].resize(n, n);
+    inverse_[e].resize(n, n);
+  }
+  std::vector<Eigen::MatrixXd>& diagonal = diagonal_;
   std::vector<Eigen::Matrix3d> coupling(epochs * num_robots_);
   Eigen::VectorXd gradient(static_cast<Eigen::Index>(x.size()));
   const auto cost_at = [&](const std::vector<double>& at) {
@@ -214,19 +226,27 @@ bool SlidingWindowGraph::optimize() {
   double radius = 1e6;  // as the Ceres solve had: a warm start, the first step nearly Gauss-Newton's
   double decrease_factor = 2.0;
   std::vector<double> candidate(x.size());
-  std::vector<Eigen::LLT<Eigen::MatrixXd>> factor(epochs);
-  std::vector<Eigen::MatrixXd> inverse(epochs);
+  std::vector<Eigen::LLT<Eigen::MatrixXd>>& factor = factor_;
+  std::vector<Eigen::MatrixXd>& inverse = inverse_;
   std::vector<Eigen::Matrix3d> scaled_coupling(epochs * num_robots_);  // C of the scaled system
   Eigen::VectorXd step(gradient.size());
+  // Scratch of every iteration, allocated once (issue 29, session 13: malloc and page faults were
+  // a quarter of this function's time).
+  Eigen::VectorXd rhs(gradient.size());
+  Eigen::MatrixXd a(n, n);
+  Eigen::MatrixXd ct_inverse(n, n);  // C^T A_{e-1}^-1
+  Eigen::VectorXd y(n);
+  Eigen::VectorXd d(n);
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(n, n);
   bool converged = false;
   for (int iteration = 1; iteration <= 50; ++iteration) {
     // Scaled, damped system A s = -g_s; A block tridiagonal: eliminate epoch by epoch.
     bool solved = true;
-    Eigen::VectorXd rhs = -(scale.array() * gradient.array()).matrix();
+    rhs = -(scale.array() * gradient.array()).matrix();
     rhs.head<3>().setZero();
     for (std::size_t e = 0; e < epochs && solved; ++e) {
       const auto offset = static_cast<Eigen::Index>(e) * n;
-      Eigen::MatrixXd a = scale.segment(offset, n).asDiagonal() * diagonal[e] * scale.segment(offset, n).asDiagonal();
+      a = scale.segment(offset, n).asDiagonal() * diagonal[e] * scale.segment(offset, n).asDiagonal();
       for (Eigen::Index k = 0; k < n; ++k) {
         a(k, k) += std::min(std::max(a(k, k), 1e-6), 1e32) / radius;
       }
@@ -237,7 +257,6 @@ bool SlidingWindowGraph::optimize() {
       } else {
         // A_e -= C^T A_{e-1}^-1 C, rhs_e -= C^T A_{e-1}^-1 rhs_{e-1}, C block diagonal (3 x 3 per robot).
         const auto previous = offset - n;
-        Eigen::MatrixXd ct_inverse(n, n);  // C^T A_{e-1}^-1
         for (std::size_t i = 0; i < num_robots_; ++i) {
           const auto r = static_cast<Eigen::Index>(3 * i);
           Eigen::Matrix3d c = scale.segment<3>(previous + r).asDiagonal() * coupling[e * num_robots_ + i] *
@@ -259,7 +278,7 @@ bool SlidingWindowGraph::optimize() {
         solved = false;
         break;
       }
-      inverse[e] = factor[e].solve(Eigen::MatrixXd::Identity(n, n));
+      inverse[e] = factor[e].solve(identity);
     }
     if (!solved) {
       // Ceres: a failed linear solve shrinks the radius like a rejected step.
@@ -272,7 +291,7 @@ bool SlidingWindowGraph::optimize() {
     }
     for (std::size_t e = epochs; e-- > 0;) {
       const auto offset = static_cast<Eigen::Index>(e) * n;
-      Eigen::VectorXd y = rhs.segment(offset, n);
+      y = rhs.segment(offset, n);
       if (e + 1 < epochs) {
         for (std::size_t i = 0; i < num_robots_; ++i) {
           const auto r = static_cast<Eigen::Index>(3 * i);
@@ -295,7 +314,7 @@ bool SlidingWindowGraph::optimize() {
     double quadratic = 0.0;
     for (std::size_t e = 0; e < epochs; ++e) {
       const auto offset = static_cast<Eigen::Index>(e) * n;
-      const Eigen::VectorXd d = step.segment(offset, n);
+      d = step.segment(offset, n);
       quadratic += d.dot(diagonal[e] * d);
       if (e > 0) {
         for (std::size_t i = 0; i < num_robots_; ++i) {

@@ -4,14 +4,14 @@
 
 namespace robodds::uwb_relative_estimator {
 
-WindowEdgeResidual::WindowEdgeResidual(const model::Pose2& measured, double xy_std_m, double theta_std_rad)
+WindowEdge::WindowEdge(const model::Pose2& measured, double xy_std_m, double theta_std_rad)
     : measured_(measured),
       xy_std_m_(xy_std_m),
       theta_std_rad_(theta_std_rad),
       xy_std_inverse_(1.0 / xy_std_m),
       theta_std_inverse_(1.0 / theta_std_rad) {}
 
-bool WindowEdgeResidual::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
+bool WindowEdge::Evaluate(double const* const* parameters, double* residuals, double** jacobians) const {
   const double* a = parameters[0];
   const double* b = parameters[1];
   const double c = std::cos(a[2]);

@@ -19,12 +19,14 @@ namespace robodds::uwb_relative_estimator {
 /// (a_b = R(theta_a)^T (p_b - p_a); atan2(sin, cos) for the wrap; a product with 1 / std), so the
 /// solver sees bit-identical numbers and lockstep outputs did not change
 /// (test/window_edge_test.cpp).
-class WindowEdgeResidual final : public ceres::SizedCostFunction<3, 3, 3> {
+class WindowEdge {
  public:
   /// measured: pose b in frame a; the stds are > 0 (SlidingWindowGraph validates them).
-  WindowEdgeResidual(const model::Pose2& measured, double xy_std_m, double theta_std_rad);
+  WindowEdge(const model::Pose2& measured, double xy_std_m, double theta_std_rad);
 
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override;
+  /// As ceres::CostFunction::Evaluate: parameters {a, b}, 3 residuals, jacobians null or {3 x 3
+  /// row-major for a or null, for b or null}.
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const;
 
  private:
   model::Pose2 measured_;
@@ -32,6 +34,21 @@ class WindowEdgeResidual final : public ceres::SizedCostFunction<3, 3, 3> {
   double theta_std_rad_;
   double xy_std_inverse_;
   double theta_std_inverse_;
+};
+
+/// WindowEdge as a Ceres cost function (SlidingWindowGraph evaluates WindowEdge itself, with no
+/// cost function to allocate per edge and solve; the tests solve the same edges with Ceres).
+class WindowEdgeResidual final : public ceres::SizedCostFunction<3, 3, 3> {
+ public:
+  WindowEdgeResidual(const model::Pose2& measured, double xy_std_m, double theta_std_rad)
+      : edge_(measured, xy_std_m, theta_std_rad) {}
+
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    return edge_.Evaluate(parameters, residuals, jacobians);
+  }
+
+ private:
+  WindowEdge edge_;
 };
 
 }  // namespace robodds::uwb_relative_estimator
