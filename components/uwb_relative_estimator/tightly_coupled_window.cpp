@@ -762,9 +762,14 @@ bool TightlyCoupledWindow::solve() {
   }
   const std::vector<int> sizes = block_sizes();
   // The unknowns in the epochs' blocks <-> x.
+  std::vector<std::vector<double*>> epoch_blocks;
+  epoch_blocks.reserve(epochs_.size());
+  for (Epoch& e : epochs_) {
+    epoch_blocks.push_back(blocks(e));
+  }
   const auto load = [&](Eigen::VectorXd& x) {
     for (int t = 0; t < epochs; ++t) {
-      const std::vector<double*> b = blocks(epochs_[static_cast<std::size_t>(t)]);
+      const std::vector<double*>& b = epoch_blocks[static_cast<std::size_t>(t)];
       int column = t * n;
       for (std::size_t k = 0; k < b.size(); ++k) {
         x.segment(column, sizes[k]) = Eigen::Map<const Eigen::VectorXd>(b[k], sizes[k]);
@@ -774,7 +779,7 @@ bool TightlyCoupledWindow::solve() {
   };
   const auto store = [&](const Eigen::VectorXd& x) {
     for (int t = 0; t < epochs; ++t) {
-      const std::vector<double*> b = blocks(epochs_[static_cast<std::size_t>(t)]);
+      const std::vector<double*>& b = epoch_blocks[static_cast<std::size_t>(t)];
       int column = t * n;
       for (std::size_t k = 0; k < b.size(); ++k) {
         Eigen::Map<Eigen::VectorXd>(b[k], sizes[k]) = x.segment(column, sizes[k]);
@@ -830,7 +835,15 @@ bool TightlyCoupledWindow::solve() {
     Eigen::VectorXd step(size);
     Eigen::VectorXd candidate(size);
     for (int iteration = 1; iteration <= params_.max_iterations; ++iteration) {
-      a = scale.asDiagonal() * h * scale.asDiagonal();
+      // Only the blocks the elimination reads: (t, t) and (t, t - 1).
+      for (int t = 0; t < epochs; ++t) {
+        a.block(t * n, t * n, n, n) =
+            scale.segment(t * n, n).asDiagonal() * h.block(t * n, t * n, n, n) * scale.segment(t * n, n).asDiagonal();
+        if (t > 0) {
+          a.block(t * n, (t - 1) * n, n, n) = scale.segment(t * n, n).asDiagonal() * h.block(t * n, (t - 1) * n, n, n) *
+                                              scale.segment((t - 1) * n, n).asDiagonal();
+        }
+      }
       Eigen::VectorXd rhs = -(scale.array() * g.array()).matrix();
       for (int k = 0; k < size; ++k) {
         if (fixed(k)) {
