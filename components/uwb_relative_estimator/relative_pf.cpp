@@ -90,9 +90,30 @@ void RelativePoseFilter::update_with_ranges(const model::UwbArray& own, const mo
     throw std::logic_error("RelativePoseFilter::update_with_ranges: not initialised (call initialize() first, e.g. "
                            "with a single-epoch solve of eq. 1)");
   }
-  for (Eigen::Index s = 0; s < num_particles_; ++s) {
-    log_likelihood_[s] = range_log_likelihood(particle(s), own, other, ranges_m, params_.range_std_m);
+  // range_log_likelihood for every particle, range by range over all particles at once (Eigen's
+  // packet arithmetic; sqrt is correctly rounded there too): each particle's terms in its order,
+  // so bit for bit its value (issue 29, session 13; uwb_relative_pf_test checks it).
+  const Eigen::ArrayXd& x = particles_.x;
+  const Eigen::ArrayXd& y = particles_.y;
+  Eigen::ArrayXd c(num_particles_);
+  Eigen::ArrayXd sn(num_particles_);
+  for (Eigen::Index i = 0; i < num_particles_; ++i) {
+    c[i] = std::cos(particles_.theta[i]);
+    sn[i] = std::sin(particles_.theta[i]);
   }
+  Eigen::ArrayXd sum_sq = Eigen::ArrayXd::Zero(num_particles_);
+  Eigen::ArrayXd dx(num_particles_);
+  Eigen::ArrayXd dy(num_particles_);
+  for (std::size_t k = 0; k < own.nodes_m.size(); ++k) {
+    const Eigen::Vector2d& node_i = own.nodes_m[k];
+    for (std::size_t l = 0; l < other.nodes_m.size(); ++l) {
+      const Eigen::Vector2d& node_j = other.nodes_m[l];
+      dx = x + c * node_j.x() - sn * node_j.y() - node_i.x();
+      dy = y + sn * node_j.x() + c * node_j.y() - node_i.y();
+      sum_sq += (ranges_m(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) - (dx * dx + dy * dy).sqrt()).square();
+    }
+  }
+  log_likelihood_ = -0.5 * sum_sq / (params_.range_std_m * params_.range_std_m);
   apply_log_likelihood(engine);
 }
 

@@ -14,6 +14,7 @@
 
 #include "common/angle.hpp"
 #include "common/random.hpp"
+#include "components/uwb_relative_estimator/relative_pf_likelihood.hpp"
 #include "components/uwb_relative_estimator/relative_pose.hpp"
 #include "components/uwb_relative_estimator/relative_pose_solver.hpp"
 
@@ -270,6 +271,40 @@ TEST(RelativePoseFilter, LogWeightsSurviveRangesFarFromEveryParticle) {
   EXPECT_NEAR(filter.weights().sum(), 1.0, 1e-12);
   EXPECT_LT(filter.last_update_effective_sample_size(), 50.0);  // sharply peaked, not reset to uniform
   EXPECT_GT(filter.estimated_pose().x, before + 0.3);            // pulled towards the truth
+}
+
+TEST(RelativePoseFilter, RangeWeightsAreRangeLogLikelihoodsBitForBit) {
+  // update_with_ranges evaluates every particle's likelihood range by range over the whole cloud
+  // (issue 29, session 13); each weight must still be the one range_log_likelihood gives, to the
+  // bit (the lockstep outputs depend on it). Noisy ranges, a spread cloud, no resampling.
+  RelativePfParams params;
+  params.resample_ess_fraction = 1e-9;  // never resample: the weights stay to look at
+  params.lambda_d_m = 1.0;
+  params.lambda_theta_rad = 1.0;
+  RelativePoseFilter filter(params);
+  RandomEngine engine(21);
+  const model::UwbArray array = model::square_array(0.5);
+  const model::Pose2 truth{4.0, -2.0, 2.0};
+  filter.initialize(truth, engine);
+  Eigen::MatrixXd ranges = ranges_for(truth, array);
+  for (Eigen::Index i = 0; i < ranges.size(); ++i) {
+    ranges(i) += 0.2 * standard_normal(engine);
+  }
+  const pf_estimator::ParticleSet cloud = filter.particles();
+  filter.update_with_ranges(array, array, ranges, engine);
+  ASSERT_FALSE(filter.last_update_resampled());
+  const auto n = static_cast<Eigen::Index>(cloud.x.size());
+  Eigen::ArrayXd log_weights(n);
+  for (Eigen::Index s = 0; s < n; ++s) {
+    log_weights[s] = -std::log(static_cast<double>(n)) +
+                     range_log_likelihood({cloud.x[s], cloud.y[s], cloud.theta[s]}, array, array, ranges, params.range_std_m);
+  }
+  log_weights -= log_weights.maxCoeff();
+  Eigen::ArrayXd expected = log_weights.exp();
+  expected /= expected.sum();
+  for (Eigen::Index s = 0; s < n; ++s) {
+    ASSERT_EQ(filter.weights()[s], expected[s]) << "particle " << s;
+  }
 }
 
 TEST(RelativePoseFilter, ResamplesAfterEveryUpdateAsThePaperUnlessAThresholdIsSet) {
