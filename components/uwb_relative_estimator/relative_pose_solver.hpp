@@ -1,7 +1,8 @@
 #pragma once
 // Single-epoch relative pose from UWB array ranges (paper 3, eq. 1): the pose x = (x, y, theta) of
 // robot j in robot i's frame that minimises sum over node pairs (k, l) of
-// rho((r_kl - d(x, C_i^k, C_j^l))^2), solved by Levenberg-Marquardt (Ceres). rho is a robust loss
+// rho((r_kl - d(x, C_i^k, C_j^l))^2), solved by Levenberg-Marquardt (plain least squares: its own, with
+// Ceres' rules; a robust loss: Ceres). rho is a robust loss
 // (an extension: the paper uses plain least squares, which non-line-of-sight outliers bias).
 
 #include <optional>

@@ -740,8 +740,10 @@ bool TightlyCoupledWindow::solve() {
   // Jacobi scaling fixed at the start point, (J^T J + diag(J^T J) / radius) step = -J^T r in the
   // scaled unknowns, the radius grown after a good step and shrunk after a bad one, as
   // SlidingWindowGraph::optimize does. Ceres' preprocessing, program reordering and Schur
-  // machinery were ~70 % of this stage's CPU for a system this small; the steps are the same up to
-  // rounding (uwb_tightly_coupled_window_test ItsLevenbergMarquardtTakesTheStepsCeresTakes).
+  // machinery were ~70 % of this stage's CPU for a system this small. The steps are the same up to
+  // rounding: every figure uwb_tightly_coupled_window_test prints is unchanged, and the tc poses of
+  // paper3_exp2 (seeds 1-3) and paper3_8robots moved by at most 1.4e-10 m (docs/performance.md
+  // "Single-thread cycle, session 13").
   const int epochs = static_cast<int>(epochs_.size());
   const int size = epochs * n;
   const int link_offset = params_.odometry_slip_states ? 8 : 4;

@@ -20,8 +20,9 @@
 //                discretisation, as the UWB sensor draws them), the same for each b_kl;
 //   prior        on the oldest epoch: what marginalising the epochs that left the window (Schur
 //                complement of their linearised factors, fixed at their last estimate) says.
-// Solved with Ceres (Levenberg-Marquardt, warm started: every state keeps its last estimate, a new
-// epoch starts from the prediction). The reported covariance of the newest pose is the inverse of the
+// Solved by Levenberg-Marquardt with Ceres' rules on the window's dense normal equations, by epoch
+// (warm started: every state keeps its last estimate, a new epoch starts from the prediction; the
+// factors are Ceres cost functions). The reported covariance of the newest pose is the inverse of the
 // problem's information at the solution (block-tridiagonal elimination over the window).
 // Pure: Eigen + std + Ceres, time in seconds.
 #include <deque>
