@@ -304,10 +304,7 @@ class PriorCost : public ceres::CostFunction {
 };
 
 /// A residual block and the parameter blocks it reads.
-struct Factor {
-  std::unique_ptr<ceres::CostFunction> cost;
-  std::vector<double*> parameters;
-};
+using Factor = detail::TcFactor;
 
 /// The factors between consecutive epochs `prev` and `next` (the window's Epoch): the relative
 /// motion of both odometries, and the Gauss-Markov transitions of the pair's common mode and of
@@ -762,6 +759,15 @@ bool TightlyCoupledWindow::solve() {
       e.common = 0.0;  // held at zero (the ablation): not an unknown
     }
   }
+  if (solve_observer_ != nullptr) {
+    std::vector<double*> constant_blocks;
+    if (!params_.common_bias_state) {
+      for (Epoch& e : epochs_) {
+        constant_blocks.push_back(&e.common);
+      }
+    }
+    solve_observer_->before_solve(factors, constant_blocks, params_.max_iterations);
+  }
   const std::vector<int> sizes = block_sizes();
   // The unknowns in the epochs' blocks <-> x.
   std::vector<std::vector<double*>> epoch_blocks;
@@ -936,6 +942,9 @@ bool TightlyCoupledWindow::solve() {
   const Eigen::MatrixXd newest = d.ldlt().solve(Eigen::MatrixXd::Identity(n, n));
   covariance_ = 0.5 * (newest.topLeftCorner<3, 3>() + newest.topLeftCorner<3, 3>().transpose());
   common_std_ = params_.common_bias_state ? std::sqrt(std::max(newest(3, 3), 0.0)) : 0.0;
+  if (solve_observer_ != nullptr) {
+    solve_observer_->after_solve(converged);
+  }
   return converged;
 }
 

@@ -26,10 +26,12 @@
 // problem's information at the solution (block-tridiagonal elimination over the window).
 // Pure: Eigen + std + Ceres, time in seconds.
 #include <deque>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include <Eigen/Core>
+#include <ceres/cost_function.h>
 
 #include "common/model/pose2.hpp"
 #include "common/model/uwb_array.hpp"
@@ -106,6 +108,30 @@ struct TightWindowParams {
 
 const params::ParamTable<TightWindowParams>& tight_window_param_table();
 
+namespace detail {
+
+/// One residual block of the window's least-squares problem (a Ceres cost function, evaluated by
+/// the window's own Levenberg-Marquardt) and the parameter blocks it reads.
+struct TcFactor {
+  std::unique_ptr<ceres::CostFunction> cost;
+  std::vector<double*> parameters;
+};
+
+/// Tests only: sees each solve of TightlyCoupledWindow (uwb_tightly_coupled_window_test solves the
+/// same problem with a ceres::Problem, the oracle of the window's own Levenberg-Marquardt).
+class TcSolveObserver {
+ public:
+  virtual ~TcSolveObserver() = default;
+  /// Before the solve: its factors (their parameter blocks are the window's states, at the start
+  /// point; the observer must leave them there), the blocks held constant, the iteration limit.
+  virtual void before_solve(const std::vector<TcFactor>& factors, const std::vector<double*>& constant_blocks,
+                            int max_iterations) = 0;
+  /// After it: its verdict (the blocks hold its solution).
+  virtual void after_solve(bool converged) = 0;
+};
+
+}  // namespace detail
+
 class TightlyCoupledWindow {
  public:
   /// Throws std::invalid_argument on invalid params or arrays.
@@ -133,6 +159,8 @@ class TightlyCoupledWindow {
   double common_bias_std_m() const { return common_std_; }
   std::size_t epochs() const { return epochs_.size(); }
   int restarts() const { return restarts_; }
+  /// Tests only (nullptr: none, the default): called around each solve; not owned.
+  void set_solve_observer(detail::TcSolveObserver* observer) { solve_observer_ = observer; }
 
  private:
   struct Epoch {
@@ -180,6 +208,7 @@ class TightlyCoupledWindow {
   Eigen::VectorXd residual_sum_;
   int disagreements_ = 0;
   int restarts_ = 0;
+  detail::TcSolveObserver* solve_observer_ = nullptr;
 };
 
 }  // namespace robodds::uwb_relative_estimator
