@@ -15,13 +15,14 @@ function(robodds_library name)
   target_link_libraries(${name} PUBLIC ${ARG_DEPS} PRIVATE robodds_warnings)
 endfunction()
 
-# robodds_unit_test_target(NAME SOURCES...): an executable compiled and linked as every unit test is
-# (GoogleTest, the warnings, the test sources at -O1). Used by robodds_unit_test() and by the owner
-# of the unit tests' precompiled header, so that the two cannot drift apart: GCC uses a precompiled
-# header only when the compile flags that matter (-fPIE, -O, the macros it reads) are the same.
+# robodds_unit_test_target(NAME SOURCES s... [DEPS d...]): an executable compiled and linked as every
+# unit test is (GoogleTest, the warnings, the test sources at -O1). Used by robodds_unit_test() and by
+# the owner of the unit tests' precompiled header, so that the two cannot drift apart: GCC uses a
+# precompiled header only when the compile flags that matter (-fPIE, the macros it reads) are the same.
 function(robodds_unit_test_target name)
-  add_executable(${name} ${ARGN})
-  target_link_libraries(${name} PRIVATE GTest::gtest GTest::gtest_main GTest::gmock robodds_warnings)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock robodds_warnings)
   # The test's own sources at -O1 (the last -O wins): they were 45 % of a clean build's compile
   # time, and -O3 buys them nothing, since the code under test comes from the libraries, built as
   # configured. -O1 compiles a test file in two thirds of the time (runtime/host/test/host_test.cpp:
@@ -43,7 +44,7 @@ function(robodds_unit_test_pch)
   if(NOT ROBODDS_UNIT_TEST_PCH)
     return()
   endif()
-  robodds_unit_test_target(robodds_unit_test_pch ${PROJECT_SOURCE_DIR}/cmake/unit_test_pch.cpp)
+  robodds_unit_test_target(robodds_unit_test_pch SOURCES ${PROJECT_SOURCE_DIR}/cmake/unit_test_pch.cpp)
   target_precompile_headers(robodds_unit_test_pch PRIVATE <gtest/gtest.h>)
 endfunction()
 
@@ -56,8 +57,7 @@ function(robodds_unit_test name)
     return()
   endif()
   cmake_parse_arguments(ARG "READS_SOURCE_TREE" "" "SOURCES;DEPS" ${ARGN})
-  robodds_unit_test_target(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE ${ARG_DEPS})
+  robodds_unit_test_target(${name} SOURCES ${ARG_SOURCES} DEPS ${ARG_DEPS})
   if(ROBODDS_UNIT_TEST_PCH)
     target_precompile_headers(${name} REUSE_FROM robodds_unit_test_pch)
   endif()
