@@ -15,6 +15,39 @@ function(robodds_library name)
   target_link_libraries(${name} PUBLIC ${ARG_DEPS} PRIVATE robodds_warnings)
 endfunction()
 
+# robodds_unit_test_target(NAME SOURCES s... [DEPS d...]): an executable compiled and linked as every
+# unit test is (GoogleTest, the warnings, the test sources at -O1). Used by robodds_unit_test() and by
+# the owner of the unit tests' precompiled header, so that the two cannot drift apart: GCC uses a
+# precompiled header only when the compile flags that matter (-fPIE, the macros it reads) are the same.
+function(robodds_unit_test_target name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock robodds_warnings)
+  # The test's own sources at -O1 (the last -O wins): they were 45 % of a clean build's compile
+  # time, and -O3 buys them nothing, since the code under test comes from the libraries, built as
+  # configured. -O1 compiles a test file in two thirds of the time (runtime/host/test/host_test.cpp:
+  # 9.0 s -> 6.0 s), which keeps scripts/test.sh within its 30 minutes on 2 cores.
+  target_compile_options(${name} PRIVATE $<$<CONFIG:Release>:-O1>)
+endfunction()
+
+# robodds_unit_test_pch(): with ROBODDS_UNIT_TEST_PCH, the target robodds_unit_test_pch compiles
+# <gtest/gtest.h> once into a precompiled header that every robodds_unit_test() reuses
+# (REUSE_FROM) instead of parsing it again. Only gtest: every test file includes it, while Eigen is
+# read by 37 of the 212 test files and gmock by 5, and a bigger header costs every test file more
+# to load (docs/performance.md, Build time). It is force-included first into every test file: keep
+# it to third-party headers that change nothing by being read first, and never Fast DDS (only
+# runtime/dds/ may include it: tests/layering/). GCC uses it only when the flags that matter
+# (-fPIE, the macros it reads) are the tests' own: the owner is made by robodds_unit_test_target(),
+# and -Winvalid-pch (added by CMake) with -Werror fails the build if GCC could not use it.
+# Call it once, after find_package(GTest).
+function(robodds_unit_test_pch)
+  if(NOT ROBODDS_UNIT_TEST_PCH)
+    return()
+  endif()
+  robodds_unit_test_target(robodds_unit_test_pch SOURCES ${PROJECT_SOURCE_DIR}/cmake/unit_test_pch.cpp)
+  target_precompile_headers(robodds_unit_test_pch PRIVATE <gtest/gtest.h>)
+endfunction()
+
 # robodds_unit_test(NAME SOURCES s... [DEPS d...] [READS_SOURCE_TREE])
 # A GoogleTest executable; every TEST becomes its own ctest entry (label "unit").
 # READS_SOURCE_TREE: the test reads checked-in files (docs, XML, defaults files) from
@@ -24,13 +57,10 @@ function(robodds_unit_test name)
     return()
   endif()
   cmake_parse_arguments(ARG "READS_SOURCE_TREE" "" "SOURCES;DEPS" ${ARGN})
-  add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock robodds_warnings)
-  # The test's own sources at -O1 (the last -O wins): they were 45 % of a clean build's compile
-  # time, and -O3 buys them nothing, since the code under test comes from the libraries, built as
-  # configured. -O1 compiles a test file in two thirds of the time (runtime/host/test/host_test.cpp:
-  # 9.0 s -> 6.0 s), which keeps scripts/test.sh within its 30 minutes on 2 cores.
-  target_compile_options(${name} PRIVATE $<$<CONFIG:Release>:-O1>)
+  robodds_unit_test_target(${name} SOURCES ${ARG_SOURCES} DEPS ${ARG_DEPS})
+  if(ROBODDS_UNIT_TEST_PCH)
+    target_precompile_headers(${name} REUSE_FROM robodds_unit_test_pch)
+  endif()
   if(ARG_READS_SOURCE_TREE)
     target_compile_definitions(${name} PRIVATE ROBODDS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   endif()
