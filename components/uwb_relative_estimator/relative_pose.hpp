@@ -30,4 +30,23 @@ inline double predicted_range(const model::Pose2& pose, const Eigen::Vector2d& n
   return predicted_range(pose.x, pose.y, pose.theta, node_i, node_j);
 }
 
+/// predicted_range() with the parts an analytic Jacobian needs, for j at (x, y) m in i's frame with
+/// heading cosine `c` and sine `s` (taken once per pose by the caller): node_j rotated into i's frame
+/// (rx, ry), the vector from node_i to it (dx, dy) and its length d (m). d/d(x, y) = (dx, dy) / d,
+/// d/dtheta = (-dx ry + dy rx) / d. Rounds as (x + rx) - node_i.x, so d may differ from
+/// predicted_range()'s in the last bit. The one geometry of eq. (1)'s and the tc window's solvers.
+struct NodePairGeometry {
+  double rx, ry, dx, dy, d;
+};
+inline NodePairGeometry node_pair_geometry(double x, double y, double c, double s, const Eigen::Vector2d& node_i,
+                                           const Eigen::Vector2d& node_j) {
+  NodePairGeometry g;
+  g.rx = c * node_j.x() - s * node_j.y();
+  g.ry = s * node_j.x() + c * node_j.y();
+  g.dx = x + g.rx - node_i.x();
+  g.dy = y + g.ry - node_i.y();
+  g.d = std::sqrt(g.dx * g.dx + g.dy * g.dy);
+  return g;
+}
+
 }  // namespace robodds::uwb_relative_estimator

@@ -50,20 +50,14 @@ void all_ranges(const UwbArray& own, const UwbArray& other, const Eigen::MatrixX
   const std::size_t cols = other.nodes_m.size();
   for (std::size_t k = 0; k < own.nodes_m.size(); ++k) {
     for (std::size_t l = 0; l < cols; ++l) {
-      const Eigen::Vector2d& ni = own.nodes_m[k];
-      const Eigen::Vector2d& nj = other.nodes_m[l];
-      const double rx = c * nj.x() - s * nj.y();
-      const double ry = s * nj.x() + c * nj.y();
-      const double dx = pose[0] + rx - ni.x();
-      const double dy = pose[1] + ry - ni.y();
-      const double d = std::sqrt(dx * dx + dy * dy);
+      const NodePairGeometry g = node_pair_geometry(pose[0], pose[1], c, s, own.nodes_m[k], other.nodes_m[l]);
       const auto i = static_cast<Eigen::Index>(k * cols + l);
-      residual(i) = ranges_m(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) - d;
+      residual(i) = ranges_m(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(l)) - g.d;
       if (jacobian != nullptr) {
-        const double inv = d > 0.0 ? 1.0 / d : 0.0;
-        (*jacobian)(i, 0) = -dx * inv;
-        (*jacobian)(i, 1) = -dy * inv;
-        (*jacobian)(i, 2) = -(dx * -ry + dy * rx) * inv;
+        const double inv = g.d > 0.0 ? 1.0 / g.d : 0.0;
+        (*jacobian)(i, 0) = -g.dx * inv;
+        (*jacobian)(i, 1) = -g.dy * inv;
+        (*jacobian)(i, 2) = -(g.dx * -g.ry + g.dy * g.rx) * inv;
       }
     }
   }

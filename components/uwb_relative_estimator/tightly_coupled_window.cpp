@@ -119,31 +119,17 @@ class RangeCost : public ceres::CostFunction {
         const double w = inv_sigma_(i);
         const Eigen::Vector2d& nj = peer_.nodes_m[l];
         const Eigen::Vector2d& ni = own_.nodes_m[k];
-        const double rx = c * nj.x() - s * nj.y();
-        const double ry = s * nj.x() + c * nj.y();
-        const double vx = x[0] + rx - ni.x();
-        const double vy = x[1] + ry - ni.y();
-        const double d = std::sqrt(vx * vx + vy * vy);
+        const NodePairGeometry g = node_pair_geometry(x[0], x[1], c, s, ni, nj);
         const double bias = links_ ? parameters[2][i] : 0.0;
-        residuals[i] = (d + common + bias - ranges_(i)) * w;
+        residuals[i] = (g.d + common + bias - ranges_(i)) * w;
         if (jacobians != nullptr) {
           if (jacobians[0] != nullptr) {
-            double jx = vx;
-            double jy = vy;
-            double jrx = rx;
-            double jry = ry;
-            double jd = d;
-            if (first_estimate_) {
-              jrx = cj * nj.x() - sj * nj.y();
-              jry = sj * nj.x() + cj * nj.y();
-              jx = xj[0] + jrx - ni.x();
-              jy = xj[1] + jry - ni.y();
-              jd = std::sqrt(jx * jx + jy * jy);
-            }
-            const double inv_d = jd > 1e-9 ? w / jd : 0.0;
-            jacobians[0][3 * i + 0] = jx * inv_d;
-            jacobians[0][3 * i + 1] = jy * inv_d;
-            jacobians[0][3 * i + 2] = (jx * -jry + jy * jrx) * inv_d;
+            // First-estimates Jacobians: the derivative at the linearisation point, not at x.
+            const NodePairGeometry j = first_estimate_ ? node_pair_geometry(xj[0], xj[1], cj, sj, ni, nj) : g;
+            const double inv_d = j.d > 1e-9 ? w / j.d : 0.0;
+            jacobians[0][3 * i + 0] = j.dx * inv_d;
+            jacobians[0][3 * i + 1] = j.dy * inv_d;
+            jacobians[0][3 * i + 2] = (j.dx * -j.ry + j.dy * j.rx) * inv_d;
           }
           if (jacobians[1] != nullptr) {
             jacobians[1][i] = w;
