@@ -11,6 +11,7 @@
 
 #include "common/angle.hpp"
 #include "common/param_checks.hpp"
+#include "components/uwb_relative_estimator/lm_trust_region.hpp"
 
 namespace robodds::uwb_relative_estimator {
 namespace {
@@ -95,8 +96,7 @@ SolverResult solve_plain_from(const UwbArray& own, const UwbArray& other, const 
     scale(k) = 1.0 / (1.0 + j.col(k).norm());
   }
   j = j * scale.asDiagonal();
-  double radius = 1e4;
-  double decrease_factor = 2.0;
+  LmTrustRegion region(1e4);
   int invalid_steps = 0;
   Eigen::MatrixXd augmented(m + 3, 3);
   Eigen::VectorXd rhs(m + 3);
@@ -110,7 +110,7 @@ SolverResult solve_plain_from(const UwbArray& own, const UwbArray& other, const 
     augmented.topRows(m) = j;
     augmented.bottomRows<3>().setZero();
     for (int k = 0; k < 3; ++k) {
-      augmented(m + k, k) = std::sqrt(std::min(std::max(diagonal(k), 1e-6), 1e32) / radius);
+      augmented(m + k, k) = std::sqrt(region.damping(diagonal(k)));
     }
     rhs.head(m) = r;
     rhs.tail<3>().setZero();
@@ -123,9 +123,7 @@ SolverResult solve_plain_from(const UwbArray& own, const UwbArray& other, const 
         result.converged = false;
         return finish();
       }
-      radius /= decrease_factor;
-      decrease_factor *= 2.0;
-      if (radius < 1e-32) {
+      if (region.step_rejected()) {
         return finish();  // Ceres: minimum trust region radius, a convergence
       }
       continue;
@@ -146,23 +144,18 @@ SolverResult solve_plain_from(const UwbArray& own, const UwbArray& other, const 
       return finish();  // function tolerance (the current point kept)
     }
     const double relative_decrease = cost_change / model_cost_change;
-    if (relative_decrease > 1e-3) {
+    if (LmTrustRegion::accepts(relative_decrease, model_cost_change, candidate_cost)) {
       x = candidate;
       all_ranges(own, other, ranges_m, x.data(), r, &j);
       cost = 0.5 * r.squaredNorm();
       gradient = j.transpose() * r;
       j = j * scale.asDiagonal();
-      radius = std::min(1e16, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * relative_decrease - 1.0, 3)));
-      decrease_factor = 2.0;
+      region.step_accepted(relative_decrease);
       if (gradient.lpNorm<Eigen::Infinity>() <= 1e-10) {
         return finish();
       }
-    } else {
-      radius /= decrease_factor;
-      decrease_factor *= 2.0;
-      if (radius < 1e-32) {
-        return finish();
-      }
+    } else if (region.step_rejected()) {
+      return finish();
     }
   }
 }

@@ -11,6 +11,7 @@
 
 #include "common/angle.hpp"
 #include "common/param_checks.hpp"
+#include "components/uwb_relative_estimator/lm_trust_region.hpp"
 #include "components/uwb_relative_estimator/window_edge.hpp"
 
 namespace robodds::uwb_relative_estimator {
@@ -223,8 +224,7 @@ bool SlidingWindowGraph::optimize() {
   if (gradient_converged()) {
     return true;
   }
-  double radius = 1e6;  // as the Ceres solve had: a warm start, the first step nearly Gauss-Newton's
-  double decrease_factor = 2.0;
+  LmTrustRegion region(1e6);  // as the Ceres solve had: a warm start, the first step nearly Gauss-Newton's
   std::vector<double> candidate(x.size());
   std::vector<Eigen::LLT<Eigen::MatrixXd>>& factor = factor_;
   std::vector<Eigen::MatrixXd>& inverse = inverse_;
@@ -248,7 +248,7 @@ bool SlidingWindowGraph::optimize() {
       const auto offset = static_cast<Eigen::Index>(e) * n;
       a = scale.segment(offset, n).asDiagonal() * diagonal[e] * scale.segment(offset, n).asDiagonal();
       for (Eigen::Index k = 0; k < n; ++k) {
-        a(k, k) += std::min(std::max(a(k, k), 1e-6), 1e32) / radius;
+        a(k, k) += region.damping(a(k, k));
       }
       if (e == 0) {
         a.topRows<3>().setZero();
@@ -282,9 +282,7 @@ bool SlidingWindowGraph::optimize() {
     }
     if (!solved) {
       // Ceres: a failed linear solve shrinks the radius like a rejected step.
-      radius /= decrease_factor;
-      decrease_factor *= 2.0;
-      if (radius < 1e-32) {
+      if (region.step_rejected()) {
         break;
       }
       continue;
@@ -333,21 +331,16 @@ bool SlidingWindowGraph::optimize() {
       break;
     }
     const double relative_decrease = (cost - candidate_cost) / model_change;
-    if (std::isfinite(candidate_cost) && model_change > 0.0 && relative_decrease > 1e-3) {
+    if (LmTrustRegion::accepts(relative_decrease, model_change, candidate_cost)) {
       x.swap(candidate);
       cost = linearize(x);
-      radius = std::min(1e16, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * relative_decrease - 1.0, 3)));
-      decrease_factor = 2.0;
+      region.step_accepted(relative_decrease);
       if (gradient_converged()) {
         converged = true;
         break;
       }
-    } else {
-      radius /= decrease_factor;
-      decrease_factor *= 2.0;
-      if (radius < 1e-32) {
-        break;
-      }
+    } else if (region.step_rejected()) {
+      break;
     }
   }
   for (std::size_t e = 0; e < epochs; ++e) {

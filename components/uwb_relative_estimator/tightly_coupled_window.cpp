@@ -12,6 +12,7 @@
 
 #include "common/angle.hpp"
 #include "common/param_checks.hpp"
+#include "components/uwb_relative_estimator/lm_trust_region.hpp"
 #include "components/uwb_relative_estimator/relative_pose.hpp"
 #include "components/uwb_relative_estimator/relative_pose_covariance.hpp"
 
@@ -817,8 +818,7 @@ bool TightlyCoupledWindow::solve() {
   }
   bool converged = true;  // Ceres: CONVERGENCE, or NO_CONVERGENCE after at least one iteration
   if (!gradient_converged()) {
-    double radius = 1e6;  // warm-started: the first step nearly Gauss-Newton's (Ceres' default 1e4 damps it)
-    double decrease_factor = 2.0;
+    LmTrustRegion region(1e6);  // warm-started: the first step nearly Gauss-Newton's (Ceres' default 1e4 damps it)
     int invalid_steps = 0;
     Eigen::MatrixXd a(size, size);
     // Block-tridiagonal elimination by epoch (a factor joins one epoch, or two consecutive ones):
@@ -846,7 +846,7 @@ bool TightlyCoupledWindow::solve() {
           a(k, k) = 1.0;
           rhs(k) = 0.0;
         } else {
-          a(k, k) += std::min(std::max(a(k, k), 1e-6), 1e32) / radius;
+          a(k, k) += region.damping(a(k, k));
         }
       }
       y = rhs;
@@ -869,8 +869,7 @@ bool TightlyCoupledWindow::solve() {
           converged = false;
           break;
         }
-        radius /= decrease_factor;
-        decrease_factor *= 2.0;
+        region.step_rejected();  // five invalid steps in a row end it long before the minimum radius
         continue;
       }
       invalid_steps = 0;
@@ -894,19 +893,16 @@ bool TightlyCoupledWindow::solve() {
         break;
       }
       const double relative_decrease = (cost - candidate_cost) / model_change;
-      if (std::isfinite(candidate_cost) && model_change > 0.0 && relative_decrease > 1e-3) {
+      if (LmTrustRegion::accepts(relative_decrease, model_change, candidate_cost)) {
         x.swap(candidate);
         cost = linearize();
-        radius = std::min(1e16, radius / std::max(1.0 / 3.0, 1.0 - std::pow(2.0 * relative_decrease - 1.0, 3)));
-        decrease_factor = 2.0;
+        region.step_accepted(relative_decrease);
         if (gradient_converged()) {
           break;
         }
       } else {
         store(x);
-        radius /= decrease_factor;
-        decrease_factor *= 2.0;
-        if (radius < 1e-32) {
+        if (region.step_rejected()) {
           break;  // Ceres: minimum trust region radius, a convergence
         }
       }
