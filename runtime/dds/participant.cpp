@@ -43,11 +43,12 @@ void ParticipantDeleter::operator()(dds::DomainParticipant* participant) const {
 ParticipantPtr create_participant(int domain_id, const dds::DomainParticipantQos& qos, dds::DomainParticipantListener* listener,
                                   const dds::StatusMask& mask, const std::string& profile) {
   // Once per process: whether Fast DDS' assertions get their thread ids without a system call.
-  static const bool thread_id_cached = thread_id_cache_in_use();
-  if (g_live_participants.load() == 0) {
-    log::debug("dds", thread_id_cached ? "syscall(SYS_gettid) answered from the per-thread cache"
-                                       : "syscall(SYS_gettid) NOT cached: the executable does not export syscall()");
-  }
+  static const bool thread_id_cache_logged = [] {
+    log::debug("dds", thread_id_cache_in_use() ? "syscall(SYS_gettid) answered from the per-thread cache"
+                                               : "syscall(SYS_gettid) NOT cached: the executable does not export syscall()");
+    return true;
+  }();
+  (void)thread_id_cache_logged;
   take_dds_errors();  // only this creation's
   ParticipantPtr participant(dds::DomainParticipantFactory::get_instance()->create_participant(domain_id, qos, listener, mask));
   if (participant == nullptr) {
