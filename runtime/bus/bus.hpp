@@ -13,6 +13,7 @@
 #include <utility>
 #include <vector>
 
+#include "runtime/bus/step_needs.hpp"
 #include "runtime/bus/run_digest.hpp"
 
 namespace robodds {
@@ -81,6 +82,10 @@ using ReaderEventCallback = std::function<void(const std::string& event)>;
 class ReaderHandle {
  public:
   virtual ~ReaderHandle() = default;
+  /// This subscriber reads only the samples `needs` names (lockstep, newest-only reads): the bus
+  /// may leave the others out once every subscriber of its reader said so. Call before
+  /// Bus::start(). Default: every sample is delivered.
+  virtual void set_step_needs(const StepNeeds& /*needs*/) {}
 };
 
 /// Which instance keys a subscriber takes (e.g. those of a scenario's robots), so that a

@@ -10,6 +10,12 @@ std::uint64_t key_of(const void* sample) {
   return idl::instance_key(*static_cast<const T*>(sample));
 }
 
+template <class T>
+SampleSteps steps_of(const void* sample) {
+  const auto& header = static_cast<const T*>(sample)->header();
+  return SampleSteps{header.step(), header.next_step()};
+}
+
 }  // namespace
 
 SampleKeyFunction sample_key_function(const std::string& type_name) {
@@ -19,6 +25,15 @@ SampleKeyFunction sample_key_function(const std::string& type_name) {
     key = &key_of<T>;
   });
   return key;
+}
+
+SampleStepsFunction sample_steps_function(const std::string& type_name) {
+  SampleStepsFunction steps = nullptr;
+  idl::dispatch_type(type_name, [&steps](auto tag) {
+    using T = typename decltype(tag)::type;
+    steps = &steps_of<T>;
+  });
+  return steps;
 }
 
 }  // namespace robodds

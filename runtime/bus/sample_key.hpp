@@ -13,4 +13,14 @@ using SampleKeyFunction = std::uint64_t (*)(const void* sample);
 /// when no IDL type has that name.
 SampleKeyFunction sample_key_function(const std::string& type_name);
 
+/// A sample's header steps: SampleHeader::step and ::next_step (the step of its instance's next sample).
+struct SampleSteps {
+  std::uint64_t step = 0;
+  std::uint64_t next_step = 0;
+};
+using SampleStepsFunction = SampleSteps (*)(const void* sample);
+
+/// The header steps of a sample of the type named `type_name`, or nullptr when no IDL type has that name.
+SampleStepsFunction sample_steps_function(const std::string& type_name);
+
 }  // namespace robodds

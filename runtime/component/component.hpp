@@ -229,6 +229,10 @@ class ComponentContext {
     options.expected = subscription.expected();
     options.delay_steps = subscription.delay_steps();
     options.by_robot = subscription.by_robot();
+    options.newest_only = subscription.reads_newest_only();
+    if (options.by_robot && options.newest_only) {
+      throw ConfigError(spec_.name + ": " + topic + ": newest_only() does not combine with robot_streams()");
+    }
     if (options.by_robot && info.key.find(',') == std::string::npos) {
       throw ConfigError(spec_.name + ": robot_streams() needs a topic keyed (robot_id, X); " + topic + " is keyed " +
                         (info.key.empty() ? std::string("by nothing") : info.key));
@@ -259,6 +263,7 @@ class ComponentContext {
     } else {
       readers_.push_back(run_.bus->reader(topic, info.type_name, profile, std::move(on_sample), std::move(on_event)));
     }
+    raw->attach_reader(readers_.back().get());
     inputs_.push_back(std::move(input));
     return *raw;
   }

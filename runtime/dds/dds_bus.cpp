@@ -152,7 +152,15 @@ class DdsWriter : public WriterHandle {
   const MatchState* match_;  // the first writer's listener's: matched readers now
 };
 
-class DdsReader : public ReaderHandle {};
+/// One subscriber of a DDS reader: what it reads (set_step_needs) goes to the bus' record of it.
+class DdsReader : public ReaderHandle {
+ public:
+  explicit DdsReader(std::function<void(const StepNeeds&)> on_needs) : on_needs_(std::move(on_needs)) {}
+  void set_step_needs(const StepNeeds& needs) override { on_needs_(needs); }
+
+ private:
+  std::function<void(const StepNeeds&)> on_needs_;
+};
 
 class FastDdsBus : public DdsBus, public PeerLossSource {
  public:
@@ -174,9 +182,14 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
     peers_.set_self(participant_->guid().guidPrefix, options.components);
     // A class name no other participant knows: our readers' filters are never evaluated by a
     // writer (Fast DDS does so for a writer whose participant registered the same class).
-    key_filters_ = std::make_unique<KeyFilterFactory>("robodds.keys." + guid_prefix_text(participant_->guid().guidPrefix));
+    dds::DomainParticipant* participant = participant_.get();
+    key_filters_ = std::make_unique<KeyFilterFactory>("robodds.keys." + guid_prefix_text(participant_->guid().guidPrefix),
+                                                      [participant](const std::string& type_name) { return participant->find_type(type_name); });
+    // The step class is every robodds participant's: its writers evaluate the steps remote readers need.
     if (participant_->register_content_filter_factory(key_filters_->class_name().c_str(), key_filters_.get()) !=
-        ReturnCode_t::RETCODE_OK) {
+            ReturnCode_t::RETCODE_OK ||
+        participant_->register_content_filter_factory(KeyFilterFactory::kStepClass, key_filters_.get()) !=
+            ReturnCode_t::RETCODE_OK) {
       throw RunError("could not register the key filter factory on domain " + std::to_string(options.domain_id));
     }
     publisher_ = participant_->create_publisher(dds::PUBLISHER_QOS_DEFAULT);
@@ -312,6 +325,15 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
     }
   }
 
+  std::uint64_t samples_left_out_on_arrival() const override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::uint64_t total = 0;
+    for (const auto& [key, pending] : readers_) {
+      total += pending.key_filter->left_out();
+    }
+    return total;
+  }
+
   void flush(std::chrono::milliseconds timeout) override {
     std::lock_guard<std::mutex> lock(mutex_);
     ShutdownWatchdog watchdog("waiting for the acknowledgement of the last samples", timeout + shutdown_limit());
@@ -378,8 +400,11 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
     std::string type_name;
     std::string profile;
     std::unique_ptr<ReaderListener> listener;
-    // The subscribers' key rules (Bus::KeyFilter); Fast DDS evaluates it through filtered_topic.
+    // The subscribers' key rules (Bus::KeyFilter) and read steps; Fast DDS evaluates it through filtered_topic.
     std::unique_ptr<ReaderKeyFilter> key_filter;
+    // Per subscriber, in the order they came: the steps it reads (ReaderHandle::set_step_needs),
+    // nullopt while it reads every sample.
+    std::vector<std::optional<StepNeeds>> step_needs;
     dds::ContentFilteredTopic* filtered_topic = nullptr;  // owned by participant_; made once
     dds::DataReader* reader = nullptr;
   };
@@ -409,15 +434,55 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
       it->second.key_filter->add_unfiltered();
     }
     it->second.listener->add(std::move(on_sample), std::move(on_event));
+    const std::size_t subscriber = it->second.step_needs.size();
+    it->second.step_needs.emplace_back();
     if (started_) {
       create_reader(it->second);
     }
-    return std::make_shared<DdsReader>();
+    return std::make_shared<DdsReader>([this, key, subscriber](const StepNeeds& needs) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      readers_.at(key).step_needs.at(subscriber) = needs;  // read when the reader is made (start())
+    });
+  }
+
+  /// The steps every subscriber of `pending` reads, when each said (set_step_needs) and some
+  /// sample is needed by none; nullopt otherwise.
+  static std::optional<StepNeeds> reader_step_needs(const PendingReader& pending) {
+    if (pending.step_needs.empty()) {
+      return std::nullopt;
+    }
+    std::optional<StepNeeds> all;
+    for (const std::optional<StepNeeds>& needs : pending.step_needs) {
+      if (!needs) {
+        return std::nullopt;
+      }
+      if (!all) {
+        all = *needs;
+      } else {
+        all->add(*needs);
+      }
+    }
+    return all->all() ? std::nullopt : all;
   }
 
   /// The topic a reader reads: the topic itself, or, when every subscriber so far has a key rule,
   /// a ContentFilteredTopic of it evaluated by the reader's ReaderKeyFilter (key_filter.hpp).
   dds::TopicDescription* topic_to_read(PendingReader& pending) {
+    const std::optional<StepNeeds> needs = reader_step_needs(pending);
+    if (pending.filtered_topic == nullptr && needs) {
+      // Evaluated by the writers too (KeyFilterFactory::kStepClass): the expression names the
+      // steps, then what makes it this participant's (a ContentFilteredTopic name is unique in it).
+      pending.key_filter->read_only(*needs);
+      const std::string name = needs->text() + "|" + pending.topic + "|" + pending.profile + "|" +
+                               guid_prefix_text(participant_->guid().guidPrefix);
+      key_filters_->add(name, pending.key_filter.get());
+      pending.filtered_topic = participant_->create_contentfilteredtopic(name, topics_.at(pending.topic), name, {},
+                                                                         KeyFilterFactory::kStepClass);
+      if (pending.filtered_topic == nullptr) {
+        throw RunError("could not create the step filter of topic " + pending.topic + ": Fast DDS: " + take_dds_errors());
+      }
+      log::debug("dds", pending.topic + ": reads only " + needs->text() + " (its writers leave out the other samples)");
+    }
     if (pending.filtered_topic == nullptr && pending.key_filter->filters()) {
       // Not a name of any DDS topic ('|' is in none of ours); also the filter's expression.
       const std::string name = pending.topic + "|keys|" + pending.profile;

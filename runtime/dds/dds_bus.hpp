@@ -50,6 +50,10 @@ class DdsBus : public Bus {
   /// destroying what the callbacks point to (a host's inputs, a notifier): otherwise a sample
   /// arriving while the bus is being destroyed reaches freed memory.
   virtual void close_readers() = 0;
+  /// Samples this process's readers' own filters left out because no subscriber reads their step
+  /// (ReaderHandle::set_step_needs). A robodds writer leaves them out itself: those never arrive
+  /// and are not counted here.
+  virtual std::uint64_t samples_left_out_on_arrival() const = 0;
 };
 
 /// Loads and validates the QoS files and creates one DomainParticipant. Throws ConfigError naming

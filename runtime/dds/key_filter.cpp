@@ -1,13 +1,16 @@
 #include "runtime/dds/key_filter.hpp"
 
+#include <memory>
+#include <optional>
+#include <string>
 #include <utility>
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;
 using eprosima::fastrtps::types::ReturnCode_t;
 
-ReaderKeyFilter::ReaderKeyFilter(dds::TypeSupport type, const std::string& type_name)
-    : type_(std::move(type)), key_(sample_key_function(type_name)) {
+ReaderKeyFilter::ReaderKeyFilter(dds::TypeSupport type, const std::string& type_name, Side side)
+    : type_(std::move(type)), key_(sample_key_function(type_name)), steps_(sample_steps_function(type_name)), side_(side) {
   sample_ = type_->createData();
 }
 
@@ -28,19 +31,43 @@ bool ReaderKeyFilter::filters() const {
   return unfiltered_ == 0 && !rules_.empty() && key_ != nullptr;
 }
 
+void ReaderKeyFilter::read_only(const StepNeeds& needs) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  needs_ = needs;
+}
+
 bool ReaderKeyFilter::evaluate(const SerializedPayload& payload, const FilterSampleInfo& /*sample_info*/,
                                const GUID_t& /*reader_guid*/) const {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (unfiltered_ > 0 || rules_.empty() || key_ == nullptr) {
+  const bool check_keys = unfiltered_ == 0 && !rules_.empty() && key_ != nullptr;
+  const bool check_steps = needs_ && !needs_->all() && steps_ != nullptr;
+  if (!check_keys && !check_steps) {
     return true;
   }
   // The type support's deserialize() takes a non-const payload (it records the encapsulation):
   // decode a copy, reused from sample to sample (no allocation once it has the largest size).
   scratch_.copy(&payload, false);
   if (!type_->deserialize(&scratch_, sample_)) {
+    if (side_ == Side::kWriter) {
+      return true;  // e.g. an instance's end (key only): the reader judges it
+    }
     dropped_.fetch_add(1, std::memory_order_relaxed);
     return false;  // counted as undecodable by the type support (GuardedType), as a take would
   }
+  if (check_keys && !takes_key()) {
+    return false;
+  }
+  if (check_steps) {
+    const SampleSteps steps = steps_(sample_);
+    if (!needs_->needs(steps.step, steps.next_step)) {
+      left_out_.fetch_add(1, std::memory_order_relaxed);
+      return false;
+    }
+  }
+  return true;
+}
+
+bool ReaderKeyFilter::takes_key() const {
   const std::uint64_t key = key_(sample_);
   for (const KeyFilter& rule : rules_) {
     if (rule.takes && rule.takes(key)) {
@@ -58,16 +85,23 @@ bool ReaderKeyFilter::evaluate(const SerializedPayload& payload, const FilterSam
   return false;
 }
 
+KeyFilterFactory::~KeyFilterFactory() {
+  for (ReaderKeyFilter* filter : writer_side_) {
+    delete filter;
+  }
+}
+
 void KeyFilterFactory::add(const std::string& expression, ReaderKeyFilter* filter) {
   std::lock_guard<std::mutex> lock(mutex_);
   filters_[expression] = filter;
 }
 
-ReturnCode_t KeyFilterFactory::create_content_filter(const char* filter_class_name, const char* /*type_name*/,
+ReturnCode_t KeyFilterFactory::create_content_filter(const char* filter_class_name, const char* type_name,
                                                      const dds::TopicDataType* /*data_type*/, const char* filter_expression,
                                                      const ParameterSeq& /*filter_parameters*/,
                                                      dds::IContentFilter*& filter_instance) {
-  if (filter_class_name == nullptr || class_name_ != filter_class_name) {
+  const bool steps_class = filter_class_name != nullptr && std::string(filter_class_name) == kStepClass;
+  if (filter_class_name == nullptr || (class_name_ != filter_class_name && !steps_class)) {
     return ReturnCode_t::RETCODE_BAD_PARAMETER;
   }
   if (filter_expression == nullptr) {
@@ -76,16 +110,36 @@ ReturnCode_t KeyFilterFactory::create_content_filter(const char* filter_class_na
   }
   std::lock_guard<std::mutex> lock(mutex_);
   auto it = filters_.find(filter_expression);
-  if (it == filters_.end()) {
+  if (it != filters_.end()) {
+    filter_instance = it->second;  // one of this participant's readers
+    return ReturnCode_t::RETCODE_OK;
+  }
+  if (!steps_class || type_name == nullptr) {
     return ReturnCode_t::RETCODE_BAD_PARAMETER;
   }
-  filter_instance = it->second;
+  // A remote reader's: evaluated by a writer of this participant. An expression that is not
+  // ours (another program using the class name) is refused: Fast DDS then filters nothing for it.
+  const std::string expression(filter_expression);
+  const std::optional<StepNeeds> needs = StepNeeds::parse(expression.substr(0, expression.find('|')));
+  dds::TypeSupport type = types_ ? types_(type_name) : dds::TypeSupport();
+  if (!needs || type.empty()) {
+    return ReturnCode_t::RETCODE_BAD_PARAMETER;
+  }
+  auto filter = std::make_unique<ReaderKeyFilter>(type, type_name, ReaderKeyFilter::Side::kWriter);
+  filter->read_only(*needs);
+  filter_instance = filter.get();
+  writer_side_.insert(filter.release());
   return ReturnCode_t::RETCODE_OK;
 }
 
 ReturnCode_t KeyFilterFactory::delete_content_filter(const char* /*filter_class_name*/,
-                                                     dds::IContentFilter* /*filter_instance*/) {
-  return ReturnCode_t::RETCODE_OK;  // the bus owns its filters
+                                                     dds::IContentFilter* filter_instance) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  auto* filter = static_cast<ReaderKeyFilter*>(filter_instance);
+  if (writer_side_.erase(filter) > 0) {
+    delete filter;
+  }
+  return ReturnCode_t::RETCODE_OK;  // the bus owns its readers' filters
 }
 
 }  // namespace robodds

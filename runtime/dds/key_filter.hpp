@@ -19,25 +19,41 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <mutex>
+#include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "runtime/bus/bus.hpp"
 #include "runtime/bus/sample_key.hpp"
+#include "runtime/bus/step_needs.hpp"
 
 namespace robodds {
 
-/// The filter of one reader: the key rules of its subscribers. A sample passes when a subscriber
-/// has no rule (it takes every key) or a rule takes its key; otherwise every subscriber's
-/// `refused` is called and the sample is dropped. A payload that does not decode is dropped too
-/// (the type support counts it as undecodable, as a take would).
-class ReaderKeyFilter : public eprosima::fastdds::dds::IContentFilter {
+/// The filter of one reader: the key rules of its subscribers, and the steps they read
+/// (StepNeeds: newest-only lockstep inputs). A sample passes when a subscriber has no rule (it
+/// takes every key) or a rule takes its key, otherwise every subscriber's `refused` is called
+/// and the sample is dropped; then, with read_only(), when it is needed at a read step. A payload
+/// that does not decode is dropped too (the type support counts it as undecodable, as a take would).
+///
+/// The steps, unlike the key rules, are also evaluated by the writers (class
+/// KeyFilterFactory::kStepClass, registered by every robodds participant; the expression names
+/// them): a robodds writer then sends the reader only the samples it needs, and a GAP for the
+/// others. Fast DDS' reader trusts the writer's verdict (the filter's signature in the sample's
+/// inline QoS) and evaluates nothing, keys included: a robodds writer writes only the keys of its
+/// run's robots, and any other writer's samples (which carry no verdict) still meet both checks here.
+class ReaderKeyFilter final : public eprosima::fastdds::dds::IContentFilter {
  public:
+  /// Where the filter is evaluated: by the reader (every check, a payload that does not decode
+  /// dropped), or for a remote reader by a writer of this participant (steps only; a payload that
+  /// does not decode passes: the reader judges it).
+  enum class Side { kReader, kWriter };
   /// `type`: the registered type support of the reader's topic (decodes the payload);
-  /// `type_name`: its IDL name (the instance key function).
-  ReaderKeyFilter(eprosima::fastdds::dds::TypeSupport type, const std::string& type_name);
+  /// `type_name`: its IDL name (the instance key and header step functions).
+  ReaderKeyFilter(eprosima::fastdds::dds::TypeSupport type, const std::string& type_name, Side side = Side::kReader);
   ~ReaderKeyFilter();
   ReaderKeyFilter(const ReaderKeyFilter&) = delete;
   ReaderKeyFilter& operator=(const ReaderKeyFilter&) = delete;
@@ -48,6 +64,8 @@ class ReaderKeyFilter : public eprosima::fastdds::dds::IContentFilter {
   void add_unfiltered();
   /// Whether any subscriber has a key rule and none takes every key (a content filter is worth it).
   bool filters() const;
+  /// From now on only samples `needs` names pass (every subscriber reads only those).
+  void read_only(const StepNeeds& needs);
 
   /// Fast DDS calls it per received sample, under the RTPS reader's lock (one call at a time per
   /// reader), before the history sees the sample.
@@ -56,25 +74,44 @@ class ReaderKeyFilter : public eprosima::fastdds::dds::IContentFilter {
 
   /// Samples dropped so far (refused keys and undecodable payloads).
   std::uint64_t dropped() const { return dropped_.load(std::memory_order_relaxed); }
+  /// Samples left out so far because no read step needs them.
+  std::uint64_t left_out() const { return left_out_.load(std::memory_order_relaxed); }
 
  private:
+  /// Whether a rule takes the decoded sample's key; calls every `refused` when none does. Call with mutex_ held.
+  bool takes_key() const;
+
   eprosima::fastdds::dds::TypeSupport type_;
   SampleKeyFunction key_;
+  SampleStepsFunction steps_;
+  Side side_;
   mutable std::mutex mutex_;  // guards the members below; never held while Fast DDS is called
   std::vector<KeyFilter> rules_;
   std::size_t unfiltered_ = 0;
+  std::optional<StepNeeds> needs_;  // read_only()
   mutable SerializedPayload scratch_;  // a copy of the payload: the type support writes into it
   void* sample_ = nullptr;             // the decoded sample
   mutable std::atomic<std::uint64_t> dropped_{0};
+  mutable std::atomic<std::uint64_t> left_out_{0};
 };
 
-/// The content filter factory of one participant: hands Fast DDS the ReaderKeyFilter registered
-/// under a filter expression (the topic name). Its class name is unique per participant
-/// (class_name()), so no other participant can evaluate it writer-side: every sample is judged
-/// by the reader's own filter.
+/// The content filter factory of one participant, for two filter classes:
+/// - class_name(), unique per participant: the readers' key filters. No other participant knows
+///   it, so none evaluates it writer-side: every sample is judged by the reader's own filter.
+/// - kStepClass, the same in every robodds participant: readers whose subscribers read only some
+///   steps. Its expression starts with StepNeeds::text() (then '|' and what makes it unique);
+///   a writer of this participant matched with such a remote reader evaluates the steps
+///   (ReaderKeyFilter::Side::kWriter, made here and owned by this factory).
+/// Registered under both names (register_content_filter_factory).
 class KeyFilterFactory : public eprosima::fastdds::dds::IContentFilterFactory {
  public:
-  explicit KeyFilterFactory(std::string class_name) : class_name_(std::move(class_name)) {}
+  static constexpr const char* kStepClass = "robodds.steps";
+  /// `types`: the type support registered under an IDL type name (a null one when none is).
+  KeyFilterFactory(std::string class_name, std::function<eprosima::fastdds::dds::TypeSupport(const std::string&)> types)
+      : class_name_(std::move(class_name)), types_(std::move(types)) {}
+  ~KeyFilterFactory();
+  KeyFilterFactory(const KeyFilterFactory&) = delete;
+  KeyFilterFactory& operator=(const KeyFilterFactory&) = delete;
   const std::string& class_name() const { return class_name_; }
   /// `filter` (owned by the caller, alive as long as the participant) for `expression`.
   void add(const std::string& expression, ReaderKeyFilter* filter);
@@ -88,8 +125,10 @@ class KeyFilterFactory : public eprosima::fastdds::dds::IContentFilterFactory {
 
  private:
   std::string class_name_;
+  std::function<eprosima::fastdds::dds::TypeSupport(const std::string&)> types_;
   std::mutex mutex_;
   std::map<std::string, ReaderKeyFilter*> filters_;
+  std::set<ReaderKeyFilter*> writer_side_;  // made by create_content_filter(), deleted by delete_content_filter()
 };
 
 }  // namespace robodds

@@ -37,6 +37,7 @@ class Input : public InputBase {
 
   /// Readable samples of `key` not taken before, in step order.
   std::vector<Msg> take_new(std::uint64_t key) {
+    require_every_sample("take_new");
     std::vector<Msg> out;
     std::lock_guard<std::mutex> lock(mutex_);
     const std::size_t i = instance_index_.find(key);
@@ -48,6 +49,7 @@ class Input : public InputBase {
 
   /// take_new() of each of `keys` in turn, appended to `out`: one lock for all (a recorder's step).
   void take_new(const std::vector<std::uint64_t>& keys, std::vector<Msg>& out) {
+    require_every_sample("take_new");
     std::lock_guard<std::mutex> lock(mutex_);
     if (nothing_readable()) {
       return;
@@ -80,6 +82,7 @@ class Input : public InputBase {
 
   /// take_new_of_robot() of each of `robot_ids` in turn, appended to `out`: one lock for all.
   void take_new_of_robots(const std::vector<std::uint64_t>& robot_ids, std::vector<Msg>& out) {
+    require_every_sample("take_new_of_robots");
     std::lock_guard<std::mutex> lock(mutex_);
     if (nothing_readable()) {
       return;

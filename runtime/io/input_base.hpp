@@ -17,6 +17,7 @@
 #include "runtime/base/error.hpp"
 #include "runtime/bus/bus.hpp"
 #include "runtime/bus/key_index.hpp"
+#include "runtime/bus/step_needs.hpp"
 #include "runtime/io/input_counts.hpp"
 #include "runtime/io/notifier.hpp"
 #include "runtime/io/step_state.hpp"
@@ -50,6 +51,23 @@ class InputBase {
   /// Lockstep: reads samples up to `delay_steps()` steps old, and waits for some streams (gated).
   std::uint64_t delay_steps() const { return options_.delay_steps; }
   bool gated() const { return !options_.ignore_step && !options_.expected.empty(); }
+  /// Subscription::newest_only(): the component reads only the newest sample at its due steps.
+  bool newest_only() const { return options_.newest_only && !options_.ignore_step; }
+  /// Lockstep, newest_only(): the samples this input will read (its component's due and
+  /// checkpoint steps, its delay), set by the host before the bus starts. The bus may then leave
+  /// out the others (ReaderHandle::set_step_needs: the reader attach_reader() gave), and a
+  /// sample skipping steps breaks the chain only when it skips one of these (check_chain()).
+  void read_only(const StepNeeds& needs) {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      read_steps_ = needs;
+    }
+    if (reader_ != nullptr) {
+      reader_->set_step_needs(needs);
+    }
+  }
+  /// The bus subscription that feeds this input (read_only() tells it what to send).
+  void attach_reader(ReaderHandle* reader) { reader_ = reader; }
   /// The instances (by_robot(): robot ids) needed at every due step, in key order.
   const std::vector<std::uint64_t>& expected() const { return options_.expected; }
   /// Its streams are robots (Subscription::robot_streams): expected() holds robot ids.
@@ -179,9 +197,20 @@ class InputBase {
   /// (e.g. dropped, and gone from a writer history too short to resend it). That would change the
   /// results silently, so it ends the run (ready() throws), naming the stream and the steps.
   /// Call with mutex_ held, before `p` takes the sample's step.
+  /// With read_only(), a sample may skip steps whose samples were never needed (left out by
+  /// the writer): only a skipped read step is a break.
   void check_chain(const Progress& p, const std::string& label, std::uint64_t step) {
-    if (state_->mode == TimeMode::kLockstep && !options_.ignore_step && p.seen && step > p.next_step && lockstep_error_.empty()) {
+    if (state_->mode == TimeMode::kLockstep && !options_.ignore_step && p.seen && step > p.next_step && lockstep_error_.empty() &&
+        (!read_steps_ || read_steps_->first_read_step_from(p.next_step) < step)) {
       note_lost_samples(p, label, step);
+    }
+  }
+  /// take_new() and its kin read every sample: refused on a newest_only() input (ConfigError
+  /// naming the topic and the component), which may not get them.
+  void require_every_sample(const char* read) const {
+    if (options_.newest_only) {
+      throw ConfigError(owner_ + ": " + read + "() on " + topic_ +
+                        ", which it subscribed newest_only(): read it with latest(), or subscribe without newest_only()");
     }
   }
   /// check_chain() found a break: records and logs the error ready() throws. Call with mutex_ held.
@@ -325,6 +354,8 @@ class InputBase {
   std::string owner_;
   const StepState* state_;
   Notifier* notifier_;
+  ReaderHandle* reader_ = nullptr;         // attach_reader(); owned by the component's context
+  std::optional<StepNeeds> read_steps_;    // read_only(); guarded by mutex_
   detail::InputOptions options_;
   mutable std::mutex mutex_;
   // Per sample, one O(1) lookup (key_index.hpp), whatever the number of instances: ordered maps

@@ -51,12 +51,24 @@ class Subscription {
   const std::vector<std::uint64_t>& expected() const { return expected_; }
   std::uint64_t delay_steps() const { return delay_steps_; }
   bool by_robot() const { return by_robot_; }
+  bool reads_newest_only() const { return newest_only_; }
+
+  /// Reads only the newest sample of each instance at its due steps (Input::latest(), never
+  /// take_new(), which then throws): in lockstep across processes the writers send it only the
+  /// samples it will read (runtime/bus/step_needs.hpp), e.g. one state in ten for a 10 Hz sensor
+  /// of a 100 Hz plant. Not with robot_streams().
+  Subscription newest_only() const {
+    Subscription s = *this;
+    s.newest_only_ = true;
+    return s;
+  }
 
  private:
   Subscription() = default;
   std::vector<std::uint64_t> expected_;
   std::uint64_t delay_steps_ = 0;
   bool by_robot_ = false;
+  bool newest_only_ = false;
 };
 
 namespace detail {
@@ -74,6 +86,8 @@ struct InputOptions {
   /// Subscription::robot_streams(): `expected` holds robot ids, and readiness and producers are
   /// tracked per robot id (the key's upper 32 bits), whatever the second key part.
   bool by_robot = false;
+  /// Subscription::newest_only(): the component reads only latest() at its due steps.
+  bool newest_only = false;
   /// The topic's key field names (from the topic catalog), used in error messages.
   std::string key_names;
   /// Labels for instances whose key cannot be spelled from key_names (e.g. hashed strings).

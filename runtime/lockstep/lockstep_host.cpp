@@ -133,6 +133,15 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
   checkpoint_steps_ = run.mode == TimeMode::kLockstep && !run.single_process ? history_checkpoints(run, options, slots)
                                                                               : std::vector<std::uint64_t>(slots.size(), 0);
   checkpoint_pending_.assign(slots.size(), false);
+  // Newest-only inputs read at their component's due and checkpoint steps only: across processes
+  // the writers leave the other samples out (before the bus starts: the readers' filters).
+  for (std::size_t i = 0; i < slots.size(); ++i) {
+    for (const auto& input : slots[i]->context->inputs()) {
+      if (input->newest_only()) {
+        input->read_only(StepNeeds::of_component(slots[i]->state.period_steps, checkpoint_steps_[i], input->delay_steps()));
+      }
+    }
+  }
 }
 
 void LockstepHost::begin(Clock::time_point start) {

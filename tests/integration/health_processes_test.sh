@@ -15,9 +15,15 @@ hosts = s["hosts"]
 assert set(hosts) == {"control", "sim", "sensing", "evaluation"}, hosts
 for member, h in hosts.items():
     assert h["ticks"] > 0 and h["missed_steps"] >= 0 and "worst_lateness_s" in h, (member, h)
+inputs = s["inputs"]
 if mode == "lockstep":
     assert all(h["ticks"] == 101 and h["missed_steps"] == 0 for h in hosts.values()), hosts
-inputs = s["inputs"]
+    # The position sensor (10 Hz, newest_only) reads plant/state at steps 0, 10, ..., 100: the
+    # plant's writer sends its process only those 11 states per robot and leaves out the other
+    # 90 (a content filter Fast DDS evaluates writer-side; 303 arrive without it).
+    accepted = inputs["position_sensor"]["plant/state"]["accepted"]
+    assert accepted == 3 * 11, f"position_sensor accepted {accepted} plant/state samples, expected 33 (3 robots x 11 read steps)"
+
 assert inputs["plant"]["plant/cmd"]["accepted"] > 0, inputs           # in the sim process
 assert inputs["position_sensor"]["plant/state"]["accepted"] > 0, inputs  # in the sensing process
 assert inputs["plant"]["plant/cmd"]["rejected"] == {}, inputs

@@ -21,7 +21,7 @@ class PositionSensorNode : public Component {
     for (const RobotSpec& robot : ctx.robots()) {
       engines_.emplace(robot.id, RandomEngine(ctx.seed_for("robot" + std::to_string(robot.id))));
     }
-    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(ctx.robot_keys()));
+    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(ctx.robot_keys()).newest_only());
     out_ = &ctx.advertise<idl::PositionMeasurement>("sensor/position");
   }
 

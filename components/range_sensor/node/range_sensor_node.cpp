@@ -40,7 +40,7 @@ class RangeSensorNode : public Component {
       const std::string id = "robot" + std::to_string(robot.id);
       streams_.emplace(robot.id, RobotStream(RandomEngine(ctx.seed_for(id)), RandomEngine(ctx.seed_for(id + "/dropout"))));
     }
-    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(ctx.robot_keys()));
+    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(ctx.robot_keys()).newest_only());
     tasks_ = &ctx.subscribe<idl::TargetAssignment>("mission/target", Subscription::instances(ctx.robot_keys()));
     out_ = &ctx.advertise<idl::RangeMeasurement>("sensor/range");
   }

@@ -58,7 +58,7 @@ class UwbSensorNode : public Component {
         }
       }
     }
-    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(everyone));
+    truth_ = &ctx.subscribe<idl::RobotState>("plant/state", Subscription::instances(everyone).newest_only());
     out_ = &ctx.advertise<idl::UwbRanges>("sensor/uwb");
     std::vector<std::uint64_t> keys;  // lockstep publishes every direction at every due step
     for (const auto& [direction, streams] : directions_) {

@@ -24,5 +24,16 @@ TEST(SampleKeyFunction, IsTheInputsInstanceKeyOfTheNamedType) {
 
 TEST(SampleKeyFunction, NullForAnUnknownType) { EXPECT_EQ(sample_key_function("robodds::idl::NoSuchType"), nullptr); }
 
+TEST(SampleStepsFunction, IsTheHeadersStepAndNextStep) {
+  const SampleStepsFunction steps = sample_steps_function("robodds::idl::RobotState");
+  ASSERT_NE(steps, nullptr);
+  idl::RobotState state;
+  state.header().step(40);
+  state.header().next_step(50);
+  EXPECT_EQ(steps(&state).step, 40u);
+  EXPECT_EQ(steps(&state).next_step, 50u);
+  EXPECT_EQ(sample_steps_function("robodds::idl::NoSuchType"), nullptr);
+}
+
 }  // namespace
 }  // namespace robodds

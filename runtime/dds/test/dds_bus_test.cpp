@@ -17,7 +17,11 @@
 #include <memory>
 #include <mutex>
 #include <set>
+#include <optional>
 #include <thread>
+#include <vector>
+
+#include <fastrtps/xmlparser/XMLProfileManager.h>
 
 #include "robodds/idl/robodds.h"
 #include "runtime/dds/type_support.hpp"
@@ -196,6 +200,114 @@ TEST(FastDdsBus, AnEndedInstanceEmptiesTheWritersHistoryOnceEveryReaderHasIt) {
   EXPECT_EQ(after.count(1), 0u) << "the ended instance's samples left the history";
   EXPECT_EQ(after.count(2), 1u) << "only robot 2's sample written after the emptying is kept";
   reader_bus->close_readers();
+}
+
+}  // namespace
+}  // namespace robodds
+
+namespace robodds {
+namespace {
+
+/// Robot 1's RobotState of steps 0..99 (each announcing the next step) written on `topic` by one
+/// bus and read by another bus's subscribers (domain 176; a topic per call, so that no reader of
+/// an earlier call counts as matched), each with the step needs given (nullopt: every
+/// sample). Returns the steps each subscriber got, once `expected` samples arrived in all (or 10 s)
+/// and 0.3 s more, and the reader bus' samples_left_out_on_arrival().
+struct StepsSeen {
+  std::vector<std::vector<std::uint64_t>> by_subscriber;
+  std::uint64_t left_out_on_arrival = 0;
+};
+StepsSeen steps_seen(const char* topic, const std::vector<std::optional<StepNeeds>>& subscribers, std::size_t expected) {
+  // Through the transport, as between processes: Fast DDS filters writer-side only for a reader
+  // of another process (DataWriterImpl: never between participants with intra-process delivery).
+  eprosima::fastrtps::LibrarySettingsAttributes settings;
+  settings.intraprocess_delivery = eprosima::fastrtps::INTRAPROCESS_OFF;
+  eprosima::fastrtps::xmlparser::XMLProfileManager::library_settings(settings);
+  DdsOptions options;
+  options.domain_id = 176;
+  options.qos_files = {std::string(ROBODDS_SOURCE_DIR) + "/deploy/qos/robodds_qos.xml"};
+  const std::string type_name = "robodds::idl::RobotState";
+  struct Shared {
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::vector<std::vector<std::uint64_t>> steps;
+    std::size_t samples = 0;
+  };
+  auto seen = std::make_shared<Shared>();
+  seen->steps.resize(subscribers.size());
+  options.participant_name = "steps_reader";
+  auto reader_bus = make_dds_bus(options);
+  for (std::size_t i = 0; i < subscribers.size(); ++i) {
+    auto handle = reader_bus->reader(topic, type_name, "lockstep", [seen, i](const void* p, const SampleMeta&) {
+      std::lock_guard<std::mutex> lock(seen->mutex);
+      seen->steps[i].push_back(static_cast<const idl::RobotState*>(p)->header().step());
+      ++seen->samples;
+      seen->changed.notify_all();
+    }, nullptr);
+    if (subscribers[i]) {
+      handle->set_step_needs(*subscribers[i]);
+    }
+  }
+  reader_bus->start();
+  options.participant_name = "steps_writer";
+  auto writer_bus = make_dds_bus(options);
+  auto writer = writer_bus->writer(topic, type_name, "lockstep");
+  // Matched first, as a lockstep host is before its first step: a sample written before the
+  // writer knows the reader carries no verdict for it (the reader's own filter judges it).
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (!writer->has_matched_readers() && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_TRUE(writer->has_matched_readers()) << "the reader did not match within 10 s";
+  for (std::uint64_t step = 0; step < 100; ++step) {
+    idl::RobotState sample;
+    sample.robot_id(1);
+    sample.header().step(step);
+    sample.header().next_step(step + 1);
+    writer->write(&sample);
+  }
+  std::unique_lock<std::mutex> lock(seen->mutex);
+  seen->changed.wait_for(lock, std::chrono::seconds(10), [&] { return seen->samples >= expected; });
+  lock.unlock();
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));  // nothing more may come
+  lock.lock();
+  StepsSeen result{seen->steps, reader_bus->samples_left_out_on_arrival()};
+  lock.unlock();
+  reader_bus->close_readers();
+  return result;
+}
+
+std::vector<std::uint64_t> steps_from_to(std::uint64_t first, std::uint64_t end, std::uint64_t stride) {
+  std::vector<std::uint64_t> steps;
+  for (std::uint64_t s = first; s < end; s += stride) {
+    steps.push_back(s);
+  }
+  return steps;
+}
+
+TEST(FastDdsBus, TheWriterSendsANewestOnlyReaderOnlyTheStepsItReads) {
+  const StepsSeen seen = steps_seen("plant/state", {StepNeeds::of_component(10, 0, 1)}, 10);
+  ASSERT_EQ(seen.by_subscriber.size(), 1u);
+  EXPECT_EQ(seen.by_subscriber[0], steps_from_to(9, 100, 10)) << "the states of steps 9, 19, ..., 99, in order";
+  EXPECT_EQ(seen.left_out_on_arrival, 0u) << "a robodds writer leaves the other 90 out itself: none reached the reader";
+}
+
+TEST(FastDdsBus, AReaderGetsEverySampleAnyOfItsSubscribersReads) {
+  StepNeeds ten = StepNeeds::of_component(10, 0, 0);
+  StepNeeds four = StepNeeds::of_component(4, 0, 0);
+  StepNeeds both = ten;
+  both.add(four);
+  std::vector<std::uint64_t> union_steps;
+  for (std::uint64_t s = 0; s < 100; ++s) {
+    if (both.needs(s, s + 1)) union_steps.push_back(s);
+  }
+  const StepsSeen two = steps_seen("test/steps_union", {ten, four}, 2 * union_steps.size());
+  EXPECT_EQ(two.by_subscriber[0], union_steps) << "one DDS reader, one stream: the union of the needs";
+  EXPECT_EQ(two.by_subscriber[1], union_steps);
+
+  const StepsSeen with_all = steps_seen("test/steps_all", {ten, std::nullopt}, 200);
+  EXPECT_EQ(with_all.by_subscriber[0], steps_from_to(0, 100, 1)) << "a subscriber that reads every sample gets every sample";
+  EXPECT_EQ(with_all.by_subscriber[1], steps_from_to(0, 100, 1));
 }
 
 }  // namespace

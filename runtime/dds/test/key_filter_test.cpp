@@ -20,9 +20,12 @@ namespace dds = eprosima::fastdds::dds;
 
 const char* const kType = "robodds::idl::VelocityCommand";
 
-SerializedPayload_t command_of(const dds::TypeSupport& type, std::uint32_t robot) {
+SerializedPayload_t command_of(const dds::TypeSupport& type, std::uint32_t robot, std::uint64_t step = 0,
+                               std::uint64_t next_step = 1) {
   idl::VelocityCommand sample;
   sample.robot_id(robot);
+  sample.header().step(step);
+  sample.header().next_step(next_step);
   SerializedPayload_t payload(type->m_typeSize);
   EXPECT_TRUE(type->serialize(&sample, &payload));
   return payload;
@@ -93,7 +96,7 @@ TEST(ReaderKeyFilter, APayloadThatDoesNotDecodeIsDroppedAndCountedAsUndecodable)
 TEST(KeyFilterFactory, HandsOutTheFilterOfAnExpressionOfItsOwnClassOnly) {
   dds::TypeSupport type(make_type_support(kType));
   ReaderKeyFilter filter(type, kType);
-  KeyFilterFactory factory("robodds.keys.test");
+  KeyFilterFactory factory("robodds.keys.test", nullptr);
   factory.add("plant/cmd|keys|command", &filter);
   dds::LoanableSequence<const char*> none;
   dds::IContentFilter* made = nullptr;
@@ -108,6 +111,64 @@ TEST(KeyFilterFactory, HandsOutTheFilterOfAnExpressionOfItsOwnClassOnly) {
             ReturnCode_t::RETCODE_OK);
   EXPECT_EQ(other, nullptr);
   EXPECT_EQ(factory.delete_content_filter("robodds.keys.test", made), ReturnCode_t::RETCODE_OK);
+}
+
+TEST(ReaderKeyFilter, WithReadStepsOnlyTheSamplesOfThoseStepsPassAfterTheKeys) {
+  dds::TypeSupport type(make_type_support(kType));
+  ReaderKeyFilter filter(type, kType);
+  Subscriber a;
+  filter.add(a.filter());
+  filter.read_only(StepNeeds::of_component(10, 0, 0));
+  EXPECT_TRUE(passes(filter, command_of(type, 1, 20, 21)));
+  EXPECT_FALSE(passes(filter, command_of(type, 1, 21, 22)));
+  EXPECT_TRUE(passes(filter, command_of(type, 2, 25, 31))) << "the newest at step 30";
+  EXPECT_FALSE(passes(filter, command_of(type, 7, 20, 21))) << "a key no subscriber takes, whatever its step";
+  EXPECT_EQ(a.refused, (std::vector<std::uint64_t>{7}));
+  EXPECT_EQ(filter.left_out(), 1u);
+  EXPECT_EQ(filter.dropped(), 1u);
+}
+
+TEST(ReaderKeyFilter, ReadStepsAloneFilterEveryKeysSamples) {
+  dds::TypeSupport type(make_type_support(kType));
+  ReaderKeyFilter filter(type, kType);
+  filter.add_unfiltered();
+  filter.read_only(StepNeeds::of_component(5, 0, 1));  // steps 4, 9, 14, ...
+  EXPECT_TRUE(passes(filter, command_of(type, 20000, 9, 10)));
+  EXPECT_FALSE(passes(filter, command_of(type, 20000, 10, 11)));
+  filter.read_only(StepNeeds{});
+  EXPECT_TRUE(passes(filter, command_of(type, 20000, 10, 11))) << "every step again";
+}
+
+TEST(KeyFilterFactory, MakesAWriterSideStepFilterForARemoteReadersExpression) {
+  dds::TypeSupport type(make_type_support(kType));
+  KeyFilterFactory factory("robodds.keys.test", [type](const std::string& name) {
+    return name == kType ? type : dds::TypeSupport();
+  });
+  dds::LoanableSequence<const char*> none;
+  using eprosima::fastrtps::types::ReturnCode_t;
+  dds::IContentFilter* made = nullptr;
+  ASSERT_EQ(factory.create_content_filter(KeyFilterFactory::kStepClass, kType, nullptr,
+                                          "steps 10:0|plant/cmd|lockstep|01.0f.aa", none, made),
+            ReturnCode_t::RETCODE_OK);
+  ASSERT_NE(made, nullptr);
+  const auto& writer_side = *static_cast<ReaderKeyFilter*>(made);
+  EXPECT_TRUE(passes(writer_side, command_of(type, 20000, 30, 31))) << "keys are the reader's business";
+  EXPECT_FALSE(passes(writer_side, command_of(type, 1, 31, 32)));
+  SerializedPayload_t empty(0);  // e.g. an instance's end, key only
+  EXPECT_TRUE(passes(writer_side, empty)) << "what a writer cannot decode, the reader judges";
+  EXPECT_EQ(factory.delete_content_filter(KeyFilterFactory::kStepClass, made), ReturnCode_t::RETCODE_OK);
+
+  for (const char* bad : {"steps 10:10|x", "keys|plant/cmd", "", "steps 0:0"}) {
+    dds::IContentFilter* refused = nullptr;
+    EXPECT_NE(factory.create_content_filter(KeyFilterFactory::kStepClass, kType, nullptr, bad, none, refused),
+              ReturnCode_t::RETCODE_OK)
+        << bad;
+    EXPECT_EQ(refused, nullptr) << bad;
+  }
+  dds::IContentFilter* unknown_type = nullptr;
+  EXPECT_NE(factory.create_content_filter(KeyFilterFactory::kStepClass, "robodds::idl::NoSuchType", nullptr, "steps 10:0|x",
+                                          none, unknown_type),
+            ReturnCode_t::RETCODE_OK);
 }
 
 }  // namespace

@@ -153,6 +153,44 @@ TEST_F(InputTest, LockstepLostSampleEndsTheRun) {
   EXPECT_TRUE(live.lockstep_error().empty());
 }
 
+// A newest-only input reads at its due steps only: its writers may leave out the samples of the
+// steps between (across processes they do). Skipping those is no loss; skipping a read step is.
+TEST_F(InputTest, ANewestOnlyInputLosesASampleOnlyWhenItSkipsAReadStep) {
+  detail::InputOptions options = robot_one(1);
+  options.newest_only = true;
+  Input<idl::RobotState> input("plant/state", "test", &clock, &notifier, options);
+  ASSERT_TRUE(input.newest_only());
+  input.read_only(StepNeeds::of_component(10, 0, 1));  // due at 10, 20, ...: reads steps 9, 19, ...
+  input.on_sample(state(1, 9, 10, 9.0));
+  EXPECT_TRUE(input.ready(10, nullptr));
+  input.on_sample(state(1, 19, 20, 19.0));  // steps 10..18 left out: none of them is read
+  EXPECT_TRUE(input.ready(20, nullptr));
+  EXPECT_TRUE(input.lockstep_error().empty());
+  clock.step = 20;
+  ASSERT_NE(input.latest(1), nullptr);
+  EXPECT_EQ(input.latest(1)->x(), 19.0);
+  input.on_sample(state(1, 30, 31, 30.0));  // step 29, read at 30, never came
+  try {
+    input.ready(30, nullptr);
+    FAIL() << "expected a RunError";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("at step 20, came step 30"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(InputTest, ANewestOnlyInputRefusesTakeNew) {
+  detail::InputOptions options = robot_one(0);
+  options.newest_only = true;
+  Input<idl::RobotState> input("plant/state", "sensor", &clock, &notifier, options);
+  input.on_sample(state(1, 0, 1, 1.0));
+  clock.step = 0;
+  EXPECT_THROW(input.take_new(1), ConfigError);
+  std::vector<idl::RobotState> out;
+  EXPECT_THROW(input.take_new(std::vector<std::uint64_t>{1}, out), ConfigError);
+  EXPECT_THROW(input.take_new_of_robot(1), ConfigError);
+  EXPECT_NE(input.latest(1), nullptr);
+}
+
 TEST_F(InputTest, ReadsOnlySamplesUpToTheCurrentStepMinusDelay) {
   detail::InputOptions options;
   options.expected = {1};
