@@ -6,34 +6,37 @@ namespace robodds {
 namespace {
 
 template <class T>
-std::uint64_t key_of(const void* sample) {
-  return idl::instance_key(*static_cast<const T*>(sample));
-}
+struct KeyOf {
+  static std::uint64_t get(const void* sample) { return idl::instance_key(*static_cast<const T*>(sample)); }
+};
 
 template <class T>
-SampleSteps steps_of(const void* sample) {
-  const auto& header = static_cast<const T*>(sample)->header();
-  return SampleSteps{header.step(), header.next_step()};
+struct StepsOf {
+  static SampleSteps get(const void* sample) {
+    const auto& header = static_cast<const T*>(sample)->header();
+    return SampleSteps{header.step(), header.next_step()};
+  }
+};
+
+/// `Of<T>::get` for the IDL type T named `type_name`, or nullptr when no IDL type has that name.
+template <template <class> class Of, class Function>
+Function for_type(const std::string& type_name) {
+  Function function = nullptr;
+  idl::dispatch_type(type_name, [&function](auto tag) {
+    using T = typename decltype(tag)::type;
+    function = &Of<T>::get;
+  });
+  return function;
 }
 
 }  // namespace
 
 SampleKeyFunction sample_key_function(const std::string& type_name) {
-  SampleKeyFunction key = nullptr;
-  idl::dispatch_type(type_name, [&key](auto tag) {
-    using T = typename decltype(tag)::type;
-    key = &key_of<T>;
-  });
-  return key;
+  return for_type<KeyOf, SampleKeyFunction>(type_name);
 }
 
 SampleStepsFunction sample_steps_function(const std::string& type_name) {
-  SampleStepsFunction steps = nullptr;
-  idl::dispatch_type(type_name, [&steps](auto tag) {
-    using T = typename decltype(tag)::type;
-    steps = &steps_of<T>;
-  });
-  return steps;
+  return for_type<StepsOf, SampleStepsFunction>(type_name);
 }
 
 }  // namespace robodds
