@@ -5,6 +5,7 @@
 #include <atomic>
 
 #include "runtime/dds/qos_files.hpp"
+#include "runtime/dds/send_batch.hpp"
 #include "runtime/dds/thread_id_cache.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
@@ -50,7 +51,9 @@ ParticipantPtr create_participant(int domain_id, const dds::DomainParticipantQos
   }();
   (void)thread_id_cache_logged;
   take_dds_errors();  // only this creation's
-  ParticipantPtr participant(dds::DomainParticipantFactory::get_instance()->create_participant(domain_id, qos, listener, mask));
+  dds::DomainParticipantQos batching = qos;
+  batching.transport().user_transports = batching_transports(qos.transport().user_transports);
+  ParticipantPtr participant(dds::DomainParticipantFactory::get_instance()->create_participant(domain_id, batching, listener, mask));
   if (participant == nullptr) {
     const std::string reasons = take_dds_errors();
     throw RunError("could not create a DDS participant on domain " + std::to_string(domain_id) + " with profile '" +
