@@ -43,6 +43,7 @@ void ParticipantDeleter::operator()(dds::DomainParticipant* participant) const {
   if (batches.batches_sent > 0 || batches.malformed_received > 0) {
     log::debug("dds", "send batches so far in this process: " + std::to_string(batches.batches_sent) + " sent with " +
                           std::to_string(batches.messages_batched) + " RTPS messages, " +
+                          std::to_string(batches.messages_not_held) + " messages sent at once inside batches, " +
                           std::to_string(batches.malformed_received) + " malformed received");
   }
 }

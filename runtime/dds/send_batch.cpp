@@ -42,6 +42,7 @@ constexpr std::chrono::milliseconds kFlushBlocking{1000};
 
 std::atomic<std::uint64_t> g_batches_sent{0};
 std::atomic<std::uint64_t> g_messages_batched{0};
+std::atomic<std::uint64_t> g_messages_not_held{0};
 std::atomic<std::uint64_t> g_malformed{0};
 
 std::size_t padded(std::size_t n) { return (n + 3U) & ~std::size_t{3}; }
@@ -206,6 +207,7 @@ class BatchingTransport : public rtps::ChainingTransport {
       group.checked_generation = generation;
     }
     if (!group.to_robodds || kOverheadBytes + padded(send_buffer_size) > limit_) {
+      g_messages_not_held.fetch_add(1, std::memory_order_relaxed);
       send_held(group);
       VectorLocators begin(group.destinations.cbegin());
       VectorLocators end(group.destinations.cend());
@@ -247,23 +249,32 @@ class BatchingTransport : public rtps::ChainingTransport {
     }
   }
 
-  /// Sends `group`'s batch, if any, and empties it (keeping its capacity). The caller made sure
-  /// that this transport and the group's sender are alive.
+  /// Sends `group`'s batch, if any, and empties it (keeping its capacity); a single message leaves
+  /// as it is (no envelope to add and split). The caller made sure that this transport and the
+  /// group's sender are alive.
   void send_held(HeldGroup& group) {
     if (group.bytes.empty()) {
       return;
     }
-    put_length(group.bytes, 0);
-    group.bytes.resize(group.bytes.size() + kTrailerBytes, 0);
+    const octet* data = group.bytes.data();
+    std::size_t size = group.bytes.size();
+    if (group.messages == 1) {
+      data += sizeof(kBatchMagic) + kLengthBytes;
+      size = get_length(group.bytes.data() + sizeof(kBatchMagic));
+    } else {
+      put_length(group.bytes, 0);
+      group.bytes.resize(group.bytes.size() + kTrailerBytes, 0);
+      data = group.bytes.data();
+      size = group.bytes.size();
+      g_batches_sent.fetch_add(1, std::memory_order_relaxed);
+      g_messages_batched.fetch_add(group.messages, std::memory_order_relaxed);
+    }
     VectorLocators begin(group.destinations.cbegin());
     VectorLocators end(group.destinations.cend());
     {
       std::lock_guard<std::mutex> lock(send_mutex_);
-      group.sender->send(group.bytes.data(), static_cast<uint32_t>(group.bytes.size()), &begin, &end,
-                         std::chrono::steady_clock::now() + kFlushBlocking);
+      group.sender->send(data, static_cast<uint32_t>(size), &begin, &end, std::chrono::steady_clock::now() + kFlushBlocking);
     }
-    g_batches_sent.fetch_add(1, std::memory_order_relaxed);
-    g_messages_batched.fetch_add(group.messages, std::memory_order_relaxed);
     group.bytes.clear();
     group.messages = 0;
   }
@@ -379,6 +390,7 @@ SendBatchCounters send_batch_counters() {
   SendBatchCounters counters;
   counters.batches_sent = g_batches_sent.load(std::memory_order_relaxed);
   counters.messages_batched = g_messages_batched.load(std::memory_order_relaxed);
+  counters.messages_not_held = g_messages_not_held.load(std::memory_order_relaxed);
   counters.malformed_received = g_malformed.load(std::memory_order_relaxed);
   return counters;
 }

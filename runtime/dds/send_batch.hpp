@@ -80,8 +80,9 @@ class BatchingPeers {
 
 /// Process-wide counts, for tests and the debug line logged at a participant's deletion.
 struct SendBatchCounters {
-  std::uint64_t batches_sent = 0;       // transport messages that carried a batch
-  std::uint64_t messages_batched = 0;   // RTPS messages sent inside them
+  std::uint64_t batches_sent = 0;       // transport messages that carried a batch (of two messages or more)
+  std::uint64_t messages_batched = 0;   // RTPS messages sent inside them (a message held alone leaves as it is)
+  std::uint64_t messages_not_held = 0;  // sent at once inside a batch (a destination that is no robodds participant's, too big)
   std::uint64_t malformed_received = 0; // received batches cut short or holding other than RTPS messages
 };
 SendBatchCounters send_batch_counters();

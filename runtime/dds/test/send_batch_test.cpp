@@ -216,7 +216,8 @@ TEST(SendBatch, ABatchLargerThanTheTransportsMessageLimitLeavesInSeveralMessages
   ASSERT_TRUE(pair.received_at_least(100)) << "received " << pair.received().size();
   EXPECT_EQ(pair.received(), zero_to(100));
   const SendBatchCounters after = send_batch_counters();
-  EXPECT_EQ(after.messages_batched - before.messages_batched, 100U);
+  EXPECT_LE(after.messages_batched - before.messages_batched, 100U);
+  EXPECT_GE(after.messages_batched - before.messages_batched, 99U);  // (a last message alone leaves unwrapped)
   // Each message is over 100 bytes: 100 of them need more than 5 batches of 2 KiB.
   EXPECT_GT(after.batches_sent - before.batches_sent, 5U);
 }
