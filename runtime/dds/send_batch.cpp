@@ -11,7 +11,6 @@
 #include <chrono>
 #include <cstring>
 #include <mutex>
-#include <set>
 #include <shared_mutex>
 #include <sstream>
 
@@ -144,7 +143,6 @@ class BatchingTransport : public rtps::ChainingTransport {
     std::unique_lock<std::shared_mutex> lock(g_live_mutex);
     live_transports()[id_] = this;
   }
-  ~BatchingTransport() override { retire(); }
 
   std::uint64_t id() const { return id_; }
 
@@ -158,25 +156,15 @@ class BatchingTransport : public rtps::ChainingTransport {
   }
 
   /// Fast DDS asks each transport for a sender resource per destination locator, and the shared-
-  /// memory and UDP transports add one only when none of theirs is in the list; they cannot
-  /// recognise theirs inside our wrappers, so without this every locator added a sender and each
-  /// message was sent once per sender.
-  bool OpenOutputChannel(rtps::SendResourceList& sender_resource_list, const Locator_t& locator) override {
-    if (!IsLocatorSupported(locator)) {
-      return false;
-    }
-    for (const auto& sender : sender_resource_list) {
-      if (own_senders_.count(sender.get()) > 0) {
-        return true;
-      }
-    }
-    const std::size_t before = sender_resource_list.size();
-    const bool opened = rtps::ChainingTransport::OpenOutputChannel(sender_resource_list, locator);
-    for (std::size_t i = before; i < sender_resource_list.size(); ++i) {
-      own_senders_.insert(sender_resource_list[i].get());
-    }
-    return opened;
-  }
+  /// memory and UDP transports add one only when none of theirs is in the list (and UDP registers
+  /// the locator for its statistics, asserting at each send that it did). Inside wrappers they
+  /// cannot recognise theirs: every locator added a sender and each message was sent once per
+  /// sender (ChainingTransport's own wrapping), and skipping the call when one of ours was there
+  /// left UDP's locators unregistered (an assertion in Debian's Fast DDS aborted the process).
+  /// So the wrapped transport sees a list of its own senders, which this transport keeps, and
+  /// Fast DDS gets a BatchingSender for each one it adds.
+  bool OpenOutputChannel(rtps::SendResourceList& sender_resource_list, const Locator_t& locator) override;
+  ~BatchingTransport() override;
 
   rtps::TransportDescriptorInterface* get_configuration() override { return low_level_transport_->get_configuration(); }
 
@@ -301,11 +289,46 @@ class BatchingTransport : public rtps::ChainingTransport {
   const std::uint64_t id_ = g_next_transport_id.fetch_add(1);
   std::size_t limit_;
   std::atomic<bool> retired_{false};
-  std::set<const SenderResource*> own_senders_;  // the wrappers this transport added (Fast DDS owns them)
+  rtps::SendResourceList low_senders_;  // the wrapped transport's senders (Fast DDS holds a BatchingSender of each)
   // The low-level transport's send() is not thread-safe (Fast DDS calls it under the participant's
   // send mutex, which a held batch sent later cannot take): every send through it takes this one.
   std::mutex send_mutex_;
 };
+
+/// What Fast DDS holds for one sender resource of the wrapped transport: its sends go through
+/// BatchingTransport::send(), as through ChainingTransport's own wrapper.
+class BatchingSender : public SenderResource {
+ public:
+  BatchingSender(BatchingTransport& transport, SenderResource* low) : SenderResource(transport.kind()), low_(low) {
+    send_lambda_ = [&transport, low](const octet* data, uint32_t size, rtps::LocatorsIterator* begin,
+                                     rtps::LocatorsIterator* end, const std::chrono::steady_clock::time_point& timeout) {
+      return transport.send(low, data, size, begin, end, timeout);
+    };
+  }
+  void add_locators_to_list(eprosima::fastrtps::rtps::LocatorList_t& locators) const override {
+    low_->add_locators_to_list(locators);
+  }
+
+ private:
+  SenderResource* low_;  // owned by the transport, which outlives this (Fast DDS deletes its senders first)
+};
+
+bool BatchingTransport::OpenOutputChannel(rtps::SendResourceList& sender_resource_list, const Locator_t& locator) {
+  if (!IsLocatorSupported(locator)) {
+    return false;
+  }
+  const std::size_t before = low_senders_.size();
+  const bool opened = low_level_transport_->OpenOutputChannel(low_senders_, locator);
+  for (std::size_t i = before; i < low_senders_.size(); ++i) {
+    sender_resource_list.emplace_back(new BatchingSender(*this, low_senders_[i].get()));
+  }
+  return opened;
+}
+
+BatchingTransport::~BatchingTransport() {
+  retire();
+  low_senders_.clear();  // (closing their sockets needs the wrapped transport, a member of the base)
+}
 
 /// What ChainingTransport's constructor takes: the transport it wraps.
 struct WrappedDescriptor : rtps::ChainingTransportDescriptor {
