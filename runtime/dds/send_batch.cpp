@@ -357,6 +357,9 @@ void close_send_batch() {
   if (batch.depth == 0 || --batch.depth > 0) {
     return;
   }
+  if (std::none_of(batch.groups.begin(), batch.groups.end(), [](const HeldGroup& group) { return !group.bytes.empty(); })) {
+    return;  // nothing held (a co-located run): groups of dead transports go at the next close that sends
+  }
   std::shared_lock<std::shared_mutex> lock(g_live_mutex);
   const auto& live = live_transports();
   batch.groups.erase(std::remove_if(batch.groups.begin(), batch.groups.end(),
