@@ -19,8 +19,9 @@
 //
 // Wire format of a batch: "RDBT", then per RTPS message a 4-byte little-endian length and the
 // message, padded to 4 bytes, then a zero length and kTrailerBytes zero bytes (send_batch.cpp says
-// why). A receiver passes anything not starting with "RDBT" through unchanged, and drops the rest of
-// a batch whose length or content is inconsistent (counted in send_batch_counters()).
+// why); a message held alone leaves as it is. A receiver passes anything not starting with "RDBT"
+// through unchanged, and drops the rest of a batch whose length or content is inconsistent (counted
+// in send_batch_counters(), logged once).
 
 #include <fastdds/rtps/common/Locator.h>
 #include <fastdds/rtps/transport/TransportDescriptorInterface.h>
