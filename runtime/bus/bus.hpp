@@ -122,6 +122,12 @@ class Bus {
   }
   /// Waits until every reliable writer's samples are acknowledged (before a process exits).
   virtual void flush(std::chrono::milliseconds timeout) = 0;
+  /// Between begin_write_batch() and end_write_batch() (nestable, per thread) the samples the
+  /// calling thread writes may be held and leave together at the outermost end, one network
+  /// message per destination instead of one per sample. Nothing written in between reaches another
+  /// process before the end: never wait for a peer inside. Default: nothing is held.
+  virtual void begin_write_batch() {}
+  virtual void end_write_batch() {}
   /// One line naming this process's topics without a matched peer and any incompatible QoS
   /// (both sides' policies), appended to lockstep timeout errors; empty when all matched.
   virtual std::string match_report() { return {}; }

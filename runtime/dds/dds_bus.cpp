@@ -35,6 +35,7 @@
 #include "runtime/bus/instance_spread.hpp"
 #include "runtime/base/log.hpp"
 #include "runtime/bus/qos_profiles.hpp"
+#include "runtime/dds/send_batch.hpp"
 #include "runtime/bus/sample_key.hpp"
 #include "runtime/topics/topic_catalog.hpp"
 #include "runtime/health/shutdown_watchdog.hpp"
@@ -333,6 +334,9 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
     }
     return total;
   }
+
+  void begin_write_batch() override { open_send_batch(); }
+  void end_write_batch() override { close_send_batch(); }
 
   void flush(std::chrono::milliseconds timeout) override {
     std::lock_guard<std::mutex> lock(mutex_);

@@ -9,6 +9,16 @@
 #include "runtime/base/log.hpp"
 
 namespace robodds {
+namespace {
+
+/// Where a participant receives unicast (user data and discovery): what a send batch to it goes to.
+std::vector<rtps::Locator_t> unicast_locators(const rtps::ParticipantProxyData& participant) {
+  std::vector<rtps::Locator_t> locators(participant.default_locators.unicast.begin(), participant.default_locators.unicast.end());
+  locators.insert(locators.end(), participant.metatraffic_locators.unicast.begin(), participant.metatraffic_locators.unicast.end());
+  return locators;
+}
+
+}  // namespace
 
 void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::ParticipantDiscoveryInfo&& info) {
   const std::string name = info.info.m_participantName.to_string();
@@ -26,6 +36,11 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
       alive_.insert(key);
       const std::vector<std::uint8_t> user_data(info.info.m_userData.begin(), info.info.m_userData.end());
       std::optional<Announcement> announced = parse_announcement(user_data);
+      if (announced) {  // a robodds participant (also one that loaded other files): it splits batches
+        batching_peers_.set(key, unicast_locators(info.info));
+      } else {
+        batching_peers_.erase(key);
+      }
       runs_.erase(key);
       if (announced && announced->run_id) {
         runs_[key] = RunAnnounced{*announced->run_id, announced->digest};
@@ -47,6 +62,7 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
       // Dropped = its lease expired without a goodbye: the host died or its network did.
       log::warn("dds", "participant '" + name + "' dropped: no announcement within its lease (host or network down?)");
       alive_.erase(key);
+      batching_peers_.erase(key);
       if (!secure_ || authenticated_.count(key) != 0) {  // an unauthenticated participant is no lost host
         losses_.push_back(PeerLoss{name, true, monotonic_now_ns()});
         loss_count_ = losses_.size();
@@ -56,6 +72,7 @@ void PeerDirectory::on_participant_discovery(dds::DomainParticipant*, rtps::Part
     case rtps::ParticipantDiscoveryInfo::REMOVED_PARTICIPANT:
       log::debug("dds", "participant '" + name + "' left");
       alive_.erase(key);
+      batching_peers_.erase(key);
       if (!secure_ || authenticated_.count(key) != 0) {
         losses_.push_back(PeerLoss{name, false, monotonic_now_ns()});
         loss_count_ = losses_.size();

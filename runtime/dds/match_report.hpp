@@ -19,6 +19,7 @@
 
 #include "runtime/bus/peer_losses.hpp"
 #include "runtime/bus/run_digest.hpp"
+#include "runtime/dds/send_batch.hpp"
 
 namespace robodds {
 namespace dds = eprosima::fastdds::dds;
@@ -113,6 +114,9 @@ class PeerDirectory : public dds::DomainParticipantListener {
   std::optional<std::uint64_t> own_run_;
   std::map<std::string, std::string> own_digest_;
   std::atomic<std::uint64_t> generation_{0};
+  // The unicast locators of the alive participants that announced robodds components: send
+  // batches go only to those (send_batch.hpp).
+  BatchingPeers batching_peers_;
 };
 
 /// Match state of one local endpoint, kept for the report appended to lockstep timeouts. The

@@ -5,6 +5,7 @@
 #include <atomic>
 
 #include "runtime/dds/qos_files.hpp"
+#include "runtime/dds/send_batch.hpp"
 #include "runtime/dds/thread_id_cache.hpp"
 #include "runtime/base/error.hpp"
 #include "runtime/base/log.hpp"
@@ -38,6 +39,13 @@ void ParticipantDeleter::operator()(dds::DomainParticipant* participant) const {
     return;  // still alive: the factory deletes it at exit
   }
   --g_live_participants;
+  const SendBatchCounters batches = send_batch_counters();
+  if (batches.batches_sent > 0 || batches.malformed_received > 0) {
+    log::debug("dds", "send batches so far in this process: " + std::to_string(batches.batches_sent) + " sent with " +
+                          std::to_string(batches.messages_batched) + " RTPS messages, " +
+                          std::to_string(batches.messages_not_held) + " messages sent at once inside batches, " +
+                          std::to_string(batches.malformed_received) + " malformed received");
+  }
 }
 
 ParticipantPtr create_participant(int domain_id, const dds::DomainParticipantQos& qos, dds::DomainParticipantListener* listener,
@@ -50,7 +58,10 @@ ParticipantPtr create_participant(int domain_id, const dds::DomainParticipantQos
   }();
   (void)thread_id_cache_logged;
   take_dds_errors();  // only this creation's
-  ParticipantPtr participant(dds::DomainParticipantFactory::get_instance()->create_participant(domain_id, qos, listener, mask));
+  // Its shared-memory and UDPv4 transports batch what a thread sends inside open_send_batch() (send_batch.hpp).
+  dds::DomainParticipantQos batching = qos;
+  batching.transport().user_transports = batching_transports(qos.transport().user_transports);
+  ParticipantPtr participant(dds::DomainParticipantFactory::get_instance()->create_participant(domain_id, batching, listener, mask));
   if (participant == nullptr) {
     const std::string reasons = take_dds_errors();
     throw RunError("could not create a DDS participant on domain " + std::to_string(domain_id) + " with profile '" +

@@ -156,7 +156,14 @@ bool LockstepHost::step() {
     progressed = take_tick();
   }
   if (tick_active_) {
-    progressed = run_due_components() || progressed;
+    run_.bus->begin_write_batch();
+    try {
+      progressed = run_due_components() || progressed;
+    } catch (...) {
+      run_.bus->end_write_batch();
+      throw;
+    }
+    run_.bus->end_write_batch();
   }
   return progressed;
 }

@@ -3,7 +3,8 @@
 # each robot-keyed lockstep topic is published by 3 DataWriters, one per 32 robots (runtime/
 # instance_spread.hpp), and the outputs stay byte-identical to the co-located run, in strict
 # lockstep and with a pipelined window. The sim host must say it spread plant/state (a run with
-# one writer would pass the comparison and test nothing).
+# one writer would pass the comparison and test nothing), and some process must have sent its
+# step's writes in send batches.
 source "$(dirname "$0")/lib.sh"
 PY=/usr/bin/python3  # Debian's, with python3-yaml (scripts/setup.sh)
 SCENARIO="$WORK/plant_smoke_70.yaml"
@@ -23,6 +24,9 @@ for window in 1 8; do
     fail "window $window: sim/step_done (keyed by host, not by robot) was spread"
   grep -q "plant/state: 3 writers (profile 'lockstep', 70 robots" "$WORK/processes_$window.log" ||
     fail "window $window: the sim host did not spread plant/state over 3 writers: $(grep -c . "$WORK/processes_$window.log") log lines"
+  # The lockstep hosts' writes of a step leave in send batches (runtime/dds/send_batch.hpp).
+  grep -q "send batches so far in this process: [1-9][0-9]* sent" "$WORK/processes_$window.log" ||
+    fail "window $window: no process sent a batch of RTPS messages"
   same_outputs "$WORK/colocated" "$WORK/processes_$window"
 done
 echo "ok: 70 robots, plant/state on 3 writers, $N_CSV CSV files and the metrics identical co-located and across processes (window 1 and 8)"
