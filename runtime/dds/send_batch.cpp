@@ -35,6 +35,12 @@ constexpr std::size_t kLengthBytes = 4;
 // do over UDP).
 constexpr std::size_t kTrailerBytes = 64;
 constexpr std::size_t kOverheadBytes = 4 + kLengthBytes + kLengthBytes + kTrailerBytes;  // magic, entry length, end
+// A batch leaves once it would exceed this many bytes (or the transport's message limit, if
+// smaller): the receiving process starts on a step's first samples while the writer still writes
+// the rest, and over UDP a batch is 12 IP fragments on a 1,500-byte link, not 44 (one lost fragment
+// loses the whole datagram). Measured against the 65,500-byte limit, 200 robots across processes:
+// 12-24 KiB best, 6 KiB worse (docs/performance.md, "Batched sends").
+constexpr std::size_t kBatchBytes = 16384;
 // A held batch is sent within this time even when the shared-memory segment is full (Fast DDS
 // waits up to it for free space); a writer's own blocking limit is 1 s (the QoS profiles).
 constexpr std::chrono::milliseconds kFlushBlocking{1000};
@@ -139,7 +145,7 @@ std::atomic<std::uint64_t> g_next_transport_id{1};
 class BatchingTransport : public rtps::ChainingTransport {
  public:
   explicit BatchingTransport(const rtps::ChainingTransportDescriptor& descriptor)
-      : rtps::ChainingTransport(descriptor), limit_(descriptor.max_message_size()) {
+      : rtps::ChainingTransport(descriptor), limit_(std::min<std::size_t>(kBatchBytes, descriptor.max_message_size())) {
     std::unique_lock<std::shared_mutex> lock(g_live_mutex);
     live_transports()[id_] = this;
   }
