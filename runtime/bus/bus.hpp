@@ -128,6 +128,17 @@ class Bus {
   /// process before the end: never wait for a peer inside. Default: nothing is held.
   virtual void begin_write_batch() {}
   virtual void end_write_batch() {}
+  /// begin_write_batch() for the lifetime of a scope, end_write_batch() however it is left.
+  class WriteBatch {
+   public:
+    explicit WriteBatch(Bus& bus) : bus_(bus) { bus_.begin_write_batch(); }
+    ~WriteBatch() { bus_.end_write_batch(); }
+    WriteBatch(const WriteBatch&) = delete;
+    WriteBatch& operator=(const WriteBatch&) = delete;
+
+   private:
+    Bus& bus_;
+  };
   /// One line naming this process's topics without a matched peer and any incompatible QoS
   /// (both sides' policies), appended to lockstep timeout errors; empty when all matched.
   virtual std::string match_report() { return {}; }

@@ -17,15 +17,11 @@ std::uint64_t first_from(std::uint64_t from, std::uint64_t period, std::uint64_t
 
 StepNeeds StepNeeds::of_component(std::uint64_t period_steps, std::uint64_t checkpoint_steps, std::uint64_t delay_steps) {
   StepNeeds needs;
-  if (period_steps <= 1) {
-    return needs;  // every step: every sample
+  if (period_steps <= 1 || checkpoint_steps == 1) {
+    return needs;  // due or waiting at every step: every sample
   }
-  needs.every_ = false;
   // k = 0 (mod p) read at m = k - d: m = -d (mod p).
   needs.add_stride(period_steps, (period_steps - delay_steps % period_steps) % period_steps);
-  if (checkpoint_steps == 1) {
-    return StepNeeds{};
-  }
   if (checkpoint_steps > 1) {
     needs.add_stride(checkpoint_steps, (checkpoint_steps - delay_steps % checkpoint_steps) % checkpoint_steps);
   }
@@ -41,7 +37,7 @@ void StepNeeds::add_stride(std::uint64_t period, std::uint64_t residue) {
 }
 
 bool StepNeeds::needs(std::uint64_t step, std::uint64_t next_step) const {
-  if (every_ || next_step <= step) {
+  if (all() || next_step <= step) {
     return true;
   }
   for (const auto& [period, residue] : strides_) {
@@ -53,7 +49,7 @@ bool StepNeeds::needs(std::uint64_t step, std::uint64_t next_step) const {
 }
 
 std::uint64_t StepNeeds::first_read_step_from(std::uint64_t from) const {
-  if (every_) {
+  if (all()) {
     return from;
   }
   std::uint64_t first = std::numeric_limits<std::uint64_t>::max();
@@ -64,7 +60,7 @@ std::uint64_t StepNeeds::first_read_step_from(std::uint64_t from) const {
 }
 
 void StepNeeds::add(const StepNeeds& other) {
-  if (every_ || other.every_) {
+  if (all() || other.all()) {
     *this = StepNeeds{};
     return;
   }
@@ -100,7 +96,6 @@ std::optional<StepNeeds> StepNeeds::parse(const std::string& text) {
     if (period < 2 || residue >= period) {
       return std::nullopt;
     }
-    needs.every_ = false;
     needs.add_stride(period, residue);
   }
   return needs;

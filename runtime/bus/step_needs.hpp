@@ -27,7 +27,7 @@ class StepNeeds {
   static StepNeeds of_component(std::uint64_t period_steps, std::uint64_t checkpoint_steps, std::uint64_t delay_steps);
 
   /// Every sample is needed.
-  bool all() const { return every_; }
+  bool all() const { return strides_.empty(); }
   /// Whether a sample of step `step` whose next comes at `next_step` is needed. One whose header
   /// is inconsistent (next_step <= step) is: the reader's checks count it.
   bool needs(std::uint64_t step, std::uint64_t next_step) const;
@@ -44,14 +44,13 @@ class StepNeeds {
   /// anything else): the caller names the source.
   static std::optional<StepNeeds> parse(const std::string& text);
 
-  bool operator==(const StepNeeds& other) const { return every_ == other.every_ && strides_ == other.strides_; }
+  bool operator==(const StepNeeds& other) const { return strides_ == other.strides_; }
 
  private:
   void add_stride(std::uint64_t period, std::uint64_t residue);
   // (period, residue): read steps m = residue (mod period); sorted, no duplicates, period >= 2
-  // (a period of 1 needs every sample). Empty when every_.
+  // (a period of 1 needs every sample). Empty: every sample.
   std::vector<std::pair<std::uint64_t, std::uint64_t>> strides_;
-  bool every_ = true;
 };
 
 }  // namespace robodds

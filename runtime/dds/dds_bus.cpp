@@ -469,8 +469,10 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
     return all->all() ? std::nullopt : all;
   }
 
-  /// The topic a reader reads: the topic itself, or, when every subscriber so far has a key rule,
-  /// a ContentFilteredTopic of it evaluated by the reader's ReaderKeyFilter (key_filter.hpp).
+  /// The topic a reader reads: the topic itself, or a ContentFilteredTopic of it evaluated by the
+  /// reader's ReaderKeyFilter (key_filter.hpp): of the step class, evaluated by remote writers
+  /// too, when every subscriber reads only some steps; else of this participant's key class when
+  /// every subscriber so far has a key rule.
   dds::TopicDescription* topic_to_read(PendingReader& pending) {
     const std::optional<StepNeeds> needs = reader_step_needs(pending);
     if (pending.filtered_topic == nullptr && needs) {

@@ -85,12 +85,6 @@ bool ReaderKeyFilter::takes_key() const {
   return false;
 }
 
-KeyFilterFactory::~KeyFilterFactory() {
-  for (ReaderKeyFilter* filter : writer_side_) {
-    delete filter;
-  }
-}
-
 void KeyFilterFactory::add(const std::string& expression, ReaderKeyFilter* filter) {
   std::lock_guard<std::mutex> lock(mutex_);
   filters_[expression] = filter;
@@ -128,18 +122,15 @@ ReturnCode_t KeyFilterFactory::create_content_filter(const char* filter_class_na
   auto filter = std::make_unique<ReaderKeyFilter>(type, type_name, ReaderKeyFilter::Side::kWriter);
   filter->read_only(*needs);
   filter_instance = filter.get();
-  writer_side_.insert(filter.release());
+  writer_side_.emplace(filter_instance, std::move(filter));
   return ReturnCode_t::RETCODE_OK;
 }
 
 ReturnCode_t KeyFilterFactory::delete_content_filter(const char* /*filter_class_name*/,
                                                      dds::IContentFilter* filter_instance) {
   std::lock_guard<std::mutex> lock(mutex_);
-  auto* filter = static_cast<ReaderKeyFilter*>(filter_instance);
-  if (writer_side_.erase(filter) > 0) {
-    delete filter;
-  }
-  return ReturnCode_t::RETCODE_OK;  // the bus owns its readers' filters
+  writer_side_.erase(filter_instance);  // the bus owns its readers' filters
+  return ReturnCode_t::RETCODE_OK;
 }
 
 }  // namespace robodds

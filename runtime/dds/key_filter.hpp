@@ -21,9 +21,9 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -109,7 +109,6 @@ class KeyFilterFactory : public eprosima::fastdds::dds::IContentFilterFactory {
   /// `types`: the type support registered under an IDL type name (a null one when none is).
   KeyFilterFactory(std::string class_name, std::function<eprosima::fastdds::dds::TypeSupport(const std::string&)> types)
       : class_name_(std::move(class_name)), types_(std::move(types)) {}
-  ~KeyFilterFactory();
   KeyFilterFactory(const KeyFilterFactory&) = delete;
   KeyFilterFactory& operator=(const KeyFilterFactory&) = delete;
   const std::string& class_name() const { return class_name_; }
@@ -128,7 +127,8 @@ class KeyFilterFactory : public eprosima::fastdds::dds::IContentFilterFactory {
   std::function<eprosima::fastdds::dds::TypeSupport(const std::string&)> types_;
   std::mutex mutex_;
   std::map<std::string, ReaderKeyFilter*> filters_;
-  std::set<ReaderKeyFilter*> writer_side_;  // made by create_content_filter(), deleted by delete_content_filter()
+  // Made by create_content_filter() for remote readers, deleted by delete_content_filter().
+  std::map<const eprosima::fastdds::dds::IContentFilter*, std::unique_ptr<ReaderKeyFilter>> writer_side_;
 };
 
 }  // namespace robodds

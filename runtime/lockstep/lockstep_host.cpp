@@ -156,14 +156,8 @@ bool LockstepHost::step() {
     progressed = take_tick();
   }
   if (tick_active_) {
-    run_.bus->begin_write_batch();
-    try {
-      progressed = run_due_components() || progressed;
-    } catch (...) {
-      run_.bus->end_write_batch();
-      throw;
-    }
-    run_.bus->end_write_batch();
+    const Bus::WriteBatch batch(*run_.bus);
+    progressed = run_due_components() || progressed;
   }
   return progressed;
 }
