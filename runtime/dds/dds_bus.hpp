@@ -1,6 +1,7 @@
 #pragma once
 // Creates the Fast DDS implementation of Bus. This header stays free of Fast DDS includes.
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -39,6 +40,10 @@ struct DdsOptions {
   /// (runtime/bus/run_digest.hpp); nullopt: neither (a tool, a component without a scenario).
   std::optional<std::uint64_t> run_id;
   RunDigest digest;
+  /// At least this many bytes of shared-memory segment for the participant's outgoing messages
+  /// (every shared-memory transport of its profile is grown to it); 0: the profile's own.
+  /// runtime/launch/shm_segment.hpp says why a lockstep host may need more.
+  std::size_t shm_segment_bytes = 0;
 };
 
 class DdsBus : public Bus {

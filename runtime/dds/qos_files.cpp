@@ -6,6 +6,7 @@
 #include <fastrtps/attributes/PublisherAttributes.h>
 #include <fastrtps/attributes/SubscriberAttributes.h>
 #include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
 #include <netdb.h>
 #include <arpa/inet.h>
@@ -267,6 +268,19 @@ void apply_peer_lease(dds::DomainParticipantQos& qos) {
   discovery.leaseDuration_announcementperiod = eprosima::fastrtps::Duration_t(kPeerAnnouncementS);
 }
 
+void grow_shm_segments(dds::DomainParticipantQos& qos, std::size_t bytes) {
+  for (auto& transport : qos.transport().user_transports) {
+    const auto* shm = dynamic_cast<const eprosima::fastdds::rtps::SharedMemTransportDescriptor*>(transport.get());
+    if (shm == nullptr || shm->segment_size() >= bytes) {
+      continue;
+    }
+    // A copy: the profile's descriptor is shared with every participant made from it.
+    auto grown = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>(*shm);
+    grown->segment_size(static_cast<uint32_t>(bytes));
+    transport = grown;
+  }
+}
+
 dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
   check_qos_profiles(options);
   const std::string last = options.qos_files.empty() ? "(no QoS file)" : options.qos_files.back();
@@ -276,6 +290,9 @@ dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
     throw ConfigError(located(last, "participant profile '" + options.participant_profile + "'", "not found in the loaded QoS files"));
   }
   apply_peer_lease(qos);
+  if (options.shm_segment_bytes > 0) {
+    grow_shm_segments(qos, options.shm_segment_bytes);
+  }
   if (!options.discovery_servers.empty()) {
     make_discovery_client(qos, options.discovery_servers);
   }

@@ -19,6 +19,9 @@ inline constexpr double kPeerAnnouncementS = 0.5;
 /// Sets kPeerLeaseS/kPeerAnnouncementS unless `qos` has a lease other than Fast DDS's default.
 void apply_peer_lease(eprosima::fastdds::dds::DomainParticipantQos& qos);
 
+/// Grows every shared-memory transport of `qos` to a segment of at least `bytes` (DdsOptions::shm_segment_bytes).
+void grow_shm_segments(eprosima::fastdds::dds::DomainParticipantQos& qos, std::size_t bytes);
+
 /// Loads options.qos_files, checks every required profile (check_qos_profiles) and returns the
 /// participant QoS of options.participant_profile, checked; ConfigError naming the file and
 /// element if a profile is missing or unusable. Creates no participant.

@@ -30,6 +30,7 @@
 #include "runtime/host/producer_check.hpp"
 #include "runtime/bus/qos_profiles.hpp"
 #include "runtime/launch/process_group.hpp"
+#include "runtime/launch/shm_segment.hpp"
 #include "runtime/config/share_dir.hpp"
 #include "runtime/launch/standalone_scenario.hpp"
 #include "runtime/topics/topic_catalog.hpp"
@@ -314,8 +315,13 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
     announced.run_id = options.run_id;
     announced.digest = options.digest;
   }
+  const std::size_t robots_served = scenario.robots_served_by(options.components);
+  if (!options.single_process && in_process.mode == TimeMode::kLockstep) {
+    // Room for what it may write before its slowest reader catches up (shm_segment.hpp).
+    announced.shm_segment_bytes = shm_segment_bytes(robots_served, options.lockstep_window);
+  }
   auto bus = make_dds_bus(announced);
-  bus->expect_robots(scenario.robots_served_by(options.components));  // this process's writers' instances
+  bus->expect_robots(robots_served);  // this process's writers' instances
   const bool has_standby = std::any_of(scenario.components.begin(), scenario.components.end(),
                                        [](const ComponentSpec& c) { return !c.standby_for.empty(); });
   // A co-located run: its components' samples stay in memory, DDS serves observers (and, in real

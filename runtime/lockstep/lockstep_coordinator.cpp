@@ -53,8 +53,9 @@ bool LockstepCoordinator::poll() {
   for (std::uint64_t key : ack_input_->instances()) {
     for (const idl::StepDone& ack : ack_input_->take_new(key)) {
       if (ack.run_id() == options_.run_id) {  // by instance key: no string per acknowledgement
-        std::uint64_t& newest = newest_ack_[key];
-        newest = std::max(newest, ack.header().step() + 1);
+        NewestAck& newest = newest_ack_[key];
+        newest.step = std::max(newest.step, ack.header().step());
+        newest.covers_to = std::max({newest.covers_to, ack.header().step() + 1, ack.header().next_step()});
       }
       if (ack.run_id() == options_.run_id && ack.failed()) {
         // A host that stopped because another loaded other files: that difference is the reason
@@ -116,8 +117,8 @@ std::string LockstepCoordinator::missing_members(const std::string& first_missin
     const auto newest = newest_ack_.find(member_key(member));
     if (newest == newest_ack_.end()) {
       missing.push_back("'" + member + "' (nothing received yet)");
-    } else if (newest->second <= acked_steps_) {
-      missing.push_back("'" + member + "' (newest sample: step " + std::to_string(newest->second - 1) + ")");
+    } else if (newest->second.covers_to <= acked_steps_) {
+      missing.push_back("'" + member + "' (newest sample: step " + std::to_string(newest->second.step) + ")");
     }
   }
   if (missing.size() <= 1) {

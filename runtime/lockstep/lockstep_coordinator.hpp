@@ -53,7 +53,11 @@ class LockstepCoordinator {
   std::unique_ptr<Input<idl::StepDone>> ack_input_;
   std::shared_ptr<ReaderHandle> ack_reader_;
 
-  std::map<std::uint64_t, std::uint64_t> newest_ack_;  // member's instance key -> 1 + the newest step it acknowledged
+  struct NewestAck {
+    std::uint64_t step = 0;       // the newest step the member acknowledged
+    std::uint64_t covers_to = 0;  // the steps before this are done (its next_step: ack-ahead)
+  };
+  std::map<std::uint64_t, NewestAck> newest_ack_;  // member's instance key -> its newest acknowledgement
   std::uint64_t acked_steps_ = 0;
   std::uint64_t next_tick_ = 0;  // ticks [0, next_tick_) are sent
   host_detail::Clock::time_point ack_progress_at_;

@@ -128,6 +128,7 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
   tick_reader_ = protocol_bus.reader(clock.name, clock.type_name, profile, samples_of_run(raw, options.run_id),
                                  [this](const std::string& e) { log::warn(options_.member, "sim/clock: " + e); });
   ack_writer_ = protocol_bus.writer(done.name, done.type_name, profile);
+  ack_ahead_ = !options.digest.empty();
   ack_output_ = std::make_unique<Output<idl::StepDone>>(ack_writer_, &state_);
   check_inputs_have_producers(run, slots);
   checkpoint_steps_ = run.mode == TimeMode::kLockstep && !run.single_process ? history_checkpoints(run, options, slots)
@@ -258,7 +259,12 @@ bool LockstepHost::run_due_components() {
     finish_run(run_, options_.member, lockstep_figures, slots_, health_, tick_step_, seconds_since(start_));
     done_ = true;
   }
-  publish_ack(tick_step_, components_run_, "");
+  // A step before the one the last acknowledgement announced had no work here (next_busy_step):
+  // the coordinator counts it done already, and an acknowledgement would wake it for nothing.
+  if (!ack_ahead_ || tick_is_final_ || tick_step_ >= next_ack_step_) {
+    next_ack_step_ = ack_ahead_ && !tick_is_final_ ? next_busy_step(tick_step_) : tick_step_ + 1;
+    publish_ack(tick_step_, components_run_, "", next_ack_step_);
+  }
   tick_active_ = false;
   steps_done_ = tick_step_ + 1;
   note_thirds();
@@ -279,7 +285,7 @@ void LockstepHost::publish_failure(const std::string& error, bool await_coordina
   while (await_coordinator && !ack_writer_->has_matched_readers() && seconds_since(asked) < options_.start_timeout_s) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
-  publish_ack(tick_step_, 0, error);
+  publish_ack(tick_step_, 0, error, tick_step_ + 1);
   // The process exits next, and its participant's goodbye can overtake the report: the
   // coordinator then drops it with the writer and waits for this group until its own timeout
   // (docs/deployment.md, "A failing host's last word"). So wait until the report is acknowledged.
@@ -292,7 +298,21 @@ void LockstepHost::publish_failure(const std::string& error, bool await_coordina
   }
 }
 
-void LockstepHost::publish_ack(std::uint64_t step, std::uint64_t components_run, const std::string& error) {
+std::uint64_t LockstepHost::next_busy_step(std::uint64_t step) const {
+  const std::uint64_t last = run_.scenario->last_step();
+  std::uint64_t next = std::max(last, step + 1);
+  const auto next_multiple = [step](std::uint64_t every) { return (step / every + 1) * every; };
+  for (std::size_t i = 0; i < slots_.size(); ++i) {
+    next = std::min(next, next_multiple(std::max<std::uint64_t>(1, slots_[i]->state.period_steps)));
+    if (checkpoint_steps_[i] > 0) {
+      next = std::min(next, next_multiple(checkpoint_steps_[i]));
+    }
+  }
+  return std::max(next, step + 1);
+}
+
+void LockstepHost::publish_ack(std::uint64_t step, std::uint64_t components_run, const std::string& error,
+                               std::uint64_t next_ack) {
   idl::StepDone ack;
   ack.member(options_.member);
   ack.run_id(options_.run_id);
@@ -302,7 +322,7 @@ void LockstepHost::publish_ack(std::uint64_t step, std::uint64_t components_run,
   state_.step = step;
   state_.period_steps = 1;
   state_.stamp_ns = sim_stamp_ns(step, run_.scenario->step_s);
-  ack_output_->publish(ack);
+  ack_output_->publish_next_at(ack, next_ack);
 }
 
 }  // namespace robodds

@@ -49,7 +49,13 @@ class LockstepHost {
  private:
   bool take_tick();
   bool run_due_components();
-  void publish_ack(std::uint64_t step, std::uint64_t components_run, const std::string& error);
+  /// `next_ack`: the step of this host's next acknowledgement (its sample's next_step).
+  void publish_ack(std::uint64_t step, std::uint64_t components_run, const std::string& error, std::uint64_t next_ack);
+  /// The first step after `step` at which this host has work: a component due, a history
+  /// checkpoint, or the run's last step. It acknowledges only those (ack_ahead_): each
+  /// acknowledgement announces the next, and the coordinator's ready() rule takes the steps
+  /// between as done.
+  std::uint64_t next_busy_step(std::uint64_t step) const;
   /// Notes in run_.figures when a third of the run's steps is done (RunFigures::thirds_done_at_s).
   void note_thirds();
 
@@ -73,6 +79,10 @@ class LockstepHost {
   std::uint64_t components_run_ = 0;
   std::uint64_t steps_done_ = 0;
   bool done_ = false;
+  /// Whether this host acknowledges only its busy steps (next_busy_step()): when it loaded the
+  /// coordinator's scenario (a run digest: the same last step), else every step.
+  bool ack_ahead_ = false;
+  std::uint64_t next_ack_step_ = 0;  // the step the previous acknowledgement announced
   /// Per slot (history_checkpoints() in the .cpp): every how many steps the host also waits for
   /// the slot's inputs without running it (0: never), and
   /// whether that wait is still open at the current tick.

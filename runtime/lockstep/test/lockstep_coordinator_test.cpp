@@ -43,14 +43,16 @@ struct CoordinatorFixture : ::testing::Test {
     ack_output = std::make_unique<Output<idl::StepDone>>(bus.writer("sim/step_done", topic_info("sim/step_done").type_name, profile_of("sim/step_done")), &ack_state);
   }
 
-  void ack(const std::string& member, std::uint64_t step, const std::string& error = "", std::uint64_t run_id = 9) {
+  /// `next_ack`: the step of the member's next acknowledgement (0: step + 1).
+  void ack(const std::string& member, std::uint64_t step, const std::string& error = "", std::uint64_t run_id = 9,
+           std::uint64_t next_ack = 0) {
     idl::StepDone done;
     done.member(member);
     done.run_id(run_id);
     done.failed(!error.empty());
     done.error(error);
     ack_state.step = step;
-    ack_output->publish(done);
+    ack_output->publish_next_at(done, next_ack > 0 ? next_ack : step + 1);
   }
 };
 
@@ -87,6 +89,29 @@ TEST_F(CoordinatorFixture, StrictWindowRunsToTheFinalTick) {
   EXPECT_EQ(coordinator.acknowledged_steps(), 6u);
   EXPECT_EQ(final_flags, (std::vector<bool>{false, false, false, false, false, true}));
   EXPECT_EQ(progress, (std::vector<std::uint64_t>{0, 1, 2, 3, 4, 5}));
+}
+
+TEST_F(CoordinatorFixture, AnAcknowledgementThatAnnouncesALaterOneCoversTheStepsBetween) {
+  options.tick_timeout_s = 0.1;
+  LockstepCoordinator coordinator(run, options, *run.bus);
+  coordinator.begin(std::chrono::steady_clock::now());
+  coordinator.poll();
+  ack("a", 0, "", 9, 3);  // a has no work before step 3
+  for (std::uint64_t step = 0; step <= 2; ++step) {
+    ack("b", step);
+    coordinator.poll();
+  }
+  EXPECT_EQ(coordinator.acknowledged_steps(), 3u);
+  EXPECT_EQ(ticks, (std::vector<std::uint64_t>{0, 1, 2, 3}));
+  ack("b", 3);
+  EXPECT_FALSE(coordinator.poll());  // step 3 waits for a's announced acknowledgement
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  try {
+    coordinator.poll();
+    FAIL() << "expected a RunError";
+  } catch (const RunError& e) {
+    EXPECT_STREQ(e.what(), "lockstep: no acknowledgement of step 3 within 0.1 s from group 'a' (newest sample: step 0) on sim/step_done");
+  }
 }
 
 TEST_F(CoordinatorFixture, FailedGroupIsReported) {

@@ -136,6 +136,42 @@ TEST_F(HostFixture, RunsDueComponentsAndAcknowledgesEveryTick) {
   EXPECT_GE(run.figures.wall_time_s, 0.0);
 }
 
+TEST_F(HostFixture, AHostOfTheRunsScenarioAcknowledgesOnlyItsBusyStepsEachAnnouncingTheNext) {
+  options.digest = {DigestEntry{"scenario", "/s.yaml", "1a2b"}};  // it loaded the coordinator's scenario
+  add_slot(2);
+  LockstepHost host(run, options, slots, *run.bus);
+  host.begin(std::chrono::steady_clock::now());
+  for (std::uint64_t step = 0; step <= 5; ++step) {
+    tick(step);
+    EXPECT_TRUE(host.step());
+  }
+  // Due at 0, 2, 4; step 5 is the last: the steps between are done when announced.
+  std::vector<std::uint64_t> acked;
+  std::vector<std::uint64_t> announced;
+  for (const idl::StepDone& a : acks) {
+    acked.push_back(a.header().step());
+    announced.push_back(a.header().next_step());
+  }
+  EXPECT_EQ(acked, (std::vector<std::uint64_t>{0, 2, 4, 5}));
+  EXPECT_EQ(announced, (std::vector<std::uint64_t>{2, 4, 5, 6}));
+  EXPECT_EQ(steps_run, (std::vector<std::uint64_t>{0, 2, 4}));
+  EXPECT_TRUE(finished);
+  EXPECT_TRUE(host.done());
+  EXPECT_EQ(host.steps_done(), 6u);
+}
+
+TEST_F(HostFixture, AHostWithoutTheRunsScenarioAcknowledgesEveryStep) {
+  add_slot(3);  // no digest: a component executable, whose last step may not be the coordinator's
+  LockstepHost host(run, options, slots, *run.bus);
+  host.begin(std::chrono::steady_clock::now());
+  for (std::uint64_t step = 0; step <= 5; ++step) {
+    tick(step);
+    EXPECT_TRUE(host.step());
+    ASSERT_EQ(acks.size(), step + 1);
+    EXPECT_EQ(acks.back().header().next_step(), step + 1);
+  }
+}
+
 TEST_F(HostFixture, TicksOfOtherRunsAreIgnored) {
   add_slot(1);
   LockstepHost host(run, options, slots, *run.bus);
@@ -275,6 +311,15 @@ TEST_F(HostFixture, WithAShortWriterHistoryASlowComponentsHostWaitsForItsInputsB
 
 TEST_F(HostFixture, WithoutAWriterHistoryOnlyTheDueStepsWait) {
   EXPECT_EQ(acked_without_step_3(*this, 0), (std::vector<std::uint64_t>{0, 1, 2, 3}));
+}
+
+TEST_F(HostFixture, AHistoryCheckpointIsABusyStepToo) {
+  // As above (checkpoints every 3 steps), acknowledging only busy steps: step 0 announces the
+  // checkpoint at 3, where plant/state of step 3 never comes, so nothing after 0 is acknowledged.
+  options.digest = {DigestEntry{"scenario", "/s.yaml", "1a2b"}};
+  EXPECT_EQ(acked_without_step_3(*this, 3), (std::vector<std::uint64_t>{0}));
+  ASSERT_EQ(acks.size(), 1u);
+  EXPECT_EQ(acks[0].header().next_step(), 3u);
 }
 
 TEST_F(HostFixture, FailureIsAcknowledgedWithItsReason) {
