@@ -220,23 +220,20 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
     dds::StatusMask mask = dds::StatusMask::offered_incompatible_qos() << dds::StatusMask::publication_matched();
     dds::DataWriter* writer = nullptr;
     auto owned = exclusive_.find(topic);
-    if (owned == exclusive_.end()) {
-      writer = publisher_->create_datawriter_with_profile(dds_topic, profile, listener.get(), mask);
-    } else {
-      dds::DataWriterQos qos;
-      if (publisher_->get_datawriter_qos_from_profile(profile, qos) == ReturnCode_t::RETCODE_OK) {
+    dds::DataWriterQos qos;
+    if (publisher_->get_datawriter_qos_from_profile(profile, qos) == ReturnCode_t::RETCODE_OK) {
+      apply_writer_qos_beyond_xml(profile, qos);
+      if (owned != exclusive_.end()) {
         qos.ownership().kind = dds::EXCLUSIVE_OWNERSHIP_QOS;
         qos.ownership_strength().value = owned->second;
-        writer = publisher_->create_datawriter(dds_topic, qos, listener.get(), mask);
       }
+      writer = publisher_->create_datawriter(dds_topic, qos, listener.get(), mask);
     }
     std::vector<dds::DataWriter*> writers;
     const std::size_t spread = writers_per_topic(topic, profile, owned != exclusive_.end());
     while (writer != nullptr) {
       writers.push_back(writer);
-      writer = writers.size() < spread
-                   ? publisher_->create_datawriter_with_profile(dds_topic, profile, nullptr, dds::StatusMask::none())
-                   : nullptr;
+      writer = writers.size() < spread ? publisher_->create_datawriter(dds_topic, qos, nullptr, dds::StatusMask::none()) : nullptr;
     }
     if (writers.size() < spread) {
       const std::string reasons = take_dds_errors();  // e.g. DDS Security: not allowed by the permissions

@@ -268,6 +268,13 @@ void apply_peer_lease(dds::DomainParticipantQos& qos) {
   discovery.leaseDuration_announcementperiod = eprosima::fastrtps::Duration_t(kPeerAnnouncementS);
 }
 
+void apply_writer_qos_beyond_xml(const std::string& profile, dds::DataWriterQos& qos) {
+  if (profile == kLockstepProfile) {
+    // Why: docs/performance.md, "Session 15" (piggyback heartbeats).
+    qos.reliable_writer_qos().disable_heartbeat_piggyback = true;
+  }
+}
+
 void grow_shm_segments(dds::DomainParticipantQos& qos, std::size_t bytes) {
   for (auto& transport : qos.transport().user_transports) {
     const auto* shm = dynamic_cast<const eprosima::fastdds::rtps::SharedMemTransportDescriptor*>(transport.get());

@@ -4,6 +4,7 @@
 // runtime/dds/dds_bus.hpp.
 
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 
 #include "runtime/dds/dds_bus.hpp"
 
@@ -18,6 +19,11 @@ inline constexpr double kPeerLeaseS = 1.5;
 inline constexpr double kPeerAnnouncementS = 0.5;
 /// Sets kPeerLeaseS/kPeerAnnouncementS unless `qos` has a lease other than Fast DDS's default.
 void apply_peer_lease(eprosima::fastdds::dds::DomainParticipantQos& qos);
+
+/// The writer QoS of `profile` that Fast DDS 2.9.1's XML parser cannot express, applied to `qos`
+/// (read from that profile); deploy/qos/robodds_qos.xml says it next to the profile. `lockstep`:
+/// no piggyback heartbeats (DataWriterQos::reliable_writer_qos().disable_heartbeat_piggyback).
+void apply_writer_qos_beyond_xml(const std::string& profile, eprosima::fastdds::dds::DataWriterQos& qos);
 
 /// Grows every shared-memory transport of `qos` to a segment of at least `bytes` (DdsOptions::shm_segment_bytes).
 void grow_shm_segments(eprosima::fastdds::dds::DomainParticipantQos& qos, std::size_t bytes);

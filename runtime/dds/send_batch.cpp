@@ -41,8 +41,10 @@ constexpr std::size_t kOverheadBytes = 4 + kLengthBytes + kLengthBytes + kTraile
 // loses the whole datagram). Measured against the 65,500-byte limit, 200 robots across processes:
 // 12-24 KiB best, 6 KiB worse (docs/performance.md, "Batched sends").
 constexpr std::size_t kBatchBytes = 16384;
-// A held batch is sent within this time even when the shared-memory segment is full (Fast DDS
-// waits up to it for free space); a writer's own blocking limit is 1 s (the QoS profiles).
+// The blocking limit a held batch is sent with, a writer's own (1 s, the QoS profiles). Fast DDS
+// 2.9.1's shared memory ignores it: a batch that does not fit in the sender's segment is dropped
+// at once, silently, and repaired by the reliable protocol, which is why a lockstep host sizes its
+// segment for its window (runtime/launch/shm_segment.hpp).
 constexpr std::chrono::milliseconds kFlushBlocking{1000};
 
 std::atomic<std::uint64_t> g_batches_sent{0};

@@ -5,6 +5,7 @@
 #include "runtime/dds/qos_files.hpp"
 
 #include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <gtest/gtest.h>
@@ -31,6 +32,17 @@ TEST(PeerLease, AProfileThatSetsALeaseKeepsIt) {
   apply_peer_lease(qos);
   EXPECT_EQ(discovery.leaseDuration, eprosima::fastrtps::Duration_t(5, 0));
   EXPECT_EQ(discovery.leaseDuration_announcementperiod, eprosima::fastrtps::Duration_t(1, 0));
+}
+
+TEST(WriterQosBeyondXml, LockstepWritersSendNoPiggybackHeartbeatsOthersKeepTheDefault) {
+  dds::DataWriterQos lockstep;
+  apply_writer_qos_beyond_xml(kLockstepProfile, lockstep);
+  EXPECT_TRUE(lockstep.reliable_writer_qos().disable_heartbeat_piggyback);
+  for (const char* profile : {"state", "command", "mission", "lockstep_local", "monitor"}) {
+    dds::DataWriterQos qos;
+    apply_writer_qos_beyond_xml(profile, qos);
+    EXPECT_FALSE(qos.reliable_writer_qos().disable_heartbeat_piggyback) << profile;
+  }
 }
 
 using eprosima::fastdds::rtps::SharedMemTransportDescriptor;
