@@ -40,10 +40,11 @@ struct DdsOptions {
   /// (runtime/bus/run_digest.hpp); nullopt: neither (a tool, a component without a scenario).
   std::optional<std::uint64_t> run_id;
   RunDigest digest;
-  /// At least this many bytes of shared-memory segment for the participant's outgoing messages
-  /// (every shared-memory transport of its profile is grown to it); 0: the profile's own.
-  /// runtime/launch/shm_segment.hpp says why a lockstep host may need more.
-  std::size_t shm_segment_bytes = 0;
+  /// At least this many bytes of shared-memory segment (the participant's outgoing messages) and of
+  /// UDP receive buffer (its incoming ones): every such transport of its profile is grown to it
+  /// (grow_transport_buffers); 0: the profile's own. runtime/launch/transport_buffers.hpp says why
+  /// a lockstep host may need more.
+  std::size_t transport_buffer_bytes = 0;
 };
 
 class DdsBus : public Bus {

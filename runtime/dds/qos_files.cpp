@@ -6,6 +6,7 @@
 #include <fastrtps/attributes/PublisherAttributes.h>
 #include <fastrtps/attributes/SubscriberAttributes.h>
 #include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastdds/rtps/transport/UDPv4TransportDescriptor.h>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
 #include <netdb.h>
@@ -275,17 +276,52 @@ void apply_writer_qos_beyond_xml(const std::string& profile, dds::DataWriterQos&
   }
 }
 
-void grow_shm_segments(dds::DomainParticipantQos& qos, std::size_t bytes) {
-  for (auto& transport : qos.transport().user_transports) {
-    const auto* shm = dynamic_cast<const eprosima::fastdds::rtps::SharedMemTransportDescriptor*>(transport.get());
-    if (shm == nullptr || shm->segment_size() >= bytes) {
-      continue;
-    }
-    // A copy: the profile's descriptor is shared with every participant made from it.
-    auto grown = std::make_shared<eprosima::fastdds::rtps::SharedMemTransportDescriptor>(*shm);
-    grown->segment_size(static_cast<uint32_t>(bytes));
-    transport = grown;
+std::optional<std::size_t> kernel_receive_buffer_max() {
+  std::ifstream in("/proc/sys/net/core/rmem_max");
+  std::size_t bytes = 0;
+  if (in >> bytes) {
+    return bytes;
   }
+  return std::nullopt;
+}
+
+bool grow_transport_buffers(dds::DomainParticipantQos& qos, std::size_t bytes) {
+  namespace rtps_transport = eprosima::fastdds::rtps;
+  const auto wanted = static_cast<uint32_t>(bytes);
+  bool grew_udp = false;
+  // Copies: the profile's descriptors are shared with every participant made from it.
+  for (auto& transport : qos.transport().user_transports) {
+    if (const auto* shm = dynamic_cast<const rtps_transport::SharedMemTransportDescriptor*>(transport.get())) {
+      if (shm->segment_size() < wanted) {
+        auto grown = std::make_shared<rtps_transport::SharedMemTransportDescriptor>(*shm);
+        grown->segment_size(wanted);
+        transport = grown;
+      }
+    } else if (const auto* udp = dynamic_cast<const rtps_transport::UDPv4TransportDescriptor*>(transport.get())) {
+      if (udp->receiveBufferSize < wanted) {  // 0: the kernel's default
+        auto grown = std::make_shared<rtps_transport::UDPv4TransportDescriptor>(*udp);
+        grown->receiveBufferSize = wanted;
+        transport = grown;
+        grew_udp = true;
+      }
+    }
+  }
+  return grew_udp;
+}
+
+void warn_if_kernel_caps_receive_buffer(std::size_t bytes, std::optional<std::size_t> kernel_max) {
+  if (!kernel_max || *kernel_max >= bytes) {
+    return;
+  }
+  static std::once_flag once;
+  std::call_once(once, [bytes, kernel_max] {
+    log::warn("dds", "UDP receive buffer: this host asks for " + std::to_string(bytes) +
+                         " bytes (its lockstep window and robots, runtime/launch/transport_buffers.hpp), the kernel "
+                         "allows " + std::to_string(*kernel_max) +
+                         " (net.core.rmem_max): between machines a full buffer drops messages and repairs slow the "
+                         "run; raise it (sysctl -w net.core.rmem_max=" + std::to_string(bytes) +
+                         ") on every host (local processes use shared memory and need nothing)");
+  });
 }
 
 dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
@@ -297,8 +333,8 @@ dds::DomainParticipantQos checked_participant_qos(const DdsOptions& options) {
     throw ConfigError(located(last, "participant profile '" + options.participant_profile + "'", "not found in the loaded QoS files"));
   }
   apply_peer_lease(qos);
-  if (options.shm_segment_bytes > 0) {
-    grow_shm_segments(qos, options.shm_segment_bytes);
+  if (options.transport_buffer_bytes > 0 && grow_transport_buffers(qos, options.transport_buffer_bytes)) {
+    warn_if_kernel_caps_receive_buffer(options.transport_buffer_bytes, kernel_receive_buffer_max());
   }
   if (!options.discovery_servers.empty()) {
     make_discovery_client(qos, options.discovery_servers);

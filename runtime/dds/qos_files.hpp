@@ -25,8 +25,15 @@ void apply_peer_lease(eprosima::fastdds::dds::DomainParticipantQos& qos);
 /// no piggyback heartbeats (DataWriterQos::reliable_writer_qos().disable_heartbeat_piggyback).
 void apply_writer_qos_beyond_xml(const std::string& profile, eprosima::fastdds::dds::DataWriterQos& qos);
 
-/// Grows every shared-memory transport of `qos` to a segment of at least `bytes` (DdsOptions::shm_segment_bytes).
-void grow_shm_segments(eprosima::fastdds::dds::DomainParticipantQos& qos, std::size_t bytes);
+/// Grows every shared-memory transport of `qos` to a segment of at least `bytes` and every UDPv4
+/// transport to a receive buffer of at least `bytes` (DdsOptions::transport_buffer_bytes), on
+/// copies of the profile's descriptors. Returns whether a UDP receive buffer grew.
+bool grow_transport_buffers(eprosima::fastdds::dds::DomainParticipantQos& qos, std::size_t bytes);
+/// The kernel's limit on a socket's receive buffer (/proc/sys/net/core/rmem_max), nullopt if unreadable.
+std::optional<std::size_t> kernel_receive_buffer_max();
+/// Logs once per process, naming both figures and the sysctl, when `kernel_max` is below `bytes`:
+/// Fast DDS asks for the buffer and the kernel silently caps it.
+void warn_if_kernel_caps_receive_buffer(std::size_t bytes, std::optional<std::size_t> kernel_max);
 
 /// Loads options.qos_files, checks every required profile (check_qos_profiles) and returns the
 /// participant QoS of options.participant_profile, checked; ConfigError naming the file and

@@ -44,7 +44,7 @@ constexpr std::size_t kBatchBytes = 16384;
 // The blocking limit a held batch is sent with, a writer's own (1 s, the QoS profiles). Fast DDS
 // 2.9.1's shared memory ignores it: a batch that does not fit in the sender's segment is dropped
 // at once, silently, and repaired by the reliable protocol, which is why a lockstep host sizes its
-// segment for its window (runtime/launch/shm_segment.hpp).
+// segment for its window (runtime/launch/transport_buffers.hpp).
 constexpr std::chrono::milliseconds kFlushBlocking{1000};
 
 std::atomic<std::uint64_t> g_batches_sent{0};

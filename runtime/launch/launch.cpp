@@ -30,7 +30,7 @@
 #include "runtime/host/producer_check.hpp"
 #include "runtime/bus/qos_profiles.hpp"
 #include "runtime/launch/process_group.hpp"
-#include "runtime/launch/shm_segment.hpp"
+#include "runtime/launch/transport_buffers.hpp"
 #include "runtime/config/share_dir.hpp"
 #include "runtime/launch/standalone_scenario.hpp"
 #include "runtime/topics/topic_catalog.hpp"
@@ -317,8 +317,8 @@ RunStats run_in_process(const ComponentRegistry& registry, const Scenario& scena
   }
   const std::size_t robots_served = scenario.robots_served_by(options.components);
   if (!options.single_process && in_process.mode == TimeMode::kLockstep) {
-    // Room for what it may write before its slowest reader catches up (shm_segment.hpp).
-    announced.shm_segment_bytes = shm_segment_bytes(robots_served, options.lockstep_window);
+    // Room for what it may be ahead of or behind its peers (transport_buffers.hpp).
+    announced.transport_buffer_bytes = transport_buffer_bytes(robots_served, options.lockstep_window);
   }
   auto bus = make_dds_bus(announced);
   bus->expect_robots(robots_served);  // this process's writers' instances

@@ -1,6 +1,6 @@
 // apply_peer_lease(): the participant lease our hosts announce unless the profile sets its own
-// (issue 24, finding 6: a dead host is known to the others within 2 s). grow_shm_segments(): the
-// segment a lockstep host needs for its window (runtime/launch/shm_segment.hpp).
+// (issue 24, finding 6: a dead host is known to the others within 2 s). grow_transport_buffers(): the
+// segment and UDP receive buffer a lockstep host needs for its window (runtime/launch/transport_buffers.hpp).
 
 #include "runtime/dds/qos_files.hpp"
 
@@ -52,28 +52,47 @@ const SharedMemTransportDescriptor& shm_of(const dds::DomainParticipantQos& qos,
   return dynamic_cast<const SharedMemTransportDescriptor&>(*qos.transport().user_transports.at(i));
 }
 
-TEST(ShmSegments, GrowsEverySharedMemoryTransportOnACopyAndLeavesTheRest) {
+const UDPv4TransportDescriptor& udp_of(const dds::DomainParticipantQos& qos, std::size_t i) {
+  return dynamic_cast<const UDPv4TransportDescriptor&>(*qos.transport().user_transports.at(i));
+}
+
+TEST(TransportBuffers, GrowsTheSegmentAndTheUdpReceiveBufferOnCopies) {
   dds::DomainParticipantQos qos;
-  auto udp = std::make_shared<UDPv4TransportDescriptor>();
+  auto udp = std::make_shared<UDPv4TransportDescriptor>();  // receiveBufferSize 0: the kernel's default
+  udp->non_blocking_send = true;
   auto shm = std::make_shared<SharedMemTransportDescriptor>();
   shm->segment_size(512 * 1024);
   shm->port_queue_capacity(8192);
   qos.transport().user_transports = {udp, shm};
-  grow_shm_segments(qos, 2 * 1024 * 1024);
-  EXPECT_EQ(qos.transport().user_transports.at(0), udp);
+  EXPECT_TRUE(grow_transport_buffers(qos, 2 * 1024 * 1024));
+  EXPECT_EQ(udp_of(qos, 0).receiveBufferSize, 2U * 1024 * 1024);
+  EXPECT_TRUE(udp_of(qos, 0).non_blocking_send);  // the rest of each descriptor is kept
   EXPECT_EQ(shm_of(qos, 1).segment_size(), 2U * 1024 * 1024);
-  EXPECT_EQ(shm_of(qos, 1).port_queue_capacity(), 8192U);  // the rest of the descriptor is kept
-  EXPECT_EQ(shm->segment_size(), 512U * 1024);             // the profile's descriptor is not touched
+  EXPECT_EQ(shm_of(qos, 1).port_queue_capacity(), 8192U);
+  EXPECT_EQ(udp->receiveBufferSize, 0U);  // the profile's descriptors are not touched
+  EXPECT_EQ(shm->segment_size(), 512U * 1024);
 }
 
-TEST(ShmSegments, NeverShrinksALargerSegment) {
+TEST(TransportBuffers, NeverShrinksALargerOneAndSaysWhetherAUdpBufferGrew) {
   dds::DomainParticipantQos qos;
   auto shm = std::make_shared<SharedMemTransportDescriptor>();
   shm->segment_size(4 * 1024 * 1024);
-  qos.transport().user_transports = {shm};
-  grow_shm_segments(qos, 1024 * 1024);
+  auto udp = std::make_shared<UDPv4TransportDescriptor>();
+  udp->receiveBufferSize = 4 * 1024 * 1024;
+  qos.transport().user_transports = {shm, udp};
+  EXPECT_FALSE(grow_transport_buffers(qos, 1024 * 1024));
   EXPECT_EQ(qos.transport().user_transports.at(0), shm);
-  EXPECT_EQ(shm_of(qos, 0).segment_size(), 4U * 1024 * 1024);
+  EXPECT_EQ(qos.transport().user_transports.at(1), udp);
+  dds::DomainParticipantQos shm_only;
+  shm_only.transport().user_transports = {std::make_shared<SharedMemTransportDescriptor>()};
+  EXPECT_FALSE(grow_transport_buffers(shm_only, 1024 * 1024));  // grown, but no UDP to warn about
+  EXPECT_EQ(shm_of(shm_only, 0).segment_size(), 1024U * 1024);
+}
+
+TEST(TransportBuffers, TheKernelsLimitIsReadableHere) {
+  const std::optional<std::size_t> max = kernel_receive_buffer_max();
+  ASSERT_TRUE(max.has_value()) << "/proc/sys/net/core/rmem_max";
+  EXPECT_GT(*max, 0U);
 }
 
 }  // namespace
