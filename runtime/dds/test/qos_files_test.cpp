@@ -89,6 +89,19 @@ TEST(TransportBuffers, NeverShrinksALargerOneAndSaysWhetherAUdpBufferGrew) {
   EXPECT_EQ(shm_of(shm_only, 0).segment_size(), 1024U * 1024);
 }
 
+TEST(TransportBuffers, AKernelLimitBelowTheRequestIsSaidOnceWithTheSysctl) {
+  testing::internal::CaptureStderr();
+  warn_if_kernel_caps_receive_buffer(1000, 2000);  // enough: nothing to say
+  warn_if_kernel_caps_receive_buffer(1000, std::nullopt);
+  warn_if_kernel_caps_receive_buffer(1740800, 212992);
+  warn_if_kernel_caps_receive_buffer(1740800, 212992);  // once per process
+  const std::string err = testing::internal::GetCapturedStderr();
+  EXPECT_NE(err.find("UDP receive buffer: this host asks for 1740800 bytes"), std::string::npos) << err;
+  EXPECT_NE(err.find("allows 212992 (net.core.rmem_max)"), std::string::npos) << err;
+  EXPECT_NE(err.find("sysctl -w net.core.rmem_max=1740800"), std::string::npos) << err;
+  EXPECT_EQ(err.find("UDP receive buffer", err.find("UDP receive buffer") + 1), std::string::npos) << "said twice: " << err;
+}
+
 TEST(TransportBuffers, TheKernelsLimitIsReadableHere) {
   const std::optional<std::size_t> max = kernel_receive_buffer_max();
   ASSERT_TRUE(max.has_value()) << "/proc/sys/net/core/rmem_max";
