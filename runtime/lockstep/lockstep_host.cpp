@@ -137,6 +137,12 @@ LockstepHost::LockstepHost(RunContext& run, const HostOptions& options, Slots& s
   // Newest-only inputs read at their component's due and checkpoint steps only: across processes
   // the writers leave the other samples out (before the bus starts: the readers' filters).
   for (std::size_t i = 0; i < slots.size(); ++i) {
+    const StepNeeds busy = StepNeeds::of_component(slots[i]->state.period_steps, checkpoint_steps_[i], 0);
+    if (busy_steps_) {
+      busy_steps_->add(busy);
+    } else {
+      busy_steps_ = busy;
+    }
     for (const auto& input : slots[i]->context->inputs()) {
       if (input->newest_only()) {
         input->read_only(StepNeeds::of_component(slots[i]->state.period_steps, checkpoint_steps_[i], input->delay_steps()));
@@ -299,16 +305,8 @@ void LockstepHost::publish_failure(const std::string& error, bool await_coordina
 }
 
 std::uint64_t LockstepHost::next_busy_step(std::uint64_t step) const {
-  const std::uint64_t last = run_.scenario->last_step();
-  std::uint64_t next = std::max(last, step + 1);
-  const auto next_multiple = [step](std::uint64_t every) { return (step / every + 1) * every; };
-  for (std::size_t i = 0; i < slots_.size(); ++i) {
-    next = std::min(next, next_multiple(std::max<std::uint64_t>(1, slots_[i]->state.period_steps)));
-    if (checkpoint_steps_[i] > 0) {
-      next = std::min(next, next_multiple(checkpoint_steps_[i]));
-    }
-  }
-  return std::max(next, step + 1);
+  const std::uint64_t last_or_next = std::max(run_.scenario->last_step(), step + 1);
+  return busy_steps_ ? std::min(last_or_next, busy_steps_->first_read_step_from(step + 1)) : last_or_next;
 }
 
 void LockstepHost::publish_ack(std::uint64_t step, std::uint64_t components_run, const std::string& error,

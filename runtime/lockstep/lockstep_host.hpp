@@ -7,9 +7,11 @@
 #include <cstdint>
 #include <deque>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "robodds/idl/robodds.h"
+#include "runtime/bus/step_needs.hpp"
 #include "runtime/host/digest_check.hpp"
 #include "runtime/host/health_exchange.hpp"
 #include "runtime/host/host.hpp"
@@ -83,6 +85,9 @@ class LockstepHost {
   /// coordinator's scenario (a run digest: the same last step), else every step.
   bool ack_ahead_ = false;
   std::uint64_t next_ack_step_ = 0;  // the step the previous acknowledgement announced
+  /// The steps at which some component is due or waits for its inputs (a history checkpoint):
+  /// the union of the slots' StepNeeds read at delay 0; nullopt without slots (no step is busy).
+  std::optional<StepNeeds> busy_steps_;
   /// Per slot (history_checkpoints() in the .cpp): every how many steps the host also waits for
   /// the slot's inputs without running it (0: never), and
   /// whether that wait is still open at the current tick.
