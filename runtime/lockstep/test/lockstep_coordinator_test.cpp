@@ -114,6 +114,27 @@ TEST_F(CoordinatorFixture, AnAcknowledgementThatAnnouncesALaterOneCoversTheSteps
   }
 }
 
+TEST_F(CoordinatorFixture, AGroupWhoseAcknowledgementCoversTheStepIsNotNamedAsMissing) {
+  options.members = {"a", "b", "c"};
+  options.tick_timeout_s = 0.1;
+  LockstepCoordinator coordinator(run, options, *run.bus);
+  coordinator.begin(std::chrono::steady_clock::now());
+  coordinator.poll();
+  ack("a", 0, "", 9, 5);  // done up to step 4
+  ack("b", 0);
+  ack("c", 0);
+  coordinator.poll();
+  EXPECT_EQ(coordinator.acknowledged_steps(), 1u);
+  std::this_thread::sleep_for(std::chrono::milliseconds(150));
+  try {
+    coordinator.poll();
+    FAIL() << "expected a RunError";
+  } catch (const RunError& e) {
+    EXPECT_STREQ(e.what(), "lockstep: no acknowledgement of step 1 within 0.1 s from groups 'b' (newest sample: step 0), "
+                           "'c' (newest sample: step 0) on sim/step_done");
+  }
+}
+
 TEST_F(CoordinatorFixture, FailedGroupIsReported) {
   LockstepCoordinator coordinator(run, options, *run.bus);
   coordinator.begin(std::chrono::steady_clock::now());
