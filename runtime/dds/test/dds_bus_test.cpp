@@ -253,12 +253,15 @@ StepsSeen steps_seen(const char* topic, const std::vector<std::optional<StepNeed
   auto writer_bus = make_dds_bus(options);
   auto writer = writer_bus->writer(topic, type_name, "lockstep");
   // Matched first, as a lockstep host is before its first step: a sample written before the
-  // writer knows the reader carries no verdict for it (the reader's own filter judges it).
+  // writer knows the reader carries no verdict for it (the reader's own filter judges it). Both
+  // sides: a sample that reaches the reader before it knows the writer is dropped there, and the
+  // repair sends only what the writer's history (48 samples) still holds.
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (!writer->has_matched_readers() && std::chrono::steady_clock::now() < until) {
+  while (!(writer->has_matched_readers() && reader_bus->match_report().empty()) && std::chrono::steady_clock::now() < until) {
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   EXPECT_TRUE(writer->has_matched_readers()) << "the reader did not match within 10 s";
+  EXPECT_EQ(reader_bus->match_report(), "") << "the writer did not match within 10 s";
   for (std::uint64_t step = 0; step < 100; ++step) {
     idl::RobotState sample;
     sample.robot_id(1);
