@@ -1,6 +1,7 @@
 #pragma once
-// One recorded topic of the evaluator: its samples become CSV rows as they are taken and go to
-// the callbacks the metrics modules attached to the topic (metrics_setup.hpp).
+// One recorded topic of the evaluator: its samples go to the callbacks the metrics modules
+// attached to the topic (metrics_setup.hpp) as they are taken, and become CSV rows on the
+// evaluator's writer thread (runtime/io/batch_writer_thread.hpp).
 
 #include <cstdint>
 #include <fstream>
@@ -10,6 +11,7 @@
 #include <vector>
 
 #include "runtime/base/error.hpp"
+#include "runtime/io/batch_writer_thread.hpp"
 #include "runtime/io/io.hpp"
 #include "runtime/io/sample_format.hpp"
 
@@ -37,10 +39,10 @@ class CsvFile {
       throw RunError("evaluator: cannot write " + path_);
     }
   }
-  /// Appends `rows` (whole lines).
+  /// Appends `rows` (whole lines); RunError if the file cannot take them.
   void write(const std::string& rows) {
-    if (file_.is_open()) {
-      file_.write(rows.data(), static_cast<std::streamsize>(rows.size()));
+    if (file_.is_open() && !file_.write(rows.data(), static_cast<std::streamsize>(rows.size()))) {
+      throw RunError("evaluator: cannot write " + path_);
     }
   }
   /// Pushes the rows written so far to the file; RunError if it cannot.
@@ -55,11 +57,42 @@ class CsvFile {
   std::ofstream file_;  // buffered: rows reach the disk in blocks, and at flush()
 };
 
+/// The samples one recorder took at one step, turned into CSV rows on the evaluator's writer
+/// thread (the step only takes them and feeds the metrics).
+class CsvBatch {
+ public:
+  explicit CsvBatch(std::size_t stream) : stream_(stream) {}
+  virtual ~CsvBatch() = default;
+  /// Appends its rows to its file; `text`: the writer thread's buffer, reused from batch to batch.
+  virtual void write(std::string& text) = 0;
+  /// Forgets the samples, keeps the storage.
+  virtual void clear() = 0;
+  std::size_t stream() const { return stream_; }
+
+ private:
+  std::size_t stream_;
+};
+
+/// The evaluator's CSV writer: one thread for every recorder that writes its rows through it.
+using CsvWriter = BatchWriterThread<CsvBatch>;
+
+/// Batches (one per recorder and step) that may wait for the CSV writer: ~85 steps of three
+/// topics, so that a fast co-located run, whose steps outpace the writer, holds a few MB at most
+/// (integration.evaluator_memory).
+constexpr std::size_t kMaxQueuedCsvBatches = 4 * CsvWriter::kWakeAt;
+
+/// A CsvWriter whose work is CsvBatch::write.
+inline std::unique_ptr<CsvWriter> make_csv_writer() {
+  return std::make_unique<CsvWriter>(
+      "evaluator", [text = std::string()](CsvBatch& batch) mutable { batch.write(text); }, kMaxQueuedCsvBatches);
+}
+
 class RecorderBase {
  public:
   virtual ~RecorderBase() = default;
-  /// Creates the CSV file in `dir` and writes its header.
-  virtual void open(const std::string& dir) = 0;
+  /// Creates the CSV file in `dir` and writes its header; `writer`: the thread that may write its
+  /// rows (it outlives the recorder's last flush()).
+  virtual void open(const std::string& dir, CsvWriter& writer) = 0;
   /// Takes the readable samples of its instances (rows written now, or later by a recorder
   /// whose rows wait for more than the sample).
   virtual void collect() = 0;
@@ -89,10 +122,34 @@ class TopicRecorder : public RecorderBase {
   const InputBase* counted_input_;  // its rejected samples
 };
 
-/// Writes each sample of its topic as a CSV row when it is taken (not opened: no file). `keys`:
-/// the instances it reads, in this order at each step. `by_robot`: a topic keyed (robot_id,
-/// target_id) subscribed with Subscription::robot_streams(), `keys` robot ids: each robot's
-/// samples, whatever the target, in step order. `callbacks`: called with each sample, in order.
+/// The samples of a Recorder<Msg> at one step, as CSV rows of `file`.
+template <class Msg>
+class TypedCsvBatch : public CsvBatch {
+ public:
+  TypedCsvBatch(std::size_t stream, CsvFile* file) : CsvBatch(stream), file_(file) {}
+  std::vector<Msg>& samples() { return samples_; }
+  void write(std::string& text) override {
+    text.clear();
+    for (const Msg& sample : samples_) {
+      append_seconds(text, static_cast<std::int64_t>(sample.header().stamp_ns()));
+      text += ',';
+      append_csv_row(text, sample);
+      text += '\n';
+    }
+    file_->write(text);
+  }
+  void clear() override { samples_.clear(); }
+
+ private:
+  CsvFile* file_;  // the recorder's; written by the writer thread only once opened
+  std::vector<Msg> samples_;
+};
+
+/// Writes each sample of its topic as a CSV row (not opened: no file). `keys`: the instances it
+/// reads, in this order at each step. `by_robot`: a topic keyed (robot_id, target_id) subscribed
+/// with Subscription::robot_streams(), `keys` robot ids: each robot's samples, whatever the
+/// target, in step order. `callbacks`: called with each sample, in order, when it is taken; the
+/// rows are made and written later by the writer thread, in the same order.
 template <class Msg>
 class Recorder : public TopicRecorder {
  public:
@@ -101,27 +158,40 @@ class Recorder : public TopicRecorder {
            std::vector<Callback> callbacks = {})
       : TopicRecorder(std::move(topic), input), input_(input), keys_(std::move(keys)), by_robot_(by_robot),
         callbacks_(std::move(callbacks)) {}
-  void open(const std::string& dir) override { file_.open(dir, topic_, "t_s," + csv_header<Msg>()); }
+  void open(const std::string& dir, CsvWriter& writer) override {
+    file_.open(dir, topic_, "t_s," + csv_header<Msg>());
+    writer_ = &writer;
+    stream_ = writer.add_stream();
+  }
   void collect() override {
-    text_.clear();
-    samples_.clear();
+    if (!batch_) {
+      batch_ = std::make_unique<TypedCsvBatch<Msg>>(stream_, &file_);
+    }
+    std::vector<Msg>& samples = batch_->samples();
+    samples.clear();
     // Every key's samples in one call (one lock), in the order of keys_, into a reused buffer.
     if (by_robot_) {
-      input_->take_new_of_robots(keys_, samples_);
+      input_->take_new_of_robots(keys_, samples);
     } else {
-      input_->take_new(keys_, samples_);
+      input_->take_new(keys_, samples);
     }
-    for (const Msg& sample : samples_) {
-      append_seconds(text_, static_cast<std::int64_t>(sample.header().stamp_ns()));
-      text_ += ',';
-      append_csv_row(text_, sample);
-      text_ += '\n';
+    for (const Msg& sample : samples) {
       ++rows_;
       for (const Callback& callback : callbacks_) {
         callback(sample);
       }
     }
-    file_.write(text_);
+    if (writer_ != nullptr && !samples.empty()) {
+      // A written batch of our stream (so one of ours) to fill next, or none yet.
+      batch_.reset(static_cast<TypedCsvBatch<Msg>*>(writer_->push(std::move(batch_)).release()));
+    }
+  }
+  /// Every row taken so far in the file.
+  void flush() override {
+    if (writer_ != nullptr) {
+      writer_->drain();
+    }
+    file_.flush();
   }
 
  private:
@@ -129,8 +199,9 @@ class Recorder : public TopicRecorder {
   std::vector<std::uint64_t> keys_;
   bool by_robot_;
   std::vector<Callback> callbacks_;
-  std::string text_;    // the rows of one collect()
-  std::vector<Msg> samples_;  // the samples of one collect()
+  CsvWriter* writer_ = nullptr;  // null until opened (no output: the rows go nowhere)
+  std::size_t stream_ = 0;       // its batches' series in writer_
+  std::unique_ptr<TypedCsvBatch<Msg>> batch_;  // the one the next collect() fills
 };
 
 }  // namespace robodds::evaluator

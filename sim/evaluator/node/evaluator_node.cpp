@@ -35,6 +35,8 @@ class EvaluatorNode : public Component {
     const EvaluatorParams params = read_params(ctx.params(), evaluator_param_table());
     keys_ = ctx.robot_keys();
     context_ = &ctx;
+    csv_writer_.reset();  // before the recorders whose files it writes
+    files_open_ = false;
     recorders_.clear();
     modules_.clear();
     MetricsSetup setup(ctx, params.topics, params.metrics_after_s);
@@ -144,8 +146,9 @@ class EvaluatorNode : public Component {
     }
     files_open_ = true;
     ::mkdir(recording_->output_dir().c_str(), 0755);
+    csv_writer_ = make_csv_writer();
     for (auto& recorder : recorders_) {
-      recorder->open(recording_->output_dir());
+      recorder->open(recording_->output_dir(), *csv_writer_);
     }
   }
 
@@ -223,6 +226,10 @@ class EvaluatorNode : public Component {
   std::vector<std::unique_ptr<MetricsModule>> modules_;  // by summary rank
   std::vector<std::uint64_t> keys_;
   std::vector<std::unique_ptr<RecorderBase>> recorders_;  // in the order of `topics`
+  // Formats and writes the recorders' rows off the step (a lockstep step waits for the evaluator:
+  // with 200 robots the rows were half its step, docs/performance.md). After recorders_: it is
+  // stopped, everything queued written, before the files it writes go.
+  std::unique_ptr<CsvWriter> csv_writer_;
   StandbySummary standby_;
   const ComponentContext* context_ = nullptr;  // owned by the host, which keeps it while it runs us
   const RunRecording* recording_ = nullptr;     // this component records the run (context_->record_run())

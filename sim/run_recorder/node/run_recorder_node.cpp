@@ -2,17 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <condition_variable>
 #include <cstdint>
 #include <deque>
 #include <exception>
+#include <functional>
 #include <iterator>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <set>
 #include <string>
-#include <thread>
 #include <type_traits>
 #include <vector>
 
@@ -27,6 +25,7 @@
 #include "runtime/component/registry.hpp"
 #include "runtime/config/param_table_reader.hpp"
 #include "runtime/config/params.hpp"
+#include "runtime/io/batch_writer_thread.hpp"
 #include "runtime/io/sample_verdict.hpp"
 #include "runtime/mcap/mcap_writer.hpp"
 #include "runtime/mcap/topic_channels.hpp"
@@ -149,120 +148,16 @@ class TypedBatch : public Batch {
 };
 
 /// Serializing, framing and compressing take about four times what taking the samples does
-/// (docs/performance.md, "Recording in the run"), so a thread of its own does them, in the order
-/// the steps queued their batches (one consumer: the file's order is the queue's). At most
-/// kMaxQueued batches wait: past that the step waits for the writer (lockstep loses nothing).
-/// The writer is woken once kWakeAt batches wait (or at the end), not for every batch: waking a
-/// sleeping thread is a futex call, and one per topic and step was ~2 % of a 200-robot co-located
-/// run's CPU once the writer kept up (perf). The file is the same; at most kWakeAt batches (a few
-/// steps) wait in memory longer before they are written.
-class WriterThread {
- public:
-  static constexpr std::size_t kMaxQueued = 4096;
-  static constexpr std::size_t kWakeAt = 64;
-  static_assert(kWakeAt < kMaxQueued, "the writer must be woken before the queue is full");
+/// (docs/performance.md, "Recording in the run"), so a thread of its own does them
+/// (runtime/io/batch_writer_thread.hpp), in the order the steps queued their batches.
+using WriterThread = BatchWriterThread<Batch>;
+/// Batches (one per topic and step) that may wait for the writer thread.
+constexpr std::size_t kMaxQueuedBatches = 4096;
 
-  explicit WriterThread(Sink sink) : sink_(sink), thread_([this] { loop(); }) {}
-  ~WriterThread() {
-    try {
-      finish();
-    } catch (const std::exception&) {
-      // said by close() already, or the run is being torn down after another error
-    }
-  }
-
-  /// Queues `batch`; gives back a written batch of the same stream to fill next (null: none yet).
-  /// Rethrows (as RunError) what the writer thread failed with.
-  std::unique_ptr<Batch> push(std::unique_ptr<Batch> batch) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    room_.wait(lock, [this] { return queue_.size() < kMaxQueued || failed_; });
-    rethrow_locked();
-    const std::size_t stream = batch->stream();
-    queue_.push_back(std::move(batch));
-    if (queue_.size() == kWakeAt) {
-      ready_.notify_one();
-    }
-    if (stream >= written_.size() || written_[stream].empty()) {
-      return nullptr;
-    }
-    std::unique_ptr<Batch> spare = std::move(written_[stream].back());
-    written_[stream].pop_back();
-    return spare;
-  }
-
-  /// Writes what is queued and stops the thread; rethrows its failure (once).
-  void finish() {
-    {
-      std::lock_guard<std::mutex> lock(mutex_);
-      done_ = true;
-      ready_.notify_one();
-    }
-    if (thread_.joinable()) {
-      thread_.join();
-    }
-    std::lock_guard<std::mutex> lock(mutex_);
-    rethrow_locked();
-  }
-
- private:
-  void loop() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    for (;;) {
-      ready_.wait(lock, [this] { return queue_.size() >= kWakeAt || done_; });
-      if (queue_.empty()) {
-        return;  // done, and everything written
-      }
-      std::deque<std::unique_ptr<Batch>> taken;
-      taken.swap(queue_);
-      room_.notify_all();
-      lock.unlock();
-      std::string error;
-      try {
-        for (const auto& batch : taken) {
-          batch->write(sink_, bytes_);
-        }
-      } catch (const std::exception& e) {
-        error = e.what();
-      }
-      for (auto& batch : taken) {
-        batch->clear();  // outside the lock: keeps the storage
-      }
-      lock.lock();
-      for (auto& batch : taken) {
-        const std::size_t stream = batch->stream();
-        if (written_.size() <= stream) written_.resize(stream + 1);
-        written_[stream].push_back(std::move(batch));
-      }
-      if (!error.empty()) {
-        failed_ = true;
-        error_ = error;
-        queue_.clear();
-        room_.notify_all();
-        return;
-      }
-    }
-  }
-
-  void rethrow_locked() {
-    if (failed_ && !error_.empty()) {
-      const std::string error = error_;
-      error_.clear();  // said once
-      throw RunError("run_recorder: " + error);
-    }
-  }
-
-  Sink sink_;
-  std::vector<std::uint8_t> bytes_;  // one sample's payload at a time (the writer thread's)
-  std::mutex mutex_;
-  std::condition_variable ready_, room_;
-  std::deque<std::unique_ptr<Batch>> queue_;
-  // Written batches by stream, for push() to hand back: at most as many as were queued at once.
-  std::vector<std::vector<std::unique_ptr<Batch>>> written_;
-  bool done_ = false;
-  bool failed_ = false;
-  std::string error_;
-  std::thread thread_;  // last: it starts once everything above exists
-};
+/// The writer thread's work for one batch; `bytes`: one sample's payload at a time, reused.
+std::function<void(Batch&)> write_to(Sink sink) {
+  return [sink, bytes = std::vector<std::uint8_t>()](Batch& batch) mutable { batch.write(sink, bytes); };
+}
 
 class TopicStreamBase {
  public:
@@ -620,7 +515,8 @@ class RunRecorderNode : public Component {
       scene_state_->channel = foxglove::add_robot_poses_channel(*writer_);
       scene = scene_state_.get();
     }
-    writer_thread_ = std::make_unique<WriterThread>(Sink{writer_.get(), mode_, step_s_, scene});
+    writer_thread_ = std::make_unique<WriterThread>("run_recorder", write_to(Sink{writer_.get(), mode_, step_s_, scene}),
+                                                   kMaxQueuedBatches);
   }
 
   void close() {

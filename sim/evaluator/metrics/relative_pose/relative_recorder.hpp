@@ -73,7 +73,8 @@ class RelativeRecorder : public TopicRecorder {
       : TopicRecorder(std::move(topic), input), stage_(std::move(stage)), input_(input), keys_(std::move(keys)), step_s_(step_s),
         truth_(truth), metrics_(metrics) {}
 
-  void open(const std::string& dir) override {
+  /// Writes its own rows, on the step (settle() needs the step's truth): `writer` unused.
+  void open(const std::string& dir, CsvWriter& /*writer*/) override {
     file_.open(dir, topic_, "t_s," + csv_header<Msg>() + ",true_x,true_y,true_theta");
   }
   void collect() override {
