@@ -32,7 +32,15 @@ void ReaderListener::add(SampleCallback on_sample, ReaderEventCallback on_event)
 void ReaderListener::on_data_available(dds::DataReader* reader) {
   std::lock_guard<std::mutex> lock(mutex_);
   dds::SampleInfo info;
-  while (reader->take_next_sample(buffer_, &info) == ReturnCode_t::RETCODE_OK) {
+  // Fast DDS calls this once per received sample. Take as many samples as the reader holds, not
+  // until a take finds none: that last take cost a lock, a clock reading and an instance lookup
+  // for nothing, once per sample. A sample that arrives meanwhile comes with a call of its own.
+  // One arrival time for the samples of one call (they arrived within microseconds).
+  const std::int64_t arrived_ns = monotonic_now_ns();
+  for (std::uint64_t held = reader->get_unread_count(); held > 0; --held) {
+    if (reader->take_next_sample(buffer_, &info) != ReturnCode_t::RETCODE_OK) {
+      break;
+    }
     if (!info.valid_data) {
       continue;
     }
@@ -41,7 +49,7 @@ void ReaderListener::on_data_available(dds::DataReader* reader) {
       last_writer_ = writer;
       last_writer_id_ = peers_->writer_id(writer);
     }
-    const SampleMeta meta{last_writer_id_, monotonic_now_ns()};
+    const SampleMeta meta{last_writer_id_, arrived_ns};
     for (const SampleCallback& callback : sample_callbacks_) {
       callback(buffer_, meta);
     }
