@@ -55,10 +55,11 @@ class DdsWriter : public WriterHandle {
  public:
   /// `wait_to_forget`: lockstep (simulated time may wait): end_instance() waits for the
   /// acknowledgements; real time never blocks a loop and retries at each later write instead.
-  DdsWriter(std::vector<dds::DataWriter*> writers, SampleKeyFunction key, std::string topic, const MatchState* match,
-            bool wait_to_forget)
+  DdsWriter(std::vector<dds::DataWriter*> writers, const std::string& type_name, std::string topic,
+            const MatchState* match, bool wait_to_forget)
       : writers_(std::move(writers)),
-        key_(key),
+        key_(sample_key_function(type_name)),
+        steps_(sample_steps_function(type_name)),
         spread_(writers_.size()),
         forget_pending_(writers_.size(), false),
         wait_to_forget_(wait_to_forget),
@@ -69,6 +70,7 @@ class DdsWriter : public WriterHandle {
     if (any_forget_pending_) {
       forget_acknowledged(std::chrono::milliseconds(0));
     }
+    const SampleBeingWritten writing(sample, steps_);  // for the writer-side step filters
     if (!writers_[writer_of(sample)]->write(const_cast<void*>(sample))) {
       throw RunError("DDS write failed on topic " + topic_);
     }
@@ -141,6 +143,7 @@ class DdsWriter : public WriterHandle {
 
   std::vector<dds::DataWriter*> writers_;  // owned by the participant
   SampleKeyFunction key_;                  // idl::instance_key of the topic's type (used with several writers)
+  SampleStepsFunction steps_;              // the header steps of the topic's type (SampleBeingWritten)
   // spread_ and the forgetting below: a writer may be used from several threads, and no sample
   // may be written between a writer's acknowledgement check and the emptying of its history.
   mutable std::mutex mutex_;
@@ -248,7 +251,7 @@ class FastDdsBus : public DdsBus, public PeerLossSource {
                             std::to_string(expected_robots_) + " robots, at most " +
                             std::to_string(kRobotsPerLockstepWriter) + " each)");
     }
-    auto handle = std::make_shared<DdsWriter>(std::move(writers), sample_key_function(type_name), topic, &listener->match(),
+    auto handle = std::make_shared<DdsWriter>(std::move(writers), type_name, topic, &listener->match(),
                                               profile == kLockstepProfile);
     writer_listeners_[key] = std::move(listener);
     writers_[key] = handle;

@@ -9,6 +9,25 @@ namespace robodds {
 namespace dds = eprosima::fastdds::dds;
 using eprosima::fastrtps::types::ReturnCode_t;
 
+namespace {
+struct WritingNow {
+  const void* sample = nullptr;
+  SampleStepsFunction steps_of_type = nullptr;
+};
+thread_local WritingNow writing_now;
+}  // namespace
+
+SampleBeingWritten::SampleBeingWritten(const void* sample, SampleStepsFunction steps_of_type) {
+  writing_now = WritingNow{sample, steps_of_type};
+}
+
+SampleBeingWritten::~SampleBeingWritten() { writing_now = WritingNow{}; }
+
+const void* SampleBeingWritten::of_type(SampleStepsFunction steps_of_type) {
+  const WritingNow& now = writing_now;
+  return now.sample != nullptr && steps_of_type != nullptr && now.steps_of_type == steps_of_type ? now.sample : nullptr;
+}
+
 ReaderKeyFilter::ReaderKeyFilter(dds::TypeSupport type, const std::string& type_name, Side side)
     : type_(std::move(type)), key_(sample_key_function(type_name)), steps_(sample_steps_function(type_name)), side_(side) {
   sample_ = type_->createData();
@@ -44,6 +63,11 @@ bool ReaderKeyFilter::evaluate(const SerializedPayload& payload, const FilterSam
   if (!check_keys && !check_steps) {
     return true;
   }
+  if (side_ == Side::kWriter && !check_keys) {
+    if (const void* sample = SampleBeingWritten::of_type(steps_)) {
+      return passes_steps(sample);  // the sample this payload was encoded from (no decode)
+    }
+  }
   // The type support's deserialize() takes a non-const payload (it records the encapsulation):
   // decode a copy, reused from sample to sample (no allocation once it has the largest size).
   scratch_.copy(&payload, false);
@@ -57,12 +81,14 @@ bool ReaderKeyFilter::evaluate(const SerializedPayload& payload, const FilterSam
   if (check_keys && !takes_key()) {
     return false;
   }
-  if (check_steps) {
-    const SampleSteps steps = steps_(sample_);
-    if (!needs_->needs(steps.step, steps.next_step)) {
-      left_out_.fetch_add(1, std::memory_order_relaxed);
-      return false;
-    }
+  return !check_steps || passes_steps(sample_);
+}
+
+bool ReaderKeyFilter::passes_steps(const void* sample) const {
+  const SampleSteps steps = steps_(sample);
+  if (!needs_->needs(steps.step, steps.next_step)) {
+    left_out_.fetch_add(1, std::memory_order_relaxed);
+    return false;
   }
   return true;
 }

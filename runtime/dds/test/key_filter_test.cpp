@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "robodds/idl/robodds.h"
@@ -169,6 +170,37 @@ TEST(KeyFilterFactory, MakesAWriterSideStepFilterForARemoteReadersExpression) {
   EXPECT_NE(factory.create_content_filter(KeyFilterFactory::kStepClass, "robodds::idl::NoSuchType", nullptr, "steps 10:0|x",
                                           none, unknown_type),
             ReturnCode_t::RETCODE_OK);
+}
+
+TEST(ReaderKeyFilter, AWriterSideFilterReadsTheStepsOfTheSampleThisThreadIsWritingInsteadOfDecoding) {
+  dds::TypeSupport type(make_type_support(kType));
+  ReaderKeyFilter writer_side(type, kType, ReaderKeyFilter::Side::kWriter);
+  writer_side.read_only(StepNeeds::of_component(10, 0, 0));
+  const SerializedPayload_t undecodable(0);  // proves the verdict came from the sample, not a decode
+  idl::VelocityCommand sample;
+  sample.header().step(30);
+  sample.header().next_step(31);
+  {
+    const SampleBeingWritten writing(&sample, sample_steps_function(kType));
+    EXPECT_EQ(SampleBeingWritten::of_type(sample_steps_function(kType)), &sample);
+    EXPECT_TRUE(passes(writer_side, undecodable));
+    sample.header().step(31);
+    sample.header().next_step(32);
+    EXPECT_FALSE(passes(writer_side, undecodable)) << "step 31 is read at no step";
+    EXPECT_EQ(writer_side.left_out(), 1u);
+
+    ReaderKeyFilter reader_side(type, kType);  // a reader judges the payload it received, never the mark
+    reader_side.read_only(StepNeeds::of_component(10, 0, 0));
+    EXPECT_FALSE(passes(reader_side, undecodable));
+    EXPECT_EQ(reader_side.dropped(), 1u);
+  }
+  EXPECT_EQ(SampleBeingWritten::of_type(sample_steps_function(kType)), nullptr) << "the mark ends with the write";
+  EXPECT_TRUE(passes(writer_side, undecodable)) << "no mark: decoded, and what does not decode passes";
+  {
+    const SampleBeingWritten writing(&sample, sample_steps_function("robodds::idl::RobotState"));
+    EXPECT_EQ(SampleBeingWritten::of_type(sample_steps_function(kType)), nullptr) << "a sample of another type is not this filter's";
+    EXPECT_FALSE(passes(writer_side, command_of(type, 1, 31, 32))) << "decoded";
+  }
 }
 
 }  // namespace
