@@ -17,11 +17,12 @@ struct WritingNow {
 thread_local WritingNow writing_now;
 }  // namespace
 
-SampleBeingWritten::SampleBeingWritten(const void* sample, SampleStepsFunction steps_of_type) {
+SampleBeingWritten::SampleBeingWritten(const void* sample, SampleStepsFunction steps_of_type)
+    : outer_sample_(writing_now.sample), outer_steps_of_type_(writing_now.steps_of_type) {
   writing_now = WritingNow{sample, steps_of_type};
 }
 
-SampleBeingWritten::~SampleBeingWritten() { writing_now = WritingNow{}; }
+SampleBeingWritten::~SampleBeingWritten() { writing_now = WritingNow{outer_sample_, outer_steps_of_type_}; }
 
 const void* SampleBeingWritten::of_type(SampleStepsFunction steps_of_type) {
   const WritingNow& now = writing_now;

@@ -113,6 +113,11 @@ class SampleBeingWritten {
   SampleBeingWritten& operator=(const SampleBeingWritten&) = delete;
   /// The sample this thread is writing if its type is the one of `steps_of_type`, else null.
   static const void* of_type(SampleStepsFunction steps_of_type);
+
+ private:
+  // The mark this one hides, restored at its end (a write inside a write: none today).
+  const void* outer_sample_;
+  SampleStepsFunction outer_steps_of_type_;
 };
 
 /// The content filter factory of one participant, for two filter classes:

@@ -195,6 +195,15 @@ TEST(ReaderKeyFilter, AWriterSideFilterReadsTheStepsOfTheSampleThisThreadIsWriti
     EXPECT_EQ(reader_side.dropped(), 1u);
   }
   EXPECT_EQ(SampleBeingWritten::of_type(sample_steps_function(kType)), nullptr) << "the mark ends with the write";
+  {
+    idl::VelocityCommand inner;
+    const SampleBeingWritten outer_mark(&sample, sample_steps_function(kType));
+    {
+      const SampleBeingWritten inner_mark(&inner, sample_steps_function(kType));
+      EXPECT_EQ(SampleBeingWritten::of_type(sample_steps_function(kType)), &inner);
+    }
+    EXPECT_EQ(SampleBeingWritten::of_type(sample_steps_function(kType)), &sample) << "the outer mark is back";
+  }
   EXPECT_TRUE(passes(writer_side, undecodable)) << "no mark: decoded, and what does not decode passes";
   {
     const SampleBeingWritten writing(&sample, sample_steps_function("robodds::idl::RobotState"));
