@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <system_error>
@@ -24,9 +25,11 @@ void make_output_dir(const std::string& dir) {
     throw ConfigError(located(dir, "", "cannot create the output directory: " + error.message()));
   }
   // Writable? Try it: the mode bits do not tell (root writes into a 0555 directory; /proc and
-  // read-only mounts refuse everyone).
-  const std::string probe = dir + "/.robodds-write-probe-" + std::to_string(::getpid());
-  const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
+  // read-only mounts refuse everyone). A name of its own for every probe (mkstemp): hosts in
+  // containers sharing one output volume have the same process ids, and a probe named by the pid
+  // made one of them fail with "File exists" (containers.compose_e2e, 2026-12-08).
+  std::string probe = dir + "/.robodds-write-probe-XXXXXX";
+  const int fd = ::mkstemp(probe.data());
   if (fd < 0) {
     throw ConfigError(located(dir, "", std::string("the output directory is not writable: ") + std::strerror(errno)));
   }

@@ -4,6 +4,9 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+
+#include <unistd.h>
 
 #include "runtime/base/error.hpp"
 
@@ -32,6 +35,19 @@ TEST(MakeOutputDir, CreatesTheDirectoryAndItsParentsAndLeavesNoProbe) {
   EXPECT_TRUE(std::filesystem::is_directory(dir));
   EXPECT_TRUE(std::filesystem::is_empty(dir));
   EXPECT_EQ(error_of(dir), "");  // an existing directory is fine
+}
+
+TEST(MakeOutputDir, AnotherProcessProbingTheSameDirectoryWithOurPidDoesNotStopIt) {
+  // Hosts in containers sharing one output volume have the same process ids: another one's probe
+  // may be there, named as a pid-named probe of ours would be.
+  const std::string dir = fresh_dir("shared");
+  std::filesystem::create_directories(dir);
+  const std::string others_probe = dir + "/.robodds-write-probe-" + std::to_string(::getpid());
+  std::ofstream(others_probe) << "";
+  EXPECT_EQ(error_of(dir), "");
+  EXPECT_TRUE(std::filesystem::exists(others_probe)) << "not ours to remove";
+  std::filesystem::remove(others_probe);
+  EXPECT_TRUE(std::filesystem::is_empty(dir)) << "our own probe is gone";
 }
 
 TEST(MakeOutputDir, AFileOfThatNameIsNamed) {
