@@ -1,5 +1,6 @@
 #include "runtime/base/realtime_priority.hpp"
 
+#include <pthread.h>
 #include <sched.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
@@ -157,6 +158,16 @@ std::string apply_rt_priority(int priority) {
            " bytes without CAP_IPC_LOCK: allocations past it will fail; set memlock unlimited";
   }
   return {};
+}
+
+void lower_to_ordinary_priority() {
+  int policy = SCHED_OTHER;
+  sched_param param{};
+  if (pthread_getschedparam(pthread_self(), &policy, &param) != 0 || policy == SCHED_OTHER) {
+    return;
+  }
+  param.sched_priority = 0;
+  pthread_setschedparam(pthread_self(), SCHED_OTHER, &param);
 }
 
 }  // namespace robodds

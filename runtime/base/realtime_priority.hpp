@@ -58,4 +58,11 @@ std::string apply_rt_priority(int priority);
 /// apply_rt_priority() did not run in this process. ConfigError with sched_refusal() if refused.
 void raise_loop_thread();
 
+/// The calling thread to the ordinary policy (SCHED_OTHER, nice unchanged): for threads that
+/// write files (runtime/io/batch_writer_thread.hpp). Under --rt-priority a thread inherits
+/// SCHED_FIFO from the thread that creates it (the loop), and a file writer at the loop's priority
+/// would outrank the host's receive threads. Lowering needs no privilege; nothing when it is
+/// already ordinary.
+void lower_to_ordinary_priority();
+
 }  // namespace robodds

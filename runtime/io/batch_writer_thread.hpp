@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "runtime/base/error.hpp"
+#include "runtime/base/realtime_priority.hpp"
 
 namespace robodds {
 
@@ -114,6 +115,7 @@ class BatchWriterThread {
 
  private:
   void loop() {
+    lower_to_ordinary_priority();  // files are no real-time work (--rt-priority: inherited SCHED_FIFO)
     std::unique_lock<std::mutex> lock(mutex_);
     for (;;) {
       ready_.wait(lock, [this] { return queue_.size() >= kWakeAt || done_ || (draining_ && !queue_.empty()); });

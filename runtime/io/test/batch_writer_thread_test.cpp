@@ -1,6 +1,8 @@
 #include "runtime/io/batch_writer_thread.hpp"
 
 #include <gtest/gtest.h>
+#include <pthread.h>
+#include <sched.h>
 
 #include <atomic>
 #include <chrono>
@@ -158,6 +160,30 @@ TEST(BatchWriterThread, AFailedWriteIsThrownOnceNamingTheOwnerAndLaterBatchesAre
   EXPECT_NO_THROW(writer.drain());
   EXPECT_NO_THROW(writer.finish());
   EXPECT_EQ(writes.load(), 2);
+}
+
+TEST(BatchWriterThread, TheWriterRunsAtTheOrdinaryPolicyWhenItsCreatorIsRealTime) {
+  sched_param fifo{};
+  fifo.sched_priority = 1;
+  int old_policy = SCHED_OTHER;
+  sched_param old_param{};
+  pthread_getschedparam(pthread_self(), &old_policy, &old_param);
+  if (pthread_setschedparam(pthread_self(), SCHED_FIFO, &fifo) != 0) {
+    GTEST_SKIP() << "SCHED_FIFO not permitted here (no CAP_SYS_NICE, RLIMIT_RTPRIO 0)";
+  }
+  std::atomic<int> writer_policy{-1};
+  {
+    BatchWriterThread<NumberBatch> writer("test", [&](NumberBatch&) {
+      int policy = -1;
+      sched_param param{};
+      pthread_getschedparam(pthread_self(), &policy, &param);
+      writer_policy = policy;
+    }, kQueue);
+    writer.push(batch_of(writer.add_stream(), {1}));
+    writer.finish();
+  }
+  pthread_setschedparam(pthread_self(), old_policy, &old_param);
+  EXPECT_EQ(writer_policy.load(), SCHED_OTHER) << "a file writer inherited the real-time policy of the loop";
 }
 
 TEST(BatchWriterThread, ADrainAfterFinishReturnsAtOnce) {
