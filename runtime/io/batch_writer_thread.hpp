@@ -4,6 +4,8 @@
 // and the evaluator (CSV): both are on a lockstep step's critical path otherwise (the evaluator
 // acknowledges a step only after it took and wrote every robot's samples of that step).
 
+#include <pthread.h>
+
 #include <algorithm>
 #include <chrono>
 #include <condition_variable>
@@ -40,6 +42,7 @@ class BatchWriterThread {
  public:
   static constexpr std::size_t kWakeAt = 64;
   static constexpr std::chrono::seconds kStallTimeout{120};
+  static constexpr const char* kThreadName = "robodds-files";  // at most 15 characters
 
   /// `owner`: names the files' writer in errors ("evaluator"). `write`: writes one batch, on the
   /// writer thread; what it throws stops the writer, and the producer's next push(), drain() or
@@ -116,6 +119,7 @@ class BatchWriterThread {
  private:
   void loop() {
     lower_to_ordinary_priority();  // files are no real-time work (--rt-priority: inherited SCHED_FIFO)
+    pthread_setname_np(pthread_self(), kThreadName);  // what ps and the rt_priority test see
     std::unique_lock<std::mutex> lock(mutex_);
     for (;;) {
       ready_.wait(lock, [this] { return queue_.size() >= kWakeAt || done_ || (draining_ && !queue_.empty()); });

@@ -40,7 +40,12 @@ children=($(pgrep -P "$runner")) || true
 ((${#children[@]} >= 2)) || fail "expected the child hosts of the runner, found: ${children[*]:-none}"
 for pid in "$runner" "${children[@]}"; do
   what="process $pid ($(tr '\0' ' ' </proc/$pid/cmdline | cut -c1-80))"
-  threads="$(ps -L -o tid=,cls=,rtprio= -p "$pid")"
+  all_threads="$(ps -L -o tid=,cls=,rtprio=,comm= -p "$pid")"
+  # File writers (runtime/io/batch_writer_thread.hpp, named robodds-files: the evaluator's CSV) run
+  # at the ordinary policy on purpose, below the loop and the receive threads.
+  writers="$(awk '$NF == "robodds-files"' <<<"$all_threads")"
+  [[ -z $writers || -z $(awk '$2 != "TS"' <<<"$writers") ]] || fail "$what: its file writer threads are not at the ordinary policy (TS): $writers"
+  threads="$(awk '$NF != "robodds-files" {print $1, $2, $3}' <<<"$all_threads")"
   other="$(grep -cvE "FF +(9|10)$" <<<"$threads" || true)"
   [[ $other -eq 0 ]] || fail "$what: $other of its threads are not SCHED_FIFO 9 or 10: $threads"
   loop="$( (grep -E "FF +10$" <<<"$threads" || true) | awk '{print $1}' | tr '\n' ' ')"
@@ -51,7 +56,7 @@ for pid in "$runner" "${children[@]}"; do
   fi
   locked_kb="$(awk '/^VmLck:/ {print $2}' "/proc/$pid/status")"
   [[ ${locked_kb:-0} -gt 0 ]] || fail "process $pid has no locked memory (VmLck ${locked_kb:-?} kB)"
-  echo "ok: process $pid: $(wc -l <<<"$threads") threads SCHED_FIFO 9, the loop ${loop:-(none)}at 10, VmLck $locked_kb kB"
+  echo "ok: process $pid: $(wc -l <<<"$threads") threads SCHED_FIFO 9, the loop ${loop:-(none)}at 10, $(grep -c . <<<"$writers") file writers at the ordinary policy, VmLck $locked_kb kB"
 done
 wait "$timeout_pid" || fail "real-time run with --rt-priority failed: $(tail -5 "$WORK/rt.log")"
 grep -q '"status": "completed"' "$WORK/rt/summary.json" || fail "summary.json: $(head -c 500 "$WORK/rt/summary.json")"
